@@ -1,0 +1,43 @@
+#pragma once
+/// \file
+/// Dimension-typed Eigen aliases shared by every model and filter.
+///
+/// A state of dimension N and a measurement of dimension M are fixed at compile time, so a
+/// mismatched Jacobian or gain is a compile error rather than a run-time surprise. Dynamic sizes
+/// appear only where the number of stations enters (the stacked EKF).
+
+#include <Eigen/Core>
+
+namespace skyfuse {
+
+template <int N>
+using Vector = Eigen::Matrix<double, N, 1>;
+
+template <int Rows, int Cols>
+using Matrix = Eigen::Matrix<double, Rows, Cols>;
+
+template <int N>
+using Covariance = Eigen::Matrix<double, N, N>;
+
+/// Maps a state of dimension N to a measurement of dimension M: dh/dx is M x N.
+template <int M, int N>
+using Jacobian = Eigen::Matrix<double, M, N>;
+
+using Vector3 = Vector<3>;
+using Matrix3 = Matrix<3, 3>;
+
+/// Mean and covariance of a Gaussian belief over a state of dimension N.
+template <int N>
+struct GaussianState {
+  static constexpr int kDim = N;
+  Vector<N> mean = Vector<N>::Zero();
+  Covariance<N> covariance = Covariance<N>::Identity();
+};
+
+/// Forces exact symmetry; rounding in P = A P A^T leaves the two triangles a few ulps apart.
+template <typename Derived>
+void symmetrize(Eigen::MatrixBase<Derived>& m) {
+  m = 0.5 * (m + m.transpose()).eval();
+}
+
+}  // namespace skyfuse

@@ -1,0 +1,53 @@
+#pragma once
+/// \file
+/// Weighted fusion of information increments into a common prior (paper 000, Sec. III):
+///
+///   Y = (P^-)^-1 + sum_i w_i dQ_i,   y = (P^-)^-1 x^- + sum_i w_i dy_i,   P = Y^-1,  x = P y.
+///
+/// The sums run in ascending station id and every inverse is a Cholesky solve, so any two
+/// peers holding the same prior and the same increments compute the same bits.
+
+#include <Eigen/Cholesky>
+#include <span>
+
+#include "skyfuse/core/status.hpp"
+#include "skyfuse/core/types.hpp"
+#include "skyfuse/fusion/information_increment.hpp"
+
+namespace skyfuse {
+
+/// Fuses `increments` (ascending station id; weights[i] belongs to increments[i]) into `prior`
+/// and writes the result to `posterior`, which may alias `prior`. On failure `posterior` is
+/// left unchanged.
+template <int N>
+NumericalStatus fuse_increments(const GaussianState<N>& prior,
+                                std::span<const InformationIncrement<N>> increments,
+                                std::span<const double> weights, GaussianState<N>& posterior) {
+  for (std::size_t i = 1; i < increments.size(); ++i) {
+    if (increments[i].station_id <= increments[i - 1].station_id) {
+      return NumericalStatus::kIncrementsOutOfOrder;
+    }
+  }
+
+  const Eigen::LLT<Covariance<N>> prior_factor(prior.covariance);
+  if (prior_factor.info() != Eigen::Success)
+    return NumericalStatus::kNotPositiveDefinite;
+
+  Covariance<N> information = prior_factor.solve(Covariance<N>::Identity());
+  symmetrize(information);
+  Vector<N> information_vector = prior_factor.solve(prior.mean);
+  for (std::size_t i = 0; i < increments.size(); ++i) {
+    information.noalias() += weights[i] * increments[i].delta_information;
+    information_vector.noalias() += weights[i] * increments[i].delta_vector;
+  }
+
+  const Eigen::LLT<Covariance<N>> fused_factor(information);
+  if (fused_factor.info() != Eigen::Success)
+    return NumericalStatus::kNotPositiveDefinite;
+  posterior.mean = fused_factor.solve(information_vector);
+  posterior.covariance = fused_factor.solve(Covariance<N>::Identity());
+  symmetrize(posterior.covariance);
+  return NumericalStatus::kOk;
+}
+
+}  // namespace skyfuse

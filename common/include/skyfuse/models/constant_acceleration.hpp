@@ -1,0 +1,47 @@
+#pragma once
+/// \file
+/// Nearly-constant-acceleration motion in 3-D (paper 000, eq. 1-2).
+///
+/// State x = [p; v; a] in R^9, each block (x, y, z). Per axis
+///   A = [[1, dt, dt^2/2], [0, 1, dt], [0, 0, 1]],  F = A (x) I3,
+/// and the process noise is the per-step covariance Q = blkdiag(Qp, Qv, Qa) with each block a
+/// multiple of I3, exactly as the paper states it (not a continuous-time white-noise model).
+
+#include "skyfuse/core/types.hpp"
+
+namespace skyfuse {
+
+/// Per-step standard deviations of the process noise, one per kinematic block.
+struct ProcessNoiseStd {
+  double position = 0.0;      ///< m
+  double velocity = 0.0;      ///< m/s
+  double acceleration = 0.0;  ///< m/s^2
+};
+
+class ConstantAcceleration3D {
+ public:
+  static constexpr int kDim = 9;
+  using State = Vector<kDim>;
+
+  /// Index of the first component of each block in the state.
+  static constexpr int kPosition = 0;
+  static constexpr int kVelocity = 3;
+  static constexpr int kAcceleration = 6;
+
+  ConstantAcceleration3D(double time_step_s, const ProcessNoiseStd& noise);
+
+  /// Mean propagation x_{k+1} = F x_k.
+  State propagate(const State& x) const { return transition_ * x; }
+  /// dF/dx; the model is linear, so this is F wherever it is evaluated.
+  const Covariance<kDim>& jacobian(const State& /*x*/) const { return transition_; }
+  const Covariance<kDim>& transition_matrix() const { return transition_; }
+  const Covariance<kDim>& process_noise() const { return process_noise_; }
+  double time_step() const { return time_step_s_; }
+
+ private:
+  double time_step_s_;
+  Covariance<kDim> transition_;
+  Covariance<kDim> process_noise_;
+};
+
+}  // namespace skyfuse

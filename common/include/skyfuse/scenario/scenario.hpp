@@ -1,0 +1,75 @@
+#pragma once
+/// \file
+/// An experiment, as read from a scenario YAML file (see scenarios/paper000.yaml for every
+/// field with its unit). Plain data: loading and validation live in scenario_loader.hpp.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "skyfuse/core/types.hpp"
+#include "skyfuse/models/constant_acceleration.hpp"
+
+namespace skyfuse {
+
+struct StationConfig {
+  int id = 0;
+  Vector3 position_m = Vector3::Zero();
+  /// Nominal standard deviations [range m, azimuth rad, elevation rad] before scaling.
+  Vector3 noise_std = Vector3::Zero();
+  /// Fusion weight w_i of this station's increments.
+  double weight = 1.0;
+};
+
+/// A change of the target's motion over a time window, aligned to whole steps.
+struct Manoeuvre {
+  enum class Kind { kAccelerate, kTurn };
+  Kind kind = Kind::kAccelerate;
+  double start_s = 0.0;
+  double duration_s = 0.0;
+  /// kAccelerate: constant acceleration, world frame (m/s^2).
+  Vector3 acceleration_mps2 = Vector3::Zero();
+  /// kTurn: horizontal turn rate, positive counter-clockwise seen from above (rad/s).
+  double turn_rate_rad_s = 0.0;
+};
+
+struct TargetConfig {
+  Vector3 initial_position_m = Vector3::Zero();
+  /// Unit vector of the initial direction of flight.
+  Vector3 direction = Vector3::UnitX();
+  /// Initial speeds to sweep (m/s); a run uses one of them.
+  std::vector<double> speeds_mps;
+  std::vector<Manoeuvre> manoeuvres;
+};
+
+/// How each station's actual noise covariance R_i = s_i * diag(noise_std^2) is drawn per run.
+struct NoiseScaleConfig {
+  enum class Model {
+    kNone,   ///< s_i = 1
+    kPaper,  ///< s_i = 1 + delta_i, delta_i ~ N(0,1) redrawn until s_i >= floor (truncated)
+  };
+  Model model = Model::kPaper;
+  double floor = 0.1;
+};
+
+struct FilterConfig {
+  ProcessNoiseStd process_noise;
+  Vector<9> initial_covariance_diag = Vector<9>::Ones();
+  /// Error of the initial estimate: fixed if set, otherwise drawn from N(0, P0) per run.
+  std::optional<Vector<9>> initial_state_error;
+};
+
+struct Scenario {
+  std::string name;
+  std::string description;
+  std::uint64_t seed = 0;
+  double time_step_s = 0.0;
+  int steps = 0;
+  TargetConfig target;
+  std::vector<StationConfig> stations;
+  NoiseScaleConfig noise_scale;
+  FilterConfig filter;
+};
+
+}  // namespace skyfuse

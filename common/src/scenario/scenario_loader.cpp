@@ -1,0 +1,277 @@
+#include "skyfuse/scenario/scenario_loader.hpp"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#include "scenario/yaml_field.hpp"
+#include "skyfuse/scenario/truth.hpp"
+
+namespace skyfuse {
+namespace {
+
+using detail::YamlField;
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+constexpr double kKmhToMps = 1.0 / 3.6;
+
+Vector3 read_vector3(const YamlField& field) {
+  return field.numbers(3);
+}
+
+// Direction of flight from heading (from +x towards +y) and climb angle, both in degrees.
+Vector3 direction_from_angles(double heading_deg, double climb_deg) {
+  const double heading = heading_deg * kDegToRad;
+  const double climb = climb_deg * kDegToRad;
+  return Vector3(std::cos(climb) * std::cos(heading), std::cos(climb) * std::sin(heading),
+                 std::sin(climb));
+}
+
+Manoeuvre read_manoeuvre(const YamlField& field) {
+  Manoeuvre m;
+  const std::string kind = field.required("kind").string();
+  m.start_s = field.required("start_s").non_negative_number();
+  m.duration_s = field.required("duration_s").positive_number();
+  if (kind == "turn") {
+    field.allow_only({"kind", "start_s", "duration_s", "rate_deg_s"});
+    m.kind = Manoeuvre::Kind::kTurn;
+    m.turn_rate_rad_s = field.required("rate_deg_s").number() * kDegToRad;
+  } else if (kind == "accelerate") {
+    field.allow_only({"kind", "start_s", "duration_s", "acceleration_mps2"});
+    m.kind = Manoeuvre::Kind::kAccelerate;
+    m.acceleration_mps2 = read_vector3(field.required("acceleration_mps2"));
+  } else {
+    field.required("kind").fail(
+        fmt::format("unknown manoeuvre kind '{}' (allowed: turn, accelerate)", kind));
+  }
+  return m;
+}
+
+TargetConfig read_target(const YamlField& field) {
+  field.allow_only({"initial_position_m", "velocity_mps", "speeds_kmh", "heading_deg", "climb_deg",
+                    "manoeuvres"});
+  TargetConfig target;
+  target.initial_position_m = read_vector3(field.required("initial_position_m"));
+
+  const auto velocity = field.optional("velocity_mps");
+  const auto speeds = field.optional("speeds_kmh");
+  if (velocity && speeds) {
+    speeds->fail("give either velocity_mps or speeds_kmh (with heading_deg), not both");
+  }
+  if (velocity) {
+    if (field.optional("heading_deg") || field.optional("climb_deg")) {
+      velocity->fail("heading_deg and climb_deg go with speeds_kmh, not with velocity_mps");
+    }
+    const Vector3 v = read_vector3(*velocity);
+    if (v.norm() <= 0.0)
+      velocity->fail(fmt::format("must be non-zero, got {}", velocity->text()));
+    target.direction = v.normalized();
+    target.speeds_mps = {v.norm()};
+  } else if (speeds) {
+    const auto heading = field.optional("heading_deg");
+    const auto climb = field.optional("climb_deg");
+    target.direction =
+        direction_from_angles(heading ? heading->number() : 0.0, climb ? climb->number() : 0.0);
+    const auto items = speeds->sequence();
+    if (items.empty())
+      speeds->fail("must list at least one speed");
+    for (const YamlField& item : items) {
+      target.speeds_mps.push_back(item.positive_number() * kKmhToMps);
+    }
+  } else {
+    field.fail("missing field 'speeds_kmh' (or 'velocity_mps')");
+  }
+
+  if (const auto manoeuvres = field.optional("manoeuvres")) {
+    for (const YamlField& item : manoeuvres->sequence()) {
+      target.manoeuvres.push_back(read_manoeuvre(item));
+      const Manoeuvre& added = target.manoeuvres.back();
+      for (std::size_t i = 0; i + 1 < target.manoeuvres.size(); ++i) {
+        const Manoeuvre& other = target.manoeuvres[i];
+        const bool overlap = added.start_s < other.start_s + other.duration_s &&
+                             other.start_s < added.start_s + added.duration_s;
+        if (overlap)
+          item.fail(fmt::format("overlaps manoeuvres[{}]", i));
+      }
+    }
+  }
+  return target;
+}
+
+StationConfig read_station(const YamlField& field) {
+  field.allow_only({"id", "position_m", "noise_std", "weight"});
+  StationConfig station;
+  const YamlField id = field.required("id");
+  const std::int64_t raw_id = id.integer();
+  // Id 0 is reserved for draws shared by all stations (the initial estimate).
+  if (raw_id < 1 || raw_id > 100000) {
+    id.fail(fmt::format("must be an integer in [1, 100000], got {}", id.text()));
+  }
+  station.id = static_cast<int>(raw_id);
+  station.position_m = read_vector3(field.required("position_m"));
+  const YamlField noise = field.required("noise_std");
+  const auto noise_items = noise.sequence();
+  if (noise_items.size() != 3) {
+    noise.fail(
+        fmt::format("expected [range_m, azimuth_rad, elevation_rad], got '{}'", noise.text()));
+  }
+  for (int i = 0; i < 3; ++i)
+    station.noise_std(i) = noise_items[i].positive_number();
+  if (const auto weight = field.optional("weight"))
+    station.weight = weight->positive_number();
+  return station;
+}
+
+NoiseScaleConfig read_noise_scale(const YamlField& field) {
+  field.allow_only({"scale", "scale_floor"});
+  NoiseScaleConfig config;
+  if (const auto scale = field.optional("scale")) {
+    const std::string model = scale->string();
+    if (model == "paper") {
+      config.model = NoiseScaleConfig::Model::kPaper;
+    } else if (model == "none") {
+      config.model = NoiseScaleConfig::Model::kNone;
+    } else {
+      scale->fail(fmt::format("unknown scale model '{}' (allowed: paper, none)", model));
+    }
+  }
+  if (const auto floor = field.optional("scale_floor")) {
+    config.floor = floor->positive_number();
+    if (config.floor > 1.0)
+      floor->fail(fmt::format("must be <= 1, got {}", floor->text()));
+  }
+  return config;
+}
+
+FilterConfig read_filter(const YamlField& field) {
+  field.allow_only({"process_noise_std", "initial_covariance_diag", "initial_state_error"});
+  FilterConfig filter;
+  const YamlField q = field.required("process_noise_std");
+  q.allow_only({"position_m", "velocity_mps", "acceleration_mps2"});
+  filter.process_noise.position = q.required("position_m").positive_number();
+  filter.process_noise.velocity = q.required("velocity_mps").positive_number();
+  filter.process_noise.acceleration = q.required("acceleration_mps2").positive_number();
+
+  const YamlField p0 = field.required("initial_covariance_diag");
+  if (p0.is_scalar()) {
+    filter.initial_covariance_diag.setConstant(p0.positive_number());
+  } else {
+    const auto items = p0.sequence();
+    if (items.size() != 9)
+      p0.fail(fmt::format("expected 1 or 9 numbers, got '{}'", p0.text()));
+    for (int i = 0; i < 9; ++i)
+      filter.initial_covariance_diag(i) = items[i].positive_number();
+  }
+
+  if (const auto error = field.optional("initial_state_error")) {
+    if (error->is_scalar()) {
+      if (error->string() != "sampled") {
+        error->fail(
+            fmt::format("expected 'sampled' or a list of 9 numbers, got '{}'", error->text()));
+      }
+    } else {
+      filter.initial_state_error = error->numbers(9);
+    }
+  }
+  return filter;
+}
+
+Scenario read_scenario(const YamlField& root) {
+  root.allow_only({"name", "description", "seed", "time_step_s", "steps", "target", "stations",
+                   "measurement_noise", "filter"});
+  Scenario s;
+  s.name = root.required("name").string();
+  if (const auto description = root.optional("description"))
+    s.description = description->string();
+
+  const YamlField seed = root.required("seed");
+  const std::int64_t raw_seed = seed.integer();
+  if (raw_seed < 0)
+    seed.fail(fmt::format("must be >= 0, got {}", seed.text()));
+  s.seed = static_cast<std::uint64_t>(raw_seed);
+
+  s.time_step_s = root.required("time_step_s").positive_number();
+  const YamlField steps = root.required("steps");
+  const std::int64_t raw_steps = steps.integer();
+  if (raw_steps < 1 || raw_steps > 100'000'000) {
+    steps.fail(fmt::format("must be an integer in [1, 100000000], got {}", steps.text()));
+  }
+  s.steps = static_cast<int>(raw_steps);
+
+  s.target = read_target(root.required("target"));
+
+  const YamlField stations = root.required("stations");
+  const auto station_items = stations.sequence();
+  if (station_items.empty())
+    stations.fail("must list at least one station");
+  std::set<int> ids;
+  for (const YamlField& item : station_items) {
+    s.stations.push_back(read_station(item));
+    if (!ids.insert(s.stations.back().id).second) {
+      item.required("id").fail(fmt::format("duplicate station id {}", s.stations.back().id));
+    }
+  }
+
+  if (const auto noise = root.optional("measurement_noise")) {
+    s.noise_scale = read_noise_scale(*noise);
+  }
+  s.filter = read_filter(root.required("filter"));
+  return s;
+}
+
+}  // namespace
+
+void validate_scenario(const Scenario& scenario, const std::string& source) {
+  for (double speed : scenario.target.speeds_mps) {
+    const TruthTrajectory truth =
+        generate_truth(scenario.target, speed, scenario.time_step_s, scenario.steps);
+    for (std::size_t i = 0; i < scenario.stations.size(); ++i) {
+      const StationConfig& station = scenario.stations[i];
+      for (std::size_t k = 0; k < truth.states.size(); ++k) {
+        const double distance = (truth.position(k) - station.position_m).norm();
+        if (distance < kMinStationSeparationM) {
+          throw ConfigError(fmt::format(
+              "{}: stations[{}].position_m: [{}, {}, {}] is {:.3g} m from the target at step {} "
+              "(t = {:.3f} s, speed {:.4g} km/h); a station must stay at least {} m away",
+              source, i, station.position_m.x(), station.position_m.y(), station.position_m.z(),
+              distance, k, static_cast<double>(k) * scenario.time_step_s, speed * 3.6,
+              kMinStationSeparationM));
+        }
+      }
+    }
+  }
+}
+
+Scenario parse_scenario(std::string_view yaml_text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(yaml_text));
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(fmt::format("{}: not valid YAML: {}", source, e.what()));
+  }
+  if (!root.IsMap())
+    throw ConfigError(fmt::format("{}: expected a YAML mapping at the top", source));
+  Scenario scenario = read_scenario(YamlField(root, "", source));
+  validate_scenario(scenario, source);
+  return scenario;
+}
+
+Scenario load_scenario_file(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in)
+    throw ConfigError(fmt::format("{}: cannot open scenario file", path.string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scenario(text.str(), path.string());
+}
+
+Scenario load_default_scenario() {
+  return parse_scenario(default_scenario_yaml(), "<embedded paper000.yaml>");
+}
+
+}  // namespace skyfuse

@@ -1,0 +1,26 @@
+#pragma once
+// `skyfuse sweep`: Monte-Carlo runs of both architectures, in-process, for M = 1..M_max stations
+// and every speed the scenario lists.
+
+#include <CLI/App.hpp>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace skyfuse::harness {
+
+struct SweepOptions {
+  std::string scenario_path;  ///< empty: the embedded paper000 scenario
+  int runs = 50;
+  int max_stations = 0;  ///< 0: every station of the scenario
+  std::string out_dir = "results/sweep";
+  std::optional<std::uint64_t> seed;
+  std::optional<int> steps;
+  int threads = 0;  ///< 0: one per core
+  bool plot = true;
+};
+
+void add_sweep_command(CLI::App& app, SweepOptions& options);
+int run_sweep(const SweepOptions& options);
+
+}  // namespace skyfuse::harness
