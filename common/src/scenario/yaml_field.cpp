@@ -21,9 +21,12 @@ std::string YamlField::text() const {
 }
 
 void YamlField::fail(const std::string& problem) const {
+  // The top-level mapping's line is just where the file starts: not worth printing.
   const YAML::Mark mark = node_.Mark();
-  const std::string where = mark.line >= 0 ? fmt::format(" (line {})", mark.line + 1) : "";
-  throw ConfigError(fmt::format("{}: {}: {}{}", *source_, path_, problem, where));
+  const bool top = path_.empty();
+  const std::string where = !top && mark.line >= 0 ? fmt::format(" (line {})", mark.line + 1) : "";
+  throw ConfigError(
+      fmt::format("{}: {}: {}{}", *source_, top ? "(top level)" : path_, problem, where));
 }
 
 YamlField YamlField::required(const std::string& key) const {

@@ -1,0 +1,96 @@
+// Cost of the per-step work of each architecture:
+//   StationStep      one station's predict + measurement model + information increment
+//   FuseIncrements   one peer fusing M increments into the common prior
+//   StackedEkf       the fusion center's stacked update over M measurements
+// Problems are built from the default scenario's geometry so the numbers mean something.
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "skyfuse/fusion/increment_fusion.hpp"
+#include "skyfuse/fusion/stacked_ekf.hpp"
+#include "skyfuse/scenario/measurement_simulation.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/scenario/truth.hpp"
+#include "skyfuse/tracking/peer_tracker.hpp"
+
+namespace skyfuse {
+namespace {
+
+// A converged prior and M stations' measurements at one instant of the default scenario.
+struct Snapshot {
+  GaussianState<9> prior;
+  std::vector<StationObservation<StationSensor>> observations;
+  std::vector<InformationIncrement<9>> increments;
+  std::vector<double> weights;
+};
+
+Snapshot make_snapshot(int stations) {
+  const Scenario scenario = load_default_scenario();
+  const TruthTrajectory truth =
+      generate_truth(scenario.target, scenario.target.speeds_mps[0], scenario.time_step_s, 500);
+  const Vector<9>& x = truth.states[500];
+  Snapshot s;
+  s.prior.mean = x;
+  s.prior.covariance = 0.05 * Covariance<9>::Identity();
+  for (int i = 0; i < stations; ++i) {
+    // Beyond the scenario's ten stations, reuse their sites with new ids.
+    const StationConfig& site =
+        scenario.stations[static_cast<std::size_t>(i) % scenario.stations.size()];
+    StationObservation<StationSensor> obs;
+    obs.station_id = i + 1;
+    obs.sensor = StationSensor(site.position_m + Vector3(0.0, 0.0, i / 10));
+    obs.noise = station_noise_covariance(scenario, site, 0);
+    obs.z = simulate_measurement(obs.sensor, x.head<3>(), obs.noise, 1, 0, i + 1, 500);
+    s.observations.push_back(obs);
+    s.increments.emplace_back();
+    compute_increment(obs.station_id, s.prior, obs.sensor, obs.z, obs.noise, s.increments.back());
+    s.weights.push_back(1.0);
+  }
+  return s;
+}
+
+void StationStep(benchmark::State& state) {
+  const Snapshot s = make_snapshot(1);
+  const Scenario scenario = load_default_scenario();
+  const ConstantAcceleration3D motion(scenario.time_step_s, scenario.filter.process_noise);
+  PeerTracker tracker(motion, s.prior);
+  const auto& obs = s.observations.front();
+  Increment9 increment;
+  for (auto _ : state) {
+    tracker.predict();
+    benchmark::DoNotOptimize(
+        tracker.make_increment(obs.station_id, obs.sensor, obs.z, obs.noise, increment));
+    benchmark::DoNotOptimize(increment);
+  }
+}
+BENCHMARK(StationStep);
+
+void FuseIncrements(benchmark::State& state) {
+  const Snapshot s = make_snapshot(static_cast<int>(state.range(0)));
+  GaussianState<9> posterior;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(fuse_increments<9>(s.prior, s.increments, s.weights, posterior));
+    benchmark::DoNotOptimize(posterior);
+  }
+  state.counters["M"] = static_cast<double>(state.range(0));
+}
+BENCHMARK(FuseIncrements)->Arg(1)->Arg(4)->Arg(16)->Arg(64);
+
+void StackedEkfUpdate(benchmark::State& state) {
+  const Snapshot s = make_snapshot(static_cast<int>(state.range(0)));
+  StackedEkf<9, StationSensor> stacked;
+  GaussianState<9> posterior;
+  for (auto _ : state) {
+    posterior = s.prior;
+    benchmark::DoNotOptimize(stacked.update(posterior, s.observations));
+    benchmark::DoNotOptimize(posterior);
+  }
+  state.counters["M"] = static_cast<double>(state.range(0));
+}
+BENCHMARK(StackedEkfUpdate)->Arg(1)->Arg(4)->Arg(16)->Arg(64);
+
+}  // namespace
+}  // namespace skyfuse
+
+BENCHMARK_MAIN();

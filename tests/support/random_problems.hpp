@@ -1,0 +1,51 @@
+#pragma once
+// Random but reproducible test problems: SPD covariances, priors near a target, stations
+// around it. Each test seeds its own std::mt19937 so that failures replay.
+
+#include <Eigen/QR>
+#include <random>
+
+#include "skyfuse/core/types.hpp"
+
+namespace skyfuse::test {
+
+inline Vector3 random_vector3(std::mt19937& rng, double lo, double hi) {
+  std::uniform_real_distribution<double> u(lo, hi);
+  return Vector3(u(rng), u(rng), u(rng));
+}
+
+/// SPD matrix with eigenvalues in [lo, hi]: a random rotation of a random positive diagonal.
+template <int N>
+Covariance<N> random_spd(std::mt19937& rng, double lo, double hi) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  Covariance<N> a;
+  for (int i = 0; i < N; ++i) {
+    for (int j = 0; j < N; ++j) a(i, j) = n(rng);
+  }
+  const Eigen::HouseholderQR<Covariance<N>> qr(a);
+  const Covariance<N> q = qr.householderQ();
+  std::uniform_real_distribution<double> u(lo, hi);
+  Vector<N> eig;
+  for (int i = 0; i < N; ++i) eig(i) = u(rng);
+  Covariance<N> spd = q * eig.asDiagonal() * q.transpose();
+  symmetrize(spd);
+  return spd;
+}
+
+/// A 9-state prior whose position lies near `position`.
+inline GaussianState<9> random_prior(std::mt19937& rng, const Vector3& position) {
+  GaussianState<9> prior;
+  prior.mean.head<3>() = position + random_vector3(rng, -2.0, 2.0);
+  prior.mean.segment<3>(3) = random_vector3(rng, -80.0, 80.0);
+  prior.mean.tail<3>() = random_vector3(rng, -3.0, 3.0);
+  prior.covariance = random_spd<9>(rng, 0.05, 4.0);
+  return prior;
+}
+
+/// Relative Frobenius distance |a - b| / max(|b|, floor).
+template <typename A, typename B>
+double relative_error(const A& a, const B& b, double floor = 1e-300) {
+  return (a - b).norm() / std::max(b.norm(), floor);
+}
+
+}  // namespace skyfuse::test

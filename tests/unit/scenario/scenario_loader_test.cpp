@@ -1,0 +1,154 @@
+#include "skyfuse/scenario/scenario_loader.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+namespace skyfuse {
+namespace {
+
+// The embedded default scenario with one piece of text replaced; the replaced text must exist,
+// so that a change to paper000.yaml cannot silently turn a test into a no-op.
+std::string default_with(const std::string& from, const std::string& to) {
+  std::string text(default_scenario_yaml());
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error("test fixture: '" + from + "' not found");
+  return text.replace(at, from.size(), to);
+}
+
+// The message the loader throws for `yaml`, or a failure if it accepts it.
+std::string rejection(const std::string& yaml) {
+  try {
+    parse_scenario(yaml, "test.yaml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "scenario was accepted";
+  return {};
+}
+
+TEST(ScenarioLoader, LoadsTheDefaultScenarioWithThePapersParameters) {
+  const Scenario s = load_default_scenario();
+  EXPECT_EQ(s.name, "paper000");
+  EXPECT_DOUBLE_EQ(s.time_step_s, 0.02);
+  EXPECT_EQ(s.steps, 2000);
+  EXPECT_EQ(s.stations.size(), 10U);
+  ASSERT_EQ(s.target.speeds_mps.size(), 2U);
+  EXPECT_DOUBLE_EQ(s.target.speeds_mps[0] * 3.6, 100.0);
+  EXPECT_DOUBLE_EQ(s.target.speeds_mps[1] * 3.6, 300.0);
+  EXPECT_DOUBLE_EQ(s.filter.process_noise.position, 0.5);
+  EXPECT_DOUBLE_EQ(s.filter.process_noise.velocity, 0.1);
+  EXPECT_DOUBLE_EQ(s.filter.process_noise.acceleration, 0.05);
+  EXPECT_EQ(s.filter.initial_covariance_diag, Vector<9>::Ones());
+  EXPECT_FALSE(s.filter.initial_state_error.has_value());
+  EXPECT_EQ(s.stations[0].noise_std, Vector3(0.1, 0.01, 0.01));
+  EXPECT_DOUBLE_EQ(s.stations[0].weight, 1.0);
+  EXPECT_EQ(s.noise_scale.model, NoiseScaleConfig::Model::kPaper);
+  ASSERT_EQ(s.target.manoeuvres.size(), 2U);
+  EXPECT_NEAR(s.target.manoeuvres[0].turn_rate_rad_s, 3.0 * std::numbers::pi / 180.0, 1e-15);
+}
+
+TEST(ScenarioLoader, RefusesAMissingField) {
+  EXPECT_EQ(rejection(default_with("time_step_s: 0.02\n", "")),
+            "test.yaml: (top level): missing field 'time_step_s'");
+  EXPECT_EQ(
+      rejection(default_with("position_m: [-400.0, 1200.0, 40.0], ", "")),
+      "test.yaml: stations[0]: missing field 'position_m' (line 34)");
+}
+
+TEST(ScenarioLoader, RefusesAWrongType) {
+  EXPECT_EQ(rejection(default_with("steps: 2000", "steps: many")),
+            "test.yaml: steps: expected an integer, got 'many' (line 21)");
+  EXPECT_EQ(rejection(default_with("steps: 2000", "steps: 20.5")),
+            "test.yaml: steps: expected an integer, got '20.5' (line 21)");
+  EXPECT_EQ(rejection(default_with("time_step_s: 0.02", "time_step_s: [0.02]")),
+            "test.yaml: time_step_s: expected a number, got '[0.02]' (line 20)");
+  EXPECT_EQ(rejection(default_with("time_step_s: 0.02", "time_step_s: .nan")),
+            "test.yaml: time_step_s: must be finite, got '.nan' (line 20)");
+}
+
+TEST(ScenarioLoader, RefusesANonPositiveVariance) {
+  EXPECT_EQ(rejection(default_with("noise_std: [0.1, 0.01, 0.01]}", "noise_std: [0.1, 0.0, 0.01]}")),
+            "test.yaml: stations[0].noise_std[1]: must be > 0, got 0.0 (line 34)");
+  EXPECT_EQ(rejection(default_with("noise_std: [0.1, 0.01, 0.01]}", "noise_std: [-0.1, 0.01, 0.01]}")),
+            "test.yaml: stations[0].noise_std[0]: must be > 0, got -0.1 (line 34)");
+  EXPECT_EQ(rejection(default_with("position_m: 0.5", "position_m: 0")),
+            "test.yaml: filter.process_noise_std.position_m: must be > 0, got 0 (line 53)");
+  EXPECT_EQ(rejection(default_with("initial_covariance_diag: 1.0", "initial_covariance_diag: -1")),
+            "test.yaml: filter.initial_covariance_diag: must be > 0, got -1 (line 54)");
+  EXPECT_EQ(rejection(default_with("scale_floor: 0.1", "scale_floor: 0")),
+            "test.yaml: measurement_noise.scale_floor: must be > 0, got 0 (line 50)");
+}
+
+TEST(ScenarioLoader, RefusesADuplicateStationId) {
+  EXPECT_EQ(rejection(default_with("{id: 2,", "{id: 1,")),
+            "test.yaml: stations[1].id: duplicate station id 1 (line 35)");
+}
+
+TEST(ScenarioLoader, RefusesAStationAtTheTargetsPosition) {
+  EXPECT_EQ(rejection(default_with("position_m: [-400.0, 1200.0, 40.0]",
+                                   "position_m: [-1200.0, -300.0, 450.0]")),
+            "test.yaml: stations[0].position_m: [-1200, -300, 450] is 0 m from the target at step "
+            "0 (t = 0.000 s, speed 100 km/h); a station must stay at least 1 m away");
+}
+
+TEST(ScenarioLoader, RefusesANonPositiveTimeStep) {
+  EXPECT_EQ(rejection(default_with("time_step_s: 0.02", "time_step_s: 0")),
+            "test.yaml: time_step_s: must be > 0, got 0 (line 20)");
+  EXPECT_EQ(rejection(default_with("time_step_s: 0.02", "time_step_s: -0.02")),
+            "test.yaml: time_step_s: must be > 0, got -0.02 (line 20)");
+}
+
+TEST(ScenarioLoader, RefusesUnknownAndMisspeltFields) {
+  const std::string message = rejection(default_with("seed: 20250601", "sead: 20250601"));
+  EXPECT_NE(message.find("test.yaml: sead: unknown field (allowed: name, description, seed"),
+            std::string::npos)
+      << message;
+}
+
+TEST(ScenarioLoader, RefusesOverlappingManoeuvres) {
+  EXPECT_EQ(rejection(default_with("start_s: 30.0", "start_s: 15.0")),
+            "test.yaml: target.manoeuvres[1]: overlaps manoeuvres[0] (line 30)");
+}
+
+TEST(ScenarioLoader, RefusesTextThatIsNotYaml) {
+  const std::string message = rejection("name: [unclosed");
+  EXPECT_EQ(message.rfind("test.yaml: not valid YAML:", 0), 0U) << message;
+}
+
+TEST(ScenarioLoader, NamesAMissingFile) {
+  try {
+    load_scenario_file("/nonexistent/scenario.yaml");
+    FAIL() << "missing file accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "/nonexistent/scenario.yaml: cannot open scenario file");
+  }
+}
+
+TEST(ScenarioLoader, ReadsAFileFromDisk) {
+  const auto path = std::filesystem::temp_directory_path() / "skyfuse_loader_test.yaml";
+  std::ofstream(path) << default_with("name: paper000", "name: from_disk");
+  EXPECT_EQ(load_scenario_file(path).name, "from_disk");
+  std::filesystem::remove(path);
+}
+
+TEST(ScenarioLoader, AcceptsAnExplicitVelocityAndAFixedInitialError) {
+  const std::string yaml = default_with(
+      "  heading_deg: 10.0\n  climb_deg: 0.0\n  speeds_kmh: [100, 300]\n",
+      "  velocity_mps: [30.0, 40.0, 0.0]\n");
+  const Scenario s = parse_scenario(
+      yaml.substr(0, yaml.find("  initial_state_error: sampled")) +
+          "  initial_state_error: [1, 0, 0, 0, 0, 0, 0, 0, 0]\n",
+      "test.yaml");
+  ASSERT_EQ(s.target.speeds_mps.size(), 1U);
+  EXPECT_DOUBLE_EQ(s.target.speeds_mps[0], 50.0);
+  EXPECT_TRUE(s.target.direction.isApprox(Vector3(0.6, 0.8, 0.0)));
+  ASSERT_TRUE(s.filter.initial_state_error.has_value());
+  EXPECT_EQ((*s.filter.initial_state_error)(0), 1.0);
+}
+
+}  // namespace
+}  // namespace skyfuse

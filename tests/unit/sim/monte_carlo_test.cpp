@@ -1,0 +1,74 @@
+#include "skyfuse/sim/monte_carlo.hpp"
+
+#include <gtest/gtest.h>
+
+#include "skyfuse/scenario/scenario_loader.hpp"
+
+namespace skyfuse {
+namespace {
+
+TEST(MonteCarlo, CentralAndPeerToPeerAgreeAtEveryStepWithUnitWeights) {
+  const Scenario scenario = load_default_scenario();
+  for (double speed : scenario.target.speeds_mps) {
+    const TruthTrajectory truth =
+        generate_truth(scenario.target, speed, scenario.time_step_s, scenario.steps);
+    for (int m : {1, 3, 10}) {
+      double worst = 0.0;
+      simulate_run(scenario, truth, m, 0, [&](const StepRecord& r) {
+        worst = std::max(worst, (r.central.mean.head<3>() - r.decentralised.mean.head<3>()).norm());
+      });
+      EXPECT_LT(worst, 1e-6) << "M = " << m << ", speed " << speed;
+    }
+  }
+}
+
+TEST(MonteCarlo, ReproducesThePapersRmseBoundForThreeOrMoreStations) {
+  // A smaller version of the README sweep (which uses 50 runs): 20 runs, full length.
+  const Scenario scenario = load_default_scenario();
+  for (double speed : scenario.target.speeds_mps) {
+    for (int m : {3, 4}) {
+      const MonteCarloSummary s = run_monte_carlo(scenario, {m, speed, 20, 2});
+      EXPECT_LT(s.rmse_central_m, 0.3) << "M = " << m << ", " << speed * 3.6 << " km/h";
+      EXPECT_LT(s.rmse_p2p_m, 0.3) << "M = " << m << ", " << speed * 3.6 << " km/h";
+      EXPECT_LT(s.max_abs_diff_m, 1e-6);
+    }
+  }
+}
+
+TEST(MonteCarlo, OneStationCannotReachTheBound) {
+  // The sweep must be able to show a failure: one station's 0.01 rad angles are metres wide.
+  const Scenario scenario = load_default_scenario();
+  const MonteCarloSummary s = run_monte_carlo(scenario, {1, scenario.target.speeds_mps[0], 5, 2});
+  EXPECT_GT(s.rmse_p2p_m, 1.0);
+}
+
+TEST(MonteCarlo, ResultDoesNotDependOnTheThreadCount) {
+  Scenario scenario = load_default_scenario();
+  scenario.steps = 300;
+  const double speed = scenario.target.speeds_mps[1];
+  const MonteCarloSummary one = run_monte_carlo(scenario, {4, speed, 6, 1});
+  const MonteCarloSummary three = run_monte_carlo(scenario, {4, speed, 6, 3});
+  EXPECT_EQ(one.rmse_central_m, three.rmse_central_m);
+  EXPECT_EQ(one.rmse_p2p_m, three.rmse_p2p_m);
+  EXPECT_EQ(one.anees, three.anees);
+  EXPECT_EQ(one.max_abs_diff_m, three.max_abs_diff_m);
+}
+
+TEST(MonteCarlo, DifferentSeedsGiveDifferentResults) {
+  Scenario scenario = load_default_scenario();
+  scenario.steps = 200;
+  const double speed = scenario.target.speeds_mps[0];
+  const MonteCarloSummary a = run_monte_carlo(scenario, {3, speed, 4, 1});
+  scenario.seed += 1;
+  const MonteCarloSummary b = run_monte_carlo(scenario, {3, speed, 4, 1});
+  EXPECT_NE(a.rmse_p2p_m, b.rmse_p2p_m);
+}
+
+TEST(MonteCarlo, RefusesMoreStationsThanTheScenarioHas) {
+  const Scenario scenario = load_default_scenario();
+  EXPECT_THROW(run_monte_carlo(scenario, {11, 10.0, 1, 1}), std::invalid_argument);
+  EXPECT_THROW(run_monte_carlo(scenario, {0, 10.0, 1, 1}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace skyfuse
