@@ -2,23 +2,43 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 
+#include "lockstep_driver.hpp"
+#include "run_command.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/shutdown.hpp"
 #include "sweep_command.hpp"
 
 int main(int argc, char** argv) {
+  using namespace skyfuse::harness;
   CLI::App app{"skyfuse: ground-station aircraft tracking, central vs peer-to-peer fusion"};
   app.require_subcommand(1);
-  skyfuse::harness::SweepOptions sweep;
-  skyfuse::harness::add_sweep_command(app, sweep);
+  SweepOptions sweep;
+  RunOptions run;
+  DemoOptions demo;
+  add_sweep_command(app, sweep);
+  add_run_command(app, run);
+  add_demo_command(app, demo);
+  CLI11_PARSE(app, argc, argv);
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  skyfuse::transport::install_shutdown_handlers();
   try {
     if (app.got_subcommand("sweep"))
-      return skyfuse::harness::run_sweep(sweep);
+      return run_sweep(sweep);
+    if (app.got_subcommand("run"))
+      return run_run(run);
+    if (app.got_subcommand("demo"))
+      return run_demo(demo);
+  } catch (const RunAborted& e) {
+    std::fprintf(stderr, "skyfuse: run aborted: %s\n", e.what());
+    return skyfuse::transport::shutdown_requested() ? 130 : 1;
+  } catch (const skyfuse::ConfigError& e) {
+    std::fprintf(stderr, "skyfuse: error: %s\n", e.what());
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "skyfuse: error: %s\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "skyfuse: error: %s\n", e.what());
     return 1;

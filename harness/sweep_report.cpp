@@ -1,14 +1,13 @@
 #include "sweep_report.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <cstdlib>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+
+#include "output_files.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -17,26 +16,6 @@ constexpr double kMpsToKmh = 3.6;
 // Paper 000's claim: both schemes reach RMSE < 0.3 m once M >= 3.
 constexpr double kPaperRmseBoundM = 0.3;
 constexpr int kPaperMinStations = 3;
-
-// Writes through a temporary file and a rename, so a failure never leaves half a result.
-void write_atomically(const std::filesystem::path& path, const std::string& content) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-    out << content;
-    if (!out.flush())
-      throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-  }
-  std::filesystem::rename(tmp, path);
-}
-
-std::filesystem::path executable_dir() {
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::current_path() : exe.parent_path();
-}
 
 }  // namespace
 
@@ -80,7 +59,7 @@ void write_sweep_csv(const SweepReport& report, const std::filesystem::path& pat
                        r.rmse_p2p_m, r.max_abs_diff_m, r.anees, r.anees_band.lower,
                        r.anees_band.upper, r.anees_steps_in_band, r.anis_per_dof);
   }
-  write_atomically(path, csv);
+  write_file_atomically(path, csv);
 }
 
 void write_sweep_json(const SweepReport& report, const std::filesystem::path& path) {
@@ -100,18 +79,11 @@ void write_sweep_json(const SweepReport& report, const std::filesystem::path& pa
   }
   const nlohmann::json doc = {
       {"scenario", report.scenario.name}, {"seed", report.scenario.seed}, {"rows", rows}};
-  write_atomically(path, doc.dump(2) + "\n");
+  write_file_atomically(path, doc.dump(2) + "\n");
 }
 
 bool plot_sweep(const std::filesystem::path& csv, const std::filesystem::path& png) {
-  const std::filesystem::path script = executable_dir() / "plot_sweep.py";
-  // Debian's interpreter carries python3-matplotlib; a python3 earlier on PATH may not.
-  const char* python = std::getenv("SKYFUSE_PYTHON");
-  const std::string interpreter =
-      python ? python : (access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3");
-  const std::string command =
-      fmt::format("'{}' '{}' '{}' '{}'", interpreter, script.string(), csv.string(), png.string());
-  return std::system(command.c_str()) == 0;
+  return run_plot_script("plot_sweep.py", {csv.string(), png.string()});
 }
 
 }  // namespace skyfuse::harness

@@ -27,7 +27,8 @@ struct ConsistencyResult {
 Vector<9> draw(CounterRng& rng, const Covariance<9>& cov) {
   const Eigen::LLT<Covariance<9>> factor(cov);
   Vector<9> n;
-  for (int i = 0; i < 9; ++i) n(i) = rng.normal();
+  for (int i = 0; i < 9; ++i)
+    n(i) = rng.normal();
   return factor.matrixL() * n;
 }
 
@@ -48,8 +49,8 @@ ConsistencyResult run_linear_gaussian(const ProcessNoiseStd& q_truth,
     GaussianState<9> estimate{x + draw(init_rng, p0), p0};
     for (int k = 0; k < kSteps; ++k) {
       CounterRng rng({42, run, 1, static_cast<std::uint64_t>(k), NoiseStream::kMeasurement});
-      const Vector3 z = x.head<3>() + Vector3(2.0 * rng.normal(), 2.0 * rng.normal(),
-                                              2.0 * rng.normal());
+      const Vector3 z =
+          x.head<3>() + Vector3(2.0 * rng.normal(), 2.0 * rng.normal(), 2.0 * rng.normal());
       EXPECT_EQ(update(estimate, sensor, z, noise).status, NumericalStatus::kOk);
       nees_sum[static_cast<std::size_t>(k)] += nees(x, estimate);
 
@@ -65,7 +66,8 @@ ConsistencyResult run_linear_gaussian(const ProcessNoiseStd& q_truth,
   for (double sum : nees_sum) {
     const double anees = sum / kRuns;
     result.time_averaged_anees += anees / kSteps;
-    if (result.band.contains(anees)) ++in_band;
+    if (result.band.contains(anees))
+      ++in_band;
   }
   result.fraction_of_steps_in_band = static_cast<double>(in_band) / kSteps;
   return result;
@@ -75,8 +77,8 @@ TEST(KalmanFilter, AneesLiesInsideIts95PercentBandOnALinearGaussianCase) {
   const ProcessNoiseStd q{0.05, 0.2, 0.5};
   const ConsistencyResult r = run_linear_gaussian(q, q);
   EXPECT_TRUE(r.band.contains(r.time_averaged_anees))
-      << "ANEES " << r.time_averaged_anees << " outside [" << r.band.lower << ", "
-      << r.band.upper << "]";
+      << "ANEES " << r.time_averaged_anees << " outside [" << r.band.lower << ", " << r.band.upper
+      << "]";
   // Per step, 95 % of ANEES values should fall in the band; allow for sampling spread.
   EXPECT_GE(r.fraction_of_steps_in_band, 0.88);
 }
@@ -95,9 +97,9 @@ TEST(KalmanFilter, JosephUpdateKeepsTheCovarianceSymmetric) {
   const PositionSensor<9> sensor;
   for (int k = 0; k < 1000; ++k) {
     predict(state, model);
-    ASSERT_EQ(update(state, sensor, Vector3(1.0, 2.0, 3.0), 0.01 * Covariance<3>::Identity())
-                  .status,
-              NumericalStatus::kOk);
+    ASSERT_EQ(
+        update(state, sensor, Vector3(1.0, 2.0, 3.0), 0.01 * Covariance<3>::Identity()).status,
+        NumericalStatus::kOk);
     ASSERT_EQ((state.covariance - state.covariance.transpose()).norm(), 0.0) << "step " << k;
   }
   EXPECT_EQ(Eigen::LLT<Covariance<9>>(state.covariance).info(), Eigen::Success);
@@ -108,8 +110,7 @@ TEST(KalmanFilter, UpdateReportsANonPositiveInnovationCovarianceAndLeavesTheStat
   state.covariance.setZero();
   const GaussianState<9> before = state;
   const PositionSensor<9> sensor;
-  const UpdateReport report =
-      update(state, sensor, Vector3(1.0, 2.0, 3.0), Covariance<3>::Zero());
+  const UpdateReport report = update(state, sensor, Vector3(1.0, 2.0, 3.0), Covariance<3>::Zero());
   EXPECT_EQ(report.status, NumericalStatus::kNotPositiveDefinite);
   EXPECT_TRUE(std::isnan(report.nis));
   EXPECT_EQ(state.mean, before.mean);

@@ -30,9 +30,9 @@ Problem random_problem(std::mt19937& rng, int stations) {
     obs.station_id = 10 + 3 * i;
     obs.sensor = Sensor(test::random_vector3(rng, -2000.0, 2000.0));
     obs.noise = test::random_spd<3>(rng, 1e-4, 1e-2);
-    obs.z = Sensor::residual(obs.sensor.measure_position(target) +
-                                 Vector3(0.1 * n(rng), 0.01 * n(rng), 0.01 * n(rng)),
-                             Vector3::Zero());
+    obs.z = Sensor::residual(
+        obs.sensor.measure_position(target) + Vector3(0.1 * n(rng), 0.01 * n(rng), 0.01 * n(rng)),
+        Vector3::Zero());
     p.observations.push_back(obs);
   }
   return p;
@@ -42,9 +42,9 @@ GaussianState<9> fuse_with_weights(const Problem& p, const std::vector<double>& 
   std::vector<InformationIncrement<9>> increments(p.observations.size());
   for (std::size_t i = 0; i < p.observations.size(); ++i) {
     const auto& obs = p.observations[i];
-    EXPECT_EQ(compute_increment(obs.station_id, p.prior, obs.sensor, obs.z, obs.noise,
-                                increments[i]),
-              NumericalStatus::kOk);
+    EXPECT_EQ(
+        compute_increment(obs.station_id, p.prior, obs.sensor, obs.z, obs.noise, increments[i]),
+        NumericalStatus::kOk);
   }
   GaussianState<9> fused;
   EXPECT_EQ(fuse_increments<9>(p.prior, increments, weights, fused), NumericalStatus::kOk);

@@ -58,8 +58,8 @@ TEST(InformationIncrement, OnlyThePositionBlockCarriesInformation) {
   const GaussianState<9> prior = test::random_prior(rng, Vector3(400.0, 300.0, 450.0));
   const Sensor sensor(Vector3(0.0, 0.0, 20.0));
   InformationIncrement<9> inc;
-  ASSERT_EQ(compute_increment(1, prior, sensor, Vector3(640.0, 0.64, 0.6), Covariance<3>::Identity(),
-                              inc),
+  ASSERT_EQ(compute_increment(1, prior, sensor, Vector3(640.0, 0.64, 0.6),
+                              Covariance<3>::Identity(), inc),
             NumericalStatus::kOk);
   EXPECT_GT((inc.delta_information.topLeftCorner<3, 3>().norm()), 0.0);
   EXPECT_EQ(inc.delta_information.bottomRows<6>().norm(), 0.0);

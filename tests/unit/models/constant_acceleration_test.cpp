@@ -8,9 +8,9 @@ namespace {
 TEST(ConstantAcceleration3D, PropagatesEachAxisWithTheKinematicEquations) {
   const ConstantAcceleration3D model(0.5, {});
   Vector<9> x;
-  x << 1.0, 2.0, 3.0,  // p
+  x << 1.0, 2.0, 3.0,    // p
       10.0, 20.0, 30.0,  // v
-      2.0, -4.0, 6.0;  // a
+      2.0, -4.0, 6.0;    // a
   const Vector<9> next = model.propagate(x);
   for (int axis = 0; axis < 3; ++axis) {
     const double p = x(axis);

@@ -22,7 +22,8 @@ TEST(NoiseScale, PaperRuleIsTheTruncatedNormalAboveTheFloor) {
   const NoiseScaleConfig config{NoiseScaleConfig::Model::kPaper, 0.1};
   double sum = 0.0;
   constexpr int kDraws = 200000;
-  for (int i = 0; i < kDraws; ++i) sum += draw_noise_scale(config, 7, static_cast<std::uint64_t>(i), 1);
+  for (int i = 0; i < kDraws; ++i)
+    sum += draw_noise_scale(config, 7, static_cast<std::uint64_t>(i), 1);
   const double expected = 1.0 + 0.266085 / 0.815940;
   EXPECT_NEAR(sum / kDraws, expected, 0.005);
 }

@@ -15,7 +15,8 @@ namespace {
 std::string default_with(const std::string& from, const std::string& to) {
   std::string text(default_scenario_yaml());
   const auto at = text.find(from);
-  if (at == std::string::npos) throw std::logic_error("test fixture: '" + from + "' not found");
+  if (at == std::string::npos)
+    throw std::logic_error("test fixture: '" + from + "' not found");
   return text.replace(at, from.size(), to);
 }
 
@@ -54,9 +55,8 @@ TEST(ScenarioLoader, LoadsTheDefaultScenarioWithThePapersParameters) {
 TEST(ScenarioLoader, RefusesAMissingField) {
   EXPECT_EQ(rejection(default_with("time_step_s: 0.02\n", "")),
             "test.yaml: (top level): missing field 'time_step_s'");
-  EXPECT_EQ(
-      rejection(default_with("position_m: [-400.0, 1200.0, 40.0], ", "")),
-      "test.yaml: stations[0]: missing field 'position_m' (line 34)");
+  EXPECT_EQ(rejection(default_with("position_m: [-400.0, 1200.0, 40.0], ", "")),
+            "test.yaml: stations[0]: missing field 'position_m' (line 34)");
 }
 
 TEST(ScenarioLoader, RefusesAWrongType) {
@@ -71,10 +71,12 @@ TEST(ScenarioLoader, RefusesAWrongType) {
 }
 
 TEST(ScenarioLoader, RefusesANonPositiveVariance) {
-  EXPECT_EQ(rejection(default_with("noise_std: [0.1, 0.01, 0.01]}", "noise_std: [0.1, 0.0, 0.01]}")),
-            "test.yaml: stations[0].noise_std[1]: must be > 0, got 0.0 (line 34)");
-  EXPECT_EQ(rejection(default_with("noise_std: [0.1, 0.01, 0.01]}", "noise_std: [-0.1, 0.01, 0.01]}")),
-            "test.yaml: stations[0].noise_std[0]: must be > 0, got -0.1 (line 34)");
+  EXPECT_EQ(
+      rejection(default_with("noise_std: [0.1, 0.01, 0.01]}", "noise_std: [0.1, 0.0, 0.01]}")),
+      "test.yaml: stations[0].noise_std[1]: must be > 0, got 0.0 (line 34)");
+  EXPECT_EQ(
+      rejection(default_with("noise_std: [0.1, 0.01, 0.01]}", "noise_std: [-0.1, 0.01, 0.01]}")),
+      "test.yaml: stations[0].noise_std[0]: must be > 0, got -0.1 (line 34)");
   EXPECT_EQ(rejection(default_with("position_m: 0.5", "position_m: 0")),
             "test.yaml: filter.process_noise_std.position_m: must be > 0, got 0 (line 53)");
   EXPECT_EQ(rejection(default_with("initial_covariance_diag: 1.0", "initial_covariance_diag: -1")),
@@ -136,13 +138,12 @@ TEST(ScenarioLoader, ReadsAFileFromDisk) {
 }
 
 TEST(ScenarioLoader, AcceptsAnExplicitVelocityAndAFixedInitialError) {
-  const std::string yaml = default_with(
-      "  heading_deg: 10.0\n  climb_deg: 0.0\n  speeds_kmh: [100, 300]\n",
-      "  velocity_mps: [30.0, 40.0, 0.0]\n");
-  const Scenario s = parse_scenario(
-      yaml.substr(0, yaml.find("  initial_state_error: sampled")) +
-          "  initial_state_error: [1, 0, 0, 0, 0, 0, 0, 0, 0]\n",
-      "test.yaml");
+  const std::string yaml =
+      default_with("  heading_deg: 10.0\n  climb_deg: 0.0\n  speeds_kmh: [100, 300]\n",
+                   "  velocity_mps: [30.0, 40.0, 0.0]\n");
+  const Scenario s = parse_scenario(yaml.substr(0, yaml.find("  initial_state_error: sampled")) +
+                                        "  initial_state_error: [1, 0, 0, 0, 0, 0, 0, 0, 0]\n",
+                                    "test.yaml");
   ASSERT_EQ(s.target.speeds_mps.size(), 1U);
   EXPECT_DOUBLE_EQ(s.target.speeds_mps[0], 50.0);
   EXPECT_TRUE(s.target.direction.isApprox(Vector3(0.6, 0.8, 0.0)));

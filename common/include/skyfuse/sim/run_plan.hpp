@@ -1,0 +1,43 @@
+#pragma once
+/// \file
+/// What one run is, for every process that takes part: the scenario (after command-line
+/// overrides), which stations take part (the first M), at which speed, and which Monte-Carlo
+/// run index selects the noise. Station, fusion center, harness and the in-process sweep build
+/// the same plan from the same options, so they simulate the same run.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/scenario/truth.hpp"
+
+namespace skyfuse {
+
+struct RunPlan {
+  Scenario scenario;
+  int stations = 0;
+  double speed_mps = 0.0;
+  std::uint64_t mc_run = 0;
+
+  std::span<const StationConfig> participants() const {
+    return std::span(scenario.stations).first(static_cast<std::size_t>(stations));
+  }
+  /// The participant with this id, or nullptr.
+  const StationConfig* participant(int station_id) const;
+  TruthTrajectory truth() const {
+    return generate_truth(scenario.target, speed_mps, scenario.time_step_s, scenario.steps);
+  }
+};
+
+struct RunOverrides {
+  std::optional<int> stations;      ///< default: every station of the scenario
+  std::optional<int> steps;         ///< default: the scenario's
+  std::optional<double> speed_kmh;  ///< default: the first speed the scenario lists
+  std::uint64_t mc_run = 0;
+};
+
+/// Applies the overrides; throws std::invalid_argument naming the option and the value.
+RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides);
+
+}  // namespace skyfuse

@@ -1,0 +1,107 @@
+#pragma once
+/// \file
+/// Gathers one sample per participating station for the current step, in ascending station
+/// order, from samples that arrive in any order. Samples for the next step are kept (a fast
+/// peer may start step k+1 before this process has closed step k); anything else is dropped and
+/// counted: stale steps, steps too far ahead, unknown stations, second copies.
+///
+/// No allocation after construction: two fixed rows of slots, swapped at each step.
+
+#include <algorithm>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+namespace skyfuse {
+
+struct CollectorDrops {
+  std::uint64_t stale_step = 0;
+  std::uint64_t future_step = 0;
+  std::uint64_t unknown_station = 0;
+  std::uint64_t duplicate = 0;
+};
+
+template <typename Payload>
+class StepCollector {
+ public:
+  /// `station_ids` are the participants; they are kept sorted ascending.
+  explicit StepCollector(std::span<const int> station_ids)
+      : ids_(station_ids.begin(), station_ids.end()) {
+    std::sort(ids_.begin(), ids_.end());
+    if (std::adjacent_find(ids_.begin(), ids_.end()) != ids_.end()) {
+      throw std::invalid_argument("StepCollector: duplicate station id");
+    }
+    for (Row* row : {&current_, &next_}) {
+      row->payloads.resize(ids_.size());
+      row->filled.assign(ids_.size(), false);
+    }
+  }
+
+  std::uint64_t step() const { return step_; }
+
+  /// Offers a sample; true if it was kept.
+  bool offer(std::uint64_t step, int station_id, const Payload& payload) {
+    Row* row = nullptr;
+    if (step == step_) {
+      row = &current_;
+    } else if (step == step_ + 1) {
+      row = &next_;
+    } else {
+      ++(step < step_ ? drops_.stale_step : drops_.future_step);
+      return false;
+    }
+    const auto it = std::lower_bound(ids_.begin(), ids_.end(), station_id);
+    if (it == ids_.end() || *it != station_id) {
+      ++drops_.unknown_station;
+      return false;
+    }
+    const auto index = static_cast<std::size_t>(it - ids_.begin());
+    if (row->filled[index]) {
+      ++drops_.duplicate;
+      return false;
+    }
+    row->payloads[index] = payload;
+    row->filled[index] = true;
+    ++row->count;
+    return true;
+  }
+
+  bool complete() const { return current_.count == ids_.size(); }
+  /// Payloads of the current step in ascending station id (valid once complete()).
+  std::span<const Payload> payloads() const { return current_.payloads; }
+  std::span<const int> station_ids() const { return ids_; }
+  /// Ids of the stations still missing from the current step.
+  std::vector<int> missing() const {
+    std::vector<int> out;
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+      if (!current_.filled[i])
+        out.push_back(ids_[i]);
+    }
+    return out;
+  }
+
+  /// Closes the current step and opens the next one.
+  void advance() {
+    std::swap(current_, next_);
+    next_.filled.assign(ids_.size(), false);
+    next_.count = 0;
+    ++step_;
+  }
+
+  const CollectorDrops& drops() const { return drops_; }
+
+ private:
+  struct Row {
+    std::vector<Payload> payloads;
+    std::vector<bool> filled;
+    std::size_t count = 0;
+  };
+  std::vector<int> ids_;
+  Row current_;
+  Row next_;
+  std::uint64_t step_ = 0;
+  CollectorDrops drops_;
+};
+
+}  // namespace skyfuse

@@ -1,0 +1,51 @@
+#include "skyfuse/sim/run_plan.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "skyfuse/scenario/scenario_loader.hpp"
+
+namespace skyfuse {
+
+const StationConfig* RunPlan::participant(int station_id) const {
+  for (const StationConfig& s : participants()) {
+    if (s.id == station_id)
+      return &s;
+  }
+  return nullptr;
+}
+
+RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
+  RunPlan plan;
+  const int available = static_cast<int>(scenario.stations.size());
+  plan.stations = overrides.stations.value_or(available);
+  if (plan.stations < 1 || plan.stations > available) {
+    throw std::invalid_argument(
+        fmt::format("--stations: must be in [1, {}] for scenario '{}', got {}", available,
+                    scenario.name, plan.stations));
+  }
+  if (overrides.steps) {
+    if (*overrides.steps < 1) {
+      throw std::invalid_argument(fmt::format("--steps: must be >= 1, got {}", *overrides.steps));
+    }
+    scenario.steps = *overrides.steps;
+  }
+  if (overrides.speed_kmh) {
+    if (!(*overrides.speed_kmh > 0.0)) {
+      throw std::invalid_argument(
+          fmt::format("--speed-kmh: must be > 0, got {}", *overrides.speed_kmh));
+    }
+    plan.speed_mps = *overrides.speed_kmh / 3.6;
+    scenario.target.speeds_mps = {plan.speed_mps};
+  } else {
+    plan.speed_mps = scenario.target.speeds_mps.front();
+    scenario.target.speeds_mps = {plan.speed_mps};
+  }
+  validate_scenario(scenario, "run options");
+  plan.mc_run = overrides.mc_run;
+  plan.scenario = std::move(scenario);
+  return plan;
+}
+
+}  // namespace skyfuse

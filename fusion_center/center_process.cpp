@@ -1,0 +1,168 @@
+#include "center_process.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include <vector>
+
+#include "skyfuse/tracking/central_tracker.hpp"
+#include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/node_presence.hpp"
+#include "skyfuse/transport/shutdown.hpp"
+#include "skyfuse/transport/wire_conversion.hpp"
+
+namespace skyfuse::center {
+namespace {
+
+using namespace std::chrono_literals;
+
+constexpr auto kPollSlice = 50ms;
+
+std::vector<int> participant_ids(const RunPlan& plan) {
+  std::vector<int> ids;
+  for (const StationConfig& s : plan.participants())
+    ids.push_back(s.id);
+  return ids;
+}
+
+class Center {
+ public:
+  Center(const transport::NodeOptions& options, const RunPlan& plan)
+      : options_(options),
+        plan_(plan),
+        node_(options.node_config("skyfuse-center")),
+        presence_(node_, options.run_id, kCenterSourceId),
+        ticks_(node_.make_reader<wire::Tick>()),
+        measurements_(node_.make_reader<wire::Measurement>()),
+        tracks_(node_.make_writer<wire::TrackEstimate>()),
+        tracker_(
+            ConstantAcceleration3D(plan.scenario.time_step_s, plan.scenario.filter.process_noise),
+            initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run)),
+        collector_(participant_ids(plan)),
+        observations_(static_cast<std::size_t>(plan.stations)) {
+    wait_set_.attach(ticks_);
+    wait_set_.attach(measurements_);
+    // The stacked rows go in scenario order, as the in-process sweep stacks them, so that both
+    // compute the same bits. slot_of_[j] = scenario position of the j-th smallest id.
+    const std::span<const int> ids = collector_.station_ids();
+    for (int id : ids) {
+      for (std::size_t i = 0; i < plan.participants().size(); ++i) {
+        if (plan.participants()[i].id == id)
+          slot_of_.push_back(i);
+      }
+    }
+  }
+
+  int run() {
+    const int m = plan_.stations;
+    const transport::JoinResult joined = transport::join_run(
+        presence_,
+        [&] {
+          return measurements_.matched() >= m && ticks_.matched() >= 1 && tracks_.matched() >= 1;
+        },
+        [&] {
+          return fmt::format("measurement writers {}/{}, tick writer {}/1, track readers {}/1",
+                             measurements_.matched(), m, ticks_.matched(), tracks_.matched());
+        },
+        options_.discovery_timeout());
+    switch (joined.outcome) {
+      case transport::JoinOutcome::kJoined:
+        break;
+      case transport::JoinOutcome::kDuplicate:
+        spdlog::error("a fusion center is already running in run {} ({}); refusing a second",
+                      options_.run_id, joined.detail);
+        return transport::kExitDuplicateId;
+      case transport::JoinOutcome::kTimedOut:
+        spdlog::error("discovery timed out after {} s: {}", options_.discovery_timeout_s,
+                      joined.detail);
+        presence_.announce(wire::FAILED, 0, "discovery timed out: " + joined.detail);
+        return transport::kExitDiscoveryTimeout;
+      case transport::JoinOutcome::kShutdown:
+        return 128 + transport::shutdown_signal();
+    }
+    spdlog::info("joined run {} with {} stations", options_.run_id, m);
+
+    const auto steps = static_cast<std::uint64_t>(plan_.scenario.steps);
+    for (std::uint64_t k = 0; k < steps; ++k) {
+      if (const int code = wait_for_measurements(k); code >= 0)
+        return code;
+      const std::span<const StationObservation9> by_id = collector_.payloads();
+      for (std::size_t j = 0; j < by_id.size(); ++j)
+        observations_[slot_of_[j]] = by_id[j];
+      const UpdateReport report = tracker_.update(observations_);
+      if (report.status != NumericalStatus::kOk) {
+        const std::string detail =
+            fmt::format("step {}: stacked update failed: {}", k, to_string(report.status));
+        spdlog::error("{}", detail);
+        presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
+        return transport::kExitNumerical;
+      }
+      tracks_.write(transport::to_wire(tracker_.estimate(), options_.run_id,
+                                       static_cast<std::uint32_t>(k), kCenterSourceId,
+                                       wire::CENTRAL, collector_.station_ids()));
+      tracker_.predict();
+      collector_.advance();
+    }
+    presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
+    tracks_.wait_acknowledged(2s);
+    spdlog::info("finished {} steps", steps);
+    return transport::kExitOk;
+  }
+
+ private:
+  int wait_for_measurements(std::uint64_t k) {
+    const auto deadline = std::chrono::steady_clock::now() + options_.idle_timeout();
+    while (true) {
+      wire::Tick tick;
+      while (ticks_.take(tick)) {
+        if (tick.run_id() == options_.run_id && tick.stop()) {
+          spdlog::info("stopped by the harness at step {}", k);
+          return transport::kExitOk;
+        }
+      }
+      wire::Measurement sample;
+      while (measurements_.take(sample)) {
+        if (sample.run_id() != options_.run_id)
+          continue;
+        collector_.offer(sample.step(), sample.station_id(), transport::from_wire(sample));
+      }
+      if (collector_.complete())
+        return -1;
+      if (transport::shutdown_requested())
+        return 128 + transport::shutdown_signal();
+      if (std::chrono::steady_clock::now() >= deadline) {
+        const std::string detail =
+            fmt::format("no progress for {} s at step {} waiting for measurements of stations {}",
+                        options_.idle_timeout_s, k, collector_.missing());
+        spdlog::error("{}", detail);
+        presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
+        return transport::kExitIdleTimeout;
+      }
+      wait_set_.wait(kPollSlice);
+    }
+  }
+
+  const transport::NodeOptions& options_;
+  const RunPlan& plan_;
+  transport::DdsNode node_;
+  transport::NodePresence presence_;
+  transport::Reader<wire::Tick> ticks_;
+  transport::Reader<wire::Measurement> measurements_;
+  transport::Writer<wire::TrackEstimate> tracks_;
+  transport::ReaderWaitSet wait_set_;
+  CentralTracker tracker_;
+  StepCollector<StationObservation9> collector_;
+  std::vector<StationObservation9> observations_;
+  std::vector<std::size_t> slot_of_;
+};
+
+}  // namespace
+
+int run_center(const transport::NodeOptions& options) {
+  const RunPlan plan = options.load_plan();
+  Center center(options, plan);
+  return center.run();
+}
+
+}  // namespace skyfuse::center

@@ -1,0 +1,34 @@
+// skyfuse-center: the fusion center; stacked-measurement EKF over every station's measurement.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <stdexcept>
+
+#include "center_process.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/shutdown.hpp"
+
+int main(int argc, char** argv) {
+  using namespace skyfuse;
+  CLI::App app{"skyfuse-center: the fusion center; one stacked EKF over all measurements"};
+  transport::NodeOptions options;
+  transport::add_node_options(app, options);
+  CLI11_PARSE(app, argc, argv);
+
+  spdlog::set_level(spdlog::level::from_str(options.log_level));
+  spdlog::set_pattern("[center] %^%l%$: %v");
+  transport::install_shutdown_handlers();
+  try {
+    return center::run_center(options);
+  } catch (const std::invalid_argument& e) {
+    spdlog::error("{}", e.what());
+    return transport::kExitUsage;
+  } catch (const ConfigError& e) {
+    spdlog::error("{}", e.what());
+    return transport::kExitUsage;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return transport::kExitError;
+  }
+}

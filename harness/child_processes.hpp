@@ -1,0 +1,52 @@
+#pragma once
+// The station and center processes a run starts. Children die with the harness even if it is
+// killed with SIGKILL (PR_SET_PDEATHSIG), exits are noticed while the harness waits for
+// anything, and on the way out every child still alive is terminated, then killed.
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace skyfuse::harness {
+
+struct ChildExit {
+  std::string name;
+  pid_t pid = 0;
+  int status = 0;                ///< raw waitpid status
+  std::string describe() const;  ///< "station 3 (pid 123) exited with status 2"
+  bool success() const;
+};
+
+class ChildProcesses {
+ public:
+  ChildProcesses() = default;
+  ~ChildProcesses();
+  ChildProcesses(const ChildProcesses&) = delete;
+  ChildProcesses& operator=(const ChildProcesses&) = delete;
+
+  /// Starts `argv[0]` with `argv`; `name` identifies it in messages. Throws on failure.
+  pid_t spawn(const std::string& name, const std::vector<std::string>& argv);
+
+  /// Reaps children that have exited since the last call.
+  std::vector<ChildExit> poll();
+  /// Waits up to `timeout` for every child to exit by itself; true if all did.
+  bool wait_all(std::chrono::milliseconds timeout);
+  /// SIGTERM to every live child, SIGKILL to any still alive after `grace`.
+  void terminate_all(std::chrono::milliseconds grace);
+
+  std::size_t alive() const { return children_.size(); }
+  const std::vector<ChildExit>& exited() const { return exited_; }
+
+ private:
+  struct Child {
+    std::string name;
+    pid_t pid;
+  };
+  std::vector<Child> children_;
+  std::vector<ChildExit> exited_;
+};
+
+}  // namespace skyfuse::harness

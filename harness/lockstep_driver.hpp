@@ -1,0 +1,56 @@
+#pragma once
+// The harness's side of a lock-step run over DDS: waits until every station and the center
+// have joined, then for each step publishes Tick{run, k} and waits for every process's track of
+// step k (and every station's measurement, which the harness records). The harness adds no
+// estimation; it only observes.
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "skyfuse/core/types.hpp"
+#include "skyfuse/transport/dds_node.hpp"
+
+namespace skyfuse::harness {
+
+/// A run was abandoned: a child died, a node reported failure, time ran out, or the user
+/// interrupted. The message says which.
+class RunAborted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct RoundRecord {
+  std::uint64_t step = 0;
+  GaussianState<9> central;
+  std::vector<GaussianState<9>> peers;  ///< ascending station id
+  std::vector<Vector3> measurements;    ///< ascending station id
+  std::chrono::nanoseconds latency{0};  ///< tick published -> last track received
+};
+
+class LockstepDriver {
+ public:
+  /// `check` is called at least every 50 ms while waiting; it throws RunAborted to end the run.
+  LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
+                 std::vector<int> station_ids, std::function<void()> check);
+  ~LockstepDriver();
+
+  /// Waits until every station and the center have announced READY and the harness's own
+  /// endpoints match them. Returns the time it took.
+  std::chrono::nanoseconds wait_until_joined(std::chrono::milliseconds timeout);
+
+  /// Runs step k and returns what every process published for it.
+  RoundRecord run_round(std::uint64_t k, std::chrono::milliseconds timeout);
+
+  /// Tells every process to stop (a Tick with stop = true).
+  void stop();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace skyfuse::harness

@@ -1,0 +1,285 @@
+#include "run_command.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "child_processes.hpp"
+#include "lockstep_driver.hpp"
+#include "output_files.hpp"
+#include "progress.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/monte_carlo.hpp"
+#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/shutdown.hpp"
+
+namespace skyfuse::harness {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::string read_scenario_text(const std::string& path) {
+  if (path.empty())
+    return std::string(default_scenario_yaml());
+  std::ifstream in(path);
+  if (!in)
+    throw ConfigError(fmt::format("{}: cannot open scenario file", path));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+RunPlan plan_from(const std::string& scenario_text, const std::string& source,
+                  const RunOverrides& overrides) {
+  return make_run_plan(parse_scenario(scenario_text, source), overrides);
+}
+
+std::uint64_t fresh_run_id() {
+  std::random_device device;
+  return (static_cast<std::uint64_t>(device()) << 32) ^ device();
+}
+
+// The arguments every node gets, so that it builds the same plan as the harness.
+std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan,
+                                        std::uint64_t run_id,
+                                        const std::filesystem::path& scenario_file) {
+  std::vector<std::string> args = {"--scenario",
+                                   scenario_file.string(),
+                                   "--domain",
+                                   std::to_string(o.domain),
+                                   "--run-id",
+                                   std::to_string(run_id),
+                                   "--stations",
+                                   std::to_string(plan.stations),
+                                   "--steps",
+                                   std::to_string(plan.scenario.steps),
+                                   "--speed-kmh",
+                                   fmt::format("{:.17g}", plan.speed_mps * 3.6),
+                                   "--mc-run",
+                                   std::to_string(plan.mc_run),
+                                   "--discovery-timeout",
+                                   fmt::format("{}", o.discovery_timeout_s),
+                                   "--idle-timeout",
+                                   fmt::format("{}", std::max(30.0, 3.0 * o.round_timeout_s)),
+                                   "--log-level",
+                                   o.verbose ? "info" : "warn"};
+  if (o.qos_file) {
+    args.push_back("--qos");
+    args.push_back(*o.qos_file);
+  }
+  return args;
+}
+
+std::chrono::milliseconds seconds_to_ms(double s) {
+  return std::chrono::milliseconds(static_cast<long>(std::llround(s * 1000.0)));
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, RunOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "run", "Run the stations and the fusion center as processes over DDS, in lock-step");
+  cmd->add_option("--scenario", o.scenario_path,
+                  "Scenario YAML file (default: the embedded paper000 scenario)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--stations", o.overrides.stations, "Number of station processes M (the first M)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--steps", o.overrides.steps, "Override the scenario's number of steps")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--speed-kmh", o.overrides.speed_kmh,
+                  "Target speed (default: the first the scenario lists)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--mc-run", o.overrides.mc_run, "Monte-Carlo run index (selects the noise)")
+      ->capture_default_str();
+  cmd->add_option("--out", o.out_dir, "Folder for the per-step CSVs and summary.json")
+      ->capture_default_str();
+  cmd->add_option("--domain", o.domain, "DDS domain id")
+      ->check(CLI::Range(0, transport::kMaxDomainId))
+      ->capture_default_str();
+  cmd->add_option("--run-id", o.run_id, "Run id (default: random)");
+  cmd->add_option("--qos", o.qos_file, "Fast DDS XML profiles overriding the built-in QoS")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--discovery-timeout", o.discovery_timeout_s,
+                  "Seconds to wait until every process has joined")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--round-timeout", o.round_timeout_s, "Seconds one round may take")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag("--external", o.external,
+                "Do not start processes: drive stations and a center started elsewhere");
+  cmd->add_flag("-v,--verbose", o.verbose, "Let the node processes log at info level");
+}
+
+RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
+  const std::filesystem::path out(o.out_dir);
+  std::filesystem::create_directories(out);
+  // The processes read the very file saved with the results: what ran is what is on disk.
+  const std::filesystem::path scenario_file = std::filesystem::absolute(out / "scenario.yaml");
+  write_file_atomically(scenario_file, read_scenario_text(o.scenario_path));
+
+  const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
+  std::vector<int> ids;
+  for (const StationConfig& s : plan.participants())
+    ids.push_back(s.id);
+
+  ChildProcesses children;
+  const auto check = [&] {
+    if (transport::shutdown_requested()) {
+      throw RunAborted(fmt::format("interrupted by signal {}", transport::shutdown_signal()));
+    }
+    for (const ChildExit& e : children.poll()) {
+      if (!e.success())
+        throw RunAborted(e.describe());
+    }
+  };
+  transport::NodeConfig config;
+  config.domain_id = o.domain;
+  config.name = "skyfuse-harness";
+  if (o.qos_file)
+    config.qos_file = *o.qos_file;
+  LockstepDriver driver(config, run_id, ids, check);
+
+  try {
+    if (!o.external) {
+      const std::vector<std::string> common = node_arguments(o, plan, run_id, scenario_file);
+      std::vector<std::string> center{(executable_dir() / "skyfuse-center").string()};
+      center.insert(center.end(), common.begin(), common.end());
+      children.spawn("center", center);
+      for (int id : ids) {
+        std::vector<std::string> station{(executable_dir() / "skyfuse-station").string(), "--id",
+                                         std::to_string(id)};
+        station.insert(station.end(), common.begin(), common.end());
+        children.spawn(fmt::format("station {}", id), station);
+      }
+    }
+    const auto discovery = driver.wait_until_joined(seconds_to_ms(o.discovery_timeout_s));
+
+    RunRecorder recorder(plan, ids);
+    Progress progress(fmt::format("run M={} {:.0f} km/h", plan.stations, plan.speed_mps * 3.6),
+                      plan.scenario.steps);
+    const auto round_timeout = seconds_to_ms(o.round_timeout_s);
+    const auto start = Clock::now();
+    for (int k = 0; k < plan.scenario.steps; ++k) {
+      recorder.add(driver.run_round(static_cast<std::uint64_t>(k), round_timeout));
+      progress.advance();
+    }
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    progress.finish();
+
+    // Nodes exit by themselves after their last track; anything else is worth a word.
+    if (!children.wait_all(std::chrono::seconds(5))) {
+      spdlog::warn("{} node process(es) still running after the last step; terminating",
+                   children.alive());
+    }
+    children.terminate_all(std::chrono::seconds(2));
+    for (const ChildExit& e : children.exited()) {
+      if (!e.success())
+        spdlog::warn("{}", e.describe());
+    }
+
+    const RunSummary summary =
+        recorder.summarise(std::chrono::duration<double>(discovery).count(), elapsed);
+    recorder.write(out, summary, run_id);
+    return summary;
+  } catch (...) {
+    driver.stop();
+    children.terminate_all(std::chrono::seconds(2));
+    throw;
+  }
+}
+
+int run_run(const RunOptions& o) {
+  const RunPlan plan = plan_from(
+      read_scenario_text(o.scenario_path),
+      o.scenario_path.empty() ? "<embedded paper000.yaml>" : o.scenario_path, o.overrides);
+  const RunSummary summary = execute_run(o, plan);
+  print_run_table(summary, stdout);
+  fmt::print("results in {}\n", o.out_dir);
+  return 0;
+}
+
+void add_demo_command(CLI::App& app, DemoOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "demo",
+      "The default scenario through the real system: 4 station processes + the center "
+      "over DDS at each speed, compared with the in-process result");
+  cmd->add_option("--out", o.out_dir, "Results folder (default: results/demo-<date>-<time>)");
+  cmd->add_option("--domain", o.domain, "DDS domain id")
+      ->check(CLI::Range(0, transport::kMaxDomainId))
+      ->capture_default_str();
+  cmd->add_option("--stations", o.stations, "Number of station processes")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+}
+
+int run_demo(const DemoOptions& d) {
+  std::string out_dir = d.out_dir;
+  if (out_dir.empty()) {
+    const std::time_t now = std::time(nullptr);
+    char stamp[32];
+    std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+    out_dir = fmt::format("results/demo-{}", stamp);
+  }
+  const Scenario scenario = load_default_scenario();
+  struct Row {
+    RunSummary dds;
+    double rmse_in_process_central;
+    double rmse_in_process_p2p;
+  };
+  std::vector<Row> rows;
+  std::vector<std::string> step_files;
+  for (double speed : scenario.target.speeds_mps) {
+    RunOptions o;
+    o.domain = d.domain;
+    o.overrides.stations = d.stations;
+    o.overrides.speed_kmh = speed * 3.6;
+    o.out_dir = fmt::format("{}/{:.0f}kmh", out_dir, speed * 3.6);
+    const RunPlan plan = make_run_plan(scenario, o.overrides);
+    const RunSummary dds = execute_run(o, plan);
+
+    // The same run in-process: same core code, same seed, same Monte-Carlo index.
+    const RunTrace trace = simulate_run(plan.scenario, plan.truth(), plan.stations, plan.mc_run);
+    double sc = 0.0;
+    double sp = 0.0;
+    for (std::size_t k = 0; k < trace.sq_error_central.size(); ++k) {
+      sc += trace.sq_error_central[k];
+      sp += trace.sq_error_p2p[k];
+    }
+    const auto n = static_cast<double>(trace.sq_error_central.size());
+    rows.push_back({dds, std::sqrt(sc / n), std::sqrt(sp / n)});
+    step_files.push_back(o.out_dir + "/steps.csv");
+  }
+
+  fmt::print("\nskyfuse demo: paper000, {} station processes + fusion center over DDS (loopback)\n",
+             d.stations);
+  fmt::print("{:>6} {:>13} {:>13} {:>15} {:>15} {:>13} {:>9} {:>17}\n", "km/h", "RMSE central",
+             "RMSE p2p", "in-process c/p", "max|c-p2p| m", "max|peer-peer|", "rounds/s",
+             "latency p50/p99 us");
+  for (const Row& r : rows) {
+    fmt::print(
+        "{:>6.0f} {:>12.4f}m {:>12.4f}m {:>7.4f}/{:.4f} {:>15.2e} {:>14.1e} {:>9.0f} "
+        "{:>8.0f}/{:.0f}\n",
+        r.dds.speed_kmh, r.dds.rmse_central_m, r.dds.rmse_p2p_m, r.rmse_in_process_central,
+        r.rmse_in_process_p2p, r.dds.max_abs_diff_central_vs_p2p, r.dds.max_abs_diff_between_peers,
+        r.dds.rounds_per_s, r.dds.round_latency_us_p50, r.dds.round_latency_us_p99);
+  }
+  std::vector<std::string> plot_args{out_dir + "/demo.png"};
+  plot_args.insert(plot_args.end(), step_files.begin(), step_files.end());
+  if (!run_plot_script("plot_run.py", plot_args)) {
+    fmt::print(stderr, "skyfuse: warning: plot not written (needs python3-matplotlib)\n");
+  }
+  fmt::print(
+      "\nresults in {}/ (per speed: steps.csv, tracks.csv, measurements.csv, summary.json; "
+      "demo.png)\n",
+      out_dir);
+  return 0;
+}
+
+}  // namespace skyfuse::harness

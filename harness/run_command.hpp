@@ -1,0 +1,43 @@
+#pragma once
+// `skyfuse run`: the system as it is meant to run - one process per station plus the fusion
+// center, over DDS, driven in lock-step by this harness - and `skyfuse demo`, the default
+// scenario through it with a comparison table and plots.
+
+#include <CLI/App.hpp>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "run_report.hpp"
+#include "skyfuse/sim/run_plan.hpp"
+
+namespace skyfuse::harness {
+
+struct RunOptions {
+  std::string scenario_path;  ///< empty: the embedded paper000 scenario
+  RunOverrides overrides;
+  std::string out_dir = "results/run";
+  int domain = 0;
+  std::optional<std::uint64_t> run_id;  ///< default: random
+  std::optional<std::string> qos_file;
+  double discovery_timeout_s = 30.0;
+  double round_timeout_s = 10.0;
+  bool external = false;  ///< stations and center are started elsewhere (by hand, compose)
+  bool verbose = false;
+};
+
+void add_run_command(CLI::App& app, RunOptions& options);
+int run_run(const RunOptions& options);
+
+/// One DDS run of `plan` with results written to options.out_dir; throws RunAborted on failure.
+RunSummary execute_run(const RunOptions& options, const RunPlan& plan);
+
+struct DemoOptions {
+  std::string out_dir;  ///< empty: results/demo-<date>-<time>
+  int domain = 0;
+  int stations = 4;
+};
+void add_demo_command(CLI::App& app, DemoOptions& options);
+int run_demo(const DemoOptions& options);
+
+}  // namespace skyfuse::harness

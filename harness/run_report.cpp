@@ -1,0 +1,147 @@
+#include "run_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "output_files.hpp"
+
+namespace skyfuse::harness {
+namespace {
+
+double percentile(std::vector<double> values, double p) {
+  if (values.empty())
+    return 0.0;
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size())));
+  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
+}
+
+double max_abs_entry_difference(const GaussianState<9>& a, const GaussianState<9>& b) {
+  return std::max((a.mean - b.mean).cwiseAbs().maxCoeff(),
+                  (a.covariance - b.covariance).cwiseAbs().maxCoeff());
+}
+
+}  // namespace
+
+RunRecorder::RunRecorder(const RunPlan& plan, std::vector<int> station_ids)
+    : plan_(plan), station_ids_(std::move(station_ids)), truth_(plan.truth()) {
+  std::sort(station_ids_.begin(), station_ids_.end());
+  rounds_.reserve(static_cast<std::size_t>(plan.scenario.steps));
+}
+
+void RunRecorder::add(RoundRecord round) {
+  rounds_.push_back(std::move(round));
+}
+
+RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) const {
+  RunSummary s;
+  s.stations = plan_.stations;
+  s.steps = static_cast<int>(rounds_.size());
+  s.speed_kmh = plan_.speed_mps * 3.6;
+  s.discovery_s = discovery_s;
+  double sq_central = 0.0;
+  double sq_p2p = 0.0;
+  std::vector<double> latencies_us;
+  for (const RoundRecord& r : rounds_) {
+    const Vector3 p = truth_.position(r.step);
+    const Vector3 p_central = r.central.mean.head<3>();
+    const Vector3 p_p2p = r.peers.front().mean.head<3>();
+    sq_central += (p - p_central).squaredNorm();
+    sq_p2p += (p - p_p2p).squaredNorm();
+    s.max_abs_diff_central_vs_p2p =
+        std::max(s.max_abs_diff_central_vs_p2p, (p_central - p_p2p).norm());
+    for (const GaussianState<9>& peer : r.peers) {
+      s.max_abs_diff_between_peers =
+          std::max(s.max_abs_diff_between_peers, max_abs_entry_difference(peer, r.peers.front()));
+    }
+    latencies_us.push_back(std::chrono::duration<double, std::micro>(r.latency).count());
+  }
+  const double n = std::max<double>(1.0, static_cast<double>(rounds_.size()));
+  s.rmse_central_m = std::sqrt(sq_central / n);
+  s.rmse_p2p_m = std::sqrt(sq_p2p / n);
+  s.rounds_per_s =
+      rounds_elapsed_s > 0.0 ? static_cast<double>(rounds_.size()) / rounds_elapsed_s : 0.0;
+  s.round_latency_us_p50 = percentile(latencies_us, 0.50);
+  s.round_latency_us_p99 = percentile(latencies_us, 0.99);
+  s.round_latency_us_max =
+      latencies_us.empty() ? 0.0 : *std::max_element(latencies_us.begin(), latencies_us.end());
+  return s;
+}
+
+void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summary,
+                        std::uint64_t run_id) const {
+  std::string steps =
+      "step,time_s,truth_x,truth_y,truth_z,central_x,central_y,central_z,p2p_x,p2p_y,p2p_z,"
+      "error_central_m,error_p2p_m,central_minus_p2p_m\n";
+  std::string tracks = "step,source,x0,x1,x2,x3,x4,x5,x6,x7,x8\n";
+  std::string measurements = "step,station_id,range_m,azimuth_rad,elevation_rad\n";
+  std::string rounds = "step,latency_us\n";
+  for (const RoundRecord& r : rounds_) {
+    const Vector3 p = truth_.position(r.step);
+    const Vector3 c = r.central.mean.head<3>();
+    const Vector3 d = r.peers.front().mean.head<3>();
+    steps += fmt::format(
+        "{},{:.3f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6e},{:.6e},{:."
+        "3e}\n",
+        r.step, static_cast<double>(r.step) * plan_.scenario.time_step_s, p.x(), p.y(), p.z(),
+        c.x(), c.y(), c.z(), d.x(), d.y(), d.z(), (p - c).norm(), (p - d).norm(), (c - d).norm());
+    const auto add_track = [&](int source, const GaussianState<9>& e) {
+      // %.17g round-trips a double exactly: the value read back is the value computed.
+      tracks += fmt::format("{},{}", r.step, source);
+      for (int i = 0; i < 9; ++i)
+        tracks += fmt::format(",{:.17g}", e.mean(i));
+      tracks += '\n';
+    };
+    add_track(0, r.central);
+    for (std::size_t i = 0; i < r.peers.size(); ++i)
+      add_track(station_ids_[i], r.peers[i]);
+    for (std::size_t i = 0; i < r.measurements.size(); ++i) {
+      const Vector3& z = r.measurements[i];
+      measurements +=
+          fmt::format("{},{},{:.17g},{:.17g},{:.17g}\n", r.step, station_ids_[i], z(0), z(1), z(2));
+    }
+    rounds += fmt::format("{},{:.1f}\n", r.step,
+                          std::chrono::duration<double, std::micro>(r.latency).count());
+  }
+  write_file_atomically(dir / "steps.csv", steps);
+  write_file_atomically(dir / "tracks.csv", tracks);
+  write_file_atomically(dir / "measurements.csv", measurements);
+  write_file_atomically(dir / "rounds.csv", rounds);
+
+  const nlohmann::json json = {{"scenario", plan_.scenario.name},
+                               {"seed", plan_.scenario.seed},
+                               {"mc_run", plan_.mc_run},
+                               {"run_id", run_id},
+                               {"stations", summary.stations},
+                               {"steps", summary.steps},
+                               {"speed_kmh", summary.speed_kmh},
+                               {"rmse_central_m", summary.rmse_central_m},
+                               {"rmse_p2p_m", summary.rmse_p2p_m},
+                               {"max_abs_diff_central_vs_p2p", summary.max_abs_diff_central_vs_p2p},
+                               {"max_abs_diff_between_peers", summary.max_abs_diff_between_peers},
+                               {"rounds_per_s", summary.rounds_per_s},
+                               {"round_latency_us_p50", summary.round_latency_us_p50},
+                               {"round_latency_us_p99", summary.round_latency_us_p99},
+                               {"round_latency_us_max", summary.round_latency_us_max},
+                               {"discovery_s", summary.discovery_s}};
+  write_file_atomically(dir / "summary.json", json.dump(2) + "\n");
+}
+
+void print_run_table(const RunSummary& s, std::FILE* out) {
+  fmt::print(out, "\n{} stations + center, {} steps at {:.0f} km/h\n", s.stations, s.steps,
+             s.speed_kmh);
+  fmt::print(out, "  RMSE central             {:.4f} m\n", s.rmse_central_m);
+  fmt::print(out, "  RMSE peer-to-peer        {:.4f} m\n", s.rmse_p2p_m);
+  fmt::print(out, "  max |central - p2p|      {:.2e} m\n", s.max_abs_diff_central_vs_p2p);
+  fmt::print(out, "  max |peer - peer|        {:.2e}{}\n", s.max_abs_diff_between_peers,
+             s.max_abs_diff_between_peers == 0.0 ? "  (every peer bit-identical)" : "");
+  fmt::print(out, "  rounds per second        {:.0f}\n", s.rounds_per_s);
+  fmt::print(out, "  round latency p50/p99/max {:.0f} / {:.0f} / {:.0f} us\n",
+             s.round_latency_us_p50, s.round_latency_us_p99, s.round_latency_us_max);
+  fmt::print(out, "  discovery                {:.2f} s\n", s.discovery_s);
+}
+
+}  // namespace skyfuse::harness

@@ -1,0 +1,54 @@
+#pragma once
+// What a DDS run leaves behind, and the numbers that summarise it.
+//   steps.csv         per step: truth, central and peer-to-peer position, their errors
+//   tracks.csv        per step and source: the full state, printed to round-trip exactly
+//   measurements.csv  every station's measurement, in the format `skyfuse-station --replay` reads
+//   rounds.csv        per step: round latency (timing: the only file that differs run to run)
+//   summary.json      the figures below
+// Everything but rounds.csv and the timing fields of summary.json is a pure function of the
+// scenario, the seed and the options: two runs give the same bytes.
+
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include "lockstep_driver.hpp"
+#include "skyfuse/sim/run_plan.hpp"
+
+namespace skyfuse::harness {
+
+struct RunSummary {
+  int stations = 0;
+  int steps = 0;
+  double speed_kmh = 0.0;
+  double rmse_central_m = 0.0;
+  double rmse_p2p_m = 0.0;
+  double max_abs_diff_central_vs_p2p = 0.0;  ///< m, position
+  double max_abs_diff_between_peers = 0.0;   ///< over every state and covariance entry
+  double rounds_per_s = 0.0;
+  double round_latency_us_p50 = 0.0;
+  double round_latency_us_p99 = 0.0;
+  double round_latency_us_max = 0.0;
+  double discovery_s = 0.0;
+};
+
+class RunRecorder {
+ public:
+  RunRecorder(const RunPlan& plan, std::vector<int> station_ids);
+  void add(RoundRecord round);
+  const std::vector<RoundRecord>& rounds() const { return rounds_; }
+
+  RunSummary summarise(double discovery_s, double rounds_elapsed_s) const;
+  void write(const std::filesystem::path& dir, const RunSummary& summary,
+             std::uint64_t run_id) const;
+
+ private:
+  const RunPlan& plan_;
+  std::vector<int> station_ids_;
+  TruthTrajectory truth_;
+  std::vector<RoundRecord> rounds_;
+};
+
+void print_run_table(const RunSummary& s, std::FILE* out);
+
+}  // namespace skyfuse::harness

@@ -1,0 +1,38 @@
+// skyfuse-station: one ground station of the peer-to-peer fusion network.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <stdexcept>
+
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/shutdown.hpp"
+#include "station_process.hpp"
+
+int main(int argc, char** argv) {
+  using namespace skyfuse;
+  CLI::App app{"skyfuse-station: one ground station; fuses every station's increments"};
+  station::StationOptions options;
+  app.add_option("--id", options.id, "Station id (from the scenario)")->required();
+  app.add_option("--replay", options.replay_path,
+                 "Replay measurements from this CSV instead of simulating them")
+      ->check(CLI::ExistingFile);
+  transport::add_node_options(app, options.node);
+  CLI11_PARSE(app, argc, argv);
+
+  spdlog::set_level(spdlog::level::from_str(options.node.log_level));
+  spdlog::set_pattern(fmt::format("[station {}] %^%l%$: %v", options.id));
+  transport::install_shutdown_handlers();
+  try {
+    return station::run_station(options);
+  } catch (const std::invalid_argument& e) {
+    spdlog::error("{}", e.what());
+    return transport::kExitUsage;
+  } catch (const ConfigError& e) {
+    spdlog::error("{}", e.what());
+    return transport::kExitUsage;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return transport::kExitError;
+  }
+}

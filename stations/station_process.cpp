@@ -1,0 +1,250 @@
+#include "station_process.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "skyfuse/tracking/peer_tracker.hpp"
+#include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/node_presence.hpp"
+#include "skyfuse/transport/shutdown.hpp"
+#include "skyfuse/transport/wire_conversion.hpp"
+
+namespace skyfuse::station {
+namespace {
+
+using namespace std::chrono_literals;
+using transport::ExitCode;
+
+constexpr auto kPollSlice = 50ms;
+
+// The DDS side of a station: its endpoints, created in a fixed order.
+struct StationEndpoints {
+  explicit StationEndpoints(transport::DdsNode& node)
+      : ticks(node.make_reader<wire::Tick>()),
+        increments_in(node.make_reader<wire::InformationIncrement>()),
+        increments_out(node.make_writer<wire::InformationIncrement>()),
+        measurements(node.make_writer<wire::Measurement>()),
+        tracks(node.make_writer<wire::TrackEstimate>()) {
+    wait_set.attach(ticks);
+    wait_set.attach(increments_in);
+  }
+  transport::Reader<wire::Tick> ticks;
+  transport::Reader<wire::InformationIncrement> increments_in;
+  transport::Writer<wire::InformationIncrement> increments_out;
+  transport::Writer<wire::Measurement> measurements;
+  transport::Writer<wire::TrackEstimate> tracks;
+  transport::ReaderWaitSet wait_set;
+};
+
+class Station {
+ public:
+  Station(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
+          std::unique_ptr<SensorSource> source)
+      : options_(options),
+        plan_(plan),
+        me_(me),
+        source_(std::move(source)),
+        node_(options.node.node_config(fmt::format("skyfuse-station-{}", me.id))),
+        presence_(node_, options.node.run_id, me.id),
+        io_(node_),
+        tracker_(
+            ConstantAcceleration3D(plan.scenario.time_step_s, plan.scenario.filter.process_noise),
+            initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run)),
+        collector_(participant_ids(plan)),
+        sensor_(me.position_m),
+        noise_(station_noise_covariance(plan.scenario, me, plan.mc_run)) {
+    // Weights in the collector's (ascending id) order.
+    for (int id : collector_.station_ids())
+      weights_.push_back(plan.participant(id)->weight);
+  }
+
+  int run() {
+    const int m = plan_.stations;
+    // Matched counts include this participant's own endpoints: M increment writers (every
+    // station, this one too); the measurement goes to the center and the harness's recorder.
+    const transport::JoinResult joined = transport::join_run(
+        presence_,
+        [&] {
+          return io_.increments_in.matched() >= m && io_.increments_out.matched() >= m &&
+                 io_.ticks.matched() >= 1 && io_.measurements.matched() >= 2 &&
+                 io_.tracks.matched() >= 1;
+        },
+        [&] {
+          return fmt::format(
+              "increment writers {}/{}, increment readers {}/{}, tick writer {}/1, measurement "
+              "readers {}/2 (center, harness), track readers {}/1 (harness)",
+              io_.increments_in.matched(), m, io_.increments_out.matched(), m, io_.ticks.matched(),
+              io_.measurements.matched(), io_.tracks.matched());
+        },
+        options_.node.discovery_timeout());
+    switch (joined.outcome) {
+      case transport::JoinOutcome::kJoined:
+        break;
+      case transport::JoinOutcome::kDuplicate:
+        spdlog::error("station {} is already running in run {} ({}); refusing to start a second",
+                      me_.id, options_.node.run_id, joined.detail);
+        return transport::kExitDuplicateId;
+      case transport::JoinOutcome::kTimedOut:
+        spdlog::error("discovery timed out after {} s: {}", options_.node.discovery_timeout_s,
+                      joined.detail);
+        presence_.announce(wire::FAILED, 0, "discovery timed out: " + joined.detail);
+        return transport::kExitDiscoveryTimeout;
+      case transport::JoinOutcome::kShutdown:
+        return 128 + transport::shutdown_signal();
+    }
+    spdlog::info("joined run {} with {} stations; waiting for ticks", options_.node.run_id, m);
+
+    const auto steps = static_cast<std::uint64_t>(plan_.scenario.steps);
+    for (std::uint64_t k = 0; k < steps; ++k) {
+      if (const int code = wait_for_tick(k); code >= 0)
+        return code;
+      publish_own_sample(k);
+      if (const int code = wait_for_increments(k); code >= 0)
+        return code;
+      if (const int code = fuse_and_publish(k); code >= 0)
+        return code;
+      tracker_.predict();
+      collector_.advance();
+    }
+    presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
+    io_.tracks.wait_acknowledged(2s);
+    spdlog::info("finished {} steps", steps);
+    return transport::kExitOk;
+  }
+
+ private:
+  static std::vector<int> participant_ids(const RunPlan& plan) {
+    std::vector<int> ids;
+    for (const StationConfig& s : plan.participants())
+      ids.push_back(s.id);
+    return ids;
+  }
+
+  // Drains both readers. Returns an exit code if the run must end, -1 otherwise.
+  int drain(std::uint64_t k, bool& got_tick) {
+    wire::Tick tick;
+    while (io_.ticks.take(tick)) {
+      if (tick.run_id() != options_.node.run_id)
+        continue;
+      if (tick.stop()) {
+        spdlog::info("stopped by the harness at step {}", k);
+        return transport::kExitOk;
+      }
+      if (tick.step() == k)
+        got_tick = true;
+    }
+    wire::InformationIncrement sample;
+    while (io_.increments_in.take(sample)) {
+      if (sample.run_id() != options_.node.run_id || sample.station_id() == me_.id)
+        continue;
+      collector_.offer(sample.step(), sample.station_id(), transport::from_wire(sample));
+    }
+    return -1;
+  }
+
+  // Waits until `done()` or the idle timeout; returns an exit code to end the run, or -1.
+  template <typename Done>
+  int wait(std::uint64_t k, bool& got_tick, Done done, const char* what) {
+    const auto deadline = std::chrono::steady_clock::now() + options_.node.idle_timeout();
+    while (true) {
+      if (const int code = drain(k, got_tick); code >= 0)
+        return code;
+      if (done())
+        return -1;
+      if (transport::shutdown_requested())
+        return 128 + transport::shutdown_signal();
+      if (std::chrono::steady_clock::now() >= deadline) {
+        const std::string detail = fmt::format("no progress for {} s at step {} waiting for {}",
+                                               options_.node.idle_timeout_s, k, what);
+        spdlog::error("{}", detail);
+        presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
+        return transport::kExitIdleTimeout;
+      }
+      io_.wait_set.wait(kPollSlice);
+    }
+  }
+
+  int wait_for_tick(std::uint64_t k) {
+    bool got_tick = false;
+    return wait(
+        k, got_tick, [&] { return got_tick; }, "the tick");
+  }
+
+  int wait_for_increments(std::uint64_t k) {
+    bool unused = false;
+    return wait(
+        k, unused, [&] { return collector_.complete(); },
+        fmt::format("increments of stations {}", collector_.missing()).c_str());
+  }
+
+  void publish_own_sample(std::uint64_t k) {
+    const auto step = static_cast<std::uint32_t>(k);
+    StationObservation9 observation{me_.id, sensor_, source_->measurement(k), noise_};
+    io_.measurements.write(transport::to_wire(observation, options_.node.run_id, step));
+
+    Increment9 own;
+    const NumericalStatus status =
+        tracker_.make_increment(me_.id, sensor_, observation.z, noise_, own);
+    if (status != NumericalStatus::kOk) {
+      throw std::runtime_error(fmt::format("step {}: increment failed: {}", k, to_string(status)));
+    }
+    io_.increments_out.write(transport::to_wire(own, options_.node.run_id, step));
+    collector_.offer(k, me_.id, own);
+  }
+
+  int fuse_and_publish(std::uint64_t k) {
+    const NumericalStatus status = tracker_.fuse(collector_.payloads(), weights_);
+    if (status != NumericalStatus::kOk) {
+      const std::string detail = fmt::format("step {}: fusion failed: {}", k, to_string(status));
+      spdlog::error("{}", detail);
+      presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
+      return transport::kExitNumerical;
+    }
+    io_.tracks.write(transport::to_wire(tracker_.estimate(), options_.node.run_id,
+                                        static_cast<std::uint32_t>(k), me_.id, wire::PEER,
+                                        collector_.station_ids()));
+    return -1;
+  }
+
+  const StationOptions& options_;
+  const RunPlan& plan_;
+  const StationConfig& me_;
+  std::unique_ptr<SensorSource> source_;
+  transport::DdsNode node_;
+  transport::NodePresence presence_;
+  StationEndpoints io_;
+  PeerTracker tracker_;
+  StepCollector<Increment9> collector_;
+  StationSensor sensor_;
+  Covariance<3> noise_;
+  std::vector<double> weights_;
+};
+
+}  // namespace
+
+int run_station(const StationOptions& options) {
+  const RunPlan plan = options.node.load_plan();
+  const StationConfig* me = plan.participant(options.id);
+  if (me == nullptr) {
+    std::vector<int> ids;
+    for (const StationConfig& s : plan.participants())
+      ids.push_back(s.id);
+    throw std::invalid_argument(fmt::format(
+        "--id: station {} is not one of the {} participating stations of scenario '{}' (ids {})",
+        options.id, plan.stations, plan.scenario.name, fmt::join(ids, ", ")));
+  }
+  std::unique_ptr<SensorSource> source;
+  if (options.replay_path.empty()) {
+    source = std::make_unique<SimulatedSensor>(plan, *me);
+  } else {
+    source = std::make_unique<ReplayedSensor>(options.replay_path, me->id);
+  }
+  Station station(options, plan, *me, std::move(source));
+  return station.run();
+}
+
+}  // namespace skyfuse::station

@@ -1,0 +1,177 @@
+#pragma once
+/// \file
+/// One DDS participant per process, with its publisher, subscriber and topics, and typed
+/// endpoints on top. Entities are created in a fixed order and deleted with the node. Every
+/// write is checked; every endpoint reports how many remote endpoints it has matched.
+///
+/// Threading: a node and its endpoints belong to the thread that created them; readers are
+/// waited on with a WaitSet on that thread (no listener does work).
+
+#include <chrono>
+#include <fastdds/dds/core/condition/WaitSet.hpp>
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "skyfuse/transport/qos.hpp"
+#include "skyfuse/transport/topics.hpp"
+
+namespace skyfuse::transport {
+
+namespace dds = eprosima::fastdds::dds;
+
+/// A DDS call failed: entity creation, or a write that could not be delivered in time.
+class DdsError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct NodeConfig {
+  int domain_id = 0;
+  std::string name;  ///< participant name, shown by DDS tools
+  std::optional<std::filesystem::path> qos_file;
+};
+
+/// Domain ids above 232 make Fast DDS 2.9 exit the process during participant creation.
+inline constexpr int kMaxDomainId = 232;
+
+/// A std::chrono duration as a DDS Duration_t.
+inline eprosima::fastrtps::Duration_t to_dds_duration(std::chrono::microseconds d) {
+  const auto seconds = std::chrono::duration_cast<std::chrono::seconds>(d);
+  const auto nanos = std::chrono::duration_cast<std::chrono::nanoseconds>(d - seconds);
+  return {static_cast<int32_t>(seconds.count()), static_cast<uint32_t>(nanos.count())};
+}
+
+template <typename T>
+class Writer {
+ public:
+  explicit Writer(dds::DataWriter* writer) : writer_(writer) {}
+  /// Throws DdsError when the sample could not be queued (reliable history full for longer
+  /// than max_blocking_time): a lost sample is never silent.
+  void write(const T& sample) {
+    if (!writer_->write(const_cast<T*>(&sample))) {
+      throw DdsError(std::string("write failed on topic ") + TopicTraits<T>::kName);
+    }
+  }
+  /// Waits until every matched reader acknowledged every sample: call before exiting, or the
+  /// last samples may die with the participant.
+  bool wait_acknowledged(std::chrono::microseconds timeout) {
+    return writer_->wait_for_acknowledgments(to_dds_duration(timeout)) == ReturnCode_t::RETCODE_OK;
+  }
+  /// Remote readers currently matched (this participant's own matching reader included).
+  int matched() const {
+    dds::PublicationMatchedStatus status;
+    writer_->get_publication_matched_status(status);
+    return status.current_count;
+  }
+
+ private:
+  dds::DataWriter* writer_;
+};
+
+template <typename T>
+class Reader {
+ public:
+  explicit Reader(dds::DataReader* reader) : reader_(reader) {
+    reader_->get_statuscondition().set_enabled_statuses(dds::StatusMask::data_available());
+  }
+  /// Takes the next valid sample; false when none is left.
+  bool take(T& sample) {
+    dds::SampleInfo info;
+    while (reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (info.valid_data)
+        return true;
+    }
+    return false;
+  }
+  int matched() const {
+    dds::SubscriptionMatchedStatus status;
+    reader_->get_subscription_matched_status(status);
+    return status.current_count;
+  }
+  dds::StatusCondition& condition() { return reader_->get_statuscondition(); }
+
+ private:
+  dds::DataReader* reader_;
+};
+
+/// Sleeps until any attached reader has data or the timeout passes.
+class ReaderWaitSet {
+ public:
+  template <typename T>
+  void attach(Reader<T>& reader) {
+    wait_set_.attach_condition(reader.condition());
+  }
+  /// True if woken by data, false on timeout.
+  bool wait(std::chrono::microseconds timeout);
+
+ private:
+  dds::WaitSet wait_set_;
+};
+
+class DdsNode {
+ public:
+  explicit DdsNode(const NodeConfig& config);
+  ~DdsNode();
+  DdsNode(const DdsNode&) = delete;
+  DdsNode& operator=(const DdsNode&) = delete;
+
+  template <typename T>
+  Writer<T> make_writer() {
+    dds::Topic* topic = topic_for<T>();
+    dds::DataWriter* writer =
+        publisher_->create_datawriter(topic, qos_.writer(*publisher_, TopicTraits<T>::kName));
+    if (writer == nullptr)
+      throw DdsError(std::string("cannot create writer for ") + topic->get_name());
+    return Writer<T>(writer);
+  }
+
+  template <typename T>
+  Reader<T> make_reader() {
+    dds::Topic* topic = topic_for<T>();
+    dds::DataReader* reader =
+        subscriber_->create_datareader(topic, qos_.reader(*subscriber_, TopicTraits<T>::kName));
+    if (reader == nullptr)
+      throw DdsError(std::string("cannot create reader for ") + topic->get_name());
+    return Reader<T>(reader);
+  }
+
+ private:
+  template <typename T>
+  dds::Topic* topic_for() {
+    const std::string name = TopicTraits<T>::kName;
+    if (auto it = topics_.find(name); it != topics_.end())
+      return it->second;
+    dds::TypeSupport type(new typename TopicTraits<T>::PubSubType());
+    if (type.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
+      throw DdsError("cannot register type for " + name);
+    }
+    dds::Topic* topic =
+        participant_->create_topic(name, type.get_type_name(), dds::TOPIC_QOS_DEFAULT);
+    if (topic == nullptr)
+      throw DdsError("cannot create topic " + name);
+    topics_.emplace(name, topic);
+    return topic;
+  }
+
+  QosProfiles qos_;
+  dds::DomainParticipant* participant_ = nullptr;
+  dds::Publisher* publisher_ = nullptr;
+  dds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, dds::Topic*> topics_;
+};
+
+/// Polls `ready` until it holds or `timeout` passes; true if it held.
+bool wait_until(const std::function<bool()>& ready, std::chrono::milliseconds timeout);
+
+}  // namespace skyfuse::transport

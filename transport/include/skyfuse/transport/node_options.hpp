@@ -1,0 +1,49 @@
+#pragma once
+/// \file
+/// Options every node process (station, fusion center) takes, so that a process started by
+/// hand on any host joins the same run as the ones the harness starts.
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/transport/dds_node.hpp"
+
+namespace CLI {
+class App;
+}
+
+namespace skyfuse::transport {
+
+struct NodeOptions {
+  std::string scenario_path;  ///< empty: the embedded paper000 scenario
+  int domain = 0;
+  std::uint64_t run_id = 1;
+  RunOverrides overrides;
+  std::optional<std::string> qos_file;
+  double discovery_timeout_s = 30.0;
+  double idle_timeout_s = 60.0;
+  std::string log_level = "info";
+
+  NodeConfig node_config(const std::string& name) const;
+  RunPlan load_plan() const;
+  std::chrono::milliseconds discovery_timeout() const;
+  std::chrono::milliseconds idle_timeout() const;
+};
+
+void add_node_options(CLI::App& app, NodeOptions& options);
+
+/// Exit codes shared by the node processes, so the harness can say what happened.
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitError = 1,
+  kExitUsage = 2,
+  kExitDuplicateId = 3,
+  kExitDiscoveryTimeout = 4,
+  kExitIdleTimeout = 5,
+  kExitNumerical = 6,
+};
+
+}  // namespace skyfuse::transport

@@ -1,0 +1,62 @@
+#pragma once
+/// \file
+/// How a station or the fusion center announces itself on the status topic, and how it finds
+/// out that another live process already holds its id in the same run.
+///
+/// Every process draws a random instance number and notes its start time. Status samples are
+/// durable, so a newcomer receives the latest status of every process already running; if one
+/// has the same run and id, the newer of the two (later start, then larger instance) must go.
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "skyfuse/transport/dds_node.hpp"
+
+namespace skyfuse::transport {
+
+class NodePresence {
+ public:
+  NodePresence(DdsNode& node, std::uint64_t run_id, int node_id);
+
+  void announce(wire::NodeState state, std::uint32_t step = 0, const std::string& detail = {});
+
+  /// Reads status samples received so far. Returns a description of an older process with
+  /// this node's id in this run, if one was seen: this process is then the duplicate.
+  std::optional<std::string> find_older_twin();
+
+  int matched_status_writers() const { return reader_.matched(); }
+  std::uint64_t instance() const { return instance_; }
+
+ private:
+  std::uint64_t run_id_;
+  int node_id_;
+  std::uint64_t instance_;
+  std::uint64_t started_ns_;
+  Writer<wire::StationStatus> writer_;
+  Reader<wire::StationStatus> reader_;
+  std::optional<std::string> older_twin_;
+};
+
+}  // namespace skyfuse::transport
+
+namespace skyfuse::transport {
+
+enum class JoinOutcome { kJoined, kTimedOut, kDuplicate, kShutdown };
+
+struct JoinResult {
+  JoinOutcome outcome = JoinOutcome::kJoined;
+  std::string detail;  ///< for kDuplicate: who holds the id; for kTimedOut: what is missing
+};
+
+/// Announces STARTING, waits until `all_matched()` holds, then listens a little longer for the
+/// durable statuses of processes already running (matching precedes their delivery) and checks
+/// that no older process holds this id. Announces READY when joined.
+/// `describe_missing` says what is still unmatched, for the timeout message.
+JoinResult join_run(NodePresence& presence, const std::function<bool()>& all_matched,
+                    const std::function<std::string()>& describe_missing,
+                    std::chrono::milliseconds timeout);
+
+}  // namespace skyfuse::transport

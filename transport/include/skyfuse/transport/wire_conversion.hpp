@@ -1,0 +1,52 @@
+#pragma once
+/// \file
+/// Conversion between wire samples and core types, at the edge of every process. Doubles are
+/// copied bit for bit and symmetric matrices travel as their upper triangle, so a value that
+/// crosses the wire is the value that was sent: the DDS path adds no rounding.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "skyfuse/core/types.hpp"
+#include "skyfuse/tracking/central_tracker.hpp"
+#include "skyfuse/tracking/peer_tracker.hpp"
+#include "skyfuse/transport/topics.hpp"
+
+namespace skyfuse::transport {
+
+/// Row-major upper triangle of a symmetric N x N matrix, N (N + 1) / 2 values.
+template <int N>
+void pack_upper(const Covariance<N>& m, double* out) {
+  int k = 0;
+  for (int r = 0; r < N; ++r) {
+    for (int c = r; c < N; ++c)
+      out[k++] = m(r, c);
+  }
+}
+template <int N>
+Covariance<N> unpack_upper(const double* in) {
+  Covariance<N> m;
+  int k = 0;
+  for (int r = 0; r < N; ++r) {
+    for (int c = r; c < N; ++c)
+      m(r, c) = m(c, r) = in[k++];
+  }
+  return m;
+}
+
+wire::Measurement to_wire(const StationObservation9& observation, std::uint64_t run_id,
+                          std::uint32_t step);
+StationObservation9 from_wire(const wire::Measurement& sample);
+
+wire::InformationIncrement to_wire(const Increment9& increment, std::uint64_t run_id,
+                                   std::uint32_t step);
+Increment9 from_wire(const wire::InformationIncrement& sample);
+
+wire::TrackEstimate to_wire(const GaussianState<9>& estimate, std::uint64_t run_id,
+                            std::uint32_t step, int source_id, wire::TrackSource mode,
+                            std::span<const int> contributors);
+GaussianState<9> from_wire(const wire::TrackEstimate& sample);
+
+}  // namespace skyfuse::transport

@@ -1,0 +1,49 @@
+#include "skyfuse/transport/dds_node.hpp"
+
+#include <fmt/format.h>
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <thread>
+
+namespace skyfuse::transport {
+
+bool ReaderWaitSet::wait(std::chrono::microseconds timeout) {
+  dds::ConditionSeq active;
+  return wait_set_.wait(active, to_dds_duration(timeout)) == ReturnCode_t::RETCODE_OK;
+}
+
+DdsNode::DdsNode(const NodeConfig& config) : qos_(config.qos_file) {
+  if (config.domain_id < 0 || config.domain_id > kMaxDomainId) {
+    throw DdsError(
+        fmt::format("--domain: must be in [0, {}], got {}", kMaxDomainId, config.domain_id));
+  }
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  participant_ = factory->create_participant(config.domain_id, qos_.participant(config.name));
+  if (participant_ == nullptr) {
+    throw DdsError(fmt::format("cannot create a DDS participant on domain {}", config.domain_id));
+  }
+  publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+  if (publisher_ == nullptr || subscriber_ == nullptr) {
+    throw DdsError("cannot create the DDS publisher or subscriber");
+  }
+}
+
+DdsNode::~DdsNode() {
+  if (participant_ == nullptr)
+    return;
+  participant_->delete_contained_entities();
+  dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+bool wait_until(const std::function<bool()>& ready, std::chrono::milliseconds timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!ready()) {
+    if (std::chrono::steady_clock::now() >= deadline)
+      return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
+}  // namespace skyfuse::transport

@@ -1,0 +1,87 @@
+#include "skyfuse/transport/node_presence.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <random>
+#include <thread>
+
+#include "skyfuse/transport/shutdown.hpp"
+
+namespace skyfuse::transport {
+
+NodePresence::NodePresence(DdsNode& node, std::uint64_t run_id, int node_id)
+    : run_id_(run_id),
+      node_id_(node_id),
+      instance_(std::random_device{}() ^
+                (static_cast<std::uint64_t>(std::random_device{}()) << 32) ^
+                static_cast<std::uint64_t>(getpid())),
+      started_ns_(
+          static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                         std::chrono::system_clock::now().time_since_epoch())
+                                         .count())),
+      writer_(node.make_writer<wire::StationStatus>()),
+      reader_(node.make_reader<wire::StationStatus>()) {}
+
+void NodePresence::announce(wire::NodeState state, std::uint32_t step, const std::string& detail) {
+  wire::StationStatus status;
+  status.run_id(run_id_);
+  status.station_id(node_id_);
+  status.instance(instance_);
+  status.started_ns(started_ns_);
+  status.state(state);
+  status.step(step);
+  status.detail(detail.substr(0, 500));
+  writer_.write(status);
+}
+
+std::optional<std::string> NodePresence::find_older_twin() {
+  wire::StationStatus status;
+  while (reader_.take(status)) {
+    if (status.run_id() != run_id_ || status.station_id() != node_id_ ||
+        status.instance() == instance_) {
+      continue;
+    }
+    const bool other_is_older =
+        status.started_ns() < started_ns_ ||
+        (status.started_ns() == started_ns_ && status.instance() < instance_);
+    if (other_is_older && !older_twin_) {
+      older_twin_ = fmt::format("instance {:016x}, started {:.3f} s earlier", status.instance(),
+                                static_cast<double>(started_ns_ - status.started_ns()) * 1e-9);
+    }
+  }
+  return older_twin_;
+}
+
+}  // namespace skyfuse::transport
+
+namespace skyfuse::transport {
+
+JoinResult join_run(NodePresence& presence, const std::function<bool()>& all_matched,
+                    const std::function<std::string()>& describe_missing,
+                    std::chrono::milliseconds timeout) {
+  // Durable samples follow discovery by a few milliseconds; this margin lets them land.
+  constexpr auto kStatusSettle = std::chrono::milliseconds(200);
+  presence.announce(wire::STARTING);
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  std::optional<std::chrono::steady_clock::time_point> matched_at;
+  while (true) {
+    if (shutdown_requested())
+      return {JoinOutcome::kShutdown, {}};
+    if (auto twin = presence.find_older_twin())
+      return {JoinOutcome::kDuplicate, *twin};
+    const auto now = std::chrono::steady_clock::now();
+    if (!matched_at && all_matched())
+      matched_at = now;
+    if (matched_at && now - *matched_at >= kStatusSettle)
+      break;
+    if (!matched_at && now >= deadline)
+      return {JoinOutcome::kTimedOut, describe_missing()};
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  presence.announce(wire::READY);
+  return {JoinOutcome::kJoined, {}};
+}
+
+}  // namespace skyfuse::transport

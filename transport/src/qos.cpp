@@ -1,0 +1,124 @@
+#include "skyfuse/transport/qos.hpp"
+
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fmt/format.h>
+
+#include <fastdds/dds/core/policy/QosPolicies.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <memory>
+#include <stdexcept>
+
+namespace skyfuse::transport {
+namespace dds = eprosima::fastdds::dds;
+using eprosima::fastrtps::Duration_t;
+
+namespace {
+
+// Lock-step rounds need every sample: one lost increment stalls a round. So every data topic
+// is RELIABLE with KEEP_ALL history (KEEP_LAST drops samples in a burst, and says so only in
+// sample_lost_status), and the resource limits are sized for kMaxStations stations with a few
+// steps in flight. The defaults would lose data silently: a reader is BEST_EFFORT by default,
+// max_instances is 10.
+constexpr int kStepsInFlight = 4;
+constexpr int kMaxSamples = kMaxStations * kStepsInFlight;
+
+// A short heartbeat turns a lost datagram into a ~20 ms repair instead of the default 3 s stall.
+const Duration_t kHeartbeatPeriod{0, 20'000'000};
+// write() gives up after this; every write is checked, so a stuck reader becomes an error.
+const Duration_t kMaxBlockingTime{2, 0};
+
+// Status announcements are durable (TRANSIENT_LOCAL, last value per writer) so that a reader
+// that joins late - the harness, a second station with the same id - still learns the state.
+bool is_status_topic(const std::string& topic) {
+  return topic == "skyfuse_status";
+}
+
+template <typename EndpointQos>
+void apply_common(EndpointQos& qos, const std::string& topic) {
+  qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+  if (is_status_topic(topic)) {
+    qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
+  } else {
+    qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
+  }
+  qos.history().kind = dds::KEEP_ALL_HISTORY_QOS;
+  qos.resource_limits().max_instances = 1;
+  qos.resource_limits().max_samples = kMaxSamples;
+  qos.resource_limits().max_samples_per_instance = kMaxSamples;
+  qos.resource_limits().allocated_samples = 64;
+  // Data-sharing would put samples in /dev/shm segments that a killed process leaves behind;
+  // at ~500 bytes a sample the copy is not what costs (wake-ups are).
+  qos.data_sharing().off();
+}
+
+}  // namespace
+
+QosProfiles::QosProfiles(const std::optional<std::filesystem::path>& xml_file) {
+  if (!xml_file)
+    return;
+  if (dds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(xml_file->string()) !=
+      ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error(
+        fmt::format("--qos: cannot load Fast DDS XML profiles from {}", xml_file->string()));
+  }
+}
+
+dds::DomainParticipantQos QosProfiles::participant(const std::string& name) const {
+  dds::DomainParticipantQos qos;
+  if (dds::DomainParticipantFactory::get_instance()->get_participant_qos_from_profile(
+          "skyfuse_participant", qos) == ReturnCode_t::RETCODE_OK) {
+    qos.name(name);
+    return qos;
+  }
+  qos.name(name);
+  // UDP on the loopback interface only: one host, no traffic leaves it, and no shared-memory
+  // segments for a killed process to leave in /dev/shm. Runs across hosts or containers give
+  // a profile with their own transport (docker/fastdds_profile.xml).
+  qos.transport().use_builtin_transports = false;
+  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+  udp->interfaceWhiteList.emplace_back("127.0.0.1");
+  qos.transport().user_transports.push_back(udp);
+  // A dead participant is noticed after its lease: 2 s instead of the default 20 s.
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  discovery.leaseDuration = Duration_t(2, 0);
+  discovery.leaseDuration_announcementperiod = Duration_t(0, 500'000'000);
+  // Announce quickly at start so that all-matched is reached in tenths of a second.
+  discovery.initial_announcements.count = 10;
+  discovery.initial_announcements.period = Duration_t(0, 50'000'000);
+  return qos;
+}
+
+dds::DataWriterQos QosProfiles::writer(const dds::Publisher& publisher,
+                                       const std::string& topic) const {
+  dds::DataWriterQos qos = dds::DATAWRITER_QOS_DEFAULT;
+  if (publisher.get_datawriter_qos_from_profile(topic + "_writer", qos) ==
+      ReturnCode_t::RETCODE_OK) {
+    return qos;
+  }
+  apply_common(qos, topic);
+  if (is_status_topic(topic)) {
+    qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+    qos.history().depth = 1;
+  }
+  qos.reliability().max_blocking_time = kMaxBlockingTime;
+  qos.reliable_writer_qos().times.heartbeatPeriod = kHeartbeatPeriod;
+  qos.reliable_writer_qos().times.nackResponseDelay = Duration_t(0, 0);
+  qos.publish_mode().kind = dds::SYNCHRONOUS_PUBLISH_MODE;
+  return qos;
+}
+
+dds::DataReaderQos QosProfiles::reader(const dds::Subscriber& subscriber,
+                                       const std::string& topic) const {
+  dds::DataReaderQos qos = dds::DATAREADER_QOS_DEFAULT;
+  if (subscriber.get_datareader_qos_from_profile(topic + "_reader", qos) ==
+      ReturnCode_t::RETCODE_OK) {
+    return qos;
+  }
+  apply_common(qos, topic);
+  qos.reliable_reader_qos().times.heartbeatResponseDelay = Duration_t(0, 0);
+  return qos;
+}
+
+}  // namespace skyfuse::transport
