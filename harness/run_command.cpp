@@ -112,6 +112,10 @@ void add_run_command(CLI::App& app, RunOptions& o) {
   cmd->add_option("--round-timeout", o.round_timeout_s, "Seconds one round may take")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_option("--replay", o.replay_path,
+                  "Stations replay their measurements from this CSV (a measurements.csv of an "
+                  "earlier run) instead of simulating them")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--external", o.external,
                 "Do not start processes: drive stations and a center started elsewhere");
   cmd->add_flag("-v,--verbose", o.verbose, "Let the node processes log at info level");
@@ -156,6 +160,10 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
         std::vector<std::string> station{(executable_dir() / "skyfuse-station").string(), "--id",
                                          std::to_string(id)};
         station.insert(station.end(), common.begin(), common.end());
+        if (!o.replay_path.empty()) {
+          station.push_back("--replay");
+          station.push_back(std::filesystem::absolute(o.replay_path).string());
+        }
         children.spawn(fmt::format("station {}", id), station);
       }
     }

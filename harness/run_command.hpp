@@ -22,7 +22,8 @@ struct RunOptions {
   std::optional<std::string> qos_file;
   double discovery_timeout_s = 30.0;
   double round_timeout_s = 10.0;
-  bool external = false;  ///< stations and center are started elsewhere (by hand, compose)
+  std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating
+  bool external = false;    ///< stations and center are started elsewhere (by hand, compose)
   bool verbose = false;
 };
 

@@ -1,0 +1,137 @@
+// What a user sees when something is wrong: bad command lines, a station id the scenario does
+// not have, a second station with an id already running, a station that dies, Ctrl-C. Every
+// case ends with one clear message, a non-zero exit, no process left and nothing in /dev/shm.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <csignal>
+
+#include "integration/run_fixture.hpp"
+
+namespace skyfuse::test {
+namespace {
+
+using namespace std::chrono_literals;
+using ::testing::HasSubstr;
+
+// A long harness run on `domain`, returned once its first rounds have been driven.
+std::unique_ptr<Process> start_long_run(int domain, int stations, const std::filesystem::path& dir,
+                                        std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = {bin("skyfuse"), "run",
+                                   "--stations",   std::to_string(stations),
+                                   "--steps",      "1000000",
+                                   "--domain",     std::to_string(domain),
+                                   "--out",        (dir / "out").string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  auto run = std::make_unique<Process>(args, dir / "harness.log");
+  const bool started =
+      eventually([&] { return run->output().find("%]") != std::string::npos; }, 30s);
+  EXPECT_TRUE(started) << run->output();
+  return run;
+}
+
+std::vector<pid_t> processes_on_domain(int domain) {
+  return find_processes({"--domain", std::to_string(domain)});
+}
+
+TEST(DdsFaults, RefusesABadCommandLine) {
+  const auto dir = test_dir();
+  const Completed bogus =
+      run_to_completion({bin("skyfuse"), "run", "--bogus"}, dir / "bogus.log", 30s);
+  EXPECT_NE(bogus.status.code, 0);
+  EXPECT_THAT(bogus.output, HasSubstr("--bogus"));
+
+  const Completed zero =
+      run_to_completion({bin("skyfuse"), "run", "--stations", "0"}, dir / "zero.log", 30s);
+  EXPECT_NE(zero.status.code, 0);
+  EXPECT_THAT(zero.output, HasSubstr("--stations"));
+
+  const Completed too_many = run_to_completion(
+      {bin("skyfuse"), "run", "--stations", "11", "--out", (dir / "out").string()},
+      dir / "many.log", 30s);
+  EXPECT_EQ(too_many.status.code, 2);
+  EXPECT_THAT(too_many.output,
+              HasSubstr("--stations: must be in [1, 10] for scenario 'paper000', got 11"));
+}
+
+TEST(DdsFaults, RefusesAMissingScenario) {
+  const auto dir = test_dir();
+  const Completed r = run_to_completion(
+      {bin("skyfuse"), "run", "--scenario", "/nonexistent/scenario.yaml"}, dir / "r.log", 30s);
+  EXPECT_NE(r.status.code, 0);
+  EXPECT_THAT(r.output, HasSubstr("/nonexistent/scenario.yaml"));
+  EXPECT_THAT(r.output, HasSubstr("does not exist"));
+}
+
+TEST(DdsFaults, StationRefusesAnIdNotInTheScenario) {
+  const auto dir = test_dir();
+  const Completed r = run_to_completion(
+      {bin("skyfuse-station"), "--id", "99", "--stations", "3", "--domain", "120"}, dir / "r.log",
+      30s);
+  EXPECT_TRUE(r.status.exited);
+  EXPECT_EQ(r.status.code, 2);
+  EXPECT_THAT(r.output, HasSubstr("--id: station 99 is not one of the 3 participating stations "
+                                  "of scenario 'paper000' (ids 1, 2, 3)"));
+}
+
+TEST(DdsFaults, SecondStationWithARunningIdIsRefusedAndTheRunGoesOn) {
+  const auto dir = test_dir();
+  const int domain = 121;
+  const auto run = start_long_run(domain, 2, dir, {"--run-id", "4242"});
+
+  const Completed twin =
+      run_to_completion({bin("skyfuse-station"), "--id", "1", "--stations", "2", "--steps",
+                         "1000000", "--run-id", "4242", "--domain", std::to_string(domain)},
+                        dir / "twin.log", 60s);
+  EXPECT_TRUE(twin.status.exited);
+  EXPECT_EQ(twin.status.code, 3) << twin.output;
+  EXPECT_THAT(twin.output, HasSubstr("station 1 is already running in run 4242"));
+
+  // The original run was not disturbed.
+  EXPECT_FALSE(run->wait(500ms).has_value()) << run->output();
+  run->signal(SIGINT);
+  const auto status = run->wait(30s);
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(status->code, 130) << run->output();
+}
+
+TEST(DdsFaults, HarnessReportsAStationThatDiedInsteadOfHanging) {
+  const auto dir = test_dir();
+  const int domain = 122;
+  const auto shm_before = fastdds_shm_entries();
+  const auto run = start_long_run(domain, 3, dir);
+
+  const auto victims = find_processes({"--id", "2", "--domain", std::to_string(domain)});
+  ASSERT_EQ(victims.size(), 1U);
+  ::kill(victims.front(), SIGKILL);
+
+  const auto status = run->wait(20s);
+  ASSERT_TRUE(status.has_value()) << "harness still running after a station died";
+  EXPECT_TRUE(status->exited);
+  EXPECT_EQ(status->code, 1);
+  EXPECT_THAT(run->output(), HasSubstr("station 2 (pid " + std::to_string(victims.front()) +
+                                       ") was killed by signal 9"));
+  EXPECT_TRUE(eventually([&] { return processes_on_domain(domain).empty(); }, 10s))
+      << "processes left behind";
+  EXPECT_EQ(fastdds_shm_entries(), shm_before);
+}
+
+TEST(DdsFaults, CtrlCStopsEveryProcessAndLeavesNothingBehind) {
+  const auto dir = test_dir();
+  const int domain = 123;
+  const auto shm_before = fastdds_shm_entries();
+  const auto run = start_long_run(domain, 3, dir);
+  EXPECT_EQ(processes_on_domain(domain).size(), 5U);  // harness, center, 3 stations
+
+  run->signal(SIGINT);
+  const auto status = run->wait(20s);
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(status->code, 130);
+  EXPECT_THAT(run->output(), HasSubstr("run aborted: interrupted by signal 2"));
+  EXPECT_TRUE(eventually([&] { return processes_on_domain(domain).empty(); }, 10s))
+      << "processes left behind";
+  EXPECT_EQ(fastdds_shm_entries(), shm_before);
+}
+
+}  // namespace
+}  // namespace skyfuse::test
