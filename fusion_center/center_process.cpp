@@ -66,20 +66,9 @@ class Center {
                              measurements_.matched(), m, ticks_.matched(), tracks_.matched());
         },
         options_.discovery_timeout());
-    switch (joined.outcome) {
-      case transport::JoinOutcome::kJoined:
-        break;
-      case transport::JoinOutcome::kDuplicate:
-        spdlog::error("a fusion center is already running in run {} ({}); refusing a second",
-                      options_.run_id, joined.detail);
-        return transport::kExitDuplicateId;
-      case transport::JoinOutcome::kTimedOut:
-        spdlog::error("discovery timed out after {} s: {}", options_.discovery_timeout_s,
-                      joined.detail);
-        presence_.announce(wire::FAILED, 0, "discovery timed out: " + joined.detail);
-        return transport::kExitDiscoveryTimeout;
-      case transport::JoinOutcome::kShutdown:
-        return 128 + transport::shutdown_signal();
+    if (const auto code = transport::exit_code_unless_joined(
+            joined, presence_, "a fusion center", options_.run_id, options_.discovery_timeout_s)) {
+      return *code;
     }
     spdlog::info("joined run {} with {} stations", options_.run_id, m);
 

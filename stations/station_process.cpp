@@ -81,20 +81,10 @@ class Station {
               io_.measurements.matched(), io_.tracks.matched());
         },
         options_.node.discovery_timeout());
-    switch (joined.outcome) {
-      case transport::JoinOutcome::kJoined:
-        break;
-      case transport::JoinOutcome::kDuplicate:
-        spdlog::error("station {} is already running in run {} ({}); refusing to start a second",
-                      me_.id, options_.node.run_id, joined.detail);
-        return transport::kExitDuplicateId;
-      case transport::JoinOutcome::kTimedOut:
-        spdlog::error("discovery timed out after {} s: {}", options_.node.discovery_timeout_s,
-                      joined.detail);
-        presence_.announce(wire::FAILED, 0, "discovery timed out: " + joined.detail);
-        return transport::kExitDiscoveryTimeout;
-      case transport::JoinOutcome::kShutdown:
-        return 128 + transport::shutdown_signal();
+    if (const auto code = transport::exit_code_unless_joined(
+            joined, presence_, fmt::format("station {}", me_.id), options_.node.run_id,
+            options_.node.discovery_timeout_s)) {
+      return *code;
     }
     spdlog::info("joined run {} with {} stations; waiting for ticks", options_.node.run_id, m);
 
@@ -147,8 +137,8 @@ class Station {
   }
 
   // Waits until `done()` or the idle timeout; returns an exit code to end the run, or -1.
-  template <typename Done>
-  int wait(std::uint64_t k, bool& got_tick, Done done, const char* what) {
+  template <typename Done, typename Describe>
+  int wait(std::uint64_t k, bool& got_tick, Done done, Describe what) {
     const auto deadline = std::chrono::steady_clock::now() + options_.node.idle_timeout();
     while (true) {
       if (const int code = drain(k, got_tick); code >= 0)
@@ -159,7 +149,7 @@ class Station {
         return 128 + transport::shutdown_signal();
       if (std::chrono::steady_clock::now() >= deadline) {
         const std::string detail = fmt::format("no progress for {} s at step {} waiting for {}",
-                                               options_.node.idle_timeout_s, k, what);
+                                               options_.node.idle_timeout_s, k, what());
         spdlog::error("{}", detail);
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
         return transport::kExitIdleTimeout;
@@ -171,14 +161,14 @@ class Station {
   int wait_for_tick(std::uint64_t k) {
     bool got_tick = false;
     return wait(
-        k, got_tick, [&] { return got_tick; }, "the tick");
+        k, got_tick, [&] { return got_tick; }, [] { return std::string("the tick"); });
   }
 
   int wait_for_increments(std::uint64_t k) {
     bool unused = false;
     return wait(
         k, unused, [&] { return collector_.complete(); },
-        fmt::format("increments of stations {}", collector_.missing()).c_str());
+        [&] { return fmt::format("increments of stations {}", collector_.missing()); });
   }
 
   void publish_own_sample(std::uint64_t k) {

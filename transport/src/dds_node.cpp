@@ -25,6 +25,8 @@ DdsNode::DdsNode(const NodeConfig& config) : qos_(config.qos_file) {
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
   if (publisher_ == nullptr || subscriber_ == nullptr) {
+    participant_->delete_contained_entities();
+    factory->delete_participant(participant_);
     throw DdsError("cannot create the DDS publisher or subscriber");
   }
 }

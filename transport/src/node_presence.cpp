@@ -1,12 +1,14 @@
 #include "skyfuse/transport/node_presence.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <random>
 #include <thread>
 
+#include "skyfuse/transport/node_options.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::transport {
@@ -82,6 +84,26 @@ JoinResult join_run(NodePresence& presence, const std::function<bool()>& all_mat
   }
   presence.announce(wire::READY);
   return {JoinOutcome::kJoined, {}};
+}
+
+std::optional<int> exit_code_unless_joined(const JoinResult& result, NodePresence& presence,
+                                           const std::string& who, std::uint64_t run_id,
+                                           double timeout_s) {
+  switch (result.outcome) {
+    case JoinOutcome::kJoined:
+      return std::nullopt;
+    case JoinOutcome::kDuplicate:
+      spdlog::error("{} is already running in run {} ({}); refusing to start a second", who, run_id,
+                    result.detail);
+      return kExitDuplicateId;
+    case JoinOutcome::kTimedOut:
+      spdlog::error("discovery timed out after {} s: {}", timeout_s, result.detail);
+      presence.announce(wire::FAILED, 0, "discovery timed out: " + result.detail);
+      return kExitDiscoveryTimeout;
+    case JoinOutcome::kShutdown:
+      return 128 + shutdown_signal();
+  }
+  return kExitError;
 }
 
 }  // namespace skyfuse::transport

@@ -59,4 +59,10 @@ JoinResult join_run(NodePresence& presence, const std::function<bool()>& all_mat
                     const std::function<std::string()>& describe_missing,
                     std::chrono::milliseconds timeout);
 
+/// Logs why joining failed, in the words a user needs, and returns the process exit code;
+/// nullopt when the node joined. `who` names the node: "station 3", "a fusion center".
+std::optional<int> exit_code_unless_joined(const JoinResult& result, NodePresence& presence,
+                                           const std::string& who, std::uint64_t run_id,
+                                           double timeout_s);
+
 }  // namespace skyfuse::transport
