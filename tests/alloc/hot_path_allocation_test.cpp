@@ -1,0 +1,139 @@
+// The per-step hot paths allocate nothing: a station step (predict, measurement model,
+// increment), the fusion of M increments, and the stacked EKF update once sized for M.
+// This binary replaces the global operator new with one that counts, so the check is real.
+// Eigen allocates dynamic storage with malloc, not operator new: EIGEN_RUNTIME_NO_MALLOC
+// lets the test make any such allocation an assertion failure as well.
+#define EIGEN_RUNTIME_NO_MALLOC
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include "skyfuse/fusion/increment_fusion.hpp"
+#include "skyfuse/fusion/stacked_ekf.hpp"
+#include "skyfuse/scenario/measurement_simulation.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/scenario/truth.hpp"
+#include "skyfuse/tracking/peer_tracker.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  ++g_allocations;
+  if (void* p = std::malloc(size == 0 ? 1 : size))
+    return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) {
+  return operator new(size);
+}
+void* operator new(std::size_t size, std::align_val_t alignment) {
+  ++g_allocations;
+  const auto align = static_cast<std::size_t>(alignment);
+  if (void* p = std::aligned_alloc(align, (size + align - 1) / align * align))
+    return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete[](void* p, std::size_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::align_val_t) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
+  std::free(p);
+}
+
+namespace skyfuse {
+namespace {
+
+struct Problem {
+  Scenario scenario = load_default_scenario();
+  TruthTrajectory truth =
+      generate_truth(scenario.target, scenario.target.speeds_mps[0], scenario.time_step_s, 600);
+};
+
+TEST(HotPathAllocations, StationStepFusionAndStackedUpdateAllocateNothing) {
+  const Problem p;
+  const ConstantAcceleration3D motion(p.scenario.time_step_s, p.scenario.filter.process_noise);
+  for (int m : {1, 4, 10}) {
+    PeerTracker peer(motion, initial_estimate(p.scenario, p.truth.states[0], 0));
+    GaussianState<9> central = peer.estimate();
+    StackedEkf<9, StationSensor> stacked;
+    std::vector<StationObservation<StationSensor>> observations(static_cast<std::size_t>(m));
+    std::vector<Increment9> increments(static_cast<std::size_t>(m));
+    const std::vector<double> weights(static_cast<std::size_t>(m), 1.0);
+    for (int i = 0; i < m; ++i) {
+      const StationConfig& s = p.scenario.stations[static_cast<std::size_t>(i)];
+      observations[static_cast<std::size_t>(i)] = {s.id, StationSensor(s.position_m),
+                                                   Vector3::Zero(),
+                                                   station_noise_covariance(p.scenario, s, 0)};
+    }
+
+    auto step = [&](std::size_t k) {
+      for (auto& obs : observations) {
+        obs.z = simulate_measurement(obs.sensor, p.truth.position(k), obs.noise, 1, 0,
+                                     obs.station_id, k);
+      }
+      for (std::size_t i = 0; i < observations.size(); ++i) {
+        const auto& obs = observations[i];
+        ASSERT_EQ(peer.make_increment(obs.station_id, obs.sensor, obs.z, obs.noise, increments[i]),
+                  NumericalStatus::kOk);
+      }
+      ASSERT_EQ(peer.fuse(increments, weights), NumericalStatus::kOk);
+      ASSERT_EQ(stacked.update(central, observations).status, NumericalStatus::kOk);
+      peer.predict();
+      predict(central, motion);
+    };
+
+    step(0);  // the stacked EKF sizes its buffers for M here, once
+    Eigen::internal::set_is_malloc_allowed(false);
+    const long before = g_allocations.load();
+    for (std::size_t k = 1; k < 500; ++k)
+      step(k);
+    const long after = g_allocations.load();
+    Eigen::internal::set_is_malloc_allowed(true);
+    EXPECT_EQ(after - before, 0) << "heap allocations in 499 steps with M = " << m;
+  }
+}
+
+TEST(HotPathAllocations, TheCounterSeesAnAllocation) {
+  // The hook must be live, or the test above proves nothing.
+  const long before = g_allocations.load();
+  auto* v = new std::vector<double>(100);
+  delete v;
+  EXPECT_GE(g_allocations.load() - before, 2);
+}
+
+}  // namespace
+}  // namespace skyfuse
+
+namespace skyfuse {
+namespace {
+
+TEST(HotPathAllocationsDeathTest, EigensMallocGuardIsLive) {
+  // Eigen's dynamic matrices bypass operator new; the guard must abort on them.
+  EXPECT_DEATH(
+      {
+        Eigen::internal::set_is_malloc_allowed(false);
+        Eigen::MatrixXd m(40, 40);
+        m.setZero();
+      },
+      "is_malloc_allowed");
+}
+
+}  // namespace
+}  // namespace skyfuse
