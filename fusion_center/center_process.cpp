@@ -21,8 +21,7 @@ constexpr auto kPollSlice = 50ms;
 
 std::vector<int> participant_ids(const RunPlan& plan) {
   std::vector<int> ids;
-  for (const StationConfig& s : plan.participants())
-    ids.push_back(s.id);
+  for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
   return ids;
 }
 
@@ -48,8 +47,7 @@ class Center {
     const std::span<const int> ids = collector_.station_ids();
     for (int id : ids) {
       for (std::size_t i = 0; i < plan.participants().size(); ++i) {
-        if (plan.participants()[i].id == id)
-          slot_of_.push_back(i);
+        if (plan.participants()[i].id == id) slot_of_.push_back(i);
       }
     }
   }
@@ -74,11 +72,9 @@ class Center {
 
     const auto steps = static_cast<std::uint64_t>(plan_.scenario.steps);
     for (std::uint64_t k = 0; k < steps; ++k) {
-      if (const int code = wait_for_measurements(k); code >= 0)
-        return code;
+      if (const int code = wait_for_measurements(k); code >= 0) return code;
       const std::span<const StationObservation9> by_id = collector_.payloads();
-      for (std::size_t j = 0; j < by_id.size(); ++j)
-        observations_[slot_of_[j]] = by_id[j];
+      for (std::size_t j = 0; j < by_id.size(); ++j) observations_[slot_of_[j]] = by_id[j];
       const UpdateReport report = tracker_.update(observations_);
       if (report.status != NumericalStatus::kOk) {
         const std::string detail =
@@ -112,14 +108,11 @@ class Center {
       }
       wire::Measurement sample;
       while (measurements_.take(sample)) {
-        if (sample.run_id() != options_.run_id)
-          continue;
+        if (sample.run_id() != options_.run_id) continue;
         collector_.offer(sample.step(), sample.station_id(), transport::from_wire(sample));
       }
-      if (collector_.complete())
-        return -1;
-      if (transport::shutdown_requested())
-        return 128 + transport::shutdown_signal();
+      if (collector_.complete()) return -1;
+      if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
       if (std::chrono::steady_clock::now() >= deadline) {
         const std::string detail =
             fmt::format("no progress for {} s at step {} waiting for measurements of stations {}",

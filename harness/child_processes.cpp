@@ -36,19 +36,16 @@ pid_t ChildProcesses::spawn(const std::string& name, const std::vector<std::stri
   // Everything exec needs is prepared before fork: the child of a multi-threaded process may
   // only call async-signal-safe functions.
   std::vector<char*> args;
-  for (const std::string& a : argv)
-    args.push_back(const_cast<char*>(a.c_str()));
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   const pid_t parent = getpid();
 
   const pid_t pid = fork();
-  if (pid < 0)
-    throw std::runtime_error(fmt::format("fork for {}: {}", name, strerror(errno)));
+  if (pid < 0) throw std::runtime_error(fmt::format("fork for {}: {}", name, strerror(errno)));
   if (pid == 0) {
     // Die with the harness, however it dies; and if it died before this line, go now.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (getppid() != parent)
-      _exit(127);
+    if (getppid() != parent) _exit(127);
     execv(args[0], args.data());
     _exit(127);
   }
@@ -76,24 +73,18 @@ bool ChildProcesses::wait_all(std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (true) {
     poll();
-    if (children_.empty())
-      return true;
-    if (std::chrono::steady_clock::now() >= deadline)
-      return false;
+    if (children_.empty()) return true;
+    if (std::chrono::steady_clock::now() >= deadline) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
 }
 
 void ChildProcesses::terminate_all(std::chrono::milliseconds grace) {
   poll();
-  if (children_.empty())
-    return;
-  for (const Child& c : children_)
-    kill(c.pid, SIGTERM);
-  if (wait_all(grace))
-    return;
-  for (const Child& c : children_)
-    kill(c.pid, SIGKILL);
+  if (children_.empty()) return;
+  for (const Child& c : children_) kill(c.pid, SIGTERM);
+  if (wait_all(grace)) return;
+  for (const Child& c : children_) kill(c.pid, SIGKILL);
   wait_all(std::chrono::milliseconds(5000));
 }
 

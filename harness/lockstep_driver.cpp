@@ -51,31 +51,26 @@ struct LockstepDriver::Impl {
   void read_statuses() {
     wire::StationStatus s;
     while (statuses.take(s)) {
-      if (s.run_id() != run_id)
-        continue;
+      if (s.run_id() != run_id) continue;
       if (s.state() == wire::FAILED) {
         throw RunAborted(fmt::format("{} failed at step {}: {}", node_name(s.station_id()),
                                      s.step(), s.detail()));
       }
-      if (s.state() == wire::READY)
-        ready.insert(s.station_id());
+      if (s.state() == wire::READY) ready.insert(s.station_id());
     }
   }
 
   void drain_samples() {
     wire::TrackEstimate t;
     while (tracks.take(t)) {
-      if (t.run_id() != run_id)
-        continue;
+      if (t.run_id() != run_id) continue;
       const bool is_central = t.mode() == wire::CENTRAL;
-      if (is_central != (t.source_id() == kCenterId))
-        continue;
+      if (is_central != (t.source_id() == kCenterId)) continue;
       track_collector.offer(t.step(), t.source_id(), transport::from_wire(t));
     }
     wire::Measurement m;
     while (measurements.take(m)) {
-      if (m.run_id() != run_id)
-        continue;
+      if (m.run_id() != run_id) continue;
       measurement_collector.offer(m.step(), m.station_id(), Vector3(m.z()[0], m.z()[1], m.z()[2]));
     }
   }
@@ -105,8 +100,7 @@ std::chrono::nanoseconds LockstepDriver::wait_until_joined(std::chrono::millisec
   const int m = static_cast<int>(d.station_ids.size());
   const auto start = Clock::now();
   const auto all_ready = [&] {
-    if (!d.ready.contains(kCenterId))
-      return false;
+    if (!d.ready.contains(kCenterId)) return false;
     return std::all_of(d.station_ids.begin(), d.station_ids.end(),
                        [&](int id) { return d.ready.contains(id); });
   };
@@ -115,13 +109,11 @@ std::chrono::nanoseconds LockstepDriver::wait_until_joined(std::chrono::millisec
     d.read_statuses();
     const bool matched =
         d.ticks.matched() >= m + 1 && d.tracks.matched() >= m + 1 && d.measurements.matched() >= m;
-    if (matched && all_ready())
-      return Clock::now() - start;
+    if (matched && all_ready()) return Clock::now() - start;
     if (Clock::now() - start >= timeout) {
       std::vector<std::string> missing;
       for (int id : with_center(d.station_ids)) {
-        if (!d.ready.contains(id))
-          missing.push_back(node_name(id));
+        if (!d.ready.contains(id)) missing.push_back(node_name(id));
       }
       throw RunAborted(fmt::format(
           "discovery timed out after {:.1f} s; not ready: {}; tick readers {}/{}, track "
@@ -145,14 +137,12 @@ RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds
 
   while (true) {
     d.drain_samples();
-    if (d.track_collector.complete() && d.measurement_collector.complete())
-      break;
+    if (d.track_collector.complete() && d.measurement_collector.complete()) break;
     d.check();
     d.read_statuses();
     if (Clock::now() - sent >= timeout) {
       std::vector<std::string> missing;
-      for (int id : d.track_collector.missing())
-        missing.push_back(node_name(id));
+      for (int id : d.track_collector.missing()) missing.push_back(node_name(id));
       throw RunAborted(fmt::format("round {} timed out after {:.1f} s waiting for tracks of {}", k,
                                    std::chrono::duration<double>(timeout).count(),
                                    fmt::join(missing, ", ")));

@@ -24,12 +24,9 @@ int main(int argc, char** argv) {
 
   skyfuse::transport::install_shutdown_handlers();
   try {
-    if (app.got_subcommand("sweep"))
-      return run_sweep(sweep);
-    if (app.got_subcommand("run"))
-      return run_run(run);
-    if (app.got_subcommand("demo"))
-      return run_demo(demo);
+    if (app.got_subcommand("sweep")) return run_sweep(sweep);
+    if (app.got_subcommand("run")) return run_run(run);
+    if (app.got_subcommand("demo")) return run_demo(demo);
   } catch (const RunAborted& e) {
     std::fprintf(stderr, "skyfuse: run aborted: %s\n", e.what());
     return skyfuse::transport::shutdown_requested() ? 130 : 1;

@@ -13,11 +13,9 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
   const std::filesystem::path tmp = path.string() + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
+    if (!out) throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
     out << content;
-    if (!out.flush())
-      throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
+    if (!out.flush()) throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
   }
   std::filesystem::rename(tmp, path);
 }
@@ -34,8 +32,7 @@ bool run_plot_script(const std::string& script, const std::vector<std::string>& 
   std::string command =
       python ? python : (access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3");
   command = fmt::format("'{}' '{}'", command, (executable_dir() / script).string());
-  for (const std::string& a : args)
-    command += fmt::format(" '{}'", a);
+  for (const std::string& a : args) command += fmt::format(" '{}'", a);
   return std::system(command.c_str()) == 0;
 }
 

@@ -15,8 +15,7 @@ Progress::~Progress() {
 
 void Progress::set_stage(std::string stage) {
   stage_ = std::move(stage);
-  if (interactive_)
-    draw();
+  if (interactive_) draw();
 }
 
 void Progress::advance(long amount) {
@@ -25,11 +24,9 @@ void Progress::advance(long amount) {
 }
 
 void Progress::finish() {
-  if (finished_)
-    return;
+  if (finished_) return;
   finished_ = true;
-  if (interactive_)
-    std::fputc('\n', stderr);
+  if (interactive_) std::fputc('\n', stderr);
 }
 
 void Progress::draw() {

@@ -25,11 +25,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 std::string read_scenario_text(const std::string& path) {
-  if (path.empty())
-    return std::string(default_scenario_yaml());
+  if (path.empty()) return std::string(default_scenario_yaml());
   std::ifstream in(path);
-  if (!in)
-    throw ConfigError(fmt::format("{}: cannot open scenario file", path));
+  if (!in) throw ConfigError(fmt::format("{}: cannot open scenario file", path));
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -130,8 +128,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
 
   const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
   std::vector<int> ids;
-  for (const StationConfig& s : plan.participants())
-    ids.push_back(s.id);
+  for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
 
   ChildProcesses children;
   const auto check = [&] {
@@ -139,15 +136,13 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
       throw RunAborted(fmt::format("interrupted by signal {}", transport::shutdown_signal()));
     }
     for (const ChildExit& e : children.poll()) {
-      if (!e.success())
-        throw RunAborted(e.describe());
+      if (!e.success()) throw RunAborted(e.describe());
     }
   };
   transport::NodeConfig config;
   config.domain_id = o.domain;
   config.name = "skyfuse-harness";
-  if (o.qos_file)
-    config.qos_file = *o.qos_file;
+  if (o.qos_file) config.qos_file = *o.qos_file;
   LockstepDriver driver(config, run_id, ids, check);
 
   try {
@@ -188,8 +183,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
     }
     children.terminate_all(std::chrono::seconds(2));
     for (const ChildExit& e : children.exited()) {
-      if (!e.success())
-        spdlog::warn("{}", e.describe());
+      if (!e.success()) spdlog::warn("{}", e.describe());
     }
 
     const RunSummary summary =

@@ -12,8 +12,7 @@ namespace skyfuse::harness {
 namespace {
 
 double percentile(std::vector<double> values, double p) {
-  if (values.empty())
-    return 0.0;
+  if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
   const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size())));
   return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
@@ -91,13 +90,11 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
     const auto add_track = [&](int source, const GaussianState<9>& e) {
       // %.17g round-trips a double exactly: the value read back is the value computed.
       tracks += fmt::format("{},{}", r.step, source);
-      for (int i = 0; i < 9; ++i)
-        tracks += fmt::format(",{:.17g}", e.mean(i));
+      for (int i = 0; i < 9; ++i) tracks += fmt::format(",{:.17g}", e.mean(i));
       tracks += '\n';
     };
     add_track(0, r.central);
-    for (std::size_t i = 0; i < r.peers.size(); ++i)
-      add_track(station_ids_[i], r.peers[i]);
+    for (std::size_t i = 0; i < r.peers.size(); ++i) add_track(station_ids_[i], r.peers[i]);
     for (std::size_t i = 0; i < r.measurements.size(); ++i) {
       const Vector3& z = r.measurements[i];
       measurements +=

@@ -39,8 +39,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
 int run_sweep(const SweepOptions& options) {
   Scenario scenario = options.scenario_path.empty() ? load_default_scenario()
                                                     : load_scenario_file(options.scenario_path);
-  if (options.seed)
-    scenario.seed = *options.seed;
+  if (options.seed) scenario.seed = *options.seed;
   if (options.steps) {
     scenario.steps = *options.steps;
     validate_scenario(scenario, "--steps");

@@ -36,8 +36,7 @@ std::vector<std::string_view> split(std::string_view line) {
   while (true) {
     const std::size_t comma = line.find(',', start);
     fields.push_back(line.substr(start, comma - start));
-    if (comma == std::string_view::npos)
-      return fields;
+    if (comma == std::string_view::npos) return fields;
     start = comma + 1;
   }
 }
@@ -52,16 +51,14 @@ bool parse(std::string_view text, T& value) {
 
 ReplayedSensor::ReplayedSensor(const std::filesystem::path& csv, int station_id) : path_(csv) {
   std::ifstream in(csv);
-  if (!in)
-    throw std::runtime_error(fmt::format("{}: cannot open replay file", csv.string()));
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot open replay file", csv.string()));
   std::string line;
   if (!std::getline(in, line) || line != kReplayHeader) {
     throw std::runtime_error(
         fmt::format("{}: line 1: expected the header '{}'", csv.string(), kReplayHeader));
   }
   for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty())
-      continue;
+    if (line.empty()) continue;
     const auto f = split(line);
     std::uint64_t step = 0;
     int id = 0;
@@ -72,8 +69,7 @@ ReplayedSensor::ReplayedSensor(const std::filesystem::path& csv, int station_id)
       throw std::runtime_error(fmt::format("{}: line {}: expected {} with finite numbers, got '{}'",
                                            csv.string(), number, kReplayHeader, line));
     }
-    if (id != station_id)
-      continue;
+    if (id != station_id) continue;
     if (!rows_.emplace(step, z).second) {
       throw std::runtime_error(fmt::format("{}: line {}: second row for station {} at step {}",
                                            csv.string(), number, id, step));

@@ -58,8 +58,7 @@ class Station {
         sensor_(me.position_m),
         noise_(station_noise_covariance(plan.scenario, me, plan.mc_run)) {
     // Weights in the collector's (ascending id) order.
-    for (int id : collector_.station_ids())
-      weights_.push_back(plan.participant(id)->weight);
+    for (int id : collector_.station_ids()) weights_.push_back(plan.participant(id)->weight);
   }
 
   int run() {
@@ -90,13 +89,10 @@ class Station {
 
     const auto steps = static_cast<std::uint64_t>(plan_.scenario.steps);
     for (std::uint64_t k = 0; k < steps; ++k) {
-      if (const int code = wait_for_tick(k); code >= 0)
-        return code;
+      if (const int code = wait_for_tick(k); code >= 0) return code;
       publish_own_sample(k);
-      if (const int code = wait_for_increments(k); code >= 0)
-        return code;
-      if (const int code = fuse_and_publish(k); code >= 0)
-        return code;
+      if (const int code = wait_for_increments(k); code >= 0) return code;
+      if (const int code = fuse_and_publish(k); code >= 0) return code;
       tracker_.predict();
       collector_.advance();
     }
@@ -109,8 +105,7 @@ class Station {
  private:
   static std::vector<int> participant_ids(const RunPlan& plan) {
     std::vector<int> ids;
-    for (const StationConfig& s : plan.participants())
-      ids.push_back(s.id);
+    for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
     return ids;
   }
 
@@ -118,19 +113,16 @@ class Station {
   int drain(std::uint64_t k, bool& got_tick) {
     wire::Tick tick;
     while (io_.ticks.take(tick)) {
-      if (tick.run_id() != options_.node.run_id)
-        continue;
+      if (tick.run_id() != options_.node.run_id) continue;
       if (tick.stop()) {
         spdlog::info("stopped by the harness at step {}", k);
         return transport::kExitOk;
       }
-      if (tick.step() == k)
-        got_tick = true;
+      if (tick.step() == k) got_tick = true;
     }
     wire::InformationIncrement sample;
     while (io_.increments_in.take(sample)) {
-      if (sample.run_id() != options_.node.run_id || sample.station_id() == me_.id)
-        continue;
+      if (sample.run_id() != options_.node.run_id || sample.station_id() == me_.id) continue;
       collector_.offer(sample.step(), sample.station_id(), transport::from_wire(sample));
     }
     return -1;
@@ -141,12 +133,9 @@ class Station {
   int wait(std::uint64_t k, bool& got_tick, Done done, Describe what) {
     const auto deadline = std::chrono::steady_clock::now() + options_.node.idle_timeout();
     while (true) {
-      if (const int code = drain(k, got_tick); code >= 0)
-        return code;
-      if (done())
-        return -1;
-      if (transport::shutdown_requested())
-        return 128 + transport::shutdown_signal();
+      if (const int code = drain(k, got_tick); code >= 0) return code;
+      if (done()) return -1;
+      if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
       if (std::chrono::steady_clock::now() >= deadline) {
         const std::string detail = fmt::format("no progress for {} s at step {} waiting for {}",
                                                options_.node.idle_timeout_s, k, what());
@@ -221,8 +210,7 @@ int run_station(const StationOptions& options) {
   const StationConfig* me = plan.participant(options.id);
   if (me == nullptr) {
     std::vector<int> ids;
-    for (const StationConfig& s : plan.participants())
-      ids.push_back(s.id);
+    for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
     throw std::invalid_argument(fmt::format(
         "--id: station {} is not one of the {} participating stations of scenario '{}' (ids {})",
         options.id, plan.stations, plan.scenario.name, fmt::join(ids, ", ")));

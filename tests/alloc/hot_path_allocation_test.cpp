@@ -24,8 +24,7 @@ std::atomic<long> g_allocations{0};
 
 void* operator new(std::size_t size) {
   ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size))
-    return p;
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
   throw std::bad_alloc();
 }
 void* operator new[](std::size_t size) {
@@ -34,8 +33,7 @@ void* operator new[](std::size_t size) {
 void* operator new(std::size_t size, std::align_val_t alignment) {
   ++g_allocations;
   const auto align = static_cast<std::size_t>(alignment);
-  if (void* p = std::aligned_alloc(align, (size + align - 1) / align * align))
-    return p;
+  if (void* p = std::aligned_alloc(align, (size + align - 1) / align * align)) return p;
   throw std::bad_alloc();
 }
 void operator delete(void* p) noexcept {
@@ -102,8 +100,7 @@ TEST(HotPathAllocations, StationStepFusionAndStackedUpdateAllocateNothing) {
     step(0);  // the stacked EKF sizes its buffers for M here, once
     Eigen::internal::set_is_malloc_allowed(false);
     const long before = g_allocations.load();
-    for (std::size_t k = 1; k < 500; ++k)
-      step(k);
+    for (std::size_t k = 1; k < 500; ++k) step(k);
     const long after = g_allocations.load();
     Eigen::internal::set_is_malloc_allowed(true);
     EXPECT_EQ(after - before, 0) << "heap allocations in 499 steps with M = " << m;

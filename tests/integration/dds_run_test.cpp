@@ -102,8 +102,7 @@ TEST(DdsRunDeterminism, SameSeedGivesTheSameBytesEvenWithTheOtherCoreBusy) {
   std::atomic<bool> done{false};
   std::thread busy([&] {
     volatile double sink = 0.0;
-    while (!done)
-      sink = sink + 1.0;
+    while (!done) sink = sink + 1.0;
   });
   const Completed loaded = skyfuse_run(3, 111, dir / "loaded");
   done = true;

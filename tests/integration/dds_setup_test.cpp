@@ -79,8 +79,7 @@ namespace {
 TEST(DdsSetup, TheContainerProfileRunsInANetworkNamespaceOfItsOwn) {
   // docker/fastdds_profile.xml uses every interface and multicast discovery. Run it where the
   // only interface is a private loopback (a new network namespace), so nothing leaves the host.
-  if (geteuid() != 0)
-    GTEST_SKIP() << "needs root for unshare --net";
+  if (geteuid() != 0) GTEST_SKIP() << "needs root for unshare --net";
   const auto dir = test_dir();
   const std::string command =
       "ip link set lo up && exec " + bin("skyfuse") +

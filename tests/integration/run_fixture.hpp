@@ -23,8 +23,7 @@ inline std::filesystem::path test_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
   std::string name = std::string(info->test_suite_name()) + "_" + info->name();
   for (char& c : name) {
-    if (c == '/')
-      c = '_';
+    if (c == '/') c = '_';
   }
   const auto dir = std::filesystem::path(SKYFUSE_TEST_WORK_DIR) / name;
   std::filesystem::remove_all(dir);

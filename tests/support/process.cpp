@@ -16,12 +16,10 @@ namespace skyfuse::test {
 Process::Process(const std::vector<std::string>& argv, const std::filesystem::path& log)
     : log_(log) {
   std::vector<char*> args;
-  for (const std::string& a : argv)
-    args.push_back(const_cast<char*>(a.c_str()));
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0)
-    throw std::runtime_error("cannot open " + log.string());
+  if (fd < 0) throw std::runtime_error("cannot open " + log.string());
   pid_ = fork();
   if (pid_ == 0) {
     dup2(fd, STDOUT_FILENO);
@@ -30,8 +28,7 @@ Process::Process(const std::vector<std::string>& argv, const std::filesystem::pa
     _exit(127);
   }
   ::close(fd);
-  if (pid_ < 0)
-    throw std::runtime_error("fork failed");
+  if (pid_ < 0) throw std::runtime_error("fork failed");
 }
 
 Process::~Process() {
@@ -42,8 +39,7 @@ Process::~Process() {
 }
 
 std::optional<ExitStatus> Process::wait(std::chrono::milliseconds timeout) {
-  if (status_)
-    return status_;
+  if (status_) return status_;
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (true) {
     int raw = 0;
@@ -52,8 +48,7 @@ std::optional<ExitStatus> Process::wait(std::chrono::milliseconds timeout) {
           WIFEXITED(raw) ? ExitStatus{true, WEXITSTATUS(raw)} : ExitStatus{false, WTERMSIG(raw)};
       return status_;
     }
-    if (std::chrono::steady_clock::now() >= deadline)
-      return std::nullopt;
+    if (std::chrono::steady_clock::now() >= deadline) return std::nullopt;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
 }
@@ -82,17 +77,14 @@ std::vector<pid_t> find_processes(const std::vector<std::string>& tokens) {
   std::vector<pid_t> found;
   for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
     const std::string name = entry.path().filename().string();
-    if (!std::all_of(name.begin(), name.end(), ::isdigit))
-      continue;
+    if (!std::all_of(name.begin(), name.end(), ::isdigit)) continue;
     std::ifstream in(entry.path() / "cmdline", std::ios::binary);
     std::vector<std::string> args;
-    for (std::string arg; std::getline(in, arg, '\0');)
-      args.push_back(arg);
+    for (std::string arg; std::getline(in, arg, '\0');) args.push_back(arg);
     const bool all = std::all_of(tokens.begin(), tokens.end(), [&](const std::string& t) {
       return std::find(args.begin(), args.end(), t) != args.end();
     });
-    if (all && !args.empty())
-      found.push_back(static_cast<pid_t>(std::stoi(name)));
+    if (all && !args.empty()) found.push_back(static_cast<pid_t>(std::stoi(name)));
   }
   return found;
 }
@@ -112,8 +104,7 @@ std::vector<std::string> fastdds_shm_entries() {
 bool eventually(const std::function<bool()>& condition, std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (!condition()) {
-    if (std::chrono::steady_clock::now() >= deadline)
-      return false;
+    if (std::chrono::steady_clock::now() >= deadline) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   return true;

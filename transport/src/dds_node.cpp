@@ -32,8 +32,7 @@ DdsNode::DdsNode(const NodeConfig& config) : qos_(config.qos_file) {
 }
 
 DdsNode::~DdsNode() {
-  if (participant_ == nullptr)
-    return;
+  if (participant_ == nullptr) return;
   participant_->delete_contained_entities();
   dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
 }
@@ -41,8 +40,7 @@ DdsNode::~DdsNode() {
 bool wait_until(const std::function<bool()>& ready, std::chrono::milliseconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (!ready()) {
-    if (std::chrono::steady_clock::now() >= deadline)
-      return false;
+    if (std::chrono::steady_clock::now() >= deadline) return false;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   return true;

@@ -10,8 +10,7 @@ NodeConfig NodeOptions::node_config(const std::string& name) const {
   NodeConfig config;
   config.domain_id = domain;
   config.name = name;
-  if (qos_file)
-    config.qos_file = *qos_file;
+  if (qos_file) config.qos_file = *qos_file;
   return config;
 }
 

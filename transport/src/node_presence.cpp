@@ -69,17 +69,12 @@ JoinResult join_run(NodePresence& presence, const std::function<bool()>& all_mat
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   std::optional<std::chrono::steady_clock::time_point> matched_at;
   while (true) {
-    if (shutdown_requested())
-      return {JoinOutcome::kShutdown, {}};
-    if (auto twin = presence.find_older_twin())
-      return {JoinOutcome::kDuplicate, *twin};
+    if (shutdown_requested()) return {JoinOutcome::kShutdown, {}};
+    if (auto twin = presence.find_older_twin()) return {JoinOutcome::kDuplicate, *twin};
     const auto now = std::chrono::steady_clock::now();
-    if (!matched_at && all_matched())
-      matched_at = now;
-    if (matched_at && now - *matched_at >= kStatusSettle)
-      break;
-    if (!matched_at && now >= deadline)
-      return {JoinOutcome::kTimedOut, describe_missing()};
+    if (!matched_at && all_matched()) matched_at = now;
+    if (matched_at && now - *matched_at >= kStatusSettle) break;
+    if (!matched_at && now >= deadline) return {JoinOutcome::kTimedOut, describe_missing()};
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   presence.announce(wire::READY);

@@ -56,8 +56,7 @@ void apply_common(EndpointQos& qos, const std::string& topic) {
 }  // namespace
 
 QosProfiles::QosProfiles(const std::optional<std::filesystem::path>& xml_file) {
-  if (!xml_file)
-    return;
+  if (!xml_file) return;
   if (dds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(xml_file->string()) !=
       ReturnCode_t::RETCODE_OK) {
     throw std::runtime_error(

@@ -33,8 +33,7 @@ wire::InformationIncrement to_wire(const Increment9& increment, std::uint64_t ru
   sample.step(step);
   sample.station_id(increment.station_id);
   pack_upper<9>(increment.delta_information, sample.delta_information().data());
-  for (int i = 0; i < 9; ++i)
-    sample.delta_vector()[i] = increment.delta_vector(i);
+  for (int i = 0; i < 9; ++i) sample.delta_vector()[i] = increment.delta_vector(i);
   return sample;
 }
 
@@ -42,8 +41,7 @@ Increment9 from_wire(const wire::InformationIncrement& sample) {
   Increment9 increment;
   increment.station_id = sample.station_id();
   increment.delta_information = unpack_upper<9>(sample.delta_information().data());
-  for (int i = 0; i < 9; ++i)
-    increment.delta_vector(i) = sample.delta_vector()[i];
+  for (int i = 0; i < 9; ++i) increment.delta_vector(i) = sample.delta_vector()[i];
   return increment;
 }
 
@@ -55,8 +53,7 @@ wire::TrackEstimate to_wire(const GaussianState<9>& estimate, std::uint64_t run_
   sample.step(step);
   sample.source_id(source_id);
   sample.mode(mode);
-  for (int i = 0; i < 9; ++i)
-    sample.x()[i] = estimate.mean(i);
+  for (int i = 0; i < 9; ++i) sample.x()[i] = estimate.mean(i);
   pack_upper<9>(estimate.covariance, sample.covariance().data());
   sample.contributors().assign(contributors.begin(), contributors.end());
   return sample;
@@ -64,8 +61,7 @@ wire::TrackEstimate to_wire(const GaussianState<9>& estimate, std::uint64_t run_
 
 GaussianState<9> from_wire(const wire::TrackEstimate& sample) {
   GaussianState<9> estimate;
-  for (int i = 0; i < 9; ++i)
-    estimate.mean(i) = sample.x()[i];
+  for (int i = 0; i < 9; ++i) estimate.mean(i) = sample.x()[i];
   estimate.covariance = unpack_upper<9>(sample.covariance().data());
   return estimate;
 }

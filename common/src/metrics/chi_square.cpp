@@ -18,8 +18,7 @@ double gamma_p_series(double a, double x) {
   for (int n = 1; n < kMaxIterations; ++n) {
     term *= x / (a + n);
     sum += term;
-    if (std::fabs(term) < std::fabs(sum) * kEpsilon)
-      break;
+    if (std::fabs(term) < std::fabs(sum) * kEpsilon) break;
   }
   return sum * std::exp(-x + a * std::log(x) - std::lgamma(a));
 }
@@ -35,25 +34,20 @@ double gamma_q_continued_fraction(double a, double x) {
     const double an = -i * (i - a);
     b += 2.0;
     d = an * d + b;
-    if (std::fabs(d) < kTiny)
-      d = kTiny;
+    if (std::fabs(d) < kTiny) d = kTiny;
     c = b + an / c;
-    if (std::fabs(c) < kTiny)
-      c = kTiny;
+    if (std::fabs(c) < kTiny) c = kTiny;
     d = 1.0 / d;
     const double delta = d * c;
     h *= delta;
-    if (std::fabs(delta - 1.0) < kEpsilon)
-      break;
+    if (std::fabs(delta - 1.0) < kEpsilon) break;
   }
   return std::exp(-x + a * std::log(x) - std::lgamma(a)) * h;
 }
 
 double regularized_gamma_p(double a, double x) {
-  if (x <= 0.0)
-    return 0.0;
-  if (x < a + 1.0)
-    return gamma_p_series(a, x);
+  if (x <= 0.0) return 0.0;
+  if (x < a + 1.0) return gamma_p_series(a, x);
   return 1.0 - gamma_q_continued_fraction(a, x);
 }
 
@@ -70,8 +64,7 @@ double chi_square_quantile(double probability, double dof) {
   // The CDF is monotone: bisection to full double precision is simple and robust.
   double low = 0.0;
   double high = dof + 20.0 * std::sqrt(2.0 * dof) + 100.0;
-  while (chi_square_cdf(high, dof) < probability)
-    high *= 2.0;
+  while (chi_square_cdf(high, dof) < probability) high *= 2.0;
   for (int i = 0; i < 200 && high - low > 1e-12 * high; ++i) {
     const double mid = 0.5 * (low + high);
     (chi_square_cdf(mid, dof) < probability ? low : high) = mid;

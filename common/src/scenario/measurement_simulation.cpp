@@ -9,16 +9,14 @@ namespace skyfuse {
 
 double draw_noise_scale(const NoiseScaleConfig& config, std::uint64_t seed, std::uint64_t run,
                         int station_id) {
-  if (config.model == NoiseScaleConfig::Model::kNone)
-    return 1.0;
+  if (config.model == NoiseScaleConfig::Model::kNone) return 1.0;
   // Truncated normal by rejection: P(1 + delta < floor) is at most P(delta < -0.9) = 0.18 for
   // any floor the loader accepts (0 < floor <= 1 + ...), so 200 draws fail with probability
   // below 1e-140. The fallback keeps the contract (a positive scale) even then.
   CounterRng rng({seed, run, static_cast<std::uint64_t>(station_id), 0, NoiseStream::kNoiseScale});
   for (int attempt = 0; attempt < 200; ++attempt) {
     const double scale = 1.0 + rng.normal();
-    if (scale >= config.floor)
-      return scale;
+    if (scale >= config.floor) return scale;
   }
   return config.floor;
 }
@@ -35,8 +33,7 @@ Vector3 simulate_measurement(const StationSensor& sensor, const Vector3& true_po
   CounterRng rng(
       {seed, run, static_cast<std::uint64_t>(station_id), step, NoiseStream::kMeasurement});
   Vector3 z = sensor.measure_position(true_position);
-  for (int i = 0; i < 3; ++i)
-    z(i) += std::sqrt(noise(i, i)) * rng.normal();
+  for (int i = 0; i < 3; ++i) z(i) += std::sqrt(noise(i, i)) * rng.normal();
   z(StationSensor::kAzimuth) = wrap_angle(z(StationSensor::kAzimuth));
   return z;
 }

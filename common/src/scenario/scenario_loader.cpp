@@ -68,8 +68,7 @@ TargetConfig read_target(const YamlField& field) {
       velocity->fail("heading_deg and climb_deg go with speeds_kmh, not with velocity_mps");
     }
     const Vector3 v = read_vector3(*velocity);
-    if (v.norm() <= 0.0)
-      velocity->fail(fmt::format("must be non-zero, got {}", velocity->text()));
+    if (v.norm() <= 0.0) velocity->fail(fmt::format("must be non-zero, got {}", velocity->text()));
     target.direction = v.normalized();
     target.speeds_mps = {v.norm()};
   } else if (speeds) {
@@ -78,8 +77,7 @@ TargetConfig read_target(const YamlField& field) {
     target.direction =
         direction_from_angles(heading ? heading->number() : 0.0, climb ? climb->number() : 0.0);
     const auto items = speeds->sequence();
-    if (items.empty())
-      speeds->fail("must list at least one speed");
+    if (items.empty()) speeds->fail("must list at least one speed");
     for (const YamlField& item : items) {
       target.speeds_mps.push_back(item.positive_number() * kKmhToMps);
     }
@@ -95,8 +93,7 @@ TargetConfig read_target(const YamlField& field) {
         const Manoeuvre& other = target.manoeuvres[i];
         const bool overlap = added.start_s < other.start_s + other.duration_s &&
                              other.start_s < added.start_s + added.duration_s;
-        if (overlap)
-          item.fail(fmt::format("overlaps manoeuvres[{}]", i));
+        if (overlap) item.fail(fmt::format("overlaps manoeuvres[{}]", i));
       }
     }
   }
@@ -120,10 +117,8 @@ StationConfig read_station(const YamlField& field) {
     noise.fail(
         fmt::format("expected [range_m, azimuth_rad, elevation_rad], got '{}'", noise.text()));
   }
-  for (int i = 0; i < 3; ++i)
-    station.noise_std(i) = noise_items[i].positive_number();
-  if (const auto weight = field.optional("weight"))
-    station.weight = weight->positive_number();
+  for (int i = 0; i < 3; ++i) station.noise_std(i) = noise_items[i].positive_number();
+  if (const auto weight = field.optional("weight")) station.weight = weight->positive_number();
   return station;
 }
 
@@ -142,8 +137,7 @@ NoiseScaleConfig read_noise_scale(const YamlField& field) {
   }
   if (const auto floor = field.optional("scale_floor")) {
     config.floor = floor->positive_number();
-    if (config.floor > 1.0)
-      floor->fail(fmt::format("must be <= 1, got {}", floor->text()));
+    if (config.floor > 1.0) floor->fail(fmt::format("must be <= 1, got {}", floor->text()));
   }
   return config;
 }
@@ -162,10 +156,8 @@ FilterConfig read_filter(const YamlField& field) {
     filter.initial_covariance_diag.setConstant(p0.positive_number());
   } else {
     const auto items = p0.sequence();
-    if (items.size() != 9)
-      p0.fail(fmt::format("expected 1 or 9 numbers, got '{}'", p0.text()));
-    for (int i = 0; i < 9; ++i)
-      filter.initial_covariance_diag(i) = items[i].positive_number();
+    if (items.size() != 9) p0.fail(fmt::format("expected 1 or 9 numbers, got '{}'", p0.text()));
+    for (int i = 0; i < 9; ++i) filter.initial_covariance_diag(i) = items[i].positive_number();
   }
 
   if (const auto error = field.optional("initial_state_error")) {
@@ -186,13 +178,11 @@ Scenario read_scenario(const YamlField& root) {
                    "measurement_noise", "filter"});
   Scenario s;
   s.name = root.required("name").string();
-  if (const auto description = root.optional("description"))
-    s.description = description->string();
+  if (const auto description = root.optional("description")) s.description = description->string();
 
   const YamlField seed = root.required("seed");
   const std::int64_t raw_seed = seed.integer();
-  if (raw_seed < 0)
-    seed.fail(fmt::format("must be >= 0, got {}", seed.text()));
+  if (raw_seed < 0) seed.fail(fmt::format("must be >= 0, got {}", seed.text()));
   s.seed = static_cast<std::uint64_t>(raw_seed);
 
   s.time_step_s = root.required("time_step_s").positive_number();
@@ -207,8 +197,7 @@ Scenario read_scenario(const YamlField& root) {
 
   const YamlField stations = root.required("stations");
   const auto station_items = stations.sequence();
-  if (station_items.empty())
-    stations.fail("must list at least one station");
+  if (station_items.empty()) stations.fail("must list at least one station");
   std::set<int> ids;
   for (const YamlField& item : station_items) {
     s.stations.push_back(read_station(item));
@@ -263,8 +252,7 @@ Scenario parse_scenario(std::string_view yaml_text, const std::string& source) {
 
 Scenario load_scenario_file(const std::filesystem::path& path) {
   std::ifstream in(path);
-  if (!in)
-    throw ConfigError(fmt::format("{}: cannot open scenario file", path.string()));
+  if (!in) throw ConfigError(fmt::format("{}: cannot open scenario file", path.string()));
   std::ostringstream text;
   text << in.rdbuf();
   return parse_scenario(text.str(), path.string());

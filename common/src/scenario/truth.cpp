@@ -17,8 +17,7 @@ const Manoeuvre* active_manoeuvre(const std::vector<Manoeuvre>& manoeuvres, int 
   for (const Manoeuvre& m : manoeuvres) {
     const long first = std::lround(m.start_s / dt);
     const long end = std::lround((m.start_s + m.duration_s) / dt);
-    if (step >= first && step < end)
-      active = &m;
+    if (step >= first && step < end) active = &m;
   }
   return active;
 }

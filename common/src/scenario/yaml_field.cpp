@@ -13,8 +13,7 @@ YamlField::YamlField(YAML::Node node, std::string path, const std::string& sourc
     : node_(std::move(node)), path_(std::move(path)), source_(&source) {}
 
 std::string YamlField::text() const {
-  if (node_.IsScalar())
-    return node_.Scalar();
+  if (node_.IsScalar()) return node_.Scalar();
   YAML::Emitter out;
   out << YAML::Flow << node_;
   return out.c_str();
@@ -30,26 +29,21 @@ void YamlField::fail(const std::string& problem) const {
 }
 
 YamlField YamlField::required(const std::string& key) const {
-  if (!node_.IsMap())
-    fail(fmt::format("expected a mapping with '{}', got '{}'", key, text()));
+  if (!node_.IsMap()) fail(fmt::format("expected a mapping with '{}', got '{}'", key, text()));
   const YAML::Node child = node_[key];
-  if (!child)
-    fail(fmt::format("missing field '{}'", key));
+  if (!child) fail(fmt::format("missing field '{}'", key));
   return YamlField(child, path_.empty() ? key : path_ + "." + key, *source_);
 }
 
 std::optional<YamlField> YamlField::optional(const std::string& key) const {
-  if (!node_.IsMap())
-    fail(fmt::format("expected a mapping, got '{}'", text()));
+  if (!node_.IsMap()) fail(fmt::format("expected a mapping, got '{}'", text()));
   const YAML::Node child = node_[key];
-  if (!child || child.IsNull())
-    return std::nullopt;
+  if (!child || child.IsNull()) return std::nullopt;
   return YamlField(child, path_.empty() ? key : path_ + "." + key, *source_);
 }
 
 void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
-  if (!node_.IsMap())
-    fail(fmt::format("expected a mapping, got '{}'", text()));
+  if (!node_.IsMap()) fail(fmt::format("expected a mapping, got '{}'", text()));
   for (const auto& entry : node_) {
     const std::string key = entry.first.as<std::string>();
     const bool known =
@@ -66,22 +60,19 @@ double YamlField::number() const {
   if (!node_.IsScalar() || !YAML::convert<double>::decode(node_, value)) {
     fail(fmt::format("expected a number, got '{}'", text()));
   }
-  if (!std::isfinite(value))
-    fail(fmt::format("must be finite, got '{}'", text()));
+  if (!std::isfinite(value)) fail(fmt::format("must be finite, got '{}'", text()));
   return value;
 }
 
 double YamlField::positive_number() const {
   const double value = number();
-  if (value <= 0.0)
-    fail(fmt::format("must be > 0, got {}", text()));
+  if (value <= 0.0) fail(fmt::format("must be > 0, got {}", text()));
   return value;
 }
 
 double YamlField::non_negative_number() const {
   const double value = number();
-  if (value < 0.0)
-    fail(fmt::format("must be >= 0, got {}", text()));
+  if (value < 0.0) fail(fmt::format("must be >= 0, got {}", text()));
   return value;
 }
 
@@ -94,14 +85,12 @@ std::int64_t YamlField::integer() const {
 }
 
 std::string YamlField::string() const {
-  if (!node_.IsScalar())
-    fail(fmt::format("expected a string, got '{}'", text()));
+  if (!node_.IsScalar()) fail(fmt::format("expected a string, got '{}'", text()));
   return node_.Scalar();
 }
 
 std::vector<YamlField> YamlField::sequence() const {
-  if (!node_.IsSequence())
-    fail(fmt::format("expected a list, got '{}'", text()));
+  if (!node_.IsSequence()) fail(fmt::format("expected a list, got '{}'", text()));
   std::vector<YamlField> items;
   for (std::size_t i = 0; i < node_.size(); ++i) {
     items.emplace_back(node_[i], fmt::format("{}[{}]", path_, i), *source_);
@@ -115,8 +104,7 @@ Eigen::VectorXd YamlField::numbers(int n) const {
     fail(fmt::format("expected a list of {} numbers, got '{}'", n, text()));
   }
   Eigen::VectorXd values(n);
-  for (int i = 0; i < n; ++i)
-    values(i) = items[static_cast<std::size_t>(i)].number();
+  for (int i = 0; i < n; ++i) values(i) = items[static_cast<std::size_t>(i)].number();
   return values;
 }
 

@@ -37,14 +37,12 @@ RunTrace simulate_run(const Scenario& scenario, const TruthTrajectory& truth, in
   }
   // Fusion sums in ascending station id whatever order the scenario lists them in.
   std::vector<std::size_t> order(m);
-  for (std::size_t i = 0; i < m; ++i)
-    order[i] = i;
+  for (std::size_t i = 0; i < m; ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return observations[a].station_id < observations[b].station_id;
   });
   std::vector<double> ordered_weights(m);
-  for (std::size_t j = 0; j < m; ++j)
-    ordered_weights[j] = weights[order[j]];
+  for (std::size_t j = 0; j < m; ++j) ordered_weights[j] = weights[order[j]];
 
   const auto steps = static_cast<std::size_t>(scenario.steps);
   RunTrace trace;
@@ -108,8 +106,7 @@ void parallel_runs(int runs, int threads, const std::function<void(int)>& fn) {
         fn(run);
       } catch (...) {
         const std::lock_guard lock(failure_mutex);
-        if (!failure)
-          failure = std::current_exception();
+        if (!failure) failure = std::current_exception();
         next = runs;  // stop handing out work
       }
     }
@@ -117,13 +114,10 @@ void parallel_runs(int runs, int threads, const std::function<void(int)>& fn) {
   const int extra = std::clamp(threads, 1, std::max(runs, 1)) - 1;
   std::vector<std::thread> pool;
   pool.reserve(static_cast<std::size_t>(extra));
-  for (int t = 0; t < extra; ++t)
-    pool.emplace_back(worker);
+  for (int t = 0; t < extra; ++t) pool.emplace_back(worker);
   worker();
-  for (std::thread& t : pool)
-    t.join();
-  if (failure)
-    std::rethrow_exception(failure);
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace
@@ -134,8 +128,7 @@ MonteCarloSummary run_monte_carlo(const Scenario& scenario, const MonteCarloSett
     throw std::invalid_argument(fmt::format("stations must be in [1, {}], got {}",
                                             scenario.stations.size(), settings.stations));
   }
-  if (settings.runs < 1)
-    throw std::invalid_argument("runs must be >= 1");
+  if (settings.runs < 1) throw std::invalid_argument("runs must be >= 1");
 
   const TruthTrajectory truth =
       generate_truth(scenario.target, settings.speed_mps, scenario.time_step_s, scenario.steps);
@@ -173,12 +166,10 @@ MonteCarloSummary run_monte_carlo(const Scenario& scenario, const MonteCarloSett
   int in_band = 0;
   for (std::size_t k = 0; k < steps; ++k) {
     double sum = 0.0;
-    for (const RunTrace& t : traces)
-      sum += t.nees_p2p[k];
+    for (const RunTrace& t : traces) sum += t.nees_p2p[k];
     const double anees_k = sum / settings.runs;
     sum_anees += anees_k;
-    if (s.anees_band.contains(anees_k))
-      ++in_band;
+    if (s.anees_band.contains(anees_k)) ++in_band;
   }
   const double samples = static_cast<double>(settings.runs) * static_cast<double>(steps);
   s.rmse_central_m = std::sqrt(sum_sq_central / samples);

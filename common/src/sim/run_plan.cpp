@@ -10,8 +10,7 @@ namespace skyfuse {
 
 const StationConfig* RunPlan::participant(int station_id) const {
   for (const StationConfig& s : participants()) {
-    if (s.id == station_id)
-      return &s;
+    if (s.id == station_id) return &s;
   }
   return nullptr;
 }

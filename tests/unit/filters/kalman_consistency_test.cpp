@@ -27,8 +27,7 @@ struct ConsistencyResult {
 Vector<9> draw(CounterRng& rng, const Covariance<9>& cov) {
   const Eigen::LLT<Covariance<9>> factor(cov);
   Vector<9> n;
-  for (int i = 0; i < 9; ++i)
-    n(i) = rng.normal();
+  for (int i = 0; i < 9; ++i) n(i) = rng.normal();
   return factor.matrixL() * n;
 }
 
@@ -66,8 +65,7 @@ ConsistencyResult run_linear_gaussian(const ProcessNoiseStd& q_truth,
   for (double sum : nees_sum) {
     const double anees = sum / kRuns;
     result.time_averaged_anees += anees / kSteps;
-    if (result.band.contains(anees))
-      ++in_band;
+    if (result.band.contains(anees)) ++in_band;
   }
   result.fraction_of_steps_in_band = static_cast<double>(in_band) / kSteps;
   return result;

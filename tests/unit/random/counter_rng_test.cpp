@@ -10,8 +10,7 @@ namespace {
 TEST(CounterRng, SameKeyGivesTheSameSequence) {
   CounterRng a({1, 2, 3, 4, NoiseStream::kMeasurement});
   CounterRng b({1, 2, 3, 4, NoiseStream::kMeasurement});
-  for (int i = 0; i < 100; ++i)
-    ASSERT_EQ(a.next_u64(), b.next_u64());
+  for (int i = 0; i < 100; ++i) ASSERT_EQ(a.next_u64(), b.next_u64());
 }
 
 TEST(CounterRng, EveryKeyFieldChangesTheSequence) {

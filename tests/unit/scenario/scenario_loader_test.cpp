@@ -15,8 +15,7 @@ namespace {
 std::string default_with(const std::string& from, const std::string& to) {
   std::string text(default_scenario_yaml());
   const auto at = text.find(from);
-  if (at == std::string::npos)
-    throw std::logic_error("test fixture: '" + from + "' not found");
+  if (at == std::string::npos) throw std::logic_error("test fixture: '" + from + "' not found");
   return text.replace(at, from.size(), to);
 }
 

@@ -14,8 +14,7 @@ inline double wrap_angle(double radians) {
   constexpr double kTwoPi = 2.0 * std::numbers::pi;
   // remainder() is exact and returns a value in [-pi, pi]; only -pi needs moving.
   double wrapped = std::remainder(radians, kTwoPi);
-  if (wrapped <= -kPi)
-    wrapped += kTwoPi;
+  if (wrapped <= -kPi) wrapped += kTwoPi;
   return wrapped;
 }
 

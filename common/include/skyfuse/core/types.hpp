@@ -35,9 +35,28 @@ struct GaussianState {
 };
 
 /// Forces exact symmetry; rounding in P = A P A^T leaves the two triangles a few ulps apart.
+/// Each off-diagonal pair becomes its mean (the same bits as 0.5 (m + m^T)).
 template <typename Derived>
 void symmetrize(Eigen::MatrixBase<Derived>& m) {
-  m = 0.5 * (m + m.transpose()).eval();
+  for (Eigen::Index c = 1; c < m.cols(); ++c) {
+    for (Eigen::Index r = 0; r < c; ++r) {
+      const double mean = 0.5 * (m(r, c) + m(c, r));
+      m(r, c) = mean;
+      m(c, r) = mean;
+    }
+  }
+}
+
+/// How many leading state components a sensor's measurement depends on: dh/dx is zero beyond
+/// them. Sensors that declare kJacobianCols (the 3-D position sensors: 3) let the filters
+/// work on that block only; others use the whole state.
+template <typename Sensor>
+constexpr int jacobian_cols() {
+  if constexpr (requires { Sensor::kJacobianCols; }) {
+    return Sensor::kJacobianCols;
+  } else {
+    return Sensor::kStateDim;
+  }
 }
 
 }  // namespace skyfuse

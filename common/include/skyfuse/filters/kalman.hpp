@@ -25,16 +25,41 @@ struct UpdateReport {
   double nis = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// Time update: x <- f(x), P <- F P F^T + Q with F evaluated at the prior mean.
+/// Time update: x <- f(x), P <- F P F^T + Q with F evaluated at the prior mean. A model that
+/// knows the structure of F may supply propagate_covariance(P) = F P F^T + Q itself.
 template <int N, typename TransitionModel>
 void predict(GaussianState<N>& state, const TransitionModel& model) {
-  const Covariance<N> f = model.jacobian(state.mean);
+  if constexpr (requires { model.propagate_covariance(state.covariance); }) {
+    state.covariance = model.propagate_covariance(state.covariance);
+  } else {
+    const Covariance<N> f = model.jacobian(state.mean);
+    const Covariance<N> fp = f.lazyProduct(state.covariance);
+    state.covariance = fp.lazyProduct(f.transpose()) + model.process_noise();
+  }
   state.mean = model.propagate(state.mean);
-  Covariance<N> fp;
-  fp.noalias() = f * state.covariance;
-  state.covariance.noalias() = fp * f.transpose();
-  state.covariance += model.process_noise();
   symmetrize(state.covariance);
+}
+
+/// (I - K H) P (I - K H)^T + K R K^T where H is zero beyond its first C columns. Then
+/// A = I - [KH 0] differs from I in those C columns only, and the two products skip exactly the
+/// identity and zero parts:  A P = P - KH P[0:C, :],  (A P) A^T = A P - (A P)[:, 0:C] KH^T.
+/// Small fixed sizes use coefficient-wise products, far cheaper than a blocked GEMM at 9 x 9.
+template <int N, int C>
+Covariance<N> joseph_without_noise(const Covariance<N>& p, const Matrix<N, C>& kh) {
+  Covariance<N> ap = p;
+  ap.noalias() -= kh.lazyProduct(p.template topRows<C>());
+  Covariance<N> out = ap;
+  out.noalias() -= ap.template leftCols<C>().lazyProduct(kh.transpose());
+  return out;
+}
+
+template <int N, int C, int M>
+Covariance<N> joseph_covariance(const Covariance<N>& p, const Matrix<N, C>& kh,
+                                const Matrix<N, M>& gain, const Covariance<M>& noise) {
+  Covariance<N> out = joseph_without_noise<N, C>(p, kh);
+  const Matrix<N, M> kr = gain.lazyProduct(noise);
+  out.noalias() += kr.lazyProduct(gain.transpose());
+  return out;
 }
 
 /// Measurement update with the gain from a Cholesky solve of the innovation covariance (never
@@ -46,26 +71,20 @@ UpdateReport update(GaussianState<N>& state, const Sensor& sensor,
                     const Vector<Sensor::kMeasDim>& z, const Covariance<Sensor::kMeasDim>& noise) {
   static_assert(Sensor::kStateDim == N, "sensor and state dimensions differ");
   constexpr int M = Sensor::kMeasDim;
+  constexpr int C = jacobian_cols<Sensor>();
 
-  const Jacobian<M, N> h = sensor.jacobian(state.mean);
+  const Matrix<M, C> h = sensor.jacobian(state.mean).template leftCols<C>();
   const Vector<M> innovation = sensor.residual(z, sensor.predict(state.mean));
-  const Matrix<N, M> pht = state.covariance * h.transpose();
-  const Covariance<M> s = h * pht + noise;
+  const Matrix<N, M> pht = state.covariance.template leftCols<C>().lazyProduct(h.transpose());
+  const Covariance<M> s = h.lazyProduct(pht.template topRows<C>()) + noise;
 
   const Eigen::LLT<Covariance<M>> s_factor(s);
-  if (s_factor.info() != Eigen::Success)
-    return {NumericalStatus::kNotPositiveDefinite};
+  if (s_factor.info() != Eigen::Success) return {NumericalStatus::kNotPositiveDefinite};
 
   // K = P H^T S^-1, computed as (S^-1 H P)^T since S is symmetric.
   const Matrix<N, M> gain = s_factor.solve(pht.transpose()).transpose();
   state.mean += gain * innovation;
-
-  Covariance<N> i_minus_kh = Covariance<N>::Identity();
-  i_minus_kh.noalias() -= gain * h;
-  Covariance<N> joseph;
-  joseph.noalias() = i_minus_kh * state.covariance * i_minus_kh.transpose();
-  joseph.noalias() += gain * noise * gain.transpose();
-  state.covariance = joseph;
+  state.covariance = joseph_covariance<N, C, M>(state.covariance, gain.lazyProduct(h), gain, noise);
   symmetrize(state.covariance);
 
   return {NumericalStatus::kOk, innovation.dot(s_factor.solve(innovation))};

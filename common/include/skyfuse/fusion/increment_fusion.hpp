@@ -7,9 +7,9 @@
 /// The sums run in ascending station id and every inverse is a Cholesky solve, so any two
 /// peers holding the same prior and the same increments compute the same bits.
 
-#include <Eigen/Cholesky>
 #include <span>
 
+#include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/core/status.hpp"
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/fusion/information_increment.hpp"
@@ -29,24 +29,20 @@ NumericalStatus fuse_increments(const GaussianState<N>& prior,
     }
   }
 
-  const Eigen::LLT<Covariance<N>> prior_factor(prior.covariance);
-  if (prior_factor.info() != Eigen::Success)
-    return NumericalStatus::kNotPositiveDefinite;
+  SmallCholesky<N> prior_factor;
+  if (!prior_factor.compute(prior.covariance)) return NumericalStatus::kNotPositiveDefinite;
 
-  Covariance<N> information = prior_factor.solve(Covariance<N>::Identity());
-  symmetrize(information);
+  Covariance<N> information = prior_factor.inverse();
   Vector<N> information_vector = prior_factor.solve(prior.mean);
   for (std::size_t i = 0; i < increments.size(); ++i) {
     information.noalias() += weights[i] * increments[i].delta_information;
     information_vector.noalias() += weights[i] * increments[i].delta_vector;
   }
 
-  const Eigen::LLT<Covariance<N>> fused_factor(information);
-  if (fused_factor.info() != Eigen::Success)
-    return NumericalStatus::kNotPositiveDefinite;
+  SmallCholesky<N> fused_factor;
+  if (!fused_factor.compute(information)) return NumericalStatus::kNotPositiveDefinite;
   posterior.mean = fused_factor.solve(information_vector);
-  posterior.covariance = fused_factor.solve(Covariance<N>::Identity());
-  symmetrize(posterior.covariance);
+  posterior.covariance = fused_factor.inverse();
   return NumericalStatus::kOk;
 }
 

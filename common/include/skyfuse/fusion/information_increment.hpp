@@ -33,19 +33,24 @@ NumericalStatus compute_increment(int station_id, const GaussianState<N>& prior,
                                   InformationIncrement<N>& out) {
   static_assert(Sensor::kStateDim == N, "sensor and state dimensions differ");
   constexpr int M = Sensor::kMeasDim;
+  // dh/dx is zero beyond the first C columns, so is dQ outside its top-left C x C block.
+  constexpr int C = jacobian_cols<Sensor>();
 
   const Eigen::LLT<Covariance<M>> r_factor(noise);
-  if (r_factor.info() != Eigen::Success)
-    return NumericalStatus::kNotPositiveDefinite;
+  if (r_factor.info() != Eigen::Success) return NumericalStatus::kNotPositiveDefinite;
 
-  const Jacobian<M, N> h = sensor.jacobian(prior.mean);
+  const Matrix<M, C> h = sensor.jacobian(prior.mean).template leftCols<C>();
   const Vector<M> innovation = sensor.residual(z, sensor.predict(prior.mean));
-  const Jacobian<M, N> r_inv_h = r_factor.solve(h);  // R^-1 H
+  const Matrix<M, C> r_inv_h = r_factor.solve(h);  // R^-1 H
 
   out.station_id = station_id;
-  out.delta_information.noalias() = h.transpose() * r_inv_h;
-  symmetrize(out.delta_information);
-  out.delta_vector.noalias() = r_inv_h.transpose() * (innovation + h * prior.mean);
+  out.delta_information.setZero();
+  Covariance<C> block = h.transpose().lazyProduct(r_inv_h);
+  symmetrize(block);
+  out.delta_information.template topLeftCorner<C, C>() = block;
+  out.delta_vector.setZero();
+  out.delta_vector.template head<C>() =
+      r_inv_h.transpose() * (innovation + h * prior.mean.template head<C>());
   return NumericalStatus::kOk;
 }
 

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <span>
 
+#include "skyfuse/core/stacked_cholesky.hpp"
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/filters/kalman.hpp"
 
@@ -29,6 +30,8 @@ template <int N, typename Sensor>
 class StackedEkf {
  public:
   static constexpr int kMeasDim = Sensor::kMeasDim;
+  /// Columns of the state the measurements depend on; H is stored without the zero rest.
+  static constexpr int kCols = jacobian_cols<Sensor>();
   static_assert(Sensor::kStateDim == N, "sensor and state dimensions differ");
 
   /// Updates `state` with all observations at once. Buffers are resized only when the number
@@ -41,64 +44,69 @@ class StackedEkf {
     for (std::size_t i = 0; i < observations.size(); ++i) {
       const auto& obs = observations[i];
       const Eigen::Index row = static_cast<Eigen::Index>(i) * kMeasDim;
-      h_.template middleRows<kMeasDim>(row) = obs.sensor.jacobian(state.mean);
+      h_.template middleRows<kMeasDim>(row) =
+          obs.sensor.jacobian(state.mean).template leftCols<kCols>();
       innovation_.template segment<kMeasDim>(row) =
           obs.sensor.residual(obs.z, obs.sensor.predict(state.mean));
     }
 
-    pht_.noalias() = state.covariance * h_.transpose();
-    s_.noalias() = h_ * pht_;
+    // S = H P H^T + R (3M x 3M). Only its lower triangle is read by the factorisation, and H
+    // has kCols non-zero columns: S_ij = H_i P_cc H_j^T, with coefficient-wise products (the
+    // inner dimension is kCols, where a blocked GEMM would be mostly overhead).
+    hp_.noalias() = h_.lazyProduct(state.covariance.template topLeftCorner<kCols, kCols>());
+    for (Eigen::Index c = 0; c < m; ++c) {
+      for (Eigen::Index r = c; r < m; ++r) s_(r, c) = hp_.row(r).dot(h_.row(c));
+    }
     for (std::size_t i = 0; i < observations.size(); ++i) {
       const Eigen::Index row = static_cast<Eigen::Index>(i) * kMeasDim;
       s_.template block<kMeasDim, kMeasDim>(row, row) += observations[i].noise;
     }
+    if (!s_factor_.compute(s_)) return {NumericalStatus::kNotPositiveDefinite};
 
-    s_factor_.compute(s_);
-    if (s_factor_.info() != Eigen::Success)
-      return {NumericalStatus::kNotPositiveDefinite};
-
-    // K^T = S^-1 (P H^T)^T, solved in place.
-    gain_t_ = pht_.transpose();
-    s_factor_.solveInPlace(gain_t_);
+    // K^T = S^-1 H P = (S^-1 H_c) P[0:kCols, :]: the solve needs kCols right-hand sides, not N.
+    s_inv_h_ = h_;
+    s_factor_.solve_in_place(s_inv_h_);
+    gain_t_.noalias() = s_inv_h_.lazyProduct(state.covariance.template topRows<kCols>());
     state.mean.noalias() += gain_t_.transpose() * innovation_;
 
-    Covariance<N> i_minus_kh = Covariance<N>::Identity();
-    i_minus_kh.noalias() -= gain_t_.transpose() * h_;
-    Covariance<N> joseph;
-    joseph.noalias() = i_minus_kh * state.covariance * i_minus_kh.transpose();
+    // Joseph form; K R K^T as a sum over the diagonal blocks of R.
+    const Matrix<N, kCols> kh = gain_t_.transpose().lazyProduct(h_);
+    Covariance<N> joseph = joseph_without_noise<N, kCols>(state.covariance, kh);
     for (std::size_t i = 0; i < observations.size(); ++i) {
       const Eigen::Index row = static_cast<Eigen::Index>(i) * kMeasDim;
-      const auto k_i = gain_t_.template middleRows<kMeasDim>(row).transpose();
-      joseph.noalias() += k_i * observations[i].noise * k_i.transpose();
+      const Matrix<N, kMeasDim> k_i = gain_t_.template middleRows<kMeasDim>(row).transpose();
+      const Matrix<N, kMeasDim> kr = k_i.lazyProduct(observations[i].noise);
+      joseph.noalias() += kr.lazyProduct(k_i.transpose());
     }
     state.covariance = joseph;
     symmetrize(state.covariance);
 
     whitened_ = innovation_;
-    s_factor_.solveInPlace(whitened_);
+    s_factor_.solve_in_place(whitened_);
     return {NumericalStatus::kOk, innovation_.dot(whitened_)};
   }
 
  private:
   void resize(Eigen::Index m) {
-    if (h_.rows() == m)
-      return;
-    h_.resize(m, N);
+    if (h_.rows() == m) return;
+    h_.resize(m, kCols);
     innovation_.resize(m);
     whitened_.resize(m);
-    pht_.resize(N, m);
+    hp_.resize(m, kCols);
+    s_inv_h_.resize(m, kCols);
     s_.resize(m, m);
     gain_t_.resize(m, N);
-    s_factor_ = Eigen::LLT<Eigen::MatrixXd>(m);
+    s_factor_.reserve(m);
   }
 
-  Eigen::Matrix<double, Eigen::Dynamic, N> h_;
+  Eigen::Matrix<double, Eigen::Dynamic, kCols> h_;
   Eigen::VectorXd innovation_;
   Eigen::VectorXd whitened_;
-  Eigen::Matrix<double, N, Eigen::Dynamic> pht_;
+  Eigen::Matrix<double, Eigen::Dynamic, kCols> hp_;  // H_c P_cc
+  typename StackedCholesky<kCols>::RowMajorRhs s_inv_h_;
   Eigen::MatrixXd s_;
   Eigen::Matrix<double, Eigen::Dynamic, N> gain_t_;
-  Eigen::LLT<Eigen::MatrixXd> s_factor_;
+  StackedCholesky<kCols> s_factor_;
 };
 
 }  // namespace skyfuse

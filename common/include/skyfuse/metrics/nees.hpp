@@ -6,6 +6,7 @@
 #include <Eigen/Cholesky>
 #include <limits>
 
+#include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/core/types.hpp"
 
 namespace skyfuse {
@@ -13,9 +14,8 @@ namespace skyfuse {
 /// NaN when P is not positive definite, so a broken covariance cannot hide in an average.
 template <int N>
 double nees(const Vector<N>& truth, const GaussianState<N>& estimate) {
-  const Eigen::LLT<Covariance<N>> factor(estimate.covariance);
-  if (factor.info() != Eigen::Success)
-    return std::numeric_limits<double>::quiet_NaN();
+  SmallCholesky<N> factor;
+  if (!factor.compute(estimate.covariance)) return std::numeric_limits<double>::quiet_NaN();
   const Vector<N> error = truth - estimate.mean;
   return error.dot(factor.solve(error));
 }

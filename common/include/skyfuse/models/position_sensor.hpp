@@ -12,6 +12,7 @@ class PositionSensor {
  public:
   static constexpr int kStateDim = StateDim;
   static constexpr int kMeasDim = 3;
+  static constexpr int kJacobianCols = 3;
   using State = Vector<StateDim>;
   using Measurement = Vector<3>;
 

@@ -23,6 +23,8 @@ class RangeAzimuthElevation {
  public:
   static constexpr int kStateDim = StateDim;
   static constexpr int kMeasDim = 3;
+  /// h depends on the position (the first three state components) only.
+  static constexpr int kJacobianCols = 3;
   using State = Vector<StateDim>;
   using Measurement = Vector<3>;
 
@@ -55,8 +57,7 @@ class RangeAzimuthElevation {
     const double rho = std::sqrt(rho_sq);
 
     Jacobian<3, StateDim> h = Jacobian<3, StateDim>::Zero();
-    if (range > 0.0)
-      h.template block<1, 3>(kRange, 0) = d.transpose() / range;
+    if (range > 0.0) h.template block<1, 3>(kRange, 0) = d.transpose() / range;
     if (rho > 0.0) {
       h(kAzimuth, 0) = -d.y() / rho_sq;
       h(kAzimuth, 1) = d.x() / rho_sq;

@@ -75,8 +75,7 @@ class StepCollector {
   std::vector<int> missing() const {
     std::vector<int> out;
     for (std::size_t i = 0; i < ids_.size(); ++i) {
-      if (!current_.filled[i])
-        out.push_back(ids_[i]);
+      if (!current_.filled[i]) out.push_back(ids_[i]);
     }
     return out;
   }

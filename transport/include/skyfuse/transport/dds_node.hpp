@@ -89,8 +89,7 @@ class Reader {
   bool take(T& sample) {
     dds::SampleInfo info;
     while (reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      if (info.valid_data)
-        return true;
+      if (info.valid_data) return true;
     }
     return false;
   }
@@ -150,16 +149,14 @@ class DdsNode {
   template <typename T>
   dds::Topic* topic_for() {
     const std::string name = TopicTraits<T>::kName;
-    if (auto it = topics_.find(name); it != topics_.end())
-      return it->second;
+    if (auto it = topics_.find(name); it != topics_.end()) return it->second;
     dds::TypeSupport type(new typename TopicTraits<T>::PubSubType());
     if (type.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
       throw DdsError("cannot register type for " + name);
     }
     dds::Topic* topic =
         participant_->create_topic(name, type.get_type_name(), dds::TOPIC_QOS_DEFAULT);
-    if (topic == nullptr)
-      throw DdsError("cannot create topic " + name);
+    if (topic == nullptr) throw DdsError("cannot create topic " + name);
     topics_.emplace(name, topic);
     return topic;
   }

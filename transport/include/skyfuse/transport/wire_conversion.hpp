@@ -21,8 +21,7 @@ template <int N>
 void pack_upper(const Covariance<N>& m, double* out) {
   int k = 0;
   for (int r = 0; r < N; ++r) {
-    for (int c = r; c < N; ++c)
-      out[k++] = m(r, c);
+    for (int c = r; c < N; ++c) out[k++] = m(r, c);
   }
 }
 template <int N>
@@ -30,8 +29,7 @@ Covariance<N> unpack_upper(const double* in) {
   Covariance<N> m;
   int k = 0;
   for (int r = 0; r < N; ++r) {
-    for (int c = r; c < N; ++c)
-      m(r, c) = m(c, r) = in[k++];
+    for (int c = r; c < N; ++c) m(r, c) = m(c, r) = in[k++];
   }
   return m;
 }
