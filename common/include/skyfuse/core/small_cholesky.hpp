@@ -22,17 +22,20 @@ class SmallCholesky {
   /// Factorises `a` (its lower triangle is read). False, and unusable, if `a` is not
   /// positive definite (a non-positive or non-finite pivot).
   bool compute(const Covariance<N>& a) {
-    for (int j = 0; j < N; ++j) {
-      double d = a(j, j);
-      for (int k = 0; k < j; ++k) d -= l_(j, k) * l_(j, k);
+    // Right-looking: after column k of L is scaled, the trailing lower triangle takes a rank-1
+    // update whose inner loop runs down contiguous columns: independent operations, which the
+    // compiler vectorises, instead of a chain of dependent additions.
+    l_ = a;
+    for (int k = 0; k < N; ++k) {
+      const double d = l_(k, k);
       if (!(d > 0.0) || !std::isfinite(d)) return ok_ = false;
       const double pivot = std::sqrt(d);
-      l_(j, j) = pivot;
-      inv_diag_(j) = 1.0 / pivot;
-      for (int i = j + 1; i < N; ++i) {
-        double s = a(i, j);
-        for (int k = 0; k < j; ++k) s -= l_(i, k) * l_(j, k);
-        l_(i, j) = s * inv_diag_(j);
+      inv_diag_(k) = 1.0 / pivot;
+      l_(k, k) = pivot;
+      for (int i = k + 1; i < N; ++i) l_(i, k) *= inv_diag_(k);
+      for (int j = k + 1; j < N; ++j) {
+        const double ljk = l_(j, k);
+        for (int i = j; i < N; ++i) l_(i, j) -= l_(i, k) * ljk;
       }
     }
     return ok_ = true;
@@ -41,30 +44,29 @@ class SmallCholesky {
 
   /// x with A x = b.
   Vector<N> solve(const Vector<N>& b) const {
-    Vector<N> w;
-    for (int i = 0; i < N; ++i) {
-      double s = b(i);
-      for (int k = 0; k < i; ++k) s -= l_(i, k) * w(k);
-      w(i) = s * inv_diag_(i);
+    Vector<N> x = b;
+    for (int k = 0; k < N; ++k) {  // L w = b, column by column
+      x(k) *= inv_diag_(k);
+      for (int i = k + 1; i < N; ++i) x(i) -= l_(i, k) * x(k);
     }
-    Vector<N> x;
-    for (int i = N - 1; i >= 0; --i) {
-      double s = w(i);
-      for (int k = i + 1; k < N; ++k) s -= l_(k, i) * x(k);
-      x(i) = s * inv_diag_(i);
+    for (int k = N - 1; k >= 0; --k) {  // L^T x = w
+      double s = x(k);
+      for (int i = k + 1; i < N; ++i) s -= l_(i, k) * x(i);
+      x(k) = s * inv_diag_(k);
     }
     return x;
   }
 
-  /// A^-1 = L^-T L^-1.
+  /// A^-1 = L^-T L^-1, with L^-1 column by column (each a forward substitution whose inner
+  /// loop runs down a column of L) and the product on the upper triangle, mirrored.
   Covariance<N> inverse() const {
     Covariance<N> l_inv = Covariance<N>::Zero();
     for (int j = 0; j < N; ++j) {
-      l_inv(j, j) = inv_diag_(j);
-      for (int i = j + 1; i < N; ++i) {
-        double sum = 0.0;
-        for (int k = j; k < i; ++k) sum += l_(i, k) * l_inv(k, j);
-        l_inv(i, j) = -sum * inv_diag_(i);
+      l_inv(j, j) = 1.0;
+      for (int k = j; k < N; ++k) {
+        const double xk = l_inv(k, j) * inv_diag_(k);
+        l_inv(k, j) = xk;
+        for (int i = k + 1; i < N; ++i) l_inv(i, j) -= l_(i, k) * xk;
       }
     }
     Covariance<N> out;
@@ -80,8 +82,8 @@ class SmallCholesky {
   }
 
  private:
-  Covariance<N> l_ = Covariance<N>::Zero();
-  Vector<N> inv_diag_ = Vector<N>::Zero();  // 1 / L(j, j): divisions are slow, and there are many
+  Covariance<N> l_ = Covariance<N>::Zero();  // lower triangle holds L
+  Vector<N> inv_diag_ = Vector<N>::Zero();   // 1 / L(k, k): divisions are slow, and many
   bool ok_ = false;
 };
 

@@ -10,8 +10,7 @@
 /// in exact arithmetic (tests/unit/information_increment_test.cpp shows it numerically), while
 /// needing only a 3x3 Cholesky of R_i instead of two N x N inversions.
 
-#include <Eigen/Cholesky>
-
+#include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/core/status.hpp"
 #include "skyfuse/core/types.hpp"
 
@@ -36,12 +35,13 @@ NumericalStatus compute_increment(int station_id, const GaussianState<N>& prior,
   // dh/dx is zero beyond the first C columns, so is dQ outside its top-left C x C block.
   constexpr int C = jacobian_cols<Sensor>();
 
-  const Eigen::LLT<Covariance<M>> r_factor(noise);
-  if (r_factor.info() != Eigen::Success) return NumericalStatus::kNotPositiveDefinite;
+  SmallCholesky<M> r_factor;
+  if (!r_factor.compute(noise)) return NumericalStatus::kNotPositiveDefinite;
 
   const Matrix<M, C> h = sensor.jacobian(prior.mean).template leftCols<C>();
   const Vector<M> innovation = sensor.residual(z, sensor.predict(prior.mean));
-  const Matrix<M, C> r_inv_h = r_factor.solve(h);  // R^-1 H
+  Matrix<M, C> r_inv_h;  // R^-1 H
+  for (int c = 0; c < C; ++c) r_inv_h.col(c) = r_factor.solve(h.col(c));
 
   out.station_id = station_id;
   out.delta_information.setZero();

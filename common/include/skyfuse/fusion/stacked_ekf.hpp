@@ -55,7 +55,13 @@ class StackedEkf {
     // inner dimension is kCols, where a blocked GEMM would be mostly overhead).
     hp_.noalias() = h_.lazyProduct(state.covariance.template topLeftCorner<kCols, kCols>());
     for (Eigen::Index c = 0; c < m; ++c) {
-      for (Eigen::Index r = c; r < m; ++r) s_(r, c) = hp_.row(r).dot(h_.row(c));
+      const double* hc = h_.data() + c * kCols;  // rows of the row-major H are contiguous
+      for (Eigen::Index r = c; r < m; ++r) {
+        const double* hpr = hp_.data() + r * kCols;
+        double sum = 0.0;
+        for (int k = 0; k < kCols; ++k) sum += hpr[k] * hc[k];
+        s_(r, c) = sum;
+      }
     }
     for (std::size_t i = 0; i < observations.size(); ++i) {
       const Eigen::Index row = static_cast<Eigen::Index>(i) * kMeasDim;
@@ -72,14 +78,20 @@ class StackedEkf {
     // Joseph form; K R K^T as a sum over the diagonal blocks of R.
     const Matrix<N, kCols> kh = gain_t_.transpose().lazyProduct(h_);
     Covariance<N> joseph = joseph_without_noise<N, kCols>(state.covariance, kh);
+    // K R K^T = sum_i K_i R_i K_i^T, symmetric: accumulate the upper triangle only.
     for (std::size_t i = 0; i < observations.size(); ++i) {
       const Eigen::Index row = static_cast<Eigen::Index>(i) * kMeasDim;
       const Matrix<N, kMeasDim> k_i = gain_t_.template middleRows<kMeasDim>(row).transpose();
       const Matrix<N, kMeasDim> kr = k_i.lazyProduct(observations[i].noise);
-      joseph.noalias() += kr.lazyProduct(k_i.transpose());
+      for (int c = 0; c < N; ++c) {
+        for (int r = 0; r <= c; ++r) joseph(r, c) += kr.row(r).dot(k_i.row(c));
+      }
+    }
+    // The upper triangle now holds the sum; Joseph's own part was symmetric up to rounding.
+    for (int c = 0; c < N; ++c) {
+      for (int r = c + 1; r < N; ++r) joseph(r, c) = joseph(c, r);
     }
     state.covariance = joseph;
-    symmetrize(state.covariance);
 
     whitened_ = innovation_;
     s_factor_.solve_in_place(whitened_);
@@ -99,10 +111,10 @@ class StackedEkf {
     s_factor_.reserve(m);
   }
 
-  Eigen::Matrix<double, Eigen::Dynamic, kCols> h_;
+  Eigen::Matrix<double, Eigen::Dynamic, kCols, Eigen::RowMajor> h_;
   Eigen::VectorXd innovation_;
   Eigen::VectorXd whitened_;
-  Eigen::Matrix<double, Eigen::Dynamic, kCols> hp_;  // H_c P_cc
+  Eigen::Matrix<double, Eigen::Dynamic, kCols, Eigen::RowMajor> hp_;  // H_c P_cc
   typename StackedCholesky<kCols>::RowMajorRhs s_inv_h_;
   Eigen::MatrixXd s_;
   Eigen::Matrix<double, Eigen::Dynamic, N> gain_t_;
