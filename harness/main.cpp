@@ -4,6 +4,7 @@
 #include <exception>
 #include <stdexcept>
 
+#include "bench_command.hpp"
 #include "lockstep_driver.hpp"
 #include "run_command.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -17,9 +18,11 @@ int main(int argc, char** argv) {
   SweepOptions sweep;
   RunOptions run;
   DemoOptions demo;
+  BenchOptions bench;
   add_sweep_command(app, sweep);
   add_run_command(app, run);
   add_demo_command(app, demo);
+  add_bench_command(app, bench);
   CLI11_PARSE(app, argc, argv);
 
   skyfuse::transport::install_shutdown_handlers();
@@ -27,6 +30,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("sweep")) return run_sweep(sweep);
     if (app.got_subcommand("run")) return run_run(run);
     if (app.got_subcommand("demo")) return run_demo(demo);
+    if (app.got_subcommand("bench")) return run_bench(bench);
   } catch (const RunAborted& e) {
     std::fprintf(stderr, "skyfuse: run aborted: %s\n", e.what());
     return skyfuse::transport::shutdown_requested() ? 130 : 1;

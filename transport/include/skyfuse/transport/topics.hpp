@@ -32,6 +32,11 @@ struct TopicTraits<wire::TrackEstimate> {
   static constexpr const char* kName = "skyfuse_track";
 };
 template <>
+struct TopicTraits<wire::Echo> {
+  using PubSubType = wire::EchoPubSubType;
+  static constexpr const char* kName = "skyfuse_echo";
+};
+template <>
 struct TopicTraits<wire::StationStatus> {
   using PubSubType = wire::StationStatusPubSubType;
   static constexpr const char* kName = "skyfuse_status";

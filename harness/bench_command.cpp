@@ -1,0 +1,159 @@
+#include "bench_command.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "echo_floor.hpp"
+#include "output_files.hpp"
+#include "run_command.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+
+namespace skyfuse::harness {
+namespace {
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  }
+  return "unknown";
+}
+
+// Runs the Google Benchmark binary beside this one and returns median real times in ns by
+// benchmark name ("StationStep", "FuseIncrements/4", ...).
+std::map<std::string, double> run_micro_benchmarks(const std::filesystem::path& out) {
+  const auto json_path = out / "micro.json";
+  const std::string command = fmt::format(
+      "'{}' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true "
+      "--benchmark_out='{}' --benchmark_out_format=json > /dev/null 2>&1",
+      (executable_dir() / "skyfuse_core_bench").string(), json_path.string());
+  if (std::system(command.c_str()) != 0) {
+    throw std::runtime_error("micro-benchmarks failed: " + command);
+  }
+  std::ifstream in(json_path);
+  const auto doc = nlohmann::json::parse(in);
+  std::map<std::string, double> medians;
+  for (const auto& b : doc.at("benchmarks")) {
+    if (b.value("aggregate_name", "") != "median") continue;
+    double ns = b.at("real_time").get<double>();
+    const std::string unit = b.value("time_unit", "ns");
+    if (unit == "us") ns *= 1e3;
+    if (unit == "ms") ns *= 1e6;
+    medians[b.at("run_name").get<std::string>()] = ns;
+  }
+  return medians;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, BenchOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "Micro-benchmarks and the DDS round rate against the bare Fast DDS floor");
+  cmd->add_option("--out", o.out_dir, "Folder for bench.json")->capture_default_str();
+  cmd->add_option("--scenario", o.scenario_path,
+                  "Scenario with enough stations (default: scenarios/ring64.yaml beside skyfuse)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--stations", o.stations, "Station counts to measure")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--rounds", o.rounds, "Lock-step rounds per measurement")
+      ->check(CLI::Range(10, 1000000))
+      ->capture_default_str();
+  cmd->add_option("--domain", o.domain, "DDS domain id")
+      ->check(CLI::Range(0, transport::kMaxDomainId))
+      ->capture_default_str();
+  cmd->add_flag("!--no-micro", o.micro, "Skip the micro-benchmarks");
+}
+
+int run_bench(const BenchOptions& o) {
+  const std::filesystem::path out(o.out_dir);
+  std::filesystem::create_directories(out);
+  const std::string scenario_path = o.scenario_path.empty()
+                                        ? (executable_dir() / "scenarios" / "ring64.yaml").string()
+                                        : o.scenario_path;
+  const Scenario scenario = load_scenario_file(scenario_path);
+
+  nlohmann::json doc;
+  doc["machine"] = {{"cores", std::thread::hardware_concurrency()}, {"cpu_model", cpu_model()}};
+  fmt::print("skyfuse bench on {} ({} cores)\n", cpu_model(), std::thread::hardware_concurrency());
+
+  if (o.micro) {
+    fmt::print("\nmicro-benchmarks (median of 5, ns)...\n");
+    const auto m = run_micro_benchmarks(out);
+    nlohmann::json fuse;
+    nlohmann::json stacked;
+    fmt::print("{:>5} {:>14} {:>14} {:>10}\n", "M", "fuse M incr.", "stacked EKF", "ratio");
+    for (int k = 1; k <= 128; k *= 2) {
+      const std::string key = std::to_string(k);
+      const double f = m.at("FuseIncrements/" + key);
+      const double s = m.at("StackedEkfUpdate/" + key);
+      fuse[key] = f;
+      stacked[key] = s;
+      fmt::print("{:>5} {:>14.0f} {:>14.0f} {:>9.1f}x\n", k, f, s, s / f);
+    }
+    doc["micro_ns"] = {{"station_step", m.at("StationStep")},
+                       {"predict", m.at("Predict")},
+                       {"fuse_increments", fuse},
+                       {"stacked_ekf_update", stacked}};
+    fmt::print("station step (predict + measurement model + increment): {:.0f} ns\n",
+               m.at("StationStep"));
+  }
+
+  fmt::print("\nlock-step rounds over DDS ({} rounds each; floor = commander + M echo processes)\n",
+             o.rounds);
+  fmt::print("{:>4} {:>10} {:>10} {:>7} {:>21} {:>21} {:>11}\n", "M", "rounds/s", "floor/s",
+             "ratio", "latency p50/p99/max", "floor p50/p99", "discovery");
+  nlohmann::json rows = nlohmann::json::array();
+  for (int m : o.stations) {
+    if (m > static_cast<int>(scenario.stations.size())) {
+      throw std::invalid_argument(fmt::format("--stations: {} exceeds the {} stations of {}", m,
+                                              scenario.stations.size(), scenario_path));
+    }
+    transport::NodeConfig config;
+    config.domain_id = o.domain;
+    config.name = "skyfuse-bench";
+    const auto timeout = std::chrono::milliseconds(120'000);
+    const FloorResult floor = measure_floor(config, m, o.rounds, timeout);
+
+    RunOptions run;
+    run.scenario_path = scenario_path;
+    run.overrides.stations = m;
+    run.overrides.steps = o.rounds;
+    run.domain = o.domain;
+    run.out_dir = (out / fmt::format("run-M{}", m)).string();
+    run.discovery_timeout_s = 120.0;
+    run.round_timeout_s = 30.0;
+    const RunSummary s = execute_run(run, make_run_plan(scenario, run.overrides));
+
+    const double ratio = s.rounds_per_s / floor.rounds_per_s;
+    fmt::print(
+        "{:>4} {:>10.0f} {:>10.0f} {:>6.0f}% {:>8.0f}/{:.0f}/{:.0f} us {:>10.0f}/{:.0f} us "
+        "{:>6.2f} s\n",
+        m, s.rounds_per_s, floor.rounds_per_s, 100.0 * ratio, s.round_latency_us_p50,
+        s.round_latency_us_p99, s.round_latency_us_max, floor.latency_us_p50, floor.latency_us_p99,
+        s.discovery_s);
+    rows.push_back({{"stations", m},
+                    {"rounds", o.rounds},
+                    {"rounds_per_s", s.rounds_per_s},
+                    {"floor_rounds_per_s", floor.rounds_per_s},
+                    {"ratio_to_floor", ratio},
+                    {"round_latency_us_p50", s.round_latency_us_p50},
+                    {"round_latency_us_p99", s.round_latency_us_p99},
+                    {"round_latency_us_max", s.round_latency_us_max},
+                    {"floor_latency_us_p50", floor.latency_us_p50},
+                    {"floor_latency_us_p99", floor.latency_us_p99},
+                    {"discovery_s", s.discovery_s},
+                    {"floor_discovery_s", floor.discovery_s}});
+  }
+  doc["dds"] = rows;
+  write_file_atomically(out / "bench.json", doc.dump(2) + "\n");
+  fmt::print("\nwrote {}\n", (out / "bench.json").string());
+  return 0;
+}
+
+}  // namespace skyfuse::harness

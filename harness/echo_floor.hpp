@@ -1,0 +1,24 @@
+#pragma once
+// The bare Fast DDS lock-step floor: a commander publishes Tick{k} and waits until each of M
+// echo processes has answered, then ticks k+1. Same participant setup and QoS as a skyfuse
+// run, no estimation and no all-to-all traffic: the best round rate a run could reach here.
+
+#include <chrono>
+
+#include "child_processes.hpp"
+#include "skyfuse/transport/dds_node.hpp"
+
+namespace skyfuse::harness {
+
+struct FloorResult {
+  double rounds_per_s = 0.0;
+  double latency_us_p50 = 0.0;
+  double latency_us_p99 = 0.0;
+  double latency_us_max = 0.0;
+  double discovery_s = 0.0;
+};
+
+FloorResult measure_floor(const transport::NodeConfig& config, int nodes, int rounds,
+                          std::chrono::milliseconds timeout);
+
+}  // namespace skyfuse::harness
