@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <vector>
 
 #include "skyfuse/tracking/central_tracker.hpp"
@@ -40,6 +41,8 @@ class Center {
             initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run)),
         collector_(participant_ids(plan)),
         observations_(static_cast<std::size_t>(plan.stations)) {
+    partial_.reserve(observations_.size());
+    partial_ids_.reserve(observations_.size());
     wait_set_.attach(ticks_);
     wait_set_.attach(measurements_);
     // The stacked rows go in scenario order, as the in-process sweep stacks them, so that both
@@ -74,8 +77,27 @@ class Center {
     for (std::uint64_t k = 0; k < steps; ++k) {
       if (const int code = wait_for_measurements(k); code >= 0) return code;
       const std::span<const StationObservation9> by_id = collector_.payloads();
-      for (std::size_t j = 0; j < by_id.size(); ++j) observations_[slot_of_[j]] = by_id[j];
-      const UpdateReport report = tracker_.update(observations_);
+      // Stack in scenario order; in real time only the measurements that made the deadline.
+      std::vector<StationObservation9>& stacked = collector_.complete() ? observations_ : partial_;
+      partial_.clear();
+      for (std::size_t j = 0; j < by_id.size(); ++j) {
+        if (collector_.complete()) {
+          observations_[slot_of_[j]] = by_id[j];
+        }
+      }
+      if (!collector_.complete()) {
+        for (std::size_t slot = 0; slot < observations_.size(); ++slot) {
+          for (std::size_t j = 0; j < by_id.size(); ++j) {
+            if (slot_of_[j] == slot && collector_.filled(j)) partial_.push_back(by_id[j]);
+          }
+        }
+        partial_ids_.clear();
+        for (std::size_t j = 0; j < by_id.size(); ++j) {
+          if (collector_.filled(j)) partial_ids_.push_back(collector_.station_ids()[j]);
+        }
+      }
+      const UpdateReport report =
+          stacked.empty() ? UpdateReport{NumericalStatus::kOk, 0.0} : tracker_.update(stacked);
       if (report.status != NumericalStatus::kOk) {
         const std::string detail =
             fmt::format("step {}: stacked update failed: {}", k, to_string(report.status));
@@ -83,9 +105,10 @@ class Center {
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
         return transport::kExitNumerical;
       }
-      tracks_.write(transport::to_wire(tracker_.estimate(), options_.run_id,
-                                       static_cast<std::uint32_t>(k), kCenterSourceId,
-                                       wire::CENTRAL, collector_.station_ids()));
+      tracks_.write(transport::to_wire(
+          tracker_.estimate(), options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
+          wire::CENTRAL,
+          collector_.complete() ? collector_.station_ids() : std::span<const int>(partial_ids_)));
       tracker_.predict();
       collector_.advance();
     }
@@ -96,14 +119,34 @@ class Center {
   }
 
  private:
+  // Lock-step: waits until every measurement of step k is in. Real time: until they are in or
+  // the step's deadline passes (after waiting for the start tick before step 0).
   int wait_for_measurements(std::uint64_t k) {
+    const bool realtime = options_.realtime_deadline_ms > 0.0;
     const auto deadline = std::chrono::steady_clock::now() + options_.idle_timeout();
     while (true) {
       wire::Tick tick;
       while (ticks_.take(tick)) {
-        if (tick.run_id() == options_.run_id && tick.stop()) {
+        if (tick.run_id() != options_.run_id) continue;
+        if (tick.epoch_ns() != 0) epoch_ns_ = tick.epoch_ns();
+        if (tick.stop()) {
           spdlog::info("stopped by the harness at step {}", k);
           return transport::kExitOk;
+        }
+      }
+      if (realtime && epoch_ns_ != 0) {
+        const double close_ns = (static_cast<double>(k) * plan_.scenario.time_step_s * 1e9) +
+                                options_.realtime_deadline_ms * 1e6;
+        const auto close = std::chrono::system_clock::time_point(std::chrono::nanoseconds(
+            epoch_ns_ + static_cast<std::uint64_t>(std::llround(close_ns))));
+        if (std::chrono::system_clock::now() >= close) {
+          wire::Measurement late;
+          while (measurements_.take(late)) {
+            if (late.run_id() == options_.run_id) {
+              collector_.offer(late.step(), late.station_id(), transport::from_wire(late));
+            }
+          }
+          return -1;
         }
       }
       wire::Measurement sample;
@@ -121,7 +164,18 @@ class Center {
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
         return transport::kExitIdleTimeout;
       }
-      wait_set_.wait(kPollSlice);
+      auto slice = std::chrono::duration_cast<std::chrono::microseconds>(kPollSlice);
+      if (realtime && epoch_ns_ != 0) {
+        const double close_ns = (static_cast<double>(k) * plan_.scenario.time_step_s * 1e9) +
+                                options_.realtime_deadline_ms * 1e6;
+        const auto close = std::chrono::system_clock::time_point(std::chrono::nanoseconds(
+            epoch_ns_ + static_cast<std::uint64_t>(std::llround(close_ns))));
+        const auto left = std::chrono::duration_cast<std::chrono::microseconds>(
+            close - std::chrono::system_clock::now());
+        slice =
+            std::clamp(left + std::chrono::microseconds(1), std::chrono::microseconds(1), slice);
+      }
+      wait_set_.wait(slice);
     }
   }
 
@@ -137,6 +191,9 @@ class Center {
   StepCollector<StationObservation9> collector_;
   std::vector<StationObservation9> observations_;
   std::vector<std::size_t> slot_of_;
+  std::uint64_t epoch_ns_ = 0;                // real time: system-clock start of step 0
+  std::vector<StationObservation9> partial_;  // real time: what made the deadline
+  std::vector<int> partial_ids_;
 };
 
 }  // namespace

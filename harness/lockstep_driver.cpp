@@ -163,6 +163,104 @@ RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds
   return record;
 }
 
+std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_step_s,
+                                                      std::chrono::system_clock::time_point epoch,
+                                                      std::chrono::milliseconds timeout) {
+  Impl& d = *impl_;
+  const auto epoch_ns = static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(epoch.time_since_epoch()).count());
+  wire::Tick tick;
+  tick.run_id(d.run_id);
+  tick.step(0);
+  tick.stop(false);
+  tick.epoch_ns(epoch_ns);
+  d.ticks.write(tick);
+
+  const std::size_t m = d.station_ids.size();
+  auto source_index = [&](int source) -> std::size_t {  // 0: center, 1..M: stations by id
+    if (source == kCenterId) return 0;
+    const auto it = std::lower_bound(d.station_ids.begin(), d.station_ids.end(), source);
+    return (it != d.station_ids.end() && *it == source)
+               ? static_cast<std::size_t>(it - d.station_ids.begin()) + 1
+               : m + 1;
+  };
+  struct Pending {
+    RoundRecord record;
+    std::vector<bool> have;
+    std::size_t tracks = 0;
+    std::size_t measurements = 0;
+  };
+  std::map<std::uint64_t, Pending> pending;
+  auto entry = [&](std::uint64_t step) -> Pending& {
+    Pending& p = pending[step];
+    if (p.have.empty()) {
+      p.record.step = step;
+      p.record.peers.resize(m);
+      p.record.measurements.resize(m);
+      p.record.track_age_us.assign(m + 1, 0.0);
+      p.have.assign(2 * m + 1, false);  // tracks (M + 1), then measurements (M)
+    }
+    return p;
+  };
+
+  std::vector<RoundRecord> done;
+  const auto give_up = Clock::now() + timeout +
+                       std::chrono::milliseconds(static_cast<long>(steps * time_step_s * 1000.0));
+  while (done.size() < static_cast<std::size_t>(steps)) {
+    wire::TrackEstimate t;
+    while (d.tracks.take(t)) {
+      if (t.run_id() != d.run_id || t.step() >= static_cast<std::uint32_t>(steps)) continue;
+      const std::size_t i = source_index(t.source_id());
+      if (i > m) continue;
+      Pending& p = entry(t.step());
+      if (p.have[i]) continue;
+      p.have[i] = true;
+      ++p.tracks;
+      const auto scheduled =
+          epoch +
+          std::chrono::nanoseconds(std::llround(static_cast<double>(t.step()) * time_step_s * 1e9));
+      p.record.track_age_us[i] =
+          std::chrono::duration<double, std::micro>(std::chrono::system_clock::now() - scheduled)
+              .count();
+      if (t.contributors().size() != m) p.record.all_inputs_in_time = false;
+      (i == 0 ? p.record.central : p.record.peers[i - 1]) = transport::from_wire(t);
+    }
+    wire::Measurement z;
+    while (d.measurements.take(z)) {
+      if (z.run_id() != d.run_id || z.step() >= static_cast<std::uint32_t>(steps)) continue;
+      const std::size_t i = source_index(z.station_id());
+      if (i == 0 || i > m) continue;
+      Pending& p = entry(z.step());
+      if (p.have[m + i]) continue;
+      p.have[m + i] = true;
+      ++p.measurements;
+      p.record.measurements[i - 1] = Vector3(z.z()[0], z.z()[1], z.z()[2]);
+    }
+    // Hand over finished steps in order.
+    while (!pending.empty()) {
+      auto first = pending.begin();
+      if (first->first != done.size() || first->second.tracks < m + 1 ||
+          first->second.measurements < m) {
+        break;
+      }
+      RoundRecord& r = first->second.record;
+      r.latency = std::chrono::nanoseconds(
+          static_cast<long>(1e3 * *std::max_element(r.track_age_us.begin(), r.track_age_us.end())));
+      done.push_back(std::move(r));
+      pending.erase(first);
+    }
+    if (done.size() == static_cast<std::size_t>(steps)) break;
+    d.check();
+    d.read_statuses();
+    if (Clock::now() > give_up) {
+      throw RunAborted(fmt::format("real-time run: only {} of {} steps complete at the time limit",
+                                   done.size(), steps));
+    }
+    d.wait_set.wait(kPollSlice);
+  }
+  return done;
+}
+
 void LockstepDriver::stop() {
   wire::Tick tick;
   tick.run_id(impl_->run_id);

@@ -29,6 +29,10 @@ struct RoundRecord {
   std::vector<GaussianState<9>> peers;  ///< ascending station id
   std::vector<Vector3> measurements;    ///< ascending station id
   std::chrono::nanoseconds latency{0};  ///< tick published -> last track received
+  /// Real time only: age of each track on arrival (scheduled step start -> received), the center
+  /// first then the stations in ascending id; and whether every node fused all M inputs.
+  std::vector<double> track_age_us;
+  bool all_inputs_in_time = true;
 };
 
 class LockstepDriver {
@@ -44,6 +48,12 @@ class LockstepDriver {
 
   /// Runs step k and returns what every process published for it.
   RoundRecord run_round(std::uint64_t k, std::chrono::milliseconds timeout);
+
+  /// Real-time mode: publishes the start tick (step 0 begins at `epoch`) and gathers every
+  /// node's track of every step as the nodes publish them on their own clocks.
+  std::vector<RoundRecord> run_realtime(int steps, double time_step_s,
+                                        std::chrono::system_clock::time_point epoch,
+                                        std::chrono::milliseconds timeout);
 
   /// Tells every process to stop (a Tick with stop = true).
   void stop();

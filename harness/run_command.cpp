@@ -66,7 +66,9 @@ std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan
                                    "--idle-timeout",
                                    fmt::format("{}", std::max(30.0, 3.0 * o.round_timeout_s)),
                                    "--log-level",
-                                   o.verbose ? "info" : "warn"};
+                                   o.verbose ? "info" : "warn",
+                                   "--realtime-deadline-ms",
+                                   fmt::format("{}", o.realtime_deadline_ms)};
   if (o.qos_file) {
     args.push_back("--qos");
     args.push_back(*o.qos_file);
@@ -114,6 +116,10 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Stations replay their measurements from this CSV (a measurements.csv of an "
                   "earlier run) instead of simulating them")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--realtime-deadline-ms", o.realtime_deadline_ms,
+                  "Real-time mode: nodes step on the wall clock at the scenario's dt and each "
+                  "round closes this many ms after it starts, with what has arrived")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--external", o.external,
                 "Do not start processes: drive stations and a center started elsewhere");
   cmd->add_flag("-v,--verbose", o.verbose, "Let the node processes log at info level");
@@ -169,9 +175,19 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
                       plan.scenario.steps);
     const auto round_timeout = seconds_to_ms(o.round_timeout_s);
     const auto start = Clock::now();
-    for (int k = 0; k < plan.scenario.steps; ++k) {
-      recorder.add(driver.run_round(static_cast<std::uint64_t>(k), round_timeout));
-      progress.advance();
+    if (o.realtime_deadline_ms > 0.0) {
+      // A little head start so that the start tick reaches every node before step 0 begins.
+      const auto epoch = std::chrono::system_clock::now() + std::chrono::milliseconds(300);
+      for (RoundRecord& r : driver.run_realtime(plan.scenario.steps, plan.scenario.time_step_s,
+                                                epoch, round_timeout)) {
+        recorder.add(std::move(r));
+      }
+      progress.advance(plan.scenario.steps);
+    } else {
+      for (int k = 0; k < plan.scenario.steps; ++k) {
+        recorder.add(driver.run_round(static_cast<std::uint64_t>(k), round_timeout));
+        progress.advance();
+      }
     }
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     progress.finish();
@@ -186,8 +202,9 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
       if (!e.success()) spdlog::warn("{}", e.describe());
     }
 
-    const RunSummary summary =
+    RunSummary summary =
         recorder.summarise(std::chrono::duration<double>(discovery).count(), elapsed);
+    summary.realtime_deadline_ms = o.realtime_deadline_ms;
     recorder.write(out, summary, run_id);
     return summary;
   } catch (...) {

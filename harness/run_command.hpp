@@ -24,6 +24,9 @@ struct RunOptions {
   double round_timeout_s = 10.0;
   std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating
   bool external = false;    ///< stations and center are started elsewhere (by hand, compose)
+  /// Real-time mode when > 0: nodes step on the wall clock at the scenario's dt, rounds close
+  /// this many ms after they start.
+  double realtime_deadline_ms = 0.0;
   bool verbose = false;
 };
 

@@ -58,7 +58,19 @@ RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) c
     }
     latencies_us.push_back(std::chrono::duration<double, std::micro>(r.latency).count());
   }
+  std::vector<double> ages_ms;
+  int in_time = 0;
+  for (const RoundRecord& r : rounds_) {
+    for (double age : r.track_age_us) ages_ms.push_back(age / 1000.0);
+    if (r.all_inputs_in_time) ++in_time;
+  }
+  if (!ages_ms.empty()) {
+    s.track_age_ms_p50 = percentile(ages_ms, 0.50);
+    s.track_age_ms_p99 = percentile(ages_ms, 0.99);
+    s.track_age_ms_max = *std::max_element(ages_ms.begin(), ages_ms.end());
+  }
   const double n = std::max<double>(1.0, static_cast<double>(rounds_.size()));
+  s.rounds_all_inputs_in_time = in_time / n;
   s.rmse_central_m = std::sqrt(sq_central / n);
   s.rmse_p2p_m = std::sqrt(sq_p2p / n);
   s.rounds_per_s =
@@ -124,7 +136,15 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
                                {"round_latency_us_p99", summary.round_latency_us_p99},
                                {"round_latency_us_max", summary.round_latency_us_max},
                                {"discovery_s", summary.discovery_s}};
-  write_file_atomically(dir / "summary.json", json.dump(2) + "\n");
+  nlohmann::json full = json;
+  if (summary.realtime_deadline_ms > 0.0) {
+    full["realtime"] = {{"deadline_ms", summary.realtime_deadline_ms},
+                        {"rounds_all_inputs_in_time", summary.rounds_all_inputs_in_time},
+                        {"track_age_ms_p50", summary.track_age_ms_p50},
+                        {"track_age_ms_p99", summary.track_age_ms_p99},
+                        {"track_age_ms_max", summary.track_age_ms_max}};
+  }
+  write_file_atomically(dir / "summary.json", full.dump(2) + "\n");
 }
 
 void print_run_table(const RunSummary& s, std::FILE* out) {
@@ -139,6 +159,12 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
   fmt::print(out, "  round latency p50/p99/max {:.0f} / {:.0f} / {:.0f} us\n",
              s.round_latency_us_p50, s.round_latency_us_p99, s.round_latency_us_max);
   fmt::print(out, "  discovery                {:.2f} s\n", s.discovery_s);
+  if (s.realtime_deadline_ms > 0.0) {
+    fmt::print(out, "  real time: deadline {} ms; rounds with every input in time {:.2f} %\n",
+               s.realtime_deadline_ms, 100.0 * s.rounds_all_inputs_in_time);
+    fmt::print(out, "  track age on arrival p50/p99/max {:.2f} / {:.2f} / {:.2f} ms\n",
+               s.track_age_ms_p50, s.track_age_ms_p99, s.track_age_ms_max);
+  }
 }
 
 }  // namespace skyfuse::harness

@@ -30,6 +30,14 @@ struct RunSummary {
   double round_latency_us_p99 = 0.0;
   double round_latency_us_max = 0.0;
   double discovery_s = 0.0;
+  /// Real-time mode (deadline > 0): the share of rounds in which every node fused all M inputs
+  /// by the deadline, and the age of the tracks on arrival at the harness (scheduled start of
+  /// the step -> received).
+  double realtime_deadline_ms = 0.0;
+  double rounds_all_inputs_in_time = 0.0;
+  double track_age_ms_p50 = 0.0;
+  double track_age_ms_p99 = 0.0;
+  double track_age_ms_max = 0.0;
 };
 
 class RunRecorder {

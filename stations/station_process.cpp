@@ -5,6 +5,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
+#include <thread>
 #include <vector>
 
 #include "skyfuse/tracking/peer_tracker.hpp"
@@ -59,6 +61,9 @@ class Station {
         noise_(station_noise_covariance(plan.scenario, me, plan.mc_run)) {
     // Weights in the collector's (ascending id) order.
     for (int id : collector_.station_ids()) weights_.push_back(plan.participant(id)->weight);
+    partial_increments_.reserve(weights_.size());
+    partial_weights_.reserve(weights_.size());
+    partial_ids_.reserve(weights_.size());
   }
 
   int run() {
@@ -88,10 +93,28 @@ class Station {
     spdlog::info("joined run {} with {} stations; waiting for ticks", options_.node.run_id, m);
 
     const auto steps = static_cast<std::uint64_t>(plan_.scenario.steps);
+    const bool realtime = options_.node.realtime_deadline_ms > 0.0;
+    if (realtime) {
+      bool started = false;
+      if (const int code = wait(
+              0, started, [&] { return epoch_ns_ != 0; },
+              [] { return std::string("the start tick"); });
+          code >= 0) {
+        return code;
+      }
+    }
     for (std::uint64_t k = 0; k < steps; ++k) {
-      if (const int code = wait_for_tick(k); code >= 0) return code;
-      publish_own_sample(k);
-      if (const int code = wait_for_increments(k); code >= 0) return code;
+      if (realtime) {
+        // Step k starts on the wall clock and closes at its deadline with what has arrived.
+        const auto start = step_start(k);
+        std::this_thread::sleep_until(start);
+        publish_own_sample(k);
+        if (const int code = wait_until_deadline(k, start + deadline()); code >= 0) return code;
+      } else {
+        if (const int code = wait_for_tick(k); code >= 0) return code;
+        publish_own_sample(k);
+        if (const int code = wait_for_increments(k); code >= 0) return code;
+      }
       if (const int code = fuse_and_publish(k); code >= 0) return code;
       tracker_.predict();
       collector_.advance();
@@ -118,6 +141,7 @@ class Station {
         spdlog::info("stopped by the harness at step {}", k);
         return transport::kExitOk;
       }
+      if (tick.epoch_ns() != 0) epoch_ns_ = tick.epoch_ns();
       if (tick.step() == k) got_tick = true;
     }
     wire::InformationIncrement sample;
@@ -160,6 +184,29 @@ class Station {
         [&] { return fmt::format("increments of stations {}", collector_.missing()); });
   }
 
+  std::chrono::system_clock::time_point step_start(std::uint64_t k) const {
+    const double offset_ns = static_cast<double>(k) * plan_.scenario.time_step_s * 1e9;
+    return std::chrono::system_clock::time_point(
+        std::chrono::nanoseconds(epoch_ns_ + static_cast<std::uint64_t>(std::llround(offset_ns))));
+  }
+  std::chrono::microseconds deadline() const {
+    return std::chrono::microseconds(std::llround(options_.node.realtime_deadline_ms * 1000.0));
+  }
+
+  // Real time: collects increments until all are in or the deadline passes; either is fine.
+  int wait_until_deadline(std::uint64_t k, std::chrono::system_clock::time_point deadline) {
+    bool unused = false;
+    while (true) {
+      if (const int code = drain(k, unused); code >= 0) return code;
+      if (collector_.complete()) return -1;
+      if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
+      const auto left = deadline - std::chrono::system_clock::now();
+      if (left <= std::chrono::system_clock::duration::zero()) return -1;
+      io_.wait_set.wait(std::min<std::chrono::microseconds>(
+          std::chrono::duration_cast<std::chrono::microseconds>(left) + 1us, kPollSlice));
+    }
+  }
+
   void publish_own_sample(std::uint64_t k) {
     const auto step = static_cast<std::uint32_t>(k);
     StationObservation9 observation{me_.id, sensor_, source_->measurement(k), noise_};
@@ -176,7 +223,26 @@ class Station {
   }
 
   int fuse_and_publish(std::uint64_t k) {
-    const NumericalStatus status = tracker_.fuse(collector_.payloads(), weights_);
+    // Every increment in (always so in lock-step): fuse the collector's rows directly. Else
+    // the ones that arrived, still in ascending id, and the track names only those.
+    std::span<const Increment9> increments = collector_.payloads();
+    std::span<const double> weights = weights_;
+    std::span<const int> contributors = collector_.station_ids();
+    if (!collector_.complete()) {
+      partial_increments_.clear();
+      partial_weights_.clear();
+      partial_ids_.clear();
+      for (std::size_t i = 0; i < collector_.station_ids().size(); ++i) {
+        if (!collector_.filled(i)) continue;
+        partial_increments_.push_back(collector_.payloads()[i]);
+        partial_weights_.push_back(weights_[i]);
+        partial_ids_.push_back(collector_.station_ids()[i]);
+      }
+      increments = partial_increments_;
+      weights = partial_weights_;
+      contributors = partial_ids_;
+    }
+    const NumericalStatus status = tracker_.fuse(increments, weights);
     if (status != NumericalStatus::kOk) {
       const std::string detail = fmt::format("step {}: fusion failed: {}", k, to_string(status));
       spdlog::error("{}", detail);
@@ -185,7 +251,7 @@ class Station {
     }
     io_.tracks.write(transport::to_wire(tracker_.estimate(), options_.node.run_id,
                                         static_cast<std::uint32_t>(k), me_.id, wire::PEER,
-                                        collector_.station_ids()));
+                                        contributors));
     return -1;
   }
 
@@ -201,6 +267,11 @@ class Station {
   StationSensor sensor_;
   Covariance<3> noise_;
   std::vector<double> weights_;
+  std::uint64_t epoch_ns_ = 0;  // real time: the system-clock start of step 0
+  // Real time: the increments that made the deadline (reserved once, no allocation per step).
+  std::vector<Increment9> partial_increments_;
+  std::vector<double> partial_weights_;
+  std::vector<int> partial_ids_;
 };
 
 }  // namespace

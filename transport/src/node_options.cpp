@@ -57,6 +57,10 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
                  "Seconds without progress after which the process gives up")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--realtime-deadline-ms", o.realtime_deadline_ms,
+                 "Real-time mode: step on the wall clock at the scenario's dt and close each "
+                 "round this many ms after it starts (0: lock-step on ticks)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();

@@ -68,6 +68,9 @@ class StepCollector {
   }
 
   bool complete() const { return current_.count == ids_.size(); }
+  std::size_t count() const { return current_.count; }
+  /// Whether the i-th station (ascending id) has delivered for the current step.
+  bool filled(std::size_t i) const { return current_.filled[i]; }
   /// Payloads of the current step in ascending station id (valid once complete()).
   std::span<const Payload> payloads() const { return current_.payloads; }
   std::span<const int> station_ids() const { return ids_; }

@@ -25,6 +25,9 @@ struct NodeOptions {
   std::optional<std::string> qos_file;
   double discovery_timeout_s = 30.0;
   double idle_timeout_s = 60.0;
+  /// Real-time mode when > 0: each step starts on the wall clock at epoch + k dt and closes
+  /// this many milliseconds later with whatever has arrived.
+  double realtime_deadline_ms = 0.0;
   std::string log_level = "info";
 
   NodeConfig node_config(const std::string& name) const;
