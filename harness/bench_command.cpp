@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "echo_floor.hpp"
+#include "lockstep_driver.hpp"
 #include "output_files.hpp"
 #include "run_command.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -47,6 +48,20 @@ std::map<std::string, double> run_micro_benchmarks(const std::filesystem::path& 
     medians[b.at("run_name").get<std::string>()] = ns;
   }
   return medians;
+}
+
+RunSummary run_for_bench(const BenchOptions& o, const Scenario& scenario,
+                         const std::string& scenario_path, int m,
+                         const std::filesystem::path& out) {
+  RunOptions run;
+  run.scenario_path = scenario_path;
+  run.overrides.stations = m;
+  run.overrides.steps = o.rounds;
+  run.domain = o.domain;
+  run.out_dir = (out / fmt::format("run-M{}", m)).string();
+  run.discovery_timeout_s = 120.0;
+  run.round_timeout_s = 30.0;
+  return execute_run(run, make_run_plan(scenario, run.overrides));
 }
 
 }  // namespace
@@ -118,17 +133,17 @@ int run_bench(const BenchOptions& o) {
     config.domain_id = o.domain;
     config.name = "skyfuse-bench";
     const auto timeout = std::chrono::milliseconds(120'000);
-    const FloorResult floor = measure_floor(config, m, o.rounds, timeout);
-
-    RunOptions run;
-    run.scenario_path = scenario_path;
-    run.overrides.stations = m;
-    run.overrides.steps = o.rounds;
-    run.domain = o.domain;
-    run.out_dir = (out / fmt::format("run-M{}", m)).string();
-    run.discovery_timeout_s = 120.0;
-    run.round_timeout_s = 30.0;
-    const RunSummary s = execute_run(run, make_run_plan(scenario, run.overrides));
+    FloorResult floor;
+    RunSummary s;
+    try {
+      floor = measure_floor(config, m, o.rounds, timeout);
+      s = run_for_bench(o, scenario, scenario_path, m, out);
+    } catch (const RunAborted& e) {
+      // One station count failing (say, a machine too small for it) must not lose the others.
+      fmt::print("{:>4} failed: {}\n", m, e.what());
+      rows.push_back({{"stations", m}, {"rounds", o.rounds}, {"error", e.what()}});
+      continue;
+    }
 
     const double ratio = s.rounds_per_s / floor.rounds_per_s;
     fmt::print(

@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   add_bench_command(app, bench);
   CLI11_PARSE(app, argc, argv);
 
+  // Line-buffered even into a file or pipe, so that tables and child messages keep their order.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   skyfuse::transport::install_shutdown_handlers();
   try {
     if (app.got_subcommand("sweep")) return run_sweep(sweep);

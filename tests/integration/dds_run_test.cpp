@@ -79,6 +79,7 @@ TEST_P(DdsRun, EveryPeerAgreesAndTheRunEqualsTheInProcessOneBitForBit) {
   EXPECT_EQ(summary.at("stations"), m);
   EXPECT_EQ(summary.at("steps"), kSteps);
   EXPECT_EQ(summary.at("max_abs_diff_between_peers"), 0.0);
+  EXPECT_FALSE(summary.contains("realtime")) << "a lock-step run has no real-time figures";
   EXPECT_LT(summary.at("max_abs_diff_central_vs_p2p").get<double>(), 1e-6);
   EXPECT_GT(summary.at("rounds_per_s").get<double>(), 0.0);
   EXPECT_GT(summary.at("round_latency_us_p99").get<double>(),
@@ -129,6 +130,35 @@ TEST(DdsRunReplay, ReplayingRecordedMeasurementsReproducesTheRun) {
   const Completed other = skyfuse_run(3, 112, dir / "other", {"--mc-run", "1"});
   ASSERT_EQ(other.status.code, 0) << other.output;
   EXPECT_NE(read_file(dir / "recorded" / "tracks.csv"), read_file(dir / "other" / "tracks.csv"));
+}
+
+}  // namespace
+}  // namespace skyfuse::test
+
+namespace skyfuse::test {
+namespace {
+
+TEST(DdsRunRealtime, NodesStepOnTheWallClockAndTheHarnessReportsDeadlinesAndAges) {
+  // Behaviour only (speed is for the benchmarks): every step is recorded, every track names
+  // the stations it fused, and the summary carries the real-time figures.
+  const auto dir = test_dir();
+  const Completed run =
+      run_to_completion({bin("skyfuse"), "run", "--stations", "3", "--steps", "100", "--domain",
+                         "113", "--realtime-deadline-ms", "15", "--out", (dir / "out").string()},
+                        dir / "run.log", std::chrono::seconds(120));
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  EXPECT_EQ(read_tracks(dir / "out" / "tracks.csv").size(), 100U * 4U);
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  ASSERT_TRUE(summary.contains("realtime")) << summary.dump(2);
+  const auto& rt = summary.at("realtime");
+  EXPECT_EQ(rt.at("deadline_ms"), 15.0);
+  const double in_time = rt.at("rounds_all_inputs_in_time").get<double>();
+  EXPECT_GE(in_time, 0.0);
+  EXPECT_LE(in_time, 1.0);
+  EXPECT_GT(rt.at("track_age_ms_p50").get<double>(), 0.0);
+  EXPECT_GE(rt.at("track_age_ms_max").get<double>(), rt.at("track_age_ms_p99").get<double>());
+  // Fusing what arrived by the deadline still tracks (3 stations: well under a metre).
+  EXPECT_LT(summary.at("rmse_p2p_m").get<double>(), 1.0);
 }
 
 }  // namespace
