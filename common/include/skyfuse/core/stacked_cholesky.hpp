@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// Cholesky factorisation and solves for the stacked EKF's innovation covariance S (3M x 3M),
-/// with the method that suits the size: below kBlockedFromSize plain loops over a packed lower
-/// triangle and a row-major right-hand side (every inner loop a contiguous run of N doubles);
+/// with the method that suits the size: below kBlockedFromSize plain loops (a right-looking
+/// factorisation down contiguous columns, solves on a row-major right-hand side);
 /// from there on Eigen's blocked LLT, which wins once the matrix outgrows the caches' sweet
 /// spot. The threshold was measured with bench/core_bench.cpp (StackedEkfUpdate).
 ///
@@ -33,21 +33,23 @@ class StackedCholesky {
       l_.resize(size_, size_);
       inv_diag_.resize(size_);
     }
-    // Row-oriented (Cholesky-Banachiewicz): row i of L needs rows 0..i-1 only, and every inner
-    // product runs along two contiguous rows of the row-major factor.
-    for (Eigen::Index i = 0; i < size_; ++i) {
-      for (Eigen::Index j = 0; j <= i; ++j) {
-        double s = a(i, j);
-        const double* li = &l_(i, 0);
-        const double* lj = &l_(j, 0);
-        for (Eigen::Index k = 0; k < j; ++k) s -= li[k] * lj[k];
-        if (i == j) {
-          if (!(s > 0.0) || !std::isfinite(s)) return false;
-          l_(i, i) = std::sqrt(s);
-          inv_diag_(i) = 1.0 / l_(i, i);
-        } else {
-          l_(i, j) = s * inv_diag_(j);
-        }
+    // Right-looking on a column-major copy: once column k is scaled, the trailing lower
+    // triangle takes a rank-1 update whose inner loop runs down contiguous columns.
+    for (Eigen::Index c = 0; c < size_; ++c) {
+      for (Eigen::Index r = c; r < size_; ++r) l_(r, c) = a(r, c);
+    }
+    for (Eigen::Index k = 0; k < size_; ++k) {
+      double* col_k = &l_(0, k);
+      const double d = col_k[k];
+      if (!(d > 0.0) || !std::isfinite(d)) return false;
+      const double pivot = std::sqrt(d);
+      col_k[k] = pivot;
+      inv_diag_(k) = 1.0 / pivot;
+      for (Eigen::Index i = k + 1; i < size_; ++i) col_k[i] *= inv_diag_(k);
+      for (Eigen::Index j = k + 1; j < size_; ++j) {
+        const double ljk = col_k[j];
+        double* col_j = &l_(0, j);
+        for (Eigen::Index i = j; i < size_; ++i) col_j[i] -= col_k[i] * ljk;
       }
     }
     return true;
@@ -101,7 +103,7 @@ class StackedCholesky {
 
  private:
   Eigen::Index size_ = 0;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> l_;
+  Eigen::MatrixXd l_;  // column-major; its lower triangle holds L
   Eigen::VectorXd inv_diag_;
   Eigen::LLT<Eigen::MatrixXd> blocked_;
 };

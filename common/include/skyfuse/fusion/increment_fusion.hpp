@@ -18,11 +18,13 @@ namespace skyfuse {
 
 /// Fuses `increments` (ascending station id; weights[i] belongs to increments[i]) into `prior`
 /// and writes the result to `posterior`, which may alias `prior`. On failure `posterior` is
-/// left unchanged.
+/// left unchanged. If `fused_information` is given it receives Y = P^-1 of the posterior, which
+/// the fusion computes anyway (NEES = e^T Y e needs no further factorisation).
 template <int N>
 NumericalStatus fuse_increments(const GaussianState<N>& prior,
                                 std::span<const InformationIncrement<N>> increments,
-                                std::span<const double> weights, GaussianState<N>& posterior) {
+                                std::span<const double> weights, GaussianState<N>& posterior,
+                                Covariance<N>* fused_information = nullptr) {
   for (std::size_t i = 1; i < increments.size(); ++i) {
     if (increments[i].station_id <= increments[i - 1].station_id) {
       return NumericalStatus::kIncrementsOutOfOrder;
@@ -43,6 +45,7 @@ NumericalStatus fuse_increments(const GaussianState<N>& prior,
 
   SmallCholesky<N> fused_factor;
   if (!fused_factor.compute(information)) return NumericalStatus::kNotPositiveDefinite;
+  if (fused_information != nullptr) *fused_information = information;
   posterior.covariance = fused_factor.inverse();
   posterior.mean = posterior.covariance * information_vector;
   return NumericalStatus::kOk;

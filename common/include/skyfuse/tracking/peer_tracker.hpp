@@ -28,14 +28,17 @@ class PeerTracker {
   }
   /// Fuses every station's increment (ascending id; weights[i] for increments[i]).
   NumericalStatus fuse(std::span<const Increment9> increments, std::span<const double> weights) {
-    return fuse_increments(estimate_, increments, weights, estimate_);
+    return fuse_increments(estimate_, increments, weights, estimate_, &information_);
   }
+  /// Y = P^-1 of the estimate after the last fuse().
+  const Covariance<9>& information() const { return information_; }
   void predict() { skyfuse::predict(estimate_, motion_); }
   const GaussianState<9>& estimate() const { return estimate_; }
 
  private:
   ConstantAcceleration3D motion_;
   GaussianState<9> estimate_;
+  Covariance<9> information_ = Covariance<9>::Identity();
 };
 
 }  // namespace skyfuse
