@@ -2,11 +2,8 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#include <exception>
-#include <stdexcept>
 
 #include "center_process.hpp"
-#include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 int main(int argc, char** argv) {
@@ -19,16 +16,5 @@ int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::from_str(options.log_level));
   spdlog::set_pattern("[center] %^%l%$: %v");
   transport::install_shutdown_handlers();
-  try {
-    return center::run_center(options);
-  } catch (const std::invalid_argument& e) {
-    spdlog::error("{}", e.what());
-    return transport::kExitUsage;
-  } catch (const ConfigError& e) {
-    spdlog::error("{}", e.what());
-    return transport::kExitUsage;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return transport::kExitError;
-  }
+  return transport::run_node([&] { return center::run_center(options); });
 }

@@ -11,18 +11,12 @@
 #include "lockstep_driver.hpp"
 #include "output_files.hpp"
 #include "skyfuse/transport/shutdown.hpp"
+#include "statistics.hpp"
 
 namespace skyfuse::harness {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(v.size())));
-  return v[std::clamp<std::size_t>(rank, 1, v.size()) - 1];
-}
 
 }  // namespace
 

@@ -7,16 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "output_files.hpp"
+#include "statistics.hpp"
 
 namespace skyfuse::harness {
 namespace {
-
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size())));
-  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-}
 
 double max_abs_entry_difference(const GaussianState<9>& a, const GaussianState<9>& b) {
   return std::max((a.mean - b.mean).cwiseAbs().maxCoeff(),

@@ -2,10 +2,7 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
-#include <exception>
-#include <stdexcept>
 
-#include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "station_process.hpp"
 
@@ -23,16 +20,5 @@ int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::from_str(options.node.log_level));
   spdlog::set_pattern(fmt::format("[station {}] %^%l%$: %v", options.id));
   transport::install_shutdown_handlers();
-  try {
-    return station::run_station(options);
-  } catch (const std::invalid_argument& e) {
-    spdlog::error("{}", e.what());
-    return transport::kExitUsage;
-  } catch (const ConfigError& e) {
-    spdlog::error("{}", e.what());
-    return transport::kExitUsage;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return transport::kExitError;
-  }
+  return transport::run_node([&] { return station::run_station(options); });
 }

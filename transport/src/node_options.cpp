@@ -1,6 +1,9 @@
 #include "skyfuse/transport/node_options.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <CLI/CLI.hpp>
+#include <stdexcept>
 
 #include "skyfuse/scenario/scenario_loader.hpp"
 
@@ -64,6 +67,25 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();
+}
+
+}  // namespace skyfuse::transport
+
+namespace skyfuse::transport {
+
+int run_node(const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const std::invalid_argument& e) {
+    spdlog::error("{}", e.what());
+    return kExitUsage;
+  } catch (const ConfigError& e) {
+    spdlog::error("{}", e.what());
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return kExitError;
+  }
 }
 
 }  // namespace skyfuse::transport

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -48,5 +49,13 @@ enum ExitCode : int {
   kExitIdleTimeout = 5,
   kExitNumerical = 6,
 };
+
+}  // namespace skyfuse::transport
+
+namespace skyfuse::transport {
+
+/// Runs a node's body and turns what escapes it into one logged line and an exit code: bad
+/// options or scenario -> kExitUsage, anything else -> kExitError.
+int run_node(const std::function<int()>& body);
 
 }  // namespace skyfuse::transport
