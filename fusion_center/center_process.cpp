@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -45,13 +46,12 @@ class Center {
     partial_ids_.reserve(observations_.size());
     wait_set_.attach(ticks_);
     wait_set_.attach(measurements_);
-    // The stacked rows go in scenario order, as the in-process sweep stacks them, so that both
-    // compute the same bits. slot_of_[j] = scenario position of the j-th smallest id.
+    // index_of_slot_[i]: where the i-th participant of the scenario sits in the collector
+    // (which orders by id), so that rows can be stacked in scenario order.
     const std::span<const int> ids = collector_.station_ids();
-    for (int id : ids) {
-      for (std::size_t i = 0; i < plan.participants().size(); ++i) {
-        if (plan.participants()[i].id == id) slot_of_.push_back(i);
-      }
+    for (const StationConfig& s : plan.participants()) {
+      index_of_slot_.push_back(
+          static_cast<std::size_t>(std::lower_bound(ids.begin(), ids.end(), s.id) - ids.begin()));
     }
   }
 
@@ -76,25 +76,27 @@ class Center {
     const auto steps = static_cast<std::uint64_t>(plan_.scenario.steps);
     for (std::uint64_t k = 0; k < steps; ++k) {
       if (const int code = wait_for_measurements(k); code >= 0) return code;
+      // Stack in scenario order, as the in-process sweep does, so that both compute the same
+      // bits; in real time only the measurements that made the deadline.
       const std::span<const StationObservation9> by_id = collector_.payloads();
-      // Stack in scenario order; in real time only the measurements that made the deadline.
-      std::vector<StationObservation9>& stacked = collector_.complete() ? observations_ : partial_;
-      partial_.clear();
-      for (std::size_t j = 0; j < by_id.size(); ++j) {
-        if (collector_.complete()) {
-          observations_[slot_of_[j]] = by_id[j];
-        }
-      }
-      if (!collector_.complete()) {
+      std::span<const StationObservation9> stacked = observations_;
+      std::span<const int> contributors = collector_.station_ids();
+      if (collector_.complete()) {
         for (std::size_t slot = 0; slot < observations_.size(); ++slot) {
-          for (std::size_t j = 0; j < by_id.size(); ++j) {
-            if (slot_of_[j] == slot && collector_.filled(j)) partial_.push_back(by_id[j]);
-          }
+          observations_[slot] = by_id[index_of_slot_[slot]];
         }
+      } else {
+        partial_.clear();
         partial_ids_.clear();
+        for (std::size_t slot = 0; slot < observations_.size(); ++slot) {
+          const std::size_t j = index_of_slot_[slot];
+          if (collector_.filled(j)) partial_.push_back(by_id[j]);
+        }
         for (std::size_t j = 0; j < by_id.size(); ++j) {
           if (collector_.filled(j)) partial_ids_.push_back(collector_.station_ids()[j]);
         }
+        stacked = partial_;
+        contributors = partial_ids_;
       }
       const UpdateReport report =
           stacked.empty() ? UpdateReport{NumericalStatus::kOk, 0.0} : tracker_.update(stacked);
@@ -105,10 +107,9 @@ class Center {
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
         return transport::kExitNumerical;
       }
-      tracks_.write(transport::to_wire(
-          tracker_.estimate(), options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
-          wire::CENTRAL,
-          collector_.complete() ? collector_.station_ids() : std::span<const int>(partial_ids_)));
+      tracks_.write(transport::to_wire(tracker_.estimate(), options_.run_id,
+                                       static_cast<std::uint32_t>(k), kCenterSourceId,
+                                       wire::CENTRAL, contributors));
       tracker_.predict();
       collector_.advance();
     }
@@ -190,7 +191,7 @@ class Center {
   CentralTracker tracker_;
   StepCollector<StationObservation9> collector_;
   std::vector<StationObservation9> observations_;
-  std::vector<std::size_t> slot_of_;
+  std::vector<std::size_t> index_of_slot_;
   std::uint64_t epoch_ns_ = 0;                // real time: system-clock start of step 0
   std::vector<StationObservation9> partial_;  // real time: what made the deadline
   std::vector<int> partial_ids_;

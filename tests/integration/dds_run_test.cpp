@@ -82,8 +82,10 @@ TEST_P(DdsRun, EveryPeerAgreesAndTheRunEqualsTheInProcessOneBitForBit) {
   EXPECT_FALSE(summary.contains("realtime")) << "a lock-step run has no real-time figures";
   EXPECT_LT(summary.at("max_abs_diff_central_vs_p2p").get<double>(), 1e-6);
   EXPECT_GT(summary.at("rounds_per_s").get<double>(), 0.0);
-  EXPECT_GT(summary.at("round_latency_us_p99").get<double>(),
-            summary.at("round_latency_us_p50").get<double>() * 0.999);
+  // Every round was timed: latencies are positive and bounded by the slowest round.
+  EXPECT_GT(summary.at("round_latency_us_p50").get<double>(), 0.0);
+  EXPECT_LE(summary.at("round_latency_us_p99").get<double>(),
+            summary.at("round_latency_us_max").get<double>());
   for (const char* key : {"rmse_central_m", "rmse_p2p_m", "round_latency_us_p50"}) {
     EXPECT_TRUE(summary.contains(key)) << key;
   }
