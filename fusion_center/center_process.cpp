@@ -126,6 +126,10 @@ class Center {
     const bool realtime = options_.realtime_deadline_ms > 0.0;
     const auto deadline = std::chrono::steady_clock::now() + options_.idle_timeout();
     while (true) {
+      if (const auto code =
+              transport::exit_code_if_duplicate(presence_, "a fusion center", options_.run_id)) {
+        return *code;
+      }
       wire::Tick tick;
       while (ticks_.take(tick)) {
         if (tick.run_id() != options_.run_id) continue;

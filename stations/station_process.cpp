@@ -134,6 +134,10 @@ class Station {
 
   // Drains both readers. Returns an exit code if the run must end, -1 otherwise.
   int drain(std::uint64_t k, bool& got_tick) {
+    if (const auto code = transport::exit_code_if_duplicate(
+            presence_, fmt::format("station {}", me_.id), options_.node.run_id)) {
+      return *code;
+    }
     wire::Tick tick;
     while (io_.ticks.take(tick)) {
       if (tick.run_id() != options_.node.run_id) continue;

@@ -81,6 +81,14 @@ JoinResult join_run(NodePresence& presence, const std::function<bool()>& all_mat
   return {JoinOutcome::kJoined, {}};
 }
 
+std::optional<int> exit_code_if_duplicate(NodePresence& presence, const std::string& who,
+                                          std::uint64_t run_id) {
+  if (auto twin = presence.find_older_twin()) {
+    return exit_code_unless_joined({JoinOutcome::kDuplicate, *twin}, presence, who, run_id, 0.0);
+  }
+  return std::nullopt;
+}
+
 std::optional<int> exit_code_unless_joined(const JoinResult& result, NodePresence& presence,
                                            const std::string& who, std::uint64_t run_id,
                                            double timeout_s) {

@@ -59,6 +59,12 @@ JoinResult join_run(NodePresence& presence, const std::function<bool()>& all_mat
                     const std::function<std::string()>& describe_missing,
                     std::chrono::milliseconds timeout);
 
+/// kExitDuplicateId, with the message, if an older process holding this id has announced itself
+/// by now; nullopt otherwise. Nodes call it while they wait, not only while joining: on a busy
+/// machine the older process's durable status can arrive after the join window.
+std::optional<int> exit_code_if_duplicate(NodePresence& presence, const std::string& who,
+                                          std::uint64_t run_id);
+
 /// Logs why joining failed, in the words a user needs, and returns the process exit code;
 /// nullopt when the node joined. `who` names the node: "station 3", "a fusion center".
 std::optional<int> exit_code_unless_joined(const JoinResult& result, NodePresence& presence,
