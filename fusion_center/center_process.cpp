@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "skyfuse/tracking/central_tracker.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/node_presence.hpp"
+#include "skyfuse/transport/realtime_schedule.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 
@@ -139,27 +141,19 @@ class Center {
           return transport::kExitOk;
         }
       }
-      if (realtime && epoch_ns_ != 0) {
-        const double close_ns = (static_cast<double>(k) * plan_.scenario.time_step_s * 1e9) +
-                                options_.realtime_deadline_ms * 1e6;
-        const auto close = std::chrono::system_clock::time_point(std::chrono::nanoseconds(
-            epoch_ns_ + static_cast<std::uint64_t>(std::llround(close_ns))));
-        if (std::chrono::system_clock::now() >= close) {
-          wire::Measurement late;
-          while (measurements_.take(late)) {
-            if (late.run_id() == options_.run_id) {
-              collector_.offer(late.step(), late.station_id(), transport::from_wire(late));
-            }
-          }
-          return -1;
-        }
-      }
       wire::Measurement sample;
       while (measurements_.take(sample)) {
         if (sample.run_id() != options_.run_id) continue;
         collector_.offer(sample.step(), sample.station_id(), transport::from_wire(sample));
       }
       if (collector_.complete()) return -1;
+      // Real time: the round closes at its deadline with what has arrived.
+      std::optional<std::chrono::system_clock::time_point> close;
+      if (realtime && epoch_ns_ != 0) {
+        close = transport::step_start(epoch_ns_, k, plan_.scenario.time_step_s) +
+                std::chrono::microseconds(std::llround(options_.realtime_deadline_ms * 1000.0));
+        if (std::chrono::system_clock::now() >= *close) return -1;
+      }
       if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
       if (std::chrono::steady_clock::now() >= deadline) {
         const std::string detail =
@@ -170,13 +164,9 @@ class Center {
         return transport::kExitIdleTimeout;
       }
       auto slice = std::chrono::duration_cast<std::chrono::microseconds>(kPollSlice);
-      if (realtime && epoch_ns_ != 0) {
-        const double close_ns = (static_cast<double>(k) * plan_.scenario.time_step_s * 1e9) +
-                                options_.realtime_deadline_ms * 1e6;
-        const auto close = std::chrono::system_clock::time_point(std::chrono::nanoseconds(
-            epoch_ns_ + static_cast<std::uint64_t>(std::llround(close_ns))));
+      if (close) {  // never sleep past the deadline
         const auto left = std::chrono::duration_cast<std::chrono::microseconds>(
-            close - std::chrono::system_clock::now());
+            *close - std::chrono::system_clock::now());
         slice =
             std::clamp(left + std::chrono::microseconds(1), std::chrono::microseconds(1), slice);
       }

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/realtime_schedule.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 
 namespace skyfuse::harness {
@@ -216,9 +217,7 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
       if (p.have[i]) continue;
       p.have[i] = true;
       ++p.tracks;
-      const auto scheduled =
-          epoch +
-          std::chrono::nanoseconds(std::llround(static_cast<double>(t.step()) * time_step_s * 1e9));
+      const auto scheduled = transport::step_start(epoch_ns, t.step(), time_step_s);
       p.record.track_age_us[i] =
           std::chrono::duration<double, std::micro>(std::chrono::system_clock::now() - scheduled)
               .count();

@@ -6,9 +6,7 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <random>
-#include <sstream>
 
 #include "child_processes.hpp"
 #include "lockstep_driver.hpp"
@@ -24,18 +22,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string read_scenario_text(const std::string& path) {
-  if (path.empty()) return std::string(default_scenario_yaml());
-  std::ifstream in(path);
-  if (!in) throw ConfigError(fmt::format("{}: cannot open scenario file", path));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+// The embedded default, or the file: the nodes read exactly this text from the results folder.
+std::string scenario_text(const std::string& path) {
+  return path.empty() ? std::string(default_scenario_yaml()) : read_scenario_text(path);
 }
 
-RunPlan plan_from(const std::string& scenario_text, const std::string& source,
+RunPlan plan_from(const std::string& text, const std::string& source,
                   const RunOverrides& overrides) {
-  return make_run_plan(parse_scenario(scenario_text, source), overrides);
+  return make_run_plan(parse_scenario(text, source), overrides);
 }
 
 std::uint64_t fresh_run_id() {
@@ -130,7 +124,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
   std::filesystem::create_directories(out);
   // The processes read the very file saved with the results: what ran is what is on disk.
   const std::filesystem::path scenario_file = std::filesystem::absolute(out / "scenario.yaml");
-  write_file_atomically(scenario_file, read_scenario_text(o.scenario_path));
+  write_file_atomically(scenario_file, scenario_text(o.scenario_path));
 
   const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
   std::vector<int> ids;
@@ -216,7 +210,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
 
 int run_run(const RunOptions& o) {
   const RunPlan plan = plan_from(
-      read_scenario_text(o.scenario_path),
+      scenario_text(o.scenario_path),
       o.scenario_path.empty() ? "<embedded paper000.yaml>" : o.scenario_path, o.overrides);
   const RunSummary summary = execute_run(o, plan);
   print_run_table(summary, stdout);

@@ -44,7 +44,6 @@ class RunRecorder {
  public:
   RunRecorder(const RunPlan& plan, std::vector<int> station_ids);
   void add(RoundRecord round);
-  const std::vector<RoundRecord>& rounds() const { return rounds_; }
 
   RunSummary summarise(double discovery_s, double rounds_elapsed_s) const;
   void write(const std::filesystem::path& dir, const RunSummary& summary,

@@ -12,6 +12,7 @@
 #include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/node_presence.hpp"
+#include "skyfuse/transport/realtime_schedule.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 
@@ -189,9 +190,7 @@ class Station {
   }
 
   std::chrono::system_clock::time_point step_start(std::uint64_t k) const {
-    const double offset_ns = static_cast<double>(k) * plan_.scenario.time_step_s * 1e9;
-    return std::chrono::system_clock::time_point(
-        std::chrono::nanoseconds(epoch_ns_ + static_cast<std::uint64_t>(std::llround(offset_ns))));
+    return transport::step_start(epoch_ns_, k, plan_.scenario.time_step_s);
   }
   std::chrono::microseconds deadline() const {
     return std::chrono::microseconds(std::llround(options_.node.realtime_deadline_ms * 1000.0));

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
-#include <thread>
 
 namespace skyfuse::transport {
 
@@ -35,15 +34,6 @@ DdsNode::~DdsNode() {
   if (participant_ == nullptr) return;
   participant_->delete_contained_entities();
   dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
-}
-
-bool wait_until(const std::function<bool()>& ready, std::chrono::milliseconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (!ready()) {
-    if (std::chrono::steady_clock::now() >= deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return true;
 }
 
 }  // namespace skyfuse::transport

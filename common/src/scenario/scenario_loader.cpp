@@ -250,12 +250,16 @@ Scenario parse_scenario(std::string_view yaml_text, const std::string& source) {
   return scenario;
 }
 
-Scenario load_scenario_file(const std::filesystem::path& path) {
+std::string read_scenario_text(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) throw ConfigError(fmt::format("{}: cannot open scenario file", path.string()));
   std::ostringstream text;
   text << in.rdbuf();
-  return parse_scenario(text.str(), path.string());
+  return text.str();
+}
+
+Scenario load_scenario_file(const std::filesystem::path& path) {
+  return parse_scenario(read_scenario_text(path), path.string());
 }
 
 Scenario load_default_scenario() {

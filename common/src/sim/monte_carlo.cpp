@@ -9,7 +9,6 @@
 #include <mutex>
 #include <thread>
 
-#include "skyfuse/metrics/nees.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/tracking/central_tracker.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"

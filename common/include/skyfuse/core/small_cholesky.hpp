@@ -28,7 +28,7 @@ class SmallCholesky {
     l_ = a;
     for (int k = 0; k < N; ++k) {
       const double d = l_(k, k);
-      if (!(d > 0.0) || !std::isfinite(d)) return ok_ = false;
+      if (!(d > 0.0) || !std::isfinite(d)) return false;
       const double pivot = std::sqrt(d);
       inv_diag_(k) = 1.0 / pivot;
       l_(k, k) = pivot;
@@ -38,9 +38,8 @@ class SmallCholesky {
         for (int i = j; i < N; ++i) l_(i, j) -= l_(i, k) * ljk;
       }
     }
-    return ok_ = true;
+    return true;
   }
-  bool ok() const { return ok_; }
 
   /// x with A x = b.
   Vector<N> solve(const Vector<N>& b) const {
@@ -84,7 +83,6 @@ class SmallCholesky {
  private:
   Covariance<N> l_ = Covariance<N>::Zero();  // lower triangle holds L
   Vector<N> inv_diag_ = Vector<N>::Zero();   // 1 / L(k, k): divisions are slow, and many
-  bool ok_ = false;
 };
 
 }  // namespace skyfuse

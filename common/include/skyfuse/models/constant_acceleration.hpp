@@ -37,9 +37,7 @@ class ConstantAcceleration3D {
   Covariance<kDim> propagate_covariance(const Covariance<kDim>& p) const;
   /// dF/dx; the model is linear, so this is F wherever it is evaluated.
   const Covariance<kDim>& jacobian(const State& /*x*/) const { return transition_; }
-  const Covariance<kDim>& transition_matrix() const { return transition_; }
   const Covariance<kDim>& process_noise() const { return process_noise_; }
-  double time_step() const { return time_step_s_; }
 
  private:
   double time_step_s_;

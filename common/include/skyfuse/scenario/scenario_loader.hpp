@@ -21,6 +21,9 @@ class ConfigError : public std::runtime_error {
 /// Parses YAML text; `source` names it in error messages (a file name, or "<embedded>").
 Scenario parse_scenario(std::string_view yaml_text, const std::string& source);
 
+/// The text of a scenario file; a missing or unreadable file is a ConfigError.
+std::string read_scenario_text(const std::filesystem::path& path);
+
 /// Reads and parses a file; a missing or unreadable file is a ConfigError too.
 Scenario load_scenario_file(const std::filesystem::path& path);
 

@@ -38,8 +38,6 @@ class StepCollector {
     }
   }
 
-  std::uint64_t step() const { return step_; }
-
   /// Offers a sample; true if it was kept.
   bool offer(std::uint64_t step, int station_id, const Payload& payload) {
     Row* row = nullptr;

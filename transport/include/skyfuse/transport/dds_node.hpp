@@ -168,7 +168,4 @@ class DdsNode {
   std::map<std::string, dds::Topic*> topics_;
 };
 
-/// Polls `ready` until it holds or `timeout` passes; true if it held.
-bool wait_until(const std::function<bool()>& ready, std::chrono::milliseconds timeout);
-
 }  // namespace skyfuse::transport

@@ -27,7 +27,6 @@ class NodePresence {
   /// this node's id in this run, if one was seen: this process is then the duplicate.
   std::optional<std::string> find_older_twin();
 
-  int matched_status_writers() const { return reader_.matched(); }
   std::uint64_t instance() const { return instance_; }
 
  private:
