@@ -23,12 +23,6 @@ using namespace std::chrono_literals;
 
 constexpr auto kPollSlice = 50ms;
 
-std::vector<int> participant_ids(const RunPlan& plan) {
-  std::vector<int> ids;
-  for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
-  return ids;
-}
-
 class Center {
  public:
   Center(const transport::NodeOptions& options, const RunPlan& plan)
@@ -42,7 +36,7 @@ class Center {
         tracker_(
             ConstantAcceleration3D(plan.scenario.time_step_s, plan.scenario.filter.process_noise),
             initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run)),
-        collector_(participant_ids(plan)),
+        collector_(plan.participant_ids()),
         observations_(static_cast<std::size_t>(plan.stations)) {
     partial_.reserve(observations_.size());
     partial_ids_.reserve(observations_.size());

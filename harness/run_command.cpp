@@ -127,8 +127,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
   write_file_atomically(scenario_file, scenario_text(o.scenario_path));
 
   const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
-  std::vector<int> ids;
-  for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
+  const std::vector<int> ids = plan.participant_ids();
 
   ChildProcesses children;
   const auto check = [&] {

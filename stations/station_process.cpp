@@ -57,7 +57,7 @@ class Station {
         tracker_(
             ConstantAcceleration3D(plan.scenario.time_step_s, plan.scenario.filter.process_noise),
             initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run)),
-        collector_(participant_ids(plan)),
+        collector_(plan.participant_ids()),
         sensor_(me.position_m),
         noise_(station_noise_covariance(plan.scenario, me, plan.mc_run)) {
     // Weights in the collector's (ascending id) order.
@@ -127,12 +127,6 @@ class Station {
   }
 
  private:
-  static std::vector<int> participant_ids(const RunPlan& plan) {
-    std::vector<int> ids;
-    for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
-    return ids;
-  }
-
   // Drains both readers. Returns an exit code if the run must end, -1 otherwise.
   int drain(std::uint64_t k, bool& got_tick) {
     if (const auto code = transport::exit_code_if_duplicate(
@@ -283,11 +277,9 @@ int run_station(const StationOptions& options) {
   const RunPlan plan = options.node.load_plan();
   const StationConfig* me = plan.participant(options.id);
   if (me == nullptr) {
-    std::vector<int> ids;
-    for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
     throw std::invalid_argument(fmt::format(
         "--id: station {} is not one of the {} participating stations of scenario '{}' (ids {})",
-        options.id, plan.stations, plan.scenario.name, fmt::join(ids, ", ")));
+        options.id, plan.stations, plan.scenario.name, fmt::join(plan.participant_ids(), ", ")));
   }
   std::unique_ptr<SensorSource> source;
   if (options.replay_path.empty()) {

@@ -15,6 +15,12 @@ const StationConfig* RunPlan::participant(int station_id) const {
   return nullptr;
 }
 
+std::vector<int> RunPlan::participant_ids() const {
+  std::vector<int> ids;
+  for (const StationConfig& s : participants()) ids.push_back(s.id);
+  return ids;
+}
+
 RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
   RunPlan plan;
   const int available = static_cast<int>(scenario.stations.size());

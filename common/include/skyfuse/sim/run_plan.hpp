@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/scenario/truth.hpp"
@@ -23,6 +24,8 @@ struct RunPlan {
   std::span<const StationConfig> participants() const {
     return std::span(scenario.stations).first(static_cast<std::size_t>(stations));
   }
+  /// Ids of the participants, in scenario order.
+  std::vector<int> participant_ids() const;
   /// The participant with this id, or nullptr.
   const StationConfig* participant(int station_id) const;
   TruthTrajectory truth() const {
