@@ -58,16 +58,17 @@ int run_sweep(const SweepOptions& options) {
   const std::filesystem::path out_dir(options.out_dir);
   std::filesystem::create_directories(out_dir);
 
-  const long total =
-      static_cast<long>(scenario.target.speeds_mps.size()) * max_stations * options.runs;
+  // Runs outermost: one run simulates its measurements once for every M.
+  std::vector<int> counts(static_cast<std::size_t>(max_stations));
+  for (int m = 1; m <= max_stations; ++m) counts[static_cast<std::size_t>(m - 1)] = m;
+  const long total = static_cast<long>(scenario.target.speeds_mps.size()) * options.runs;
   Progress progress("sweep", total);
   std::vector<MonteCarloSummary> rows;
   for (double speed : scenario.target.speeds_mps) {
-    for (int m = 1; m <= max_stations; ++m) {
-      progress.set_stage(fmt::format("M={} {:.0f} km/h", m, speed * 3.6));
-      rows.push_back(run_monte_carlo(scenario, {m, speed, options.runs, threads},
-                                     [&] { progress.advance(); }));
-    }
+    progress.set_stage(fmt::format("M=1..{} {:.0f} km/h", max_stations, speed * 3.6));
+    const std::vector<MonteCarloSummary> per_m = run_monte_carlo(
+        scenario, {counts, speed, options.runs, threads}, [&] { progress.advance(); });
+    rows.insert(rows.end(), per_m.begin(), per_m.end());
   }
   progress.finish();
 

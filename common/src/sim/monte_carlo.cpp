@@ -7,6 +7,7 @@
 #include <cmath>
 #include <exception>
 #include <mutex>
+#include <span>
 #include <thread>
 
 #include "skyfuse/scenario/measurement_simulation.hpp"
@@ -15,82 +16,144 @@
 
 namespace skyfuse {
 
-RunTrace simulate_run(const Scenario& scenario, const TruthTrajectory& truth, int stations,
-                      std::uint64_t run, const StepObserver& observer) {
-  const auto m = static_cast<std::size_t>(stations);
-  const ConstantAcceleration3D motion(scenario.time_step_s, scenario.filter.process_noise);
-  const GaussianState<9> initial = initial_estimate(scenario, truth.states.front(), run);
-  CentralTracker central(motion, initial);
-  PeerTracker peers(motion, initial);
+namespace {
 
-  // Everything sized once per run: the step loop allocates nothing.
-  std::vector<StationObservation9> observations(m);
-  std::vector<Increment9> increments(m);
-  std::vector<double> weights(m);
-  for (std::size_t i = 0; i < m; ++i) {
-    const StationConfig& station = scenario.stations[i];
-    observations[i].station_id = station.id;
-    observations[i].sensor = StationSensor(station.position_m);
-    observations[i].noise = station_noise_covariance(scenario, station, run);
-    weights[i] = station.weight;
+// One station count's pair of trackers stepping through one run. Measurements come from
+// outside, indexed like scenario.stations, so that several station counts can share one
+// simulation of them: station i's draw does not depend on how many stations run.
+class RunStepper {
+ public:
+  RunStepper(const Scenario& scenario, const TruthTrajectory& truth, int stations,
+             std::uint64_t run)
+      : motion_(scenario.time_step_s, scenario.filter.process_noise),
+        central_(motion_, initial_estimate(scenario, truth.states.front(), run)),
+        peers_(motion_, initial_estimate(scenario, truth.states.front(), run)) {
+    const auto m = static_cast<std::size_t>(stations);
+    // Everything sized once per run: the step loop allocates nothing.
+    observations_.resize(m);
+    increments_.resize(m);
+    for (std::size_t i = 0; i < m; ++i) {
+      const StationConfig& station = scenario.stations[i];
+      observations_[i].station_id = station.id;
+      observations_[i].sensor = StationSensor(station.position_m);
+      observations_[i].noise = station_noise_covariance(scenario, station, run);
+    }
+    // Fusion sums in ascending station id whatever order the scenario lists them in.
+    order_.resize(m);
+    for (std::size_t i = 0; i < m; ++i) order_[i] = i;
+    std::sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) {
+      return observations_[a].station_id < observations_[b].station_id;
+    });
+    ordered_weights_.resize(m);
+    for (std::size_t j = 0; j < m; ++j) ordered_weights_[j] = scenario.stations[order_[j]].weight;
+
+    const auto steps = static_cast<std::size_t>(scenario.steps);
+    trace_.sq_error_central.resize(steps);
+    trace_.sq_error_p2p.resize(steps);
+    trace_.nees_p2p.resize(steps);
+    trace_.nis_central.resize(steps);
   }
-  // Fusion sums in ascending station id whatever order the scenario lists them in.
-  std::vector<std::size_t> order(m);
-  for (std::size_t i = 0; i < m; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return observations[a].station_id < observations[b].station_id;
-  });
-  std::vector<double> ordered_weights(m);
-  for (std::size_t j = 0; j < m; ++j) ordered_weights[j] = weights[order[j]];
 
-  const auto steps = static_cast<std::size_t>(scenario.steps);
-  RunTrace trace;
-  trace.sq_error_central.resize(steps);
-  trace.sq_error_p2p.resize(steps);
-  trace.nees_p2p.resize(steps);
-  trace.nis_central.resize(steps);
+  const std::vector<StationObservation9>& observations() const { return observations_; }
 
-  for (std::size_t k = 0; k < steps; ++k) {
-    const Vector<9>& x = truth.states[k];
-    for (std::size_t j = 0; j < m; ++j) {
-      StationObservation9& obs = observations[order[j]];
-      obs.z = simulate_measurement(obs.sensor, x.head<3>(), obs.noise, scenario.seed, run,
-                                   obs.station_id, k);
+  // Updates both trackers with step k's measurements (z[i] belongs to scenario.stations[i]),
+  // records, then predicts to k + 1.
+  void step(std::size_t k, const Vector<9>& x, std::span<const Vector3> z,
+            const StepObserver& observer) {
+    for (std::size_t j = 0; j < order_.size(); ++j) {
+      StationObservation9& obs = observations_[order_[j]];
+      obs.z = z[order_[j]];
       const NumericalStatus status =
-          peers.make_increment(obs.station_id, obs.sensor, obs.z, obs.noise, increments[j]);
+          peers_.make_increment(obs.station_id, obs.sensor, obs.z, obs.noise, increments_[j]);
       if (status != NumericalStatus::kOk) {
         throw NumericalError(fmt::format("p2p: step {}, station {}: increment failed: {}", k,
                                          obs.station_id, to_string(status)));
       }
     }
-    const UpdateReport central_report = central.update(observations);
+    const UpdateReport central_report = central_.update(observations_);
     if (central_report.status != NumericalStatus::kOk) {
       throw NumericalError(fmt::format("central: step {}: stacked update failed: {}", k,
                                        to_string(central_report.status)));
     }
-    const NumericalStatus fused = peers.fuse(increments, ordered_weights);
+    const NumericalStatus fused = peers_.fuse(increments_, ordered_weights_);
     if (fused != NumericalStatus::kOk) {
       throw NumericalError(fmt::format("p2p: step {}: fusion failed: {}", k, to_string(fused)));
     }
 
     const Vector3 p = x.head<3>();
-    const Vector3 p_central = central.estimate().mean.head<3>();
-    const Vector3 p_p2p = peers.estimate().mean.head<3>();
-    trace.sq_error_central[k] = (p - p_central).squaredNorm();
-    trace.sq_error_p2p[k] = (p - p_p2p).squaredNorm();
+    const Vector3 p_central = central_.estimate().mean.head<3>();
+    const Vector3 p_p2p = peers_.estimate().mean.head<3>();
+    trace_.sq_error_central[k] = (p - p_central).squaredNorm();
+    trace_.sq_error_p2p[k] = (p - p_p2p).squaredNorm();
     // P^-1 is the fused information matrix the peers hold anyway: e^T Y e.
-    const Vector<9> error = x - peers.estimate().mean;
-    trace.nees_p2p[k] = error.dot(peers.information() * error);
-    trace.nis_central[k] = central_report.nis;
-    trace.max_abs_diff_m = std::max(trace.max_abs_diff_m, (p_central - p_p2p).norm());
+    const Vector<9> error = x - peers_.estimate().mean;
+    trace_.nees_p2p[k] = error.dot(peers_.information() * error);
+    trace_.nis_central[k] = central_report.nis;
+    trace_.max_abs_diff_m = std::max(trace_.max_abs_diff_m, (p_central - p_p2p).norm());
     if (observer) {
-      observer({static_cast<int>(k), x, central.estimate(), peers.estimate(), central_report.nis});
+      observer(
+          {static_cast<int>(k), x, central_.estimate(), peers_.estimate(), central_report.nis});
     }
-
-    central.predict();
-    peers.predict();
+    central_.predict();
+    peers_.predict();
   }
-  return trace;
+
+  RunTrace take_trace() { return std::move(trace_); }
+
+ private:
+  ConstantAcceleration3D motion_;
+  CentralTracker central_;
+  PeerTracker peers_;
+  std::vector<StationObservation9> observations_;  // scenario order
+  std::vector<Increment9> increments_;             // ascending station id
+  std::vector<std::size_t> order_;                 // ascending id -> scenario index
+  std::vector<double> ordered_weights_;
+  RunTrace trace_;
+};
+
+// One run for each of `station_counts`, all fed from one simulation of the measurements of the
+// largest count's stations.
+std::vector<RunTrace> simulate_runs(const Scenario& scenario, const TruthTrajectory& truth,
+                                    std::span<const int> station_counts, std::uint64_t run,
+                                    const StepObserver& observer = {}) {
+  std::vector<RunStepper> steppers;
+  steppers.reserve(station_counts.size());
+  for (int m : station_counts) steppers.emplace_back(scenario, truth, m, run);
+  // The stepper with the most stations knows every station that is simulated.
+  const auto most = static_cast<std::size_t>(
+      std::max_element(station_counts.begin(), station_counts.end()) - station_counts.begin());
+  const std::vector<StationObservation9>& stations = steppers[most].observations();
+  std::vector<Vector3> z(stations.size());
+
+  const auto steps = static_cast<std::size_t>(scenario.steps);
+  for (std::size_t k = 0; k < steps; ++k) {
+    const Vector<9>& x = truth.states[k];
+    for (std::size_t i = 0; i < z.size(); ++i) {
+      z[i] = simulate_measurement(stations[i].sensor, x.head<3>(), stations[i].noise, scenario.seed,
+                                  run, stations[i].station_id, k);
+    }
+    for (RunStepper& stepper : steppers) stepper.step(k, x, z, observer);
+  }
+  std::vector<RunTrace> traces;
+  traces.reserve(steppers.size());
+  for (RunStepper& stepper : steppers) traces.push_back(stepper.take_trace());
+  return traces;
+}
+
+void check_station_count(const Scenario& scenario, int stations) {
+  if (stations < 1 || stations > static_cast<int>(scenario.stations.size())) {
+    throw std::invalid_argument(
+        fmt::format("stations must be in [1, {}], got {}", scenario.stations.size(), stations));
+  }
+}
+
+}  // namespace
+
+RunTrace simulate_run(const Scenario& scenario, const TruthTrajectory& truth, int stations,
+                      std::uint64_t run, const StepObserver& observer) {
+  check_station_count(scenario, stations);
+  const int counts[] = {stations};
+  return std::move(simulate_runs(scenario, truth, counts, run, observer).front());
 }
 
 namespace {
@@ -123,35 +186,18 @@ void parallel_runs(int runs, int threads, const std::function<void(int)>& fn) {
 
 }  // namespace
 
-MonteCarloSummary run_monte_carlo(const Scenario& scenario, const MonteCarloSettings& settings,
-                                  const std::function<void()>& on_run_done) {
-  if (settings.stations < 1 || settings.stations > static_cast<int>(scenario.stations.size())) {
-    throw std::invalid_argument(fmt::format("stations must be in [1, {}], got {}",
-                                            scenario.stations.size(), settings.stations));
-  }
-  if (settings.runs < 1) throw std::invalid_argument("runs must be >= 1");
+namespace {
 
-  const TruthTrajectory truth =
-      generate_truth(scenario.target, settings.speed_mps, scenario.time_step_s, scenario.steps);
-  std::vector<RunTrace> traces(static_cast<std::size_t>(settings.runs));
-  std::mutex progress_mutex;
-  parallel_runs(settings.runs, settings.threads, [&](int run) {
-    traces[static_cast<std::size_t>(run)] =
-        simulate_run(scenario, truth, settings.stations, static_cast<std::uint64_t>(run));
-    if (on_run_done) {
-      const std::lock_guard lock(progress_mutex);
-      on_run_done();
-    }
-  });
-
-  // Reduce in run order: the same bits whatever the thread count.
+// Reduces one station count's traces in run order: the same bits whatever the thread count.
+MonteCarloSummary summarise(const std::vector<RunTrace>& traces, int stations, double speed_mps,
+                            int steps_in_run) {
   MonteCarloSummary s;
-  s.stations = settings.stations;
-  s.speed_mps = settings.speed_mps;
-  s.runs = settings.runs;
-  s.steps = scenario.steps;
-  s.anees_band = average_chi_square_band(9, settings.runs);
-  const auto steps = static_cast<std::size_t>(scenario.steps);
+  s.stations = stations;
+  s.speed_mps = speed_mps;
+  s.runs = static_cast<int>(traces.size());
+  s.steps = steps_in_run;
+  s.anees_band = average_chi_square_band(9, s.runs);
+  const auto steps = static_cast<std::size_t>(steps_in_run);
   double sum_sq_central = 0.0;
   double sum_sq_p2p = 0.0;
   double sum_nis = 0.0;
@@ -168,17 +214,52 @@ MonteCarloSummary run_monte_carlo(const Scenario& scenario, const MonteCarloSett
   for (std::size_t k = 0; k < steps; ++k) {
     double sum = 0.0;
     for (const RunTrace& t : traces) sum += t.nees_p2p[k];
-    const double anees_k = sum / settings.runs;
+    const double anees_k = sum / s.runs;
     sum_anees += anees_k;
     if (s.anees_band.contains(anees_k)) ++in_band;
   }
-  const double samples = static_cast<double>(settings.runs) * static_cast<double>(steps);
+  const double samples = static_cast<double>(s.runs) * static_cast<double>(steps);
   s.rmse_central_m = std::sqrt(sum_sq_central / samples);
   s.rmse_p2p_m = std::sqrt(sum_sq_p2p / samples);
   s.anees = sum_anees / static_cast<double>(steps);
   s.anees_steps_in_band = in_band / static_cast<double>(steps);
-  s.anis_per_dof = sum_nis / samples / (3.0 * settings.stations);
+  s.anis_per_dof = sum_nis / samples / (3.0 * stations);
   return s;
+}
+
+}  // namespace
+
+std::vector<MonteCarloSummary> run_monte_carlo(const Scenario& scenario,
+                                               const MonteCarloSettings& settings,
+                                               const std::function<void()>& on_run_done) {
+  if (settings.stations.empty()) throw std::invalid_argument("no station count given");
+  for (int m : settings.stations) check_station_count(scenario, m);
+  if (settings.runs < 1) throw std::invalid_argument("runs must be >= 1");
+
+  const TruthTrajectory truth =
+      generate_truth(scenario.target, settings.speed_mps, scenario.time_step_s, scenario.steps);
+  // by_count[c][run]: the trace of station count c in run `run`.
+  std::vector<std::vector<RunTrace>> by_count(
+      settings.stations.size(), std::vector<RunTrace>(static_cast<std::size_t>(settings.runs)));
+  std::mutex progress_mutex;
+  parallel_runs(settings.runs, settings.threads, [&](int run) {
+    std::vector<RunTrace> traces =
+        simulate_runs(scenario, truth, settings.stations, static_cast<std::uint64_t>(run));
+    for (std::size_t c = 0; c < traces.size(); ++c) {
+      by_count[c][static_cast<std::size_t>(run)] = std::move(traces[c]);
+    }
+    if (on_run_done) {
+      const std::lock_guard lock(progress_mutex);
+      on_run_done();
+    }
+  });
+
+  std::vector<MonteCarloSummary> summaries;
+  for (std::size_t c = 0; c < by_count.size(); ++c) {
+    summaries.push_back(
+        summarise(by_count[c], settings.stations[c], settings.speed_mps, scenario.steps));
+  }
+  return summaries;
 }
 
 }  // namespace skyfuse

@@ -27,7 +27,7 @@ TEST(MonteCarlo, ReproducesThePapersRmseBoundForThreeOrMoreStations) {
   const Scenario scenario = load_default_scenario();
   for (double speed : scenario.target.speeds_mps) {
     for (int m : {3, 4}) {
-      const MonteCarloSummary s = run_monte_carlo(scenario, {m, speed, 20, 2});
+      const MonteCarloSummary s = run_monte_carlo(scenario, {{m}, speed, 20, 2}).front();
       EXPECT_LT(s.rmse_central_m, 0.3) << "M = " << m << ", " << speed * 3.6 << " km/h";
       EXPECT_LT(s.rmse_p2p_m, 0.3) << "M = " << m << ", " << speed * 3.6 << " km/h";
       EXPECT_LT(s.max_abs_diff_m, 1e-6);
@@ -38,7 +38,8 @@ TEST(MonteCarlo, ReproducesThePapersRmseBoundForThreeOrMoreStations) {
 TEST(MonteCarlo, OneStationCannotReachTheBound) {
   // The sweep must be able to show a failure: one station's 0.01 rad angles are metres wide.
   const Scenario scenario = load_default_scenario();
-  const MonteCarloSummary s = run_monte_carlo(scenario, {1, scenario.target.speeds_mps[0], 5, 2});
+  const MonteCarloSummary s =
+      run_monte_carlo(scenario, {{1}, scenario.target.speeds_mps[0], 5, 2}).front();
   EXPECT_GT(s.rmse_p2p_m, 1.0);
 }
 
@@ -46,28 +47,47 @@ TEST(MonteCarlo, ResultDoesNotDependOnTheThreadCount) {
   Scenario scenario = load_default_scenario();
   scenario.steps = 300;
   const double speed = scenario.target.speeds_mps[1];
-  const MonteCarloSummary one = run_monte_carlo(scenario, {4, speed, 6, 1});
-  const MonteCarloSummary three = run_monte_carlo(scenario, {4, speed, 6, 3});
+  const MonteCarloSummary one = run_monte_carlo(scenario, {{4}, speed, 6, 1}).front();
+  const MonteCarloSummary three = run_monte_carlo(scenario, {{4}, speed, 6, 3}).front();
   EXPECT_EQ(one.rmse_central_m, three.rmse_central_m);
   EXPECT_EQ(one.rmse_p2p_m, three.rmse_p2p_m);
   EXPECT_EQ(one.anees, three.anees);
   EXPECT_EQ(one.max_abs_diff_m, three.max_abs_diff_m);
 }
 
+TEST(MonteCarlo, StationCountsRunTogetherEqualEachRunAlone) {
+  // The sweep simulates each run's measurements once for every M; each M must still get
+  // exactly the numbers it gets on its own.
+  Scenario scenario = load_default_scenario();
+  scenario.steps = 300;
+  const double speed = scenario.target.speeds_mps[1];
+  const std::vector<MonteCarloSummary> together =
+      run_monte_carlo(scenario, {{5, 2, 9}, speed, 3, 2});
+  ASSERT_EQ(together.size(), 3U);
+  for (const MonteCarloSummary& t : together) {
+    const MonteCarloSummary alone = run_monte_carlo(scenario, {{t.stations}, speed, 3, 1}).front();
+    EXPECT_EQ(t.rmse_central_m, alone.rmse_central_m) << "M = " << t.stations;
+    EXPECT_EQ(t.rmse_p2p_m, alone.rmse_p2p_m) << "M = " << t.stations;
+    EXPECT_EQ(t.anees, alone.anees) << "M = " << t.stations;
+    EXPECT_EQ(t.anis_per_dof, alone.anis_per_dof) << "M = " << t.stations;
+  }
+  EXPECT_NE(together[0].rmse_p2p_m, together[1].rmse_p2p_m);
+}
+
 TEST(MonteCarlo, DifferentSeedsGiveDifferentResults) {
   Scenario scenario = load_default_scenario();
   scenario.steps = 200;
   const double speed = scenario.target.speeds_mps[0];
-  const MonteCarloSummary a = run_monte_carlo(scenario, {3, speed, 4, 1});
+  const MonteCarloSummary a = run_monte_carlo(scenario, {{3}, speed, 4, 1}).front();
   scenario.seed += 1;
-  const MonteCarloSummary b = run_monte_carlo(scenario, {3, speed, 4, 1});
+  const MonteCarloSummary b = run_monte_carlo(scenario, {{3}, speed, 4, 1}).front();
   EXPECT_NE(a.rmse_p2p_m, b.rmse_p2p_m);
 }
 
 TEST(MonteCarlo, RefusesMoreStationsThanTheScenarioHas) {
   const Scenario scenario = load_default_scenario();
-  EXPECT_THROW(run_monte_carlo(scenario, {11, 10.0, 1, 1}), std::invalid_argument);
-  EXPECT_THROW(run_monte_carlo(scenario, {0, 10.0, 1, 1}), std::invalid_argument);
+  EXPECT_THROW(run_monte_carlo(scenario, {{11}, 10.0, 1, 1}), std::invalid_argument);
+  EXPECT_THROW(run_monte_carlo(scenario, {{0}, 10.0, 1, 1}), std::invalid_argument);
 }
 
 }  // namespace

@@ -47,7 +47,9 @@ RunTrace simulate_run(const Scenario& scenario, const TruthTrajectory& truth, in
                       std::uint64_t run, const StepObserver& observer = {});
 
 struct MonteCarloSettings {
-  int stations = 1;
+  /// Station counts M to evaluate (each uses the first M stations). All counts of one run see
+  /// the same measurements, simulated once.
+  std::vector<int> stations = {1};
   double speed_mps = 0.0;
   int runs = 1;
   int threads = 1;
@@ -71,10 +73,12 @@ struct MonteCarloSummary {
   double anis_per_dof = 0.0;
 };
 
-/// Runs `settings.runs` runs, spread over `settings.threads` threads. Runs are reduced in run
-/// order, so the result does not depend on the thread count. `on_run_done` is called (from a
-/// worker, serialised) after each run.
-MonteCarloSummary run_monte_carlo(const Scenario& scenario, const MonteCarloSettings& settings,
-                                  const std::function<void()>& on_run_done = {});
+/// Runs `settings.runs` runs, spread over `settings.threads` threads; returns one summary per
+/// station count, in the order given. Runs are reduced in run order, so the result does not
+/// depend on the thread count. `on_run_done` is called (from a worker, serialised) after each
+/// run, which covers every station count.
+std::vector<MonteCarloSummary> run_monte_carlo(const Scenario& scenario,
+                                               const MonteCarloSettings& settings,
+                                               const std::function<void()>& on_run_done = {});
 
 }  // namespace skyfuse
