@@ -2,25 +2,21 @@
 /// \file
 /// Gathers one sample per participating station for the current step, in ascending station
 /// order, from samples that arrive in any order. Samples for the next step are kept (a fast
-/// peer may start step k+1 before this process has closed step k); anything else is dropped and
-/// counted: stale steps, steps too far ahead, unknown stations, second copies.
+/// peer may start step k+1 before this process has closed step k); anything else is refused,
+/// and offer() says why: stale step, step too far ahead, unknown station, second copy.
 ///
 /// No allocation after construction: two fixed rows of slots, swapped at each step.
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <vector>
 
-namespace skyfuse {
+#include "skyfuse/validation/drop_kind.hpp"
 
-struct CollectorDrops {
-  std::uint64_t stale_step = 0;
-  std::uint64_t future_step = 0;
-  std::uint64_t unknown_station = 0;
-  std::uint64_t duplicate = 0;
-};
+namespace skyfuse {
 
 template <typename Payload>
 class StepCollector {
@@ -38,31 +34,28 @@ class StepCollector {
     }
   }
 
-  /// Offers a sample; true if it was kept.
-  bool offer(std::uint64_t step, int station_id, const Payload& payload) {
+  /// Offers a sample; nothing if it was kept, else why it was refused.
+  std::optional<DropKind> offer(std::uint64_t step, int station_id, const Payload& payload) {
     Row* row = nullptr;
     if (step == step_) {
       row = &current_;
     } else if (step == step_ + 1) {
       row = &next_;
     } else {
-      ++(step < step_ ? drops_.stale_step : drops_.future_step);
-      return false;
+      return step < step_ ? DropKind::kStaleStep : DropKind::kFutureStep;
     }
     const auto it = std::lower_bound(ids_.begin(), ids_.end(), station_id);
     if (it == ids_.end() || *it != station_id) {
-      ++drops_.unknown_station;
-      return false;
+      return DropKind::kUnknownStation;
     }
     const auto index = static_cast<std::size_t>(it - ids_.begin());
     if (row->filled[index]) {
-      ++drops_.duplicate;
-      return false;
+      return DropKind::kDuplicate;
     }
     row->payloads[index] = payload;
     row->filled[index] = true;
     ++row->count;
-    return true;
+    return std::nullopt;
   }
 
   bool complete() const { return current_.count == ids_.size(); }
@@ -89,8 +82,6 @@ class StepCollector {
     ++step_;
   }
 
-  const CollectorDrops& drops() const { return drops_; }
-
  private:
   struct Row {
     std::vector<Payload> payloads;
@@ -101,7 +92,6 @@ class StepCollector {
   Row current_;
   Row next_;
   std::uint64_t step_ = 0;
-  CollectorDrops drops_;
 };
 
 }  // namespace skyfuse

@@ -1,0 +1,28 @@
+#pragma once
+/// \file
+/// Content checks a receiver applies to a sample before it may be fused: the checks that need
+/// no knowledge of the run (the run id, step window and station ids are checked by the
+/// receiver and its StepCollector). Each returns the first problem found, or nothing.
+
+#include <optional>
+
+#include "skyfuse/fusion/information_increment.hpp"
+#include "skyfuse/fusion/stacked_ekf.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
+
+namespace skyfuse {
+
+/// What a range/azimuth/elevation sensor can report: range in (0, kMaxRangeM], azimuth in
+/// [-pi, pi], elevation in [-pi/2, pi/2].
+inline constexpr double kMaxRangeM = 1.0e6;
+
+/// dQ and dy finite; dQ positive semi-definite (smallest eigenvalue >= -1e-9 times the
+/// largest magnitude: rounding in H^T R^-1 H is allowed, a negative direction is not).
+std::optional<DropKind> check_increment(const InformationIncrement<9>& increment);
+
+/// z, R and the station position finite; R positive definite; z within the sensor's range.
+std::optional<DropKind> check_observation(
+    const StationObservation<RangeAzimuthElevation<9>>& observation);
+
+}  // namespace skyfuse

@@ -1,0 +1,39 @@
+#include "skyfuse/tracking/step_collector.hpp"
+
+#include <gtest/gtest.h>
+
+namespace skyfuse {
+namespace {
+
+TEST(StepCollector, GathersInAscendingIdWhateverTheArrivalOrder) {
+  const int ids[] = {7, 2, 5};
+  StepCollector<int> c(ids);
+  EXPECT_EQ(c.offer(0, 5, 50), std::nullopt);
+  EXPECT_EQ(c.offer(0, 7, 70), std::nullopt);
+  EXPECT_FALSE(c.complete());
+  EXPECT_EQ(c.missing(), std::vector<int>{2});
+  EXPECT_EQ(c.offer(0, 2, 20), std::nullopt);
+  ASSERT_TRUE(c.complete());
+  EXPECT_EQ(std::vector<int>(c.payloads().begin(), c.payloads().end()),
+            (std::vector<int>{20, 50, 70}));
+}
+
+TEST(StepCollector, SaysWhyASampleIsRefused) {
+  const int ids[] = {1, 2};
+  StepCollector<int> c(ids);
+  c.advance();  // now at step 1
+  EXPECT_EQ(c.offer(0, 1, 0), DropKind::kStaleStep);
+  EXPECT_EQ(c.offer(3, 1, 0), DropKind::kFutureStep);
+  EXPECT_EQ(c.offer(1, 9, 0), DropKind::kUnknownStation);
+  EXPECT_EQ(c.offer(1, 2, 22), std::nullopt);
+  EXPECT_EQ(c.offer(1, 2, 99), DropKind::kDuplicate);
+  EXPECT_EQ(c.payloads()[1], 22);  // the first copy stays
+  // Step 2 is kept for later, not refused.
+  EXPECT_EQ(c.offer(2, 1, 31), std::nullopt);
+  c.advance();
+  EXPECT_TRUE(c.filled(0));
+  EXPECT_FALSE(c.filled(1));
+}
+
+}  // namespace
+}  // namespace skyfuse

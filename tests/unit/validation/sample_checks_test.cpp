@@ -1,0 +1,104 @@
+#include "skyfuse/validation/sample_checks.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+namespace skyfuse {
+namespace {
+
+using Observation = StationObservation<RangeAzimuthElevation<9>>;
+
+// A real increment: one station's range/azimuth/elevation about a prior.
+InformationIncrement<9> real_increment() {
+  GaussianState<9> prior;
+  prior.mean << -1200.0, -300.0, 450.0, 20.0, 5.0, 0.0, 0.0, 0.0, 0.0;
+  prior.covariance = Covariance<9>::Identity();
+  const RangeAzimuthElevation<9> sensor(Vector3(100.0, 200.0, 0.0));
+  const Vector3 z = sensor.predict(prior.mean);
+  const Covariance<3> noise = Vector3(1.0, 1e-4, 1e-4).asDiagonal();
+  InformationIncrement<9> out;
+  EXPECT_EQ(compute_increment(3, prior, sensor, z, noise, out), NumericalStatus::kOk);
+  return out;
+}
+
+Observation real_observation() {
+  Observation o;
+  o.station_id = 3;
+  o.sensor = RangeAzimuthElevation<9>(Vector3(100.0, 200.0, 0.0));
+  o.z = Vector3(1500.0, 2.5, 0.3);
+  o.noise = Vector3(1.0, 1e-4, 1e-4).asDiagonal();
+  return o;
+}
+
+TEST(SampleChecks, AcceptsARealIncrement) {
+  EXPECT_EQ(check_increment(real_increment()), std::nullopt);
+}
+
+TEST(SampleChecks, RefusesNonFiniteIncrements) {
+  InformationIncrement<9> nan_q = real_increment();
+  nan_q.delta_information(4, 7) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(check_increment(nan_q), DropKind::kNonFinite);
+  InformationIncrement<9> inf_y = real_increment();
+  inf_y.delta_vector(8) = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(check_increment(inf_y), DropKind::kNonFinite);
+}
+
+TEST(SampleChecks, RefusesAnIncrementWithANegativeDirection) {
+  InformationIncrement<9> bad = real_increment();
+  bad.delta_information(5, 5) = -1e-3;  // an information "loss" along vz
+  EXPECT_EQ(check_increment(bad), DropKind::kNotPositive);
+  // Negating a real one makes it negative semi-definite.
+  InformationIncrement<9> negated = real_increment();
+  negated.delta_information = -negated.delta_information;
+  EXPECT_EQ(check_increment(negated), DropKind::kNotPositive);
+}
+
+TEST(SampleChecks, AcceptsAZeroIncrement) {
+  // A station that saw nothing adds nothing: zero is positive semi-definite.
+  EXPECT_EQ(check_increment(InformationIncrement<9>{}), std::nullopt);
+}
+
+TEST(SampleChecks, AcceptsARealObservation) {
+  EXPECT_EQ(check_observation(real_observation()), std::nullopt);
+}
+
+TEST(SampleChecks, RefusesNonFiniteObservations) {
+  Observation z = real_observation();
+  z.z(1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(check_observation(z), DropKind::kNonFinite);
+  Observation r = real_observation();
+  r.noise(0, 2) = r.noise(2, 0) = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(check_observation(r), DropKind::kNonFinite);
+  Observation position = real_observation();
+  position.sensor = RangeAzimuthElevation<9>(Vector3(0.0, std::nan(""), 0.0));
+  EXPECT_EQ(check_observation(position), DropKind::kNonFinite);
+}
+
+TEST(SampleChecks, RefusesANoiseThatIsNotPositiveDefinite) {
+  Observation o = real_observation();
+  o.noise(2, 2) = 0.0;
+  EXPECT_EQ(check_observation(o), DropKind::kNotPositive);
+}
+
+TEST(SampleChecks, RefusesMeasurementsTheSensorCannotReport) {
+  for (const Vector3& z :
+       {Vector3(0.0, 0.1, 0.1), Vector3(-5.0, 0.1, 0.1), Vector3(2.0e6, 0.1, 0.1),
+        Vector3(100.0, 3.2, 0.1), Vector3(100.0, 0.1, 1.6), Vector3(100.0, 0.1, -1.6)}) {
+    Observation o = real_observation();
+    o.z = z;
+    EXPECT_EQ(check_observation(o), DropKind::kOutOfRange) << z.transpose();
+  }
+}
+
+TEST(DropKind, NamesAreDistinctSnakeCase) {
+  for (std::size_t i = 0; i < kDropKinds; ++i) {
+    const std::string_view name = to_string(static_cast<DropKind>(i));
+    EXPECT_FALSE(name.empty());
+    for (std::size_t j = 0; j < i; ++j) EXPECT_NE(name, to_string(static_cast<DropKind>(j)));
+  }
+  EXPECT_EQ(to_string(DropKind::kNisGate), "nis_gate");
+}
+
+}  // namespace
+}  // namespace skyfuse
