@@ -11,10 +11,13 @@
 
 #include "skyfuse/tracking/central_tracker.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"
 #include "skyfuse/transport/shutdown.hpp"
+#include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse::center {
 namespace {
@@ -109,8 +112,10 @@ class Center {
       tracker_.predict();
       collector_.advance();
     }
+    presence_.set_drops(drops_.counts());
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
     tracks_.wait_acknowledged(2s);
+    presence_.wait_delivered(2s);
     spdlog::info("finished {} steps", steps);
     return transport::kExitOk;
   }
@@ -128,7 +133,10 @@ class Center {
       }
       wire::Tick tick;
       while (ticks_.take(tick)) {
-        if (tick.run_id() != options_.run_id) continue;
+        if (tick.run_id() != options_.run_id) {
+          transport::count_drop(drops_, DropKind::kWrongRun, "tick", 0, tick.step());
+          continue;
+        }
         if (tick.epoch_ns() != 0) epoch_ns_ = tick.epoch_ns();
         if (tick.stop()) {
           spdlog::info("stopped by the harness at step {}", k);
@@ -136,9 +144,11 @@ class Center {
         }
       }
       wire::Measurement sample;
-      while (measurements_.take(sample)) {
-        if (sample.run_id() != options_.run_id) continue;
-        collector_.offer(sample.step(), sample.station_id(), transport::from_wire(sample));
+      transport::WriterId writer;
+      while (measurements_.take(sample, &writer)) {
+        if (const auto why = refusal(sample, writer)) {
+          transport::count_drop(drops_, *why, "measurement", sample.station_id(), sample.step());
+        }
       }
       if (collector_.complete()) return -1;
       // Real time: the round closes at its deadline with what has arrived.
@@ -168,6 +178,19 @@ class Center {
     }
   }
 
+  // Checks a received measurement and offers it to the collector; nothing if it was kept.
+  std::optional<DropKind> refusal(const wire::Measurement& sample,
+                                  const transport::WriterId& writer) {
+    if (sample.run_id() != options_.run_id) return DropKind::kWrongRun;
+    // Garbage is garbage whoever sent it; then who it claims to be and when; then whether the
+    // writer really speaks for that station.
+    const StationObservation9 observation = transport::from_wire(sample);
+    if (const auto why = check_observation(observation)) return why;
+    if (const auto why = collector_.check(sample.step(), sample.station_id())) return why;
+    if (!sources_.accept(sample.station_id(), writer)) return DropKind::kDuplicate;
+    return collector_.offer(sample.step(), sample.station_id(), observation);
+  }
+
   const transport::NodeOptions& options_;
   const RunPlan& plan_;
   transport::DdsNode node_;
@@ -183,6 +206,8 @@ class Center {
   std::uint64_t epoch_ns_ = 0;                // real time: system-clock start of step 0
   std::vector<StationObservation9> partial_;  // real time: what made the deadline
   std::vector<int> partial_ids_;
+  transport::SourceBinding sources_;
+  DropTally drops_;
 };
 
 }  // namespace

@@ -5,11 +5,15 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"
+#include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -58,22 +62,52 @@ struct LockstepDriver::Impl {
                                      s.step(), s.detail()));
       }
       if (s.state() == wire::READY) ready.insert(s.station_id());
+      if (s.state() == wire::FINISHED) {
+        DropCounts& counts = drops[s.station_id()];
+        std::copy(s.dropped().begin(), s.dropped().end(), counts.begin());
+      }
     }
   }
 
   void drain_samples() {
     wire::TrackEstimate t;
-    while (tracks.take(t)) {
-      if (t.run_id() != run_id) continue;
-      const bool is_central = t.mode() == wire::CENTRAL;
-      if (is_central != (t.source_id() == kCenterId)) continue;
-      track_collector.offer(t.step(), t.source_id(), transport::from_wire(t));
+    transport::WriterId writer;
+    while (tracks.take(t, &writer)) {
+      if (const auto why = track_refusal(t, writer)) {
+        transport::count_drop(own_drops, *why, "track", t.source_id(), t.step());
+      }
     }
     wire::Measurement m;
-    while (measurements.take(m)) {
-      if (m.run_id() != run_id) continue;
-      measurement_collector.offer(m.step(), m.station_id(), Vector3(m.z()[0], m.z()[1], m.z()[2]));
+    while (measurements.take(m, &writer)) {
+      if (const auto why = measurement_refusal(m, writer)) {
+        transport::count_drop(own_drops, *why, "measurement", m.station_id(), m.step());
+      }
     }
+  }
+
+  // The harness records what the nodes fused, so it refuses what they refuse.
+  std::optional<DropKind> track_refusal(const wire::TrackEstimate& t,
+                                        const transport::WriterId& writer) {
+    if (t.run_id() != run_id) return DropKind::kWrongRun;
+    if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterId)) {
+      return DropKind::kUnknownStation;
+    }
+    const GaussianState<9> estimate = transport::from_wire(t);
+    if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) {
+      return DropKind::kNonFinite;
+    }
+    if (const auto why = track_collector.check(t.step(), t.source_id())) return why;
+    if (!track_sources.accept(t.source_id(), writer)) return DropKind::kDuplicate;
+    return track_collector.offer(t.step(), t.source_id(), estimate);
+  }
+  std::optional<DropKind> measurement_refusal(const wire::Measurement& m,
+                                              const transport::WriterId& writer) {
+    if (m.run_id() != run_id) return DropKind::kWrongRun;
+    const StationObservation9 observation = transport::from_wire(m);
+    if (const auto why = check_observation(observation)) return why;
+    if (const auto why = measurement_collector.check(m.step(), m.station_id())) return why;
+    if (!measurement_sources.accept(m.station_id(), writer)) return DropKind::kDuplicate;
+    return measurement_collector.offer(m.step(), m.station_id(), observation.z);
   }
 
   std::uint64_t run_id;
@@ -88,6 +122,10 @@ struct LockstepDriver::Impl {
   StepCollector<GaussianState<9>> track_collector;
   StepCollector<Vector3> measurement_collector;
   std::set<int> ready;
+  std::map<int, DropCounts> drops;  // from FINISHED statuses
+  transport::SourceBinding track_sources;
+  transport::SourceBinding measurement_sources;
+  DropTally own_drops;
 };
 
 LockstepDriver::LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
@@ -258,6 +296,13 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     d.wait_set.wait(kPollSlice);
   }
   return done;
+}
+
+std::map<int, DropCounts> LockstepDriver::finished_drops() {
+  impl_->read_statuses();
+  std::map<int, DropCounts> all = impl_->drops;
+  all[kHarnessNodeId] = impl_->own_drops.counts();
+  return all;
 }
 
 void LockstepDriver::stop() {

@@ -7,12 +7,14 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {
 
@@ -35,6 +37,9 @@ struct RoundRecord {
   bool all_inputs_in_time = true;
 };
 
+/// The harness's key among node ids in drop counts.
+inline constexpr int kHarnessNodeId = -1;
+
 class LockstepDriver {
  public:
   /// `check` is called at least every 50 ms while waiting; it throws RunAborted to end the run.
@@ -54,6 +59,10 @@ class LockstepDriver {
   std::vector<RoundRecord> run_realtime(int steps, double time_step_s,
                                         std::chrono::system_clock::time_point epoch,
                                         std::chrono::milliseconds timeout);
+
+  /// Drop counts of every node that has announced FINISHED so far, by node id (0: center),
+  /// and the harness's own under kHarnessNodeId.
+  std::map<int, DropCounts> finished_drops();
 
   /// Tells every process to stop (a Tick with stop = true).
   void stop();

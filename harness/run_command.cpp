@@ -198,6 +198,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
     RunSummary summary =
         recorder.summarise(std::chrono::duration<double>(discovery).count(), elapsed);
     summary.realtime_deadline_ms = o.realtime_deadline_ms;
+    summary.dropped_by_node = driver.finished_drops();
     recorder.write(out, summary, run_id);
     return summary;
   } catch (...) {

@@ -138,6 +138,26 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
                         {"track_age_ms_p99", summary.track_age_ms_p99},
                         {"track_age_ms_max", summary.track_age_ms_max}};
   }
+  // Every kind appears, zeros included, so that a reader can tell "none" from "not counted".
+  nlohmann::json by_kind = nlohmann::json::object();
+  nlohmann::json by_node = nlohmann::json::object();
+  for (std::size_t i = 0; i < kDropKinds; ++i) {
+    std::uint64_t total = 0;
+    for (const auto& [node, counts] : summary.dropped_by_node) total += counts[i];
+    by_kind[std::string(to_string(static_cast<DropKind>(i)))] = total;
+  }
+  for (const auto& [node, counts] : summary.dropped_by_node) {
+    nlohmann::json kinds = nlohmann::json::object();
+    for (std::size_t i = 0; i < kDropKinds; ++i) {
+      if (counts[i] != 0) kinds[std::string(to_string(static_cast<DropKind>(i)))] = counts[i];
+    }
+    const std::string name = node == 0                ? std::string("center")
+                             : node == kHarnessNodeId ? std::string("harness")
+                                                      : std::to_string(node);
+    by_node[name] = kinds;
+  }
+  full["dropped_by_kind"] = by_kind;
+  full["dropped_by_node"] = by_node;
   write_file_atomically(dir / "summary.json", full.dump(2) + "\n");
 }
 
@@ -153,6 +173,12 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
   fmt::print(out, "  round latency p50/p99/max {:.0f} / {:.0f} / {:.0f} us\n",
              s.round_latency_us_p50, s.round_latency_us_p99, s.round_latency_us_max);
   fmt::print(out, "  discovery                {:.2f} s\n", s.discovery_s);
+  std::uint64_t dropped = 0;
+  for (const auto& [node, counts] : s.dropped_by_node) {
+    for (std::uint64_t c : counts) dropped += c;
+  }
+  fmt::print(out, "  samples refused          {}{}\n", dropped,
+             dropped == 0 ? "" : "  (by kind in summary.json)");
   if (s.realtime_deadline_ms > 0.0) {
     fmt::print(out, "  real time: deadline {} ms; rounds with every input in time {:.2f} %\n",
                s.realtime_deadline_ms, 100.0 * s.rounds_all_inputs_in_time);

@@ -1,4 +1,5 @@
 #pragma once
+
 // What a DDS run leaves behind, and the numbers that summarise it.
 //   steps.csv         per step: truth, central and peer-to-peer position, their errors
 //   tracks.csv        per step and source: the full state, printed to round-trip exactly
@@ -10,10 +11,12 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <vector>
 
 #include "lockstep_driver.hpp"
 #include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {
 
@@ -38,6 +41,8 @@ struct RunSummary {
   double track_age_ms_p50 = 0.0;
   double track_age_ms_p99 = 0.0;
   double track_age_ms_max = 0.0;
+  /// Samples the nodes refused, by node (0: the center) as each reported when it finished.
+  std::map<int, DropCounts> dropped_by_node;
 };
 
 class RunRecorder {

@@ -11,10 +11,13 @@
 
 #include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"
 #include "skyfuse/transport/shutdown.hpp"
+#include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse::station {
 namespace {
@@ -65,6 +68,7 @@ class Station {
     partial_increments_.reserve(weights_.size());
     partial_weights_.reserve(weights_.size());
     partial_ids_.reserve(weights_.size());
+    sources_.bind(me_.id, io_.increments_out.id());
   }
 
   int run() {
@@ -120,8 +124,10 @@ class Station {
       tracker_.predict();
       collector_.advance();
     }
+    presence_.set_drops(drops_.counts());
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
     io_.tracks.wait_acknowledged(2s);
+    presence_.wait_delivered(2s);
     spdlog::info("finished {} steps", steps);
     return transport::kExitOk;
   }
@@ -135,7 +141,10 @@ class Station {
     }
     wire::Tick tick;
     while (io_.ticks.take(tick)) {
-      if (tick.run_id() != options_.node.run_id) continue;
+      if (tick.run_id() != options_.node.run_id) {
+        transport::count_drop(drops_, DropKind::kWrongRun, "tick", 0, tick.step());
+        continue;
+      }
       if (tick.stop()) {
         spdlog::info("stopped by the harness at step {}", k);
         return transport::kExitOk;
@@ -144,11 +153,27 @@ class Station {
       if (tick.step() == k) got_tick = true;
     }
     wire::InformationIncrement sample;
-    while (io_.increments_in.take(sample)) {
-      if (sample.run_id() != options_.node.run_id || sample.station_id() == me_.id) continue;
-      collector_.offer(sample.step(), sample.station_id(), transport::from_wire(sample));
+    transport::WriterId writer;
+    while (io_.increments_in.take(sample, &writer)) {
+      if (sample.station_id() == me_.id && writer == io_.increments_out.id()) continue;  // own
+      if (const auto why = refusal(sample, writer)) {
+        transport::count_drop(drops_, *why, "increment", sample.station_id(), sample.step());
+      }
     }
     return -1;
+  }
+
+  // Checks a received increment and offers it to the collector; nothing if it was kept.
+  std::optional<DropKind> refusal(const wire::InformationIncrement& sample,
+                                  const transport::WriterId& writer) {
+    if (sample.run_id() != options_.node.run_id) return DropKind::kWrongRun;
+    // Garbage is garbage whoever sent it; then who it claims to be and when; then whether the
+    // writer really speaks for that station.
+    const Increment9 increment = transport::from_wire(sample);
+    if (const auto why = check_increment(increment)) return why;
+    if (const auto why = collector_.check(sample.step(), sample.station_id())) return why;
+    if (!sources_.accept(sample.station_id(), writer)) return DropKind::kDuplicate;
+    return collector_.offer(sample.step(), sample.station_id(), increment);
   }
 
   // Waits until `done()` or the idle timeout; returns an exit code to end the run, or -1.
@@ -269,6 +294,8 @@ class Station {
   std::vector<Increment9> partial_increments_;
   std::vector<double> partial_weights_;
   std::vector<int> partial_ids_;
+  transport::SourceBinding sources_;
+  DropTally drops_;
 };
 
 }  // namespace

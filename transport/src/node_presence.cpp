@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <random>
 #include <thread>
@@ -35,6 +36,8 @@ void NodePresence::announce(wire::NodeState state, std::uint32_t step, const std
   status.state(state);
   status.step(step);
   status.detail(detail.substr(0, 500));
+  static_assert(kDropKinds == wire::kDropKinds, "the wire's drop kinds are DropKind's");
+  std::copy(drops_.begin(), drops_.end(), status.dropped().begin());
   writer_.write(status);
 }
 

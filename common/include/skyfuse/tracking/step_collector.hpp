@@ -3,7 +3,7 @@
 /// Gathers one sample per participating station for the current step, in ascending station
 /// order, from samples that arrive in any order. Samples for the next step are kept (a fast
 /// peer may start step k+1 before this process has closed step k); anything else is refused,
-/// and offer() says why: stale step, step too far ahead, unknown station, second copy.
+/// and offer() says why: unknown station, stale step, step too far ahead, second copy.
 ///
 /// No allocation after construction: two fixed rows of slots, swapped at each step.
 
@@ -34,27 +34,25 @@ class StepCollector {
     }
   }
 
-  /// Offers a sample; nothing if it was kept, else why it was refused.
+  /// Why a sample for (step, station_id) would be refused now, or nothing if it would be kept:
+  /// unknown station, then stale or future step, then a slot already filled.
+  std::optional<DropKind> check(std::uint64_t step, int station_id) const {
+    const std::optional<std::size_t> index = index_of(station_id);
+    if (!index) return DropKind::kUnknownStation;
+    const Row* row = row_for(step);
+    if (row == nullptr) return step < step_ ? DropKind::kStaleStep : DropKind::kFutureStep;
+    if (row->filled[*index]) return DropKind::kDuplicate;
+    return std::nullopt;
+  }
+
+  /// Offers a sample; nothing if it was kept, else why it was refused (as check() says).
   std::optional<DropKind> offer(std::uint64_t step, int station_id, const Payload& payload) {
-    Row* row = nullptr;
-    if (step == step_) {
-      row = &current_;
-    } else if (step == step_ + 1) {
-      row = &next_;
-    } else {
-      return step < step_ ? DropKind::kStaleStep : DropKind::kFutureStep;
-    }
-    const auto it = std::lower_bound(ids_.begin(), ids_.end(), station_id);
-    if (it == ids_.end() || *it != station_id) {
-      return DropKind::kUnknownStation;
-    }
-    const auto index = static_cast<std::size_t>(it - ids_.begin());
-    if (row->filled[index]) {
-      return DropKind::kDuplicate;
-    }
-    row->payloads[index] = payload;
-    row->filled[index] = true;
-    ++row->count;
+    if (const auto why = check(step, station_id)) return why;
+    Row& row = step == step_ ? current_ : next_;  // check() found it one of the two
+    const std::size_t index = *index_of(station_id);
+    row.payloads[index] = payload;
+    row.filled[index] = true;
+    ++row.count;
     return std::nullopt;
   }
 
@@ -88,6 +86,17 @@ class StepCollector {
     std::vector<bool> filled;
     std::size_t count = 0;
   };
+
+  std::optional<std::size_t> index_of(int station_id) const {
+    const auto it = std::lower_bound(ids_.begin(), ids_.end(), station_id);
+    if (it == ids_.end() || *it != station_id) return std::nullopt;
+    return static_cast<std::size_t>(it - ids_.begin());
+  }
+  const Row* row_for(std::uint64_t step) const {
+    if (step == step_) return &current_;
+    if (step == step_ + 1) return &next_;
+    return nullptr;
+  }
   std::vector<int> ids_;
   Row current_;
   Row next_;

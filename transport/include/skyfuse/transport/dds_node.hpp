@@ -7,7 +7,9 @@
 /// Threading: a node and its endpoints belong to the thread that created them; readers are
 /// waited on with a WaitSet on that thread (no listener does work).
 
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <fastdds/dds/core/condition/WaitSet.hpp>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -29,6 +31,12 @@
 namespace skyfuse::transport {
 
 namespace dds = eprosima::fastdds::dds;
+
+inline std::array<std::uint8_t, 16> to_writer_id(const dds::InstanceHandle_t& handle) {
+  std::array<std::uint8_t, 16> id{};
+  for (std::size_t i = 0; i < id.size(); ++i) id[i] = handle.value[i];
+  return id;
+}
 
 /// A DDS call failed: entity creation, or a write that could not be delivered in time.
 class DdsError : public std::runtime_error {
@@ -52,6 +60,9 @@ inline eprosima::fastrtps::Duration_t to_dds_duration(std::chrono::microseconds 
   return {static_cast<int32_t>(seconds.count()), static_cast<uint32_t>(nanos.count())};
 }
 
+/// Which writer a sample came from: its DDS instance handle (the writer's GUID), as bytes.
+using WriterId = std::array<std::uint8_t, 16>;
+
 template <typename T>
 class Writer {
  public:
@@ -69,6 +80,8 @@ class Writer {
     return writer_->wait_for_acknowledgments(to_dds_duration(timeout)) == ReturnCode_t::RETCODE_OK;
   }
   /// Remote readers currently matched (this participant's own matching reader included).
+  /// What a reader's take() reports as this writer's id.
+  WriterId id() const { return to_writer_id(writer_->get_instance_handle()); }
   int matched() const {
     dds::PublicationMatchedStatus status;
     writer_->get_publication_matched_status(status);
@@ -85,11 +98,14 @@ class Reader {
   explicit Reader(dds::DataReader* reader) : reader_(reader) {
     reader_->get_statuscondition().set_enabled_statuses(dds::StatusMask::data_available());
   }
-  /// Takes the next valid sample; false when none is left.
-  bool take(T& sample) {
+  /// Takes the next valid sample; false when none is left. `writer`, if given, receives the
+  /// id of the writer that sent it.
+  bool take(T& sample, WriterId* writer = nullptr) {
     dds::SampleInfo info;
     while (reader_->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      if (info.valid_data) return true;
+      if (!info.valid_data) continue;
+      if (writer != nullptr) *writer = to_writer_id(info.publication_handle);
+      return true;
     }
     return false;
   }

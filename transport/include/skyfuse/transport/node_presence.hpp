@@ -14,6 +14,7 @@
 #include <string>
 
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::transport {
 
@@ -21,7 +22,13 @@ class NodePresence {
  public:
   NodePresence(DdsNode& node, std::uint64_t run_id, int node_id);
 
+  /// Publishes this node's state, with the drop counts last given to set_drops().
   void announce(wire::NodeState state, std::uint32_t step = 0, const std::string& detail = {});
+  void set_drops(const DropCounts& drops) { drops_ = drops; }
+  /// Waits until every reader has the last announcement: call before exiting.
+  bool wait_delivered(std::chrono::milliseconds timeout) {
+    return writer_.wait_acknowledged(timeout);
+  }
 
   /// Reads status samples received so far. Returns a description of an older process with
   /// this node's id in this run, if one was seen: this process is then the duplicate.
@@ -37,6 +44,7 @@ class NodePresence {
   Writer<wire::StationStatus> writer_;
   Reader<wire::StationStatus> reader_;
   std::optional<std::string> older_twin_;
+  DropCounts drops_{};
 };
 
 }  // namespace skyfuse::transport

@@ -1,0 +1,156 @@
+// skyfuse-rogue: attacks a running skyfuse run from inside its DDS domain, to show that the
+// network refuses what it must. At each chosen step it publishes, on the real increment and
+// measurement topics, one sample of every malformed kind a receiver checks for:
+//   wrong_run     another run's id
+//   stale_step    the step before the current one
+//   future_step   five steps ahead
+//   unknown_station  station id 999
+//   duplicate     a well-formed sample for a real station, from the wrong writer
+//   non_finite    a NaN in dQ / in z
+//   not_positive  dQ with a negative direction / R with a zero variance
+//   out_of_range  a negative range (measurements only)
+// It prints how many samples of each kind it sent, one line per topic and kind.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <limits>
+#include <set>
+
+#include "skyfuse/transport/node_options.hpp"
+#include "skyfuse/transport/shutdown.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
+
+namespace {
+
+using namespace skyfuse;
+
+struct Attack {
+  DropKind kind;
+  std::uint64_t run_id;
+  std::uint32_t step;
+  int station;
+};
+
+// The malformed variants to send when the harness ticks step k of run `run`.
+std::vector<Attack> attacks_at(std::uint64_t run, std::uint32_t k, int victim) {
+  return {{DropKind::kWrongRun, run ^ 0x5a5a5a5aULL, k, victim},
+          {DropKind::kStaleStep, run, k - 1, victim},
+          {DropKind::kFutureStep, run, k + 5, victim},
+          {DropKind::kUnknownStation, run, k, 999},
+          // k + 1 is in every receiver's window whether it has closed step k yet or not.
+          {DropKind::kDuplicate, run, k + 1, victim},
+          {DropKind::kNonFinite, run, k, victim},
+          {DropKind::kNotPositive, run, k, victim},
+          {DropKind::kOutOfRange, run, k, victim}};
+}
+
+wire::InformationIncrement increment_for(const Attack& a) {
+  wire::InformationIncrement s;
+  s.run_id(a.run_id);
+  s.step(a.step);
+  s.station_id(a.station);
+  s.delta_information().fill(0.0);
+  s.delta_vector().fill(0.0);
+  s.delta_information()[0] = 1e-4;  // a plausible range-like information along x
+  if (a.kind == DropKind::kNonFinite) s.delta_information()[10] = std::nan("");
+  if (a.kind == DropKind::kNotPositive) s.delta_information()[0] = -1.0;
+  return s;
+}
+
+wire::Measurement measurement_for(const Attack& a) {
+  wire::Measurement s;
+  s.run_id(a.run_id);
+  s.step(a.step);
+  s.station_id(a.station);
+  s.z() = {1500.0, 0.5, 0.3};
+  s.noise() = {1.0, 0.0, 0.0, 1e-4, 0.0, 1e-4};  // upper triangle of diag(1, 1e-4, 1e-4)
+  s.station_position() = {0.0, 0.0, 0.0};
+  if (a.kind == DropKind::kNonFinite) s.z()[1] = std::numeric_limits<double>::infinity();
+  if (a.kind == DropKind::kNotPositive) s.noise()[5] = 0.0;
+  if (a.kind == DropKind::kOutOfRange) s.z()[0] = -5.0;
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"skyfuse-rogue: publishes malformed samples into a running run (a test tool)"};
+  int domain = 0;
+  std::uint64_t run_id = 0;
+  std::set<std::uint32_t> steps = {5, 10, 15};
+  int victim = 2;
+  int stations = 1;
+  double timeout_s = 60.0;
+  app.add_option("--domain", domain, "DDS domain id of the run")
+      ->check(CLI::Range(0, transport::kMaxDomainId));
+  app.add_option("--run-id", run_id, "Id of the run to attack")->required();
+  app.add_option("--stations", stations, "Station readers to reach before attacking")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--victim", victim, "A real station id to impersonate");
+  app.add_option("--at-steps", steps, "Steps (>= 1) at which to attack")->capture_default_str();
+  app.add_option("--timeout", timeout_s, "Seconds to wait for the run's ticks");
+  CLI11_PARSE(app, argc, argv);
+  spdlog::set_pattern("[rogue] %^%l%$: %v");
+  transport::install_shutdown_handlers();
+  if (steps.count(0) != 0) {
+    spdlog::error("--at-steps: step 0 has no stale step before it");
+    return transport::kExitUsage;
+  }
+
+  try {
+    transport::DdsNode node({domain, "skyfuse-rogue", std::nullopt});
+    auto ticks = node.make_reader<wire::Tick>();
+    auto increments = node.make_writer<wire::InformationIncrement>();
+    auto measurements = node.make_writer<wire::Measurement>();
+    transport::ReaderWaitSet wait_set;
+    wait_set.attach(ticks);
+    DropCounts sent_increments{};
+    DropCounts sent_measurements{};
+    const auto give_up =
+        std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+    std::set<std::uint32_t> left = steps;
+    while (!left.empty()) {
+      if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
+      if (std::chrono::steady_clock::now() > give_up) {
+        spdlog::error("no tick of run {} for steps {} within {} s", run_id, fmt::join(left, ", "),
+                      timeout_s);
+        return transport::kExitIdleTimeout;
+      }
+      wire::Tick tick;
+      while (ticks.take(tick)) {
+        if (tick.run_id() != run_id || left.erase(tick.step()) == 0) continue;
+        // Every reader must be matched, or a sample could miss one and the counts not add up.
+        if (increments.matched() < stations || measurements.matched() < 1) {
+          spdlog::warn("step {}: only {} increment and {} measurement readers matched; skipped",
+                       tick.step(), increments.matched(), measurements.matched());
+          continue;
+        }
+        for (const Attack& a : attacks_at(run_id, tick.step(), victim)) {
+          const auto kind = static_cast<std::size_t>(a.kind);
+          if (a.kind != DropKind::kOutOfRange) {
+            increments.write(increment_for(a));
+            ++sent_increments[kind];
+          }
+          measurements.write(measurement_for(a));
+          ++sent_measurements[kind];
+        }
+      }
+      wait_set.wait(std::chrono::milliseconds(20));
+    }
+    increments.wait_acknowledged(std::chrono::seconds(5));
+    measurements.wait_acknowledged(std::chrono::seconds(5));
+    for (std::size_t i = 0; i < kDropKinds; ++i) {
+      const auto kind = to_string(static_cast<DropKind>(i));
+      if (sent_increments[i] != 0) fmt::print("sent increment {} {}\n", kind, sent_increments[i]);
+      if (sent_measurements[i] != 0) {
+        fmt::print("sent measurement {} {}\n", kind, sent_measurements[i]);
+      }
+    }
+    return transport::kExitOk;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return transport::kExitError;
+  }
+}

@@ -1,0 +1,31 @@
+#pragma once
+/// \file
+/// Which writer speaks for which station. The first writer a receiver hears for a station id
+/// owns that id for the run; a sample for the id from any other writer is a duplicate, whoever
+/// sent it and whenever. A process that reuses a running station's id therefore cannot get its
+/// samples fused, even if they arrive first in a later step.
+///
+/// This is trust on first use, not authentication: a process that speaks for an id before its
+/// real owner does takes it. Authentication is DDS-Security's job (`skyfuse run --secure`).
+
+#include <map>
+
+#include "skyfuse/transport/dds_node.hpp"
+
+namespace skyfuse::transport {
+
+class SourceBinding {
+ public:
+  /// Binds `station_id` to `writer` in advance (a node's own writer).
+  void bind(int station_id, const WriterId& writer) { owners_[station_id] = writer; }
+  /// True if `writer` owns `station_id`, binding it on first use.
+  bool accept(int station_id, const WriterId& writer) {
+    const auto [it, inserted] = owners_.try_emplace(station_id, writer);
+    return inserted || it->second == writer;
+  }
+
+ private:
+  std::map<int, WriterId> owners_;
+};
+
+}  // namespace skyfuse::transport
