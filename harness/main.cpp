@@ -9,6 +9,7 @@
 #include "run_command.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/shutdown.hpp"
+#include "soak_command.hpp"
 #include "sweep_command.hpp"
 
 int main(int argc, char** argv) {
@@ -19,10 +20,12 @@ int main(int argc, char** argv) {
   RunOptions run;
   DemoOptions demo;
   BenchOptions bench;
+  SoakOptions soak;
   add_sweep_command(app, sweep);
   add_run_command(app, run);
   add_demo_command(app, demo);
   add_bench_command(app, bench);
+  add_soak_command(app, soak);
   CLI11_PARSE(app, argc, argv);
 
   // Line-buffered even into a file or pipe, so that tables and child messages keep their order.
@@ -33,6 +36,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run")) return run_run(run);
     if (app.got_subcommand("demo")) return run_demo(demo);
     if (app.got_subcommand("bench")) return run_bench(bench);
+    if (app.got_subcommand("soak")) return run_soak(soak);
   } catch (const RunAborted& e) {
     std::fprintf(stderr, "skyfuse: run aborted: %s\n", e.what());
     return skyfuse::transport::shutdown_requested() ? 130 : 1;
