@@ -2,6 +2,7 @@
 //   StationStep      one station's predict + measurement model + information increment
 //   FuseIncrements   one peer fusing M increments into the common prior
 //   StackedEkf       the fusion center's stacked update over M measurements
+//   CheckIncrement / CheckObservation   a receiver's checks of one sample before fusing it
 // Problems are built from the default scenario's geometry so the numbers mean something.
 #include <benchmark/benchmark.h>
 
@@ -13,6 +14,7 @@
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse {
 namespace {
@@ -65,6 +67,18 @@ void StationStep(benchmark::State& state) {
   }
 }
 BENCHMARK(StationStep);
+
+void CheckIncrement(benchmark::State& state) {
+  const Snapshot s = make_snapshot(1);
+  for (auto _ : state) benchmark::DoNotOptimize(check_increment(s.increments.front()));
+}
+BENCHMARK(CheckIncrement);
+
+void CheckObservation(benchmark::State& state) {
+  const Snapshot s = make_snapshot(1);
+  for (auto _ : state) benchmark::DoNotOptimize(check_observation(s.observations.front()));
+}
+BENCHMARK(CheckObservation);
 
 void Predict(benchmark::State& state) {
   const Scenario scenario = load_default_scenario();
