@@ -186,9 +186,8 @@ class Center {
     // writer really speaks for that station.
     const StationObservation9 observation = transport::from_wire(sample);
     if (const auto why = check_observation(observation)) return why;
-    if (const auto why = collector_.check(sample.step(), sample.station_id())) return why;
-    if (!sources_.accept(sample.station_id(), writer)) return DropKind::kDuplicate;
-    return collector_.offer(sample.step(), sample.station_id(), observation);
+    return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
+                            observation);
   }
 
   const transport::NodeOptions& options_;

@@ -96,18 +96,16 @@ struct LockstepDriver::Impl {
     if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) {
       return DropKind::kNonFinite;
     }
-    if (const auto why = track_collector.check(t.step(), t.source_id())) return why;
-    if (!track_sources.accept(t.source_id(), writer)) return DropKind::kDuplicate;
-    return track_collector.offer(t.step(), t.source_id(), estimate);
+    return transport::admit(track_collector, track_sources, t.step(), t.source_id(), writer,
+                            estimate);
   }
   std::optional<DropKind> measurement_refusal(const wire::Measurement& m,
                                               const transport::WriterId& writer) {
     if (m.run_id() != run_id) return DropKind::kWrongRun;
     const StationObservation9 observation = transport::from_wire(m);
     if (const auto why = check_observation(observation)) return why;
-    if (const auto why = measurement_collector.check(m.step(), m.station_id())) return why;
-    if (!measurement_sources.accept(m.station_id(), writer)) return DropKind::kDuplicate;
-    return measurement_collector.offer(m.step(), m.station_id(), observation.z);
+    return transport::admit(measurement_collector, measurement_sources, m.step(), m.station_id(),
+                            writer, Vector3(observation.z));
   }
 
   std::uint64_t run_id;

@@ -171,9 +171,8 @@ class Station {
     // writer really speaks for that station.
     const Increment9 increment = transport::from_wire(sample);
     if (const auto why = check_increment(increment)) return why;
-    if (const auto why = collector_.check(sample.step(), sample.station_id())) return why;
-    if (!sources_.accept(sample.station_id(), writer)) return DropKind::kDuplicate;
-    return collector_.offer(sample.step(), sample.station_id(), increment);
+    return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
+                            increment);
   }
 
   // Waits until `done()` or the idle timeout; returns an exit code to end the run, or -1.

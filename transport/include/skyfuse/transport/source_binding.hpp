@@ -8,8 +8,11 @@
 /// This is trust on first use, not authentication: a process that speaks for an id before its
 /// real owner does takes it. Authentication is DDS-Security's job (`skyfuse run --secure`).
 
+#include <cstdint>
 #include <map>
+#include <optional>
 
+#include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 
 namespace skyfuse::transport {
@@ -27,5 +30,17 @@ class SourceBinding {
  private:
   std::map<int, WriterId> owners_;
 };
+
+/// The last stage of every receiver's screening, after the run id and the content passed: who
+/// the sample claims to be and when (the collector's window), then whether its writer speaks
+/// for that station; then the collector keeps it. Nothing if kept, else why not.
+template <typename Payload>
+std::optional<DropKind> admit(StepCollector<Payload>& collector, SourceBinding& sources,
+                              std::uint64_t step, int station_id, const WriterId& writer,
+                              const Payload& payload) {
+  if (const auto why = collector.check(step, station_id)) return why;
+  if (!sources.accept(station_id, writer)) return DropKind::kDuplicate;
+  return collector.offer(step, station_id, payload);
+}
 
 }  // namespace skyfuse::transport
