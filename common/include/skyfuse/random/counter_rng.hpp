@@ -15,6 +15,7 @@ enum class NoiseStream : std::uint64_t {
   kNoiseScale = 2,    ///< per-station variance scale 1 + delta_i
   kInitialState = 3,  ///< error of the filter's initial estimate
   kProcess = 4,       ///< process noise of a simulated truth (tests)
+  kLinkLoss = 5,      ///< simulated loss of a sample on one link (`skyfuse run --loss`)
 };
 
 struct NoiseKey {

@@ -3,8 +3,16 @@
 /// What every station runs in the decentralised scheme. All peers hold the same prior; each
 /// turns its own measurement into an information increment, every peer fuses all increments
 /// in ascending station order, and all predict. Same prior + same increments = same bits.
+///
+/// When links lose samples or a station restarts, peers fuse different sets and their priors
+/// drift apart. Every increment therefore travels with the prior it was computed against, and
+/// each round is fused onto one reference prior: the prior of the lowest-id contribution that
+/// arrived. Peers that received the same contributions pick the same reference, so they hold
+/// the same bits again after the first complete round, whatever each held before. A restarted
+/// station, which has no prior at all, takes its peers' the same way.
 
 #include <span>
+#include <vector>
 
 #include "skyfuse/filters/kalman.hpp"
 #include "skyfuse/fusion/increment_fusion.hpp"
@@ -16,10 +24,28 @@ namespace skyfuse {
 
 using Increment9 = InformationIncrement<9>;
 
+/// A station's increment and the prior it was computed against, as peers receive it.
+struct PeerContribution {
+  Increment9 increment;
+  GaussianState<9> prior;
+};
+
+/// What fuse_round() did.
+struct RoundFusion {
+  NumericalStatus status = NumericalStatus::kOk;
+  /// The reference prior differed from this peer's own, which was replaced by it.
+  bool resynced = false;
+};
+
 class PeerTracker {
  public:
-  PeerTracker(const ConstantAcceleration3D& motion, const GaussianState<9>& initial)
-      : motion_(motion), estimate_(initial) {}
+  /// `max_contributions`: the most contributions one round can bring (the station count); the
+  /// scratch space for them is reserved here, so fuse_round() does not allocate.
+  PeerTracker(const ConstantAcceleration3D& motion, const GaussianState<9>& initial,
+              std::size_t max_contributions = 0)
+      : motion_(motion), estimate_(initial) {
+    increments_.reserve(max_contributions);
+  }
 
   /// This station's increment against the current (common) prior.
   NumericalStatus make_increment(int station_id, const StationSensor& sensor, const Vector3& z,
@@ -30,6 +56,21 @@ class PeerTracker {
   NumericalStatus fuse(std::span<const Increment9> increments, std::span<const double> weights) {
     return fuse_increments(estimate_, increments, weights, estimate_, &information_);
   }
+  /// Fuses one round's contributions (ascending station id, at least one; weights[i] for
+  /// contributions[i]) onto the reference prior, the first contribution's.
+  RoundFusion fuse_round(std::span<const PeerContribution> contributions,
+                         std::span<const double> weights) {
+    RoundFusion result;
+    const GaussianState<9>& reference = contributions.front().prior;
+    if (reference.mean != estimate_.mean || reference.covariance != estimate_.covariance) {
+      estimate_ = reference;
+      result.resynced = true;
+    }
+    increments_.clear();
+    for (const PeerContribution& c : contributions) increments_.push_back(c.increment);
+    result.status = fuse(increments_, weights);
+    return result;
+  }
   /// Y = P^-1 of the estimate after the last fuse().
   const Covariance<9>& information() const { return information_; }
   void predict() { skyfuse::predict(estimate_, motion_); }
@@ -39,6 +80,7 @@ class PeerTracker {
   ConstantAcceleration3D motion_;
   GaussianState<9> estimate_;
   Covariance<9> information_ = Covariance<9>::Identity();
+  std::vector<Increment9> increments_;  // fuse_round()'s scratch
 };
 
 }  // namespace skyfuse

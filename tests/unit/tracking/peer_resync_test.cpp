@@ -1,0 +1,136 @@
+// Peers that lose different increments drift apart; the reference-prior rule of fuse_round()
+// must bring them back to the same bits in the first round in which every peer receives every
+// increment. In-process, with the same loss model the DDS runs use.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "skyfuse/random/link_loss.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/tracking/peer_tracker.hpp"
+
+namespace skyfuse {
+namespace {
+
+struct PeerRun {
+  std::vector<double> spread;  ///< per step: max |difference| over every peer's mean and P
+  double rmse_m = 0.0;         ///< over every peer and step
+  int resyncs = 0;
+};
+
+double difference(const GaussianState<9>& a, const GaussianState<9>& b) {
+  return std::max((a.mean - b.mean).cwiseAbs().maxCoeff(),
+                  (a.covariance - b.covariance).cwiseAbs().maxCoeff());
+}
+
+PeerRun run_peers(const LinkLoss& loss, int stations = 4, int steps = 300) {
+  RunOverrides overrides;
+  overrides.stations = stations;
+  overrides.steps = steps;
+  const RunPlan plan = make_run_plan(load_default_scenario(), overrides);
+  const TruthTrajectory truth = plan.truth();
+  const ConstantAcceleration3D motion(plan.scenario.time_step_s,
+                                      plan.scenario.filter.process_noise);
+  const GaussianState<9> initial =
+      initial_estimate(plan.scenario, truth.states.front(), plan.mc_run);
+  const auto m = static_cast<std::size_t>(stations);
+  std::vector<PeerTracker> peers(m, PeerTracker(motion, initial, m));
+
+  // Ascending id, as every receiver orders its round.
+  std::vector<StationConfig> by_id(plan.participants().begin(), plan.participants().end());
+  std::sort(by_id.begin(), by_id.end(), [](auto& a, auto& b) { return a.id < b.id; });
+
+  PeerRun out;
+  double sq = 0.0;
+  std::vector<PeerContribution> sent(m);
+  std::vector<PeerContribution> received;
+  std::vector<double> weights;
+  for (int k = 0; k < steps; ++k) {
+    const auto step = static_cast<std::uint64_t>(k);
+    for (std::size_t i = 0; i < m; ++i) {
+      const StationSensor sensor(by_id[i].position_m);
+      const Covariance<3> noise = station_noise_covariance(plan.scenario, by_id[i], plan.mc_run);
+      const Vector3 z = simulate_measurement(sensor, truth.states[step].head<3>(), noise,
+                                             plan.scenario.seed, plan.mc_run, by_id[i].id, step);
+      sent[i].prior = peers[i].estimate();
+      EXPECT_EQ(peers[i].make_increment(by_id[i].id, sensor, z, noise, sent[i].increment),
+                NumericalStatus::kOk);
+    }
+    for (std::size_t r = 0; r < m; ++r) {
+      received.clear();
+      weights.clear();
+      for (std::size_t s = 0; s < m; ++s) {
+        if (loss.lost(by_id[r].id, by_id[s].id, step)) continue;
+        received.push_back(sent[s]);
+        weights.push_back(by_id[s].weight);
+      }
+      const RoundFusion fused = peers[r].fuse_round(received, weights);
+      EXPECT_EQ(fused.status, NumericalStatus::kOk);
+      if (fused.resynced) ++out.resyncs;
+    }
+    double spread = 0.0;
+    for (std::size_t r = 0; r < m; ++r) {
+      spread = std::max(spread, difference(peers[r].estimate(), peers[0].estimate()));
+      sq += (peers[r].estimate().mean.head<3>() - truth.states[step].head<3>()).squaredNorm();
+    }
+    out.spread.push_back(spread);
+    for (PeerTracker& peer : peers) peer.predict();
+  }
+  out.rmse_m = std::sqrt(sq / static_cast<double>(steps * stations));
+  return out;
+}
+
+TEST(PeerResync, WithoutLossEveryPeerHoldsTheSameBitsAndNeverResyncs) {
+  const PeerRun run = run_peers(LinkLoss{});
+  EXPECT_EQ(*std::max_element(run.spread.begin(), run.spread.end()), 0.0);
+  EXPECT_EQ(run.resyncs, 0);
+}
+
+TEST(PeerResync, PeersThatLostDifferentIncrementsAgreeAgainInTheFirstCompleteRound) {
+  LinkLoss loss;
+  loss.probability = 0.2;
+  loss.first_step = 100;
+  loss.end_step = 200;
+  const PeerRun run = run_peers(loss);
+  // Before the loss: identical. During: apart. From the first lossless round on: identical.
+  EXPECT_EQ(*std::max_element(run.spread.begin(), run.spread.begin() + 100), 0.0);
+  EXPECT_GT(*std::max_element(run.spread.begin() + 100, run.spread.begin() + 200), 0.0);
+  EXPECT_EQ(*std::max_element(run.spread.begin() + 200, run.spread.end()), 0.0);
+  EXPECT_GT(run.resyncs, 0);
+}
+
+TEST(PeerResync, TwentyPercentLossAtMostDoublesTheError) {
+  const PeerRun lossless = run_peers(LinkLoss{});
+  LinkLoss loss;
+  loss.probability = 0.2;
+  const PeerRun lossy = run_peers(loss);
+  EXPECT_GT(lossy.resyncs, 0);
+  EXPECT_LE(lossy.rmse_m, 2.0 * lossless.rmse_m)
+      << "lossless " << lossless.rmse_m << " m, 20 % loss " << lossy.rmse_m << " m";
+}
+
+TEST(LinkLoss, DrawsArePureFunctionsOfLinkAndStepAndMatchTheRate) {
+  LinkLoss loss;
+  loss.probability = 0.2;
+  loss.seed = 7;
+  int lost = 0;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    const bool once = loss.lost(1, 2, static_cast<std::uint64_t>(k));
+    EXPECT_EQ(once, loss.lost(1, 2, static_cast<std::uint64_t>(k)));
+    lost += once ? 1 : 0;
+  }
+  // Binomial(20000, 0.2): sd = 57; 5 sd either side.
+  EXPECT_NEAR(lost, 0.2 * n, 5 * 57);
+  EXPECT_FALSE(loss.lost(3, 3, 0)) << "a node never loses its own sample";
+  loss.first_step = 10;
+  loss.end_step = 20;
+  for (int k = 0; k < 10; ++k) EXPECT_FALSE(loss.lost(1, 2, static_cast<std::uint64_t>(k)));
+  for (int k = 20; k < 100; ++k) EXPECT_FALSE(loss.lost(1, 2, static_cast<std::uint64_t>(k)));
+}
+
+}  // namespace
+}  // namespace skyfuse
