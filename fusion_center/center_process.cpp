@@ -113,6 +113,7 @@ class Center {
       collector_.advance();
     }
     presence_.set_drops(drops_.counts());
+    presence_.set_link_counts(lost_, 0);
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
     tracks_.wait_acknowledged(2s);
     presence_.wait_delivered(2s);
@@ -121,11 +122,13 @@ class Center {
   }
 
  private:
-  // Lock-step: waits until every measurement of step k is in. Real time: until they are in or
-  // the step's deadline passes (after waiting for the start tick before step 0).
+  // Waits until every measurement of step k is in, or the round's deadline passes: in lock-step
+  // the deadline runs from tick k, in real time from the step's scheduled start (after the
+  // start tick). Measurements that arrive before the tick are kept all the same.
   int wait_for_measurements(std::uint64_t k) {
     const bool realtime = options_.realtime_deadline_ms > 0.0;
-    const auto deadline = std::chrono::steady_clock::now() + options_.idle_timeout();
+    const auto idle_limit = std::chrono::steady_clock::now() + options_.idle_timeout();
+    std::optional<std::chrono::system_clock::time_point> close;
     while (true) {
       if (const auto code =
               transport::exit_code_if_duplicate(presence_, "a fusion center", options_.run_id)) {
@@ -142,24 +145,29 @@ class Center {
           spdlog::info("stopped by the harness at step {}", k);
           return transport::kExitOk;
         }
+        if (!realtime && tick.step() == k && !close) {
+          close = std::chrono::system_clock::now() + options_.round_deadline();
+        }
       }
       wire::Measurement sample;
       transport::WriterId writer;
       while (measurements_.take(sample, &writer)) {
+        if (options_.loss.lost(kCenterSourceId, sample.station_id(), sample.step())) {
+          ++lost_;  // the simulated link lost it: as if it never arrived
+          continue;
+        }
         if (const auto why = refusal(sample, writer)) {
           transport::count_drop(drops_, *why, "measurement", sample.station_id(), sample.step());
         }
       }
       if (collector_.complete()) return -1;
-      // Real time: the round closes at its deadline with what has arrived.
-      std::optional<std::chrono::system_clock::time_point> close;
       if (realtime && epoch_ns_ != 0) {
         close = transport::step_start(epoch_ns_, k, plan_.scenario.time_step_s) +
                 std::chrono::microseconds(std::llround(options_.realtime_deadline_ms * 1000.0));
-        if (std::chrono::system_clock::now() >= *close) return -1;
       }
+      if (close && std::chrono::system_clock::now() >= *close) return -1;
       if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
-      if (std::chrono::steady_clock::now() >= deadline) {
+      if (std::chrono::steady_clock::now() >= idle_limit) {
         const std::string detail =
             fmt::format("no progress for {} s at step {} waiting for measurements of stations {}",
                         options_.idle_timeout_s, k, collector_.missing());
@@ -207,6 +215,7 @@ class Center {
   std::vector<int> partial_ids_;
   transport::SourceBinding sources_;
   DropTally drops_;
+  std::uint64_t lost_ = 0;  // measurements removed by the simulated loss
 };
 
 }  // namespace

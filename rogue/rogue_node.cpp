@@ -54,6 +54,11 @@ wire::InformationIncrement increment_for(const Attack& a) {
   s.delta_information().fill(0.0);
   s.delta_vector().fill(0.0);
   s.delta_information()[0] = 1e-4;  // a plausible range-like information along x
+  // A well-formed prior (P = I, upper triangle row-major), so that each sample is refused for
+  // the one fault it carries.
+  s.prior_x().fill(0.0);
+  s.prior_covariance().fill(0.0);
+  for (int row = 0, index = 0; row < 9; index += 9 - row, ++row) s.prior_covariance()[index] = 1.0;
   if (a.kind == DropKind::kNonFinite) s.delta_information()[10] = std::nan("");
   if (a.kind == DropKind::kNotPositive) s.delta_information()[0] = -1.0;
   return s;

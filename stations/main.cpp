@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   app.add_option("--replay", options.replay_path,
                  "Replay measurements from this CSV instead of simulating them")
       ->check(CLI::ExistingFile);
+  app.add_option("--rejoin-at-step", options.rejoin_step,
+                 "This process replaces a station that died: start at this step, take the "
+                 "peers' track from their first increments, contribute from the next step");
   transport::add_node_options(app, options.node);
   CLI11_PARSE(app, argc, argv);
 

@@ -59,15 +59,17 @@ class Station {
         io_(node_),
         tracker_(
             ConstantAcceleration3D(plan.scenario.time_step_s, plan.scenario.filter.process_noise),
-            initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run)),
+            initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run),
+            static_cast<std::size_t>(plan.stations)),
         collector_(plan.participant_ids()),
         sensor_(me.position_m),
-        noise_(station_noise_covariance(plan.scenario, me, plan.mc_run)) {
+        noise_(station_noise_covariance(plan.scenario, me, plan.mc_run)),
+        syncing_(options.rejoin_step.has_value()) {
     // Weights in the collector's (ascending id) order.
     for (int id : collector_.station_ids()) weights_.push_back(plan.participant(id)->weight);
-    partial_increments_.reserve(weights_.size());
-    partial_weights_.reserve(weights_.size());
-    partial_ids_.reserve(weights_.size());
+    round_.reserve(weights_.size());
+    round_weights_.reserve(weights_.size());
+    round_ids_.reserve(weights_.size());
     sources_.bind(me_.id, io_.increments_out.id());
   }
 
@@ -98,6 +100,8 @@ class Station {
     spdlog::info("joined run {} with {} stations; waiting for ticks", options_.node.run_id, m);
 
     const auto steps = static_cast<std::uint64_t>(plan_.scenario.steps);
+    const std::uint64_t first = options_.rejoin_step.value_or(0);
+    collector_.start_at(first);
     const bool realtime = options_.node.realtime_deadline_ms > 0.0;
     if (realtime) {
       bool started = false;
@@ -108,27 +112,30 @@ class Station {
         return code;
       }
     }
-    for (std::uint64_t k = 0; k < steps; ++k) {
+    for (std::uint64_t k = first; k < steps; ++k) {
+      // Real time: step k starts on the wall clock. Lock-step: on its tick. Either way the
+      // round closes when every increment is in or at its deadline, with what has arrived.
+      std::chrono::system_clock::time_point close;
       if (realtime) {
-        // Step k starts on the wall clock and closes at its deadline with what has arrived.
         const auto start = step_start(k);
         std::this_thread::sleep_until(start);
-        publish_own_sample(k);
-        if (const int code = wait_until_deadline(k, start + deadline()); code >= 0) return code;
+        close = start + realtime_deadline();
       } else {
         if (const int code = wait_for_tick(k); code >= 0) return code;
-        publish_own_sample(k);
-        if (const int code = wait_for_increments(k); code >= 0) return code;
+        close = std::chrono::system_clock::now() + options_.node.round_deadline();
       }
+      publish_own_sample(k);
+      if (const int code = wait_until_closed(k, close); code >= 0) return code;
       if (const int code = fuse_and_publish(k); code >= 0) return code;
-      tracker_.predict();
       collector_.advance();
     }
     presence_.set_drops(drops_.counts());
+    presence_.set_link_counts(lost_, resyncs_);
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
     io_.tracks.wait_acknowledged(2s);
     presence_.wait_delivered(2s);
-    spdlog::info("finished {} steps", steps);
+    spdlog::info("finished {} steps ({} rounds resynchronised, {} samples lost to --loss)",
+                 steps - first, resyncs_, lost_);
     return transport::kExitOk;
   }
 
@@ -156,6 +163,10 @@ class Station {
     transport::WriterId writer;
     while (io_.increments_in.take(sample, &writer)) {
       if (sample.station_id() == me_.id && writer == io_.increments_out.id()) continue;  // own
+      if (options_.node.loss.lost(me_.id, sample.station_id(), sample.step())) {
+        ++lost_;  // the simulated link lost it: as if it never arrived
+        continue;
+      }
       if (const auto why = refusal(sample, writer)) {
         transport::count_drop(drops_, *why, "increment", sample.station_id(), sample.step());
       }
@@ -169,10 +180,10 @@ class Station {
     if (sample.run_id() != options_.node.run_id) return DropKind::kWrongRun;
     // Garbage is garbage whoever sent it; then who it claims to be and when; then whether the
     // writer really speaks for that station.
-    const Increment9 increment = transport::from_wire(sample);
-    if (const auto why = check_increment(increment)) return why;
+    const PeerContribution contribution = transport::from_wire(sample);
+    if (const auto why = check_contribution(contribution)) return why;
     return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
-                            increment);
+                            contribution);
   }
 
   // Waits until `done()` or the idle timeout; returns an exit code to end the run, or -1.
@@ -200,28 +211,23 @@ class Station {
         k, got_tick, [&] { return got_tick; }, [] { return std::string("the tick"); });
   }
 
-  int wait_for_increments(std::uint64_t k) {
-    bool unused = false;
-    return wait(
-        k, unused, [&] { return collector_.complete(); },
-        [&] { return fmt::format("increments of stations {}", collector_.missing()); });
-  }
-
   std::chrono::system_clock::time_point step_start(std::uint64_t k) const {
     return transport::step_start(epoch_ns_, k, plan_.scenario.time_step_s);
   }
-  std::chrono::microseconds deadline() const {
+  std::chrono::microseconds realtime_deadline() const {
     return std::chrono::microseconds(std::llround(options_.node.realtime_deadline_ms * 1000.0));
   }
 
-  // Real time: collects increments until all are in or the deadline passes; either is fine.
-  int wait_until_deadline(std::uint64_t k, std::chrono::system_clock::time_point deadline) {
+  // Collects increments until every expected one is in (all but this station's own while it
+  // resynchronises) or `close` passes; either is fine.
+  int wait_until_closed(std::uint64_t k, std::chrono::system_clock::time_point close) {
+    const std::size_t expected = collector_.station_ids().size() - (syncing_ ? 1 : 0);
     bool unused = false;
     while (true) {
       if (const int code = drain(k, unused); code >= 0) return code;
-      if (collector_.complete()) return -1;
+      if (collector_.count() == expected) return -1;
       if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
-      const auto left = deadline - std::chrono::system_clock::now();
+      const auto left = close - std::chrono::system_clock::now();
       if (left <= std::chrono::system_clock::duration::zero()) return -1;
       io_.wait_set.wait(std::min<std::chrono::microseconds>(
           std::chrono::duration_cast<std::chrono::microseconds>(left) + 1us, kPollSlice));
@@ -232,10 +238,12 @@ class Station {
     const auto step = static_cast<std::uint32_t>(k);
     StationObservation9 observation{me_.id, sensor_, source_->measurement(k), noise_};
     io_.measurements.write(transport::to_wire(observation, options_.node.run_id, step));
+    if (syncing_) return;  // no prior yet: nothing to compute an increment against
 
-    Increment9 own;
+    PeerContribution own;
+    own.prior = tracker_.estimate();
     const NumericalStatus status =
-        tracker_.make_increment(me_.id, sensor_, observation.z, noise_, own);
+        tracker_.make_increment(me_.id, sensor_, observation.z, noise_, own.increment);
     if (status != NumericalStatus::kOk) {
       throw std::runtime_error(fmt::format("step {}: increment failed: {}", k, to_string(status)));
     }
@@ -244,35 +252,39 @@ class Station {
   }
 
   int fuse_and_publish(std::uint64_t k) {
-    // Every increment in (always so in lock-step): fuse the collector's rows directly. Else
-    // the ones that arrived, still in ascending id, and the track names only those.
-    std::span<const Increment9> increments = collector_.payloads();
-    std::span<const double> weights = weights_;
-    std::span<const int> contributors = collector_.station_ids();
-    if (!collector_.complete()) {
-      partial_increments_.clear();
-      partial_weights_.clear();
-      partial_ids_.clear();
-      for (std::size_t i = 0; i < collector_.station_ids().size(); ++i) {
-        if (!collector_.filled(i)) continue;
-        partial_increments_.push_back(collector_.payloads()[i]);
-        partial_weights_.push_back(weights_[i]);
-        partial_ids_.push_back(collector_.station_ids()[i]);
-      }
-      increments = partial_increments_;
-      weights = partial_weights_;
-      contributors = partial_ids_;
+    // What arrived, in ascending id (everything, in a healthy lock-step round); the track names
+    // exactly these stations.
+    round_.clear();
+    round_weights_.clear();
+    round_ids_.clear();
+    for (std::size_t i = 0; i < collector_.station_ids().size(); ++i) {
+      if (!collector_.filled(i)) continue;
+      round_.push_back(collector_.payloads()[i]);
+      round_weights_.push_back(weights_[i]);
+      round_ids_.push_back(collector_.station_ids()[i]);
     }
-    const NumericalStatus status = tracker_.fuse(increments, weights);
-    if (status != NumericalStatus::kOk) {
-      const std::string detail = fmt::format("step {}: fusion failed: {}", k, to_string(status));
+    if (round_.empty()) {  // only while resynchronising: no peer's prior arrived this round
+      spdlog::warn("step {}: no peer increment arrived; still without a prior", k);
+      return -1;
+    }
+    const RoundFusion fused = tracker_.fuse_round(round_, round_weights_);
+    if (fused.status != NumericalStatus::kOk) {
+      const std::string detail =
+          fmt::format("step {}: fusion failed: {}", k, to_string(fused.status));
       spdlog::error("{}", detail);
       presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
       return transport::kExitNumerical;
     }
+    if (fused.resynced) {
+      ++resyncs_;
+      if (syncing_)
+        spdlog::info("step {}: took the peers' prior; contributing from step {}", k, k + 1);
+    }
+    syncing_ = false;
     io_.tracks.write(transport::to_wire(tracker_.estimate(), options_.node.run_id,
                                         static_cast<std::uint32_t>(k), me_.id, wire::PEER,
-                                        contributors));
+                                        round_ids_));
+    tracker_.predict();
     return -1;
   }
 
@@ -284,15 +296,18 @@ class Station {
   transport::NodePresence presence_;
   StationEndpoints io_;
   PeerTracker tracker_;
-  StepCollector<Increment9> collector_;
+  StepCollector<PeerContribution> collector_;
   StationSensor sensor_;
   Covariance<3> noise_;
   std::vector<double> weights_;
   std::uint64_t epoch_ns_ = 0;  // real time: the system-clock start of step 0
-  // Real time: the increments that made the deadline (reserved once, no allocation per step).
-  std::vector<Increment9> partial_increments_;
-  std::vector<double> partial_weights_;
-  std::vector<int> partial_ids_;
+  bool syncing_;                // restarted, and no peer's prior taken yet
+  // The round's contributions, weights and ids (reserved once: no allocation per step).
+  std::vector<PeerContribution> round_;
+  std::vector<double> round_weights_;
+  std::vector<int> round_ids_;
+  std::uint64_t lost_ = 0;     // increments removed by the simulated loss
+  std::uint32_t resyncs_ = 0;  // rounds fused onto another station's prior
   transport::SourceBinding sources_;
   DropTally drops_;
 };
@@ -312,6 +327,15 @@ int run_station(const StationOptions& options) {
     source = std::make_unique<SimulatedSensor>(plan, *me);
   } else {
     source = std::make_unique<ReplayedSensor>(options.replay_path, me->id);
+  }
+  if (options.rejoin_step) {
+    if (*options.rejoin_step >= static_cast<std::uint64_t>(plan.scenario.steps)) {
+      throw std::invalid_argument(fmt::format("--rejoin-at-step: {} is past the run's last step {}",
+                                              *options.rejoin_step, plan.scenario.steps - 1));
+    }
+    if (options.node.realtime_deadline_ms > 0.0) {
+      throw std::invalid_argument("--rejoin-at-step: lock-step runs only, not real time");
+    }
   }
   Station station(options, plan, *me, std::move(source));
   return station.run();

@@ -1,8 +1,10 @@
 #include "skyfuse/transport/node_options.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <stdexcept>
 
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -14,7 +16,12 @@ NodeConfig NodeOptions::node_config(const std::string& name) const {
   config.domain_id = domain;
   config.name = name;
   if (qos_file) config.qos_file = *qos_file;
+  config.best_effort_data = best_effort;
   return config;
+}
+
+std::chrono::microseconds NodeOptions::round_deadline() const {
+  return std::chrono::microseconds(std::llround(round_deadline_ms * 1000.0));
 }
 
 RunPlan NodeOptions::load_plan() const {
@@ -64,9 +71,61 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
                  "Real-time mode: step on the wall clock at the scenario's dt and close each "
                  "round this many ms after it starts (0: lock-step on ticks)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--round-deadline-ms", o.round_deadline_ms,
+                 "Lock-step: a round closes this many ms after its tick with what has arrived")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  add_loss_options(app, o.loss, o.best_effort);
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();
+}
+
+void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort) {
+  app.add_option("--loss", loss.probability,
+                 "Drop each received increment and measurement with this probability (per link, "
+                 "seeded: a rerun loses the same samples)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option_function<std::string>(
+         "--loss-steps",
+         [&loss](const std::string& text) {
+           // "A:B": steps A (inclusive) to B (exclusive).
+           const auto colon = text.find(':');
+           std::size_t used_first = 0;
+           std::size_t used_end = 0;
+           try {
+             if (colon == std::string::npos) throw std::invalid_argument(text);
+             loss.first_step = std::stoull(text.substr(0, colon), &used_first);
+             loss.end_step = std::stoull(text.substr(colon + 1), &used_end);
+           } catch (const std::logic_error&) {
+             throw CLI::ValidationError("--loss-steps",
+                                        "expected A:B (steps A to B-1), got " + text);
+           }
+           if (used_first != colon || used_end != text.size() - colon - 1 ||
+               loss.first_step >= loss.end_step) {
+             throw CLI::ValidationError("--loss-steps",
+                                        "expected A:B with A < B (steps A to B-1), got " + text);
+           }
+         },
+         "Apply --loss only to steps A to B-1, as A:B (default: every step)")
+      ->type_name("A:B");
+  app.add_option("--loss-seed", loss.seed, "Seed of the simulated loss")->capture_default_str();
+  app.add_flag("--best-effort", best_effort,
+               "Increments and measurements travel BEST_EFFORT: lost datagrams are not repaired");
+}
+
+std::vector<std::string> loss_arguments(const LinkLoss& loss, bool best_effort) {
+  std::vector<std::string> args;
+  if (loss.probability > 0.0) {
+    args = {"--loss", fmt::format("{:.17g}", loss.probability), "--loss-seed",
+            std::to_string(loss.seed)};
+    if (loss.first_step != 0 || loss.end_step != LinkLoss{}.end_step) {
+      args.push_back("--loss-steps");
+      args.push_back(fmt::format("{}:{}", loss.first_step, loss.end_step));
+    }
+  }
+  if (best_effort) args.push_back("--best-effort");
+  return args;
 }
 
 }  // namespace skyfuse::transport

@@ -38,6 +38,8 @@ void NodePresence::announce(wire::NodeState state, std::uint32_t step, const std
   status.detail(detail.substr(0, 500));
   static_assert(kDropKinds == wire::kDropKinds, "the wire's drop kinds are DropKind's");
   std::copy(drops_.begin(), drops_.end(), status.dropped().begin());
+  status.lost(lost_);
+  status.resyncs(resyncs_);
   writer_.write(status);
 }
 

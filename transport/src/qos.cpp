@@ -35,9 +35,16 @@ bool is_status_topic(const std::string& topic) {
   return topic == "skyfuse_status";
 }
 
+// The links fusion tolerates losing: a round closes at its deadline without the sample.
+bool is_data_link_topic(const std::string& topic) {
+  return topic == "skyfuse_increment" || topic == "skyfuse_measurement";
+}
+
 template <typename EndpointQos>
-void apply_common(EndpointQos& qos, const std::string& topic) {
-  qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
+void apply_common(EndpointQos& qos, const std::string& topic, bool best_effort_data) {
+  qos.reliability().kind = best_effort_data && is_data_link_topic(topic)
+                               ? dds::BEST_EFFORT_RELIABILITY_QOS
+                               : dds::RELIABLE_RELIABILITY_QOS;
   if (is_status_topic(topic)) {
     qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
   } else {
@@ -55,7 +62,9 @@ void apply_common(EndpointQos& qos, const std::string& topic) {
 
 }  // namespace
 
-QosProfiles::QosProfiles(const std::optional<std::filesystem::path>& xml_file) {
+QosProfiles::QosProfiles(const std::optional<std::filesystem::path>& xml_file,
+                         bool best_effort_data)
+    : best_effort_data_(best_effort_data) {
   if (!xml_file) return;
   if (dds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(xml_file->string()) !=
       ReturnCode_t::RETCODE_OK) {
@@ -99,7 +108,7 @@ dds::DataWriterQos QosProfiles::writer(const dds::Publisher& publisher,
       ReturnCode_t::RETCODE_OK) {
     return qos;
   }
-  apply_common(qos, topic);
+  apply_common(qos, topic, best_effort_data_);
   if (is_status_topic(topic)) {
     qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
     qos.history().depth = 1;
@@ -118,7 +127,7 @@ dds::DataReaderQos QosProfiles::reader(const dds::Subscriber& subscriber,
       ReturnCode_t::RETCODE_OK) {
     return qos;
   }
-  apply_common(qos, topic);
+  apply_common(qos, topic, best_effort_data_);
   qos.reliable_reader_qos().times.heartbeatResponseDelay = Duration_t(0, 0);
   return qos;
 }

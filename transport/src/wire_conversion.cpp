@@ -26,23 +26,33 @@ StationObservation9 from_wire(const wire::Measurement& sample) {
   return observation;
 }
 
-wire::InformationIncrement to_wire(const Increment9& increment, std::uint64_t run_id,
+wire::InformationIncrement to_wire(const PeerContribution& contribution, std::uint64_t run_id,
                                    std::uint32_t step) {
+  const Increment9& increment = contribution.increment;
   wire::InformationIncrement sample;
   sample.run_id(run_id);
   sample.step(step);
   sample.station_id(increment.station_id);
   pack_upper<9>(increment.delta_information, sample.delta_information().data());
-  for (int i = 0; i < 9; ++i) sample.delta_vector()[i] = increment.delta_vector(i);
+  pack_upper<9>(contribution.prior.covariance, sample.prior_covariance().data());
+  for (int i = 0; i < 9; ++i) {
+    sample.delta_vector()[i] = increment.delta_vector(i);
+    sample.prior_x()[i] = contribution.prior.mean(i);
+  }
   return sample;
 }
 
-Increment9 from_wire(const wire::InformationIncrement& sample) {
-  Increment9 increment;
+PeerContribution from_wire(const wire::InformationIncrement& sample) {
+  PeerContribution contribution;
+  Increment9& increment = contribution.increment;
   increment.station_id = sample.station_id();
   increment.delta_information = unpack_upper<9>(sample.delta_information().data());
-  for (int i = 0; i < 9; ++i) increment.delta_vector(i) = sample.delta_vector()[i];
-  return increment;
+  contribution.prior.covariance = unpack_upper<9>(sample.prior_covariance().data());
+  for (int i = 0; i < 9; ++i) {
+    increment.delta_vector(i) = sample.delta_vector()[i];
+    contribution.prior.mean(i) = sample.prior_x()[i];
+  }
+  return contribution;
 }
 
 wire::TrackEstimate to_wire(const GaussianState<9>& estimate, std::uint64_t run_id,

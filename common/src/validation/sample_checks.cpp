@@ -23,6 +23,18 @@ std::optional<DropKind> check_increment(const InformationIncrement<9>& increment
   return std::nullopt;
 }
 
+std::optional<DropKind> check_estimate(const GaussianState<9>& estimate) {
+  if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) return DropKind::kNonFinite;
+  SmallCholesky<9> factor;
+  if (!factor.compute(estimate.covariance)) return DropKind::kNotPositive;
+  return std::nullopt;
+}
+
+std::optional<DropKind> check_contribution(const PeerContribution& contribution) {
+  if (const auto why = check_increment(contribution.increment)) return why;
+  return check_estimate(contribution.prior);
+}
+
 std::optional<DropKind> check_observation(
     const StationObservation<RangeAzimuthElevation<9>>& observation) {
   if (!observation.z.allFinite() || !observation.noise.allFinite() ||

@@ -59,6 +59,22 @@ TEST(SampleChecks, AcceptsAZeroIncrement) {
   EXPECT_EQ(check_increment(InformationIncrement<9>{}), std::nullopt);
 }
 
+TEST(SampleChecks, RefusesAContributionWhosePriorCannotBeAdopted) {
+  // A peer may adopt the prior an increment travels with, so it is checked like a track.
+  PeerContribution good{real_increment(), {}};
+  good.prior.covariance = Covariance<9>::Identity();
+  EXPECT_EQ(check_contribution(good), std::nullopt);
+  PeerContribution nan_prior = good;
+  nan_prior.prior.mean(4) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(check_contribution(nan_prior), DropKind::kNonFinite);
+  PeerContribution indefinite = good;
+  indefinite.prior.covariance(7, 7) = -1.0;
+  EXPECT_EQ(check_contribution(indefinite), DropKind::kNotPositive);
+  PeerContribution bad_increment = good;
+  bad_increment.increment.delta_vector(0) = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(check_contribution(bad_increment), DropKind::kNonFinite);
+}
+
 TEST(SampleChecks, AcceptsARealObservation) {
   EXPECT_EQ(check_observation(real_observation()), std::nullopt);
 }

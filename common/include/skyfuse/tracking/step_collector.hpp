@@ -32,7 +32,12 @@ class StepCollector {
       row->payloads.resize(ids_.size());
       row->filled.assign(ids_.size(), false);
     }
+    last_filled_.assign(ids_.size(), false);
   }
+
+  /// Makes `step` the current one (a process that joins a run late starts there).
+  void start_at(std::uint64_t step) { step_ = step; }
+  std::uint64_t step() const { return step_; }
 
   /// Why a sample for (step, station_id) would be refused now, or nothing if it would be kept:
   /// unknown station, then stale or future step, then a slot already filled.
@@ -72,8 +77,15 @@ class StepCollector {
     return out;
   }
 
+  /// Whether the station delivered nothing in the step closed last (true before the first).
+  bool absent_last_step(int station_id) const {
+    const std::optional<std::size_t> index = index_of(station_id);
+    return index && !last_filled_[*index];
+  }
+
   /// Closes the current step and opens the next one.
   void advance() {
+    last_filled_ = current_.filled;  // same size: no allocation
     std::swap(current_, next_);
     next_.filled.assign(ids_.size(), false);
     next_.count = 0;
@@ -100,6 +112,7 @@ class StepCollector {
   std::vector<int> ids_;
   Row current_;
   Row next_;
+  std::vector<bool> last_filled_;
   std::uint64_t step_ = 0;
 };
 

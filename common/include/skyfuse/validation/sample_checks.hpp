@@ -9,6 +9,7 @@
 #include "skyfuse/fusion/information_increment.hpp"
 #include "skyfuse/fusion/stacked_ekf.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse {
@@ -20,6 +21,13 @@ inline constexpr double kMaxRangeM = 1.0e6;
 /// dQ and dy finite; dQ positive semi-definite (smallest eigenvalue >= -1e-9 times the
 /// largest magnitude: rounding in H^T R^-1 H is allowed, a negative direction is not).
 std::optional<DropKind> check_increment(const InformationIncrement<9>& increment);
+
+/// Mean and covariance finite; covariance positive definite (a prior or a track a peer may
+/// adopt).
+std::optional<DropKind> check_estimate(const GaussianState<9>& estimate);
+
+/// The increment as check_increment(), then the prior it travels with as check_estimate().
+std::optional<DropKind> check_contribution(const PeerContribution& contribution);
 
 /// z, R and the station position finite; R positive definite; z within the sensor's range.
 std::optional<DropKind> check_observation(

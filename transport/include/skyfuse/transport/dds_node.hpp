@@ -48,6 +48,9 @@ struct NodeConfig {
   int domain_id = 0;
   std::string name;  ///< participant name, shown by DDS tools
   std::optional<std::filesystem::path> qos_file;
+  /// Increments and measurements travel BEST_EFFORT (`--best-effort`): a lost datagram is
+  /// not repaired, and a round closes at its deadline without the sample.
+  bool best_effort_data = false;
 };
 
 /// Domain ids above 232 make Fast DDS 2.9 exit the process during participant creation.

@@ -8,7 +8,9 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 
@@ -29,15 +31,28 @@ struct NodeOptions {
   /// Real-time mode when > 0: each step starts on the wall clock at epoch + k dt and closes
   /// this many milliseconds later with whatever has arrived.
   double realtime_deadline_ms = 0.0;
+  /// Lock-step: a round closes this many milliseconds after its tick with what has arrived
+  /// (a dead station, or a lost sample, costs one deadline; nothing waits forever).
+  double round_deadline_ms = 1000.0;
+  /// Simulated loss of received increments and measurements (`--loss`, `--loss-steps`).
+  LinkLoss loss;
+  bool best_effort = false;  ///< increments and measurements BEST_EFFORT instead of RELIABLE
   std::string log_level = "info";
 
   NodeConfig node_config(const std::string& name) const;
+  std::chrono::microseconds round_deadline() const;
   RunPlan load_plan() const;
   std::chrono::milliseconds discovery_timeout() const;
   std::chrono::milliseconds idle_timeout() const;
 };
 
 void add_node_options(CLI::App& app, NodeOptions& options);
+
+/// `--loss P`, `--loss-steps A:B`, `--loss-seed S` and `--best-effort` into `loss` and
+/// `best_effort`: shared by the nodes and `skyfuse run`, which passes them on.
+void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort);
+/// The arguments that give a node the same loss settings (empty when there is no loss).
+std::vector<std::string> loss_arguments(const LinkLoss& loss, bool best_effort);
 
 /// Exit codes shared by the node processes, so the harness can say what happened.
 enum ExitCode : int {

@@ -25,6 +25,11 @@ class NodePresence {
   /// Publishes this node's state, with the drop counts last given to set_drops().
   void announce(wire::NodeState state, std::uint32_t step = 0, const std::string& detail = {});
   void set_drops(const DropCounts& drops) { drops_ = drops; }
+  /// Samples removed by the simulated loss, and rounds that resynchronised this node's prior.
+  void set_link_counts(std::uint64_t lost, std::uint32_t resyncs) {
+    lost_ = lost;
+    resyncs_ = resyncs;
+  }
   /// Waits until every reader has the last announcement: call before exiting.
   bool wait_delivered(std::chrono::milliseconds timeout) {
     return writer_.wait_acknowledged(timeout);
@@ -45,6 +50,8 @@ class NodePresence {
   Reader<wire::StationStatus> reader_;
   std::optional<std::string> older_twin_;
   DropCounts drops_{};
+  std::uint64_t lost_ = 0;
+  std::uint32_t resyncs_ = 0;
 };
 
 }  // namespace skyfuse::transport

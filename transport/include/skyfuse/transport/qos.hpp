@@ -29,13 +29,17 @@ inline constexpr int kMaxStations = 256;
 class QosProfiles {
  public:
   /// Loads `xml_file` if given; a file that does not load is an error, not a silent default.
-  explicit QosProfiles(const std::optional<std::filesystem::path>& xml_file);
+  /// `best_effort_data`: the data links (increments, measurements) are BEST_EFFORT.
+  QosProfiles(const std::optional<std::filesystem::path>& xml_file, bool best_effort_data);
 
   eprosima::fastdds::dds::DomainParticipantQos participant(const std::string& name) const;
   eprosima::fastdds::dds::DataWriterQos writer(const eprosima::fastdds::dds::Publisher& publisher,
                                                const std::string& topic) const;
   eprosima::fastdds::dds::DataReaderQos reader(const eprosima::fastdds::dds::Subscriber& subscriber,
                                                const std::string& topic) const;
+
+ private:
+  bool best_effort_data_;
 };
 
 }  // namespace skyfuse::transport

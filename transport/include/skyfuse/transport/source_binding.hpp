@@ -1,9 +1,11 @@
 #pragma once
 /// \file
 /// Which writer speaks for which station. The first writer a receiver hears for a station id
-/// owns that id for the run; a sample for the id from any other writer is a duplicate, whoever
-/// sent it and whenever. A process that reuses a running station's id therefore cannot get its
-/// samples fused, even if they arrive first in a later step.
+/// owns that id; a sample for the id from any other writer is a duplicate, whoever sent it.
+/// A process that reuses a running station's id therefore cannot get its samples fused, even
+/// if they arrive first in a later step. The one exception is how a restarted station gets its
+/// id back: a station that delivered nothing in the step closed last may be claimed by a new
+/// writer (admit() rebinds it).
 ///
 /// This is trust on first use, not authentication: a process that speaks for an id before its
 /// real owner does takes it. Authentication is DDS-Security's job (`skyfuse run --secure`).
@@ -39,7 +41,10 @@ std::optional<DropKind> admit(StepCollector<Payload>& collector, SourceBinding& 
                               std::uint64_t step, int station_id, const WriterId& writer,
                               const Payload& payload) {
   if (const auto why = collector.check(step, station_id)) return why;
-  if (!sources.accept(station_id, writer)) return DropKind::kDuplicate;
+  if (!sources.accept(station_id, writer)) {
+    if (!collector.absent_last_step(station_id)) return DropKind::kDuplicate;
+    sources.bind(station_id, writer);  // its old writer fell silent: a restarted process
+  }
   return collector.offer(step, station_id, payload);
 }
 

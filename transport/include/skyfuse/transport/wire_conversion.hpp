@@ -38,9 +38,9 @@ wire::Measurement to_wire(const StationObservation9& observation, std::uint64_t 
                           std::uint32_t step);
 StationObservation9 from_wire(const wire::Measurement& sample);
 
-wire::InformationIncrement to_wire(const Increment9& increment, std::uint64_t run_id,
+wire::InformationIncrement to_wire(const PeerContribution& contribution, std::uint64_t run_id,
                                    std::uint32_t step);
-Increment9 from_wire(const wire::InformationIncrement& sample);
+PeerContribution from_wire(const wire::InformationIncrement& sample);
 
 wire::TrackEstimate to_wire(const GaussianState<9>& estimate, std::uint64_t run_id,
                             std::uint32_t step, int source_id, wire::TrackSource mode,
