@@ -115,8 +115,7 @@ class Center {
     presence_.set_drops(drops_.counts());
     presence_.set_link_counts(lost_, 0);
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
-    tracks_.wait_acknowledged(2s);
-    presence_.wait_delivered(2s);
+    transport::finish_when_released(ticks_, options_.run_id, presence_, tracks_, 5s);
     spdlog::info("finished {} steps", steps);
     return transport::kExitOk;
   }

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
@@ -51,6 +52,17 @@ pid_t ChildProcesses::spawn(const std::string& name, const std::vector<std::stri
   }
   children_.push_back({name, pid});
   return pid;
+}
+
+void ChildProcesses::kill_now(const std::string& name) {
+  const auto it = std::find_if(children_.begin(), children_.end(),
+                               [&](const Child& c) { return c.name == name; });
+  if (it == children_.end()) throw std::runtime_error(fmt::format("no live child called {}", name));
+  kill(it->pid, SIGKILL);
+  int status = 0;
+  while (waitpid(it->pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  children_.erase(it);
 }
 
 std::vector<ChildExit> ChildProcesses::poll() {

@@ -30,6 +30,10 @@ class ChildProcesses {
   /// Starts `argv[0]` with `argv`; `name` identifies it in messages. Throws on failure.
   pid_t spawn(const std::string& name, const std::vector<std::string>& argv);
 
+  /// Kills the child called `name` with SIGKILL and reaps it: a crash the caller asked for, so
+  /// it is not reported by poll() or exited(). Throws if there is no such live child.
+  void kill_now(const std::string& name);
+
   /// Reaps children that have exited since the last call.
   std::vector<ChildExit> poll();
   /// Waits up to `timeout` for every child to exit by itself; true if all did.

@@ -20,6 +20,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr auto kPollSlice = std::chrono::milliseconds(50);
+// A round still open after this repeats its tick: a station restarted just before the round
+// may have matched the tick writer a moment after the first copy went out. Nodes take a tick
+// once, so a repeat changes nothing for the others.
+constexpr auto kTickRepeat = std::chrono::milliseconds(50);
 constexpr int kCenterId = 0;
 
 std::vector<int> with_center(std::vector<int> ids) {
@@ -61,10 +65,17 @@ struct LockstepDriver::Impl {
         throw RunAborted(fmt::format("{} failed at step {}: {}", node_name(s.station_id()),
                                      s.step(), s.detail()));
       }
-      if (s.state() == wire::READY) ready.insert(s.station_id());
+      // A killed process's own READY must not count for its replacement.
+      const auto killed = killed_instance.find(s.station_id());
+      if (s.state() == wire::READY &&
+          (killed == killed_instance.end() || killed->second != s.instance())) {
+        ready[s.station_id()] = s.instance();
+      }
       if (s.state() == wire::FINISHED) {
-        DropCounts& counts = drops[s.station_id()];
-        std::copy(s.dropped().begin(), s.dropped().end(), counts.begin());
+        NodeCounts& counts = finished[s.station_id()];
+        std::copy(s.dropped().begin(), s.dropped().end(), counts.dropped.begin());
+        counts.lost = s.lost();
+        counts.resyncs = s.resyncs();
       }
     }
   }
@@ -92,12 +103,12 @@ struct LockstepDriver::Impl {
     if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterId)) {
       return DropKind::kUnknownStation;
     }
-    const GaussianState<9> estimate = transport::from_wire(t);
-    if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) {
+    ReceivedTrack track{transport::from_wire(t),
+                        {t.contributors().begin(), t.contributors().end()}};
+    if (!track.estimate.mean.allFinite() || !track.estimate.covariance.allFinite()) {
       return DropKind::kNonFinite;
     }
-    return transport::admit(track_collector, track_sources, t.step(), t.source_id(), writer,
-                            estimate);
+    return transport::admit(track_collector, track_sources, t.step(), t.source_id(), writer, track);
   }
   std::optional<DropKind> measurement_refusal(const wire::Measurement& m,
                                               const transport::WriterId& writer) {
@@ -117,10 +128,27 @@ struct LockstepDriver::Impl {
   transport::Reader<wire::Measurement> measurements;
   transport::Reader<wire::StationStatus> statuses;
   transport::ReaderWaitSet wait_set;
-  StepCollector<GaussianState<9>> track_collector;
+  // Whether every node that is up has delivered its track (and every station its measurement)
+  // for the current step.
+  bool all_in() const {
+    const auto track_ids = track_collector.station_ids();  // ascending: the center (0) first
+    for (std::size_t i = 0; i < track_ids.size(); ++i) {
+      if (!down.contains(track_ids[i]) && !track_collector.filled(i)) return false;
+    }
+    const auto ids = measurement_collector.station_ids();
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (!down.contains(ids[i]) && !measurement_collector.filled(i)) return false;
+    }
+    return true;
+  }
+
+  StepCollector<ReceivedTrack> track_collector;
   StepCollector<Vector3> measurement_collector;
-  std::set<int> ready;
-  std::map<int, DropCounts> drops;  // from FINISHED statuses
+  std::map<int, std::uint64_t> ready;  // node id -> the instance that announced READY
+  std::map<int, std::uint64_t> killed_instance;
+  std::set<int> down;                           // stations the harness killed and has not restarted
+  std::map<int, Clock::time_point> last_heard;  // per node: when its last track arrived
+  std::map<int, NodeCounts> finished;           // from FINISHED statuses
   transport::SourceBinding track_sources;
   transport::SourceBinding measurement_sources;
   DropTally own_drops;
@@ -146,7 +174,10 @@ std::chrono::nanoseconds LockstepDriver::wait_until_joined(std::chrono::millisec
     d.read_statuses();
     const bool matched =
         d.ticks.matched() >= m + 1 && d.tracks.matched() >= m + 1 && d.measurements.matched() >= m;
-    if (matched && all_ready()) return Clock::now() - start;
+    if (matched && all_ready()) {
+      for (int id : with_center(d.station_ids)) d.last_heard[id] = Clock::now();
+      return Clock::now() - start;
+    }
     if (Clock::now() - start >= timeout) {
       std::vector<std::string> missing;
       for (int id : with_center(d.station_ids)) {
@@ -163,7 +194,8 @@ std::chrono::nanoseconds LockstepDriver::wait_until_joined(std::chrono::millisec
   }
 }
 
-RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds timeout) {
+RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds close_after,
+                                      std::chrono::milliseconds silence_limit) {
   Impl& d = *impl_;
   wire::Tick tick;
   tick.run_id(d.run_id);
@@ -171,18 +203,18 @@ RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds
   tick.stop(false);
   const auto sent = Clock::now();
   d.ticks.write(tick);
+  auto last_sent = sent;
 
   while (true) {
     d.drain_samples();
-    if (d.track_collector.complete() && d.measurement_collector.complete()) break;
+    if (d.all_in()) break;
     d.check();
     d.read_statuses();
-    if (Clock::now() - sent >= timeout) {
-      std::vector<std::string> missing;
-      for (int id : d.track_collector.missing()) missing.push_back(node_name(id));
-      throw RunAborted(fmt::format("round {} timed out after {:.1f} s waiting for tracks of {}", k,
-                                   std::chrono::duration<double>(timeout).count(),
-                                   fmt::join(missing, ", ")));
+    const auto now = Clock::now();
+    if (now - sent >= close_after) break;  // close with what has arrived
+    if (now - last_sent >= kTickRepeat) {
+      d.ticks.write(tick);
+      last_sent = now;
     }
     d.wait_set.wait(kPollSlice);
   }
@@ -190,14 +222,61 @@ RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds
   RoundRecord record;
   record.step = k;
   record.latency = Clock::now() - sent;
-  const auto tracks = d.track_collector.payloads();  // ascending id: the center (0) first
-  record.central = tracks.front();
-  record.peers.assign(tracks.begin() + 1, tracks.end());
+  const auto track_ids = d.track_collector.station_ids();
+  const auto tracks = d.track_collector.payloads();
+  for (std::size_t i = 0; i < track_ids.size(); ++i) {
+    const int id = track_ids[i];
+    std::optional<ReceivedTrack> track;
+    if (d.track_collector.filled(i)) {
+      track = tracks[i];
+      d.last_heard[id] = Clock::now();
+    } else if (!d.down.contains(id) && Clock::now() - d.last_heard[id] > silence_limit) {
+      throw RunAborted(fmt::format("{} is running but sent no track for {:.1f} s (step {})",
+                                   node_name(id),
+                                   std::chrono::duration<double>(silence_limit).count(), k));
+    }
+    if (id == kCenterId) {
+      record.central = std::move(track);
+    } else {
+      record.peers.push_back(std::move(track));
+    }
+  }
   const auto z = d.measurement_collector.payloads();
-  record.measurements.assign(z.begin(), z.end());
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    record.measurements.push_back(d.measurement_collector.filled(i) ? std::optional(z[i])
+                                                                    : std::nullopt);
+  }
   d.track_collector.advance();
   d.measurement_collector.advance();
   return record;
+}
+
+void LockstepDriver::set_down(int id, bool down) {
+  if (down) {
+    impl_->down.insert(id);
+    if (const auto it = impl_->ready.find(id); it != impl_->ready.end()) {
+      impl_->killed_instance[id] = it->second;
+      impl_->ready.erase(it);
+    }
+  } else {
+    impl_->down.erase(id);
+    impl_->last_heard[id] = Clock::now();
+  }
+}
+
+void LockstepDriver::wait_until_ready(int id, std::chrono::milliseconds timeout) {
+  Impl& d = *impl_;
+  const auto start = Clock::now();
+  while (!d.ready.contains(id)) {
+    d.check();
+    d.read_statuses();
+    d.drain_samples();  // keep the readers' queues short meanwhile
+    if (Clock::now() - start >= timeout) {
+      throw RunAborted(fmt::format("restarted {} not ready after {:.1f} s", node_name(id),
+                                   std::chrono::duration<double>(timeout).count()));
+    }
+    d.wait_set.wait(std::chrono::milliseconds(10));
+  }
 }
 
 std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_step_s,
@@ -258,7 +337,8 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
           std::chrono::duration<double, std::micro>(std::chrono::system_clock::now() - scheduled)
               .count();
       if (t.contributors().size() != m) p.record.all_inputs_in_time = false;
-      (i == 0 ? p.record.central : p.record.peers[i - 1]) = transport::from_wire(t);
+      (i == 0 ? p.record.central : p.record.peers[i - 1]) = ReceivedTrack{
+          transport::from_wire(t), {t.contributors().begin(), t.contributors().end()}};
     }
     wire::Measurement z;
     while (d.measurements.take(z)) {
@@ -296,11 +376,26 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
   return done;
 }
 
-std::map<int, DropCounts> LockstepDriver::finished_drops() {
+std::map<int, NodeCounts> LockstepDriver::finished_counts() {
   impl_->read_statuses();
-  std::map<int, DropCounts> all = impl_->drops;
-  all[kHarnessNodeId] = impl_->own_drops.counts();
+  std::map<int, NodeCounts> all = impl_->finished;
+  all[kHarnessNodeId].dropped = impl_->own_drops.counts();
   return all;
+}
+
+bool LockstepDriver::wait_until_finished(std::chrono::milliseconds timeout) {
+  Impl& d = *impl_;
+  const auto give_up = Clock::now() + timeout;
+  while (true) {
+    d.read_statuses();
+    d.drain_samples();
+    const bool all = std::all_of(d.station_ids.begin(), d.station_ids.end(), [&](int id) {
+      return d.down.contains(id) || d.finished.contains(id);
+    });
+    if (all && d.finished.contains(kCenterId)) return true;
+    if (Clock::now() >= give_up) return false;
+    d.wait_set.wait(std::chrono::milliseconds(10));
+  }
 }
 
 void LockstepDriver::stop() {

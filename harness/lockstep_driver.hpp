@@ -1,14 +1,16 @@
 #pragma once
 // The harness's side of a lock-step run over DDS: waits until every station and the center
-// have joined, then for each step publishes Tick{run, k} and waits for every process's track of
-// step k (and every station's measurement, which the harness records). The harness adds no
-// estimation; it only observes.
+// have joined, then for each step publishes Tick{run, k} and waits for every live process's
+// track of step k (and every live station's measurement, which the harness records). Rounds
+// close at a deadline like the nodes' own, so a node that is down or late is recorded as
+// missing instead of stalling the run. The harness adds no estimation; it only observes.
 
 #include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -25,12 +27,19 @@ class RunAborted : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A node's track as received: the estimate and the stations fused into it.
+struct ReceivedTrack {
+  GaussianState<9> estimate;
+  std::vector<int> contributors;  ///< ascending station id
+};
+
 struct RoundRecord {
   std::uint64_t step = 0;
-  GaussianState<9> central;
-  std::vector<GaussianState<9>> peers;  ///< ascending station id
-  std::vector<Vector3> measurements;    ///< ascending station id
-  std::chrono::nanoseconds latency{0};  ///< tick published -> last track received
+  /// Each empty when the node delivered nothing for the step (down, or past the deadline).
+  std::optional<ReceivedTrack> central;
+  std::vector<std::optional<ReceivedTrack>> peers;   ///< ascending station id
+  std::vector<std::optional<Vector3>> measurements;  ///< ascending station id
+  std::chrono::nanoseconds latency{0};               ///< tick published -> last track received
   /// Real time only: age of each track on arrival (scheduled step start -> received), the center
   /// first then the stations in ascending id; and whether every node fused all M inputs.
   std::vector<double> track_age_us;
@@ -39,6 +48,13 @@ struct RoundRecord {
 
 /// The harness's key among node ids in drop counts.
 inline constexpr int kHarnessNodeId = -1;
+
+/// What a node reported when it finished.
+struct NodeCounts {
+  DropCounts dropped{};
+  std::uint64_t lost = 0;     ///< received samples removed by the simulated loss
+  std::uint32_t resyncs = 0;  ///< rounds fused onto another station's prior
+};
 
 class LockstepDriver {
  public:
@@ -51,8 +67,17 @@ class LockstepDriver {
   /// endpoints match them. Returns the time it took.
   std::chrono::nanoseconds wait_until_joined(std::chrono::milliseconds timeout);
 
-  /// Runs step k and returns what every process published for it.
-  RoundRecord run_round(std::uint64_t k, std::chrono::milliseconds timeout);
+  /// Runs step k: publishes its tick and returns what the processes published for it, once
+  /// every live one has or `close_after` has passed. A live node silent for `silence_limit`
+  /// (over consecutive rounds) ends the run.
+  RoundRecord run_round(std::uint64_t k, std::chrono::milliseconds close_after,
+                        std::chrono::milliseconds silence_limit);
+
+  /// The harness killed station `id` (true) or started it again (false): a station that is
+  /// down is not waited for.
+  void set_down(int id, bool down);
+  /// Waits until a restarted station `id` has announced READY again.
+  void wait_until_ready(int id, std::chrono::milliseconds timeout);
 
   /// Real-time mode: publishes the start tick (step 0 begins at `epoch`) and gathers every
   /// node's track of every step as the nodes publish them on their own clocks.
@@ -60,11 +85,15 @@ class LockstepDriver {
                                         std::chrono::system_clock::time_point epoch,
                                         std::chrono::milliseconds timeout);
 
-  /// Drop counts of every node that has announced FINISHED so far, by node id (0: center),
-  /// and the harness's own under kHarnessNodeId.
-  std::map<int, DropCounts> finished_drops();
+  /// What every node that has announced FINISHED so far reported, by node id (0: center),
+  /// and the harness's own drops under kHarnessNodeId.
+  std::map<int, NodeCounts> finished_counts();
 
-  /// Tells every process to stop (a Tick with stop = true).
+  /// Waits until every node that is up has announced FINISHED; false if `timeout` passed first.
+  bool wait_until_finished(std::chrono::milliseconds timeout);
+
+  /// Tells every process to stop (a Tick with stop = true); after the last round, this
+  /// releases the nodes waiting to exit.
   void stop();
 
  private:

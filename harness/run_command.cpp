@@ -15,6 +15,7 @@
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/node_options.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
@@ -62,7 +63,12 @@ std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan
                                    "--log-level",
                                    o.verbose ? "info" : "warn",
                                    "--realtime-deadline-ms",
-                                   fmt::format("{}", o.realtime_deadline_ms)};
+                                   fmt::format("{}", o.realtime_deadline_ms),
+                                   "--round-deadline-ms",
+                                   fmt::format("{}", o.round_deadline_ms)};
+  for (std::string& a : transport::loss_arguments(o.loss, o.best_effort)) {
+    args.push_back(std::move(a));
+  }
   if (o.qos_file) {
     args.push_back("--qos");
     args.push_back(*o.qos_file);
@@ -72,6 +78,68 @@ std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan
 
 std::chrono::milliseconds seconds_to_ms(double s) {
   return std::chrono::milliseconds(static_cast<long>(std::llround(s * 1000.0)));
+}
+
+// "ID@STEP" -> {ID, STEP}.
+StationEvent parse_station_event(const std::string& option, const std::string& text) {
+  const auto at = text.find('@');
+  StationEvent e;
+  std::size_t used_id = 0;
+  std::size_t used_step = 0;
+  try {
+    if (at == std::string::npos) throw std::invalid_argument(text);
+    e.station_id = std::stoi(text.substr(0, at), &used_id);
+    e.step = std::stoull(text.substr(at + 1), &used_step);
+  } catch (const std::logic_error&) {
+    used_id = std::string::npos;
+  }
+  if (used_id != at || used_step != text.size() - at - 1) {
+    throw CLI::ValidationError(option, "expected ID@STEP, e.g. 2@100, got " + text);
+  }
+  return e;
+}
+
+// Kills and restarts must name participants, fit in the run, and alternate per station:
+// kill, restart later, kill again later, ...
+void check_station_events(const RunOptions& o, const RunPlan& plan) {
+  const auto steps = static_cast<std::uint64_t>(plan.scenario.steps);
+  for (const auto* list : {&o.kills, &o.restarts}) {
+    for (const StationEvent& e : *list) {
+      const char* option = list == &o.kills ? "--kill" : "--restart";
+      if (plan.participant(e.station_id) == nullptr) {
+        throw std::invalid_argument(
+            fmt::format("{} {}@{}: station {} does not take part in the run", option, e.station_id,
+                        e.step, e.station_id));
+      }
+      if (e.step == 0 || e.step >= steps) {
+        throw std::invalid_argument(fmt::format("{} {}@{}: the step must be in [1, {}]", option,
+                                                e.station_id, e.step, steps - 1));
+      }
+    }
+  }
+  if ((!o.kills.empty()) && (o.external || o.realtime_deadline_ms > 0.0)) {
+    throw std::invalid_argument("--kill/--restart: lock-step runs with started processes only");
+  }
+  for (int id : plan.participant_ids()) {
+    std::vector<std::pair<std::uint64_t, bool>> events;  // step, is_kill
+    for (const StationEvent& e : o.kills) {
+      if (e.station_id == id) events.emplace_back(e.step, true);
+    }
+    for (const StationEvent& e : o.restarts) {
+      if (e.station_id == id) events.emplace_back(e.step, false);
+    }
+    std::sort(events.begin(), events.end());
+    bool up = true;
+    for (const auto& [step, is_kill] : events) {
+      if (is_kill != up) {
+        throw std::invalid_argument(fmt::format(
+            "--kill/--restart: station {} at step {}: {} (kill and restart must alternate, a "
+            "restart later than its kill)",
+            id, step, is_kill ? "is already down" : "is not down"));
+      }
+      up = !is_kill;
+    }
+  }
 }
 
 }  // namespace
@@ -103,9 +171,32 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Seconds to wait until every process has joined")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--round-timeout", o.round_timeout_s, "Seconds one round may take")
+  cmd->add_option("--round-timeout", o.round_timeout_s,
+                  "Seconds a running node may deliver no track before the run is abandoned")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_option("--round-deadline-ms", o.round_deadline_ms,
+                  "A lock-step round closes this many ms after its tick with what has arrived")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  transport::add_loss_options(*cmd, o.loss, o.best_effort);
+  cmd->add_option_function<std::vector<std::string>>(
+         "--kill",
+         [&o](const std::vector<std::string>& all) {
+           for (const std::string& text : all)
+             o.kills.push_back(parse_station_event("--kill", text));
+         },
+         "Kill station ID with SIGKILL before the round of STEP, as ID@STEP (repeatable)")
+      ->type_name("ID@STEP");
+  cmd->add_option_function<std::vector<std::string>>(
+         "--restart",
+         [&o](const std::vector<std::string>& all) {
+           for (const std::string& text : all) {
+             o.restarts.push_back(parse_station_event("--restart", text));
+           }
+         },
+         "Start killed station ID again as a new process before the round of STEP, as ID@STEP")
+      ->type_name("ID@STEP");
   cmd->add_option("--replay", o.replay_path,
                   "Stations replay their measurements from this CSV (a measurements.csv of an "
                   "earlier run) instead of simulating them")
@@ -126,6 +217,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
   const std::filesystem::path scenario_file = std::filesystem::absolute(out / "scenario.yaml");
   write_file_atomically(scenario_file, scenario_text(o.scenario_path));
 
+  check_station_events(o, plan);
   const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
   const std::vector<int> ids = plan.participant_ids();
 
@@ -142,28 +234,34 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
   config.domain_id = o.domain;
   config.name = "skyfuse-harness";
   if (o.qos_file) config.qos_file = *o.qos_file;
+  config.best_effort_data = o.best_effort;
   LockstepDriver driver(config, run_id, ids, check);
 
   try {
+    const std::vector<std::string> common = node_arguments(o, plan, run_id, scenario_file);
+    const auto spawn_station = [&](int id, std::optional<std::uint64_t> rejoin_step) {
+      std::vector<std::string> station{(executable_dir() / "skyfuse-station").string(), "--id",
+                                       std::to_string(id)};
+      station.insert(station.end(), common.begin(), common.end());
+      if (!o.replay_path.empty()) {
+        station.push_back("--replay");
+        station.push_back(std::filesystem::absolute(o.replay_path).string());
+      }
+      if (rejoin_step) {
+        station.push_back("--rejoin-at-step");
+        station.push_back(std::to_string(*rejoin_step));
+      }
+      children.spawn(fmt::format("station {}", id), station);
+    };
     if (!o.external) {
-      const std::vector<std::string> common = node_arguments(o, plan, run_id, scenario_file);
       std::vector<std::string> center{(executable_dir() / "skyfuse-center").string()};
       center.insert(center.end(), common.begin(), common.end());
       children.spawn("center", center);
-      for (int id : ids) {
-        std::vector<std::string> station{(executable_dir() / "skyfuse-station").string(), "--id",
-                                         std::to_string(id)};
-        station.insert(station.end(), common.begin(), common.end());
-        if (!o.replay_path.empty()) {
-          station.push_back("--replay");
-          station.push_back(std::filesystem::absolute(o.replay_path).string());
-        }
-        children.spawn(fmt::format("station {}", id), station);
-      }
+      for (int id : ids) spawn_station(id, std::nullopt);
     }
     const auto discovery = driver.wait_until_joined(seconds_to_ms(o.discovery_timeout_s));
 
-    RunRecorder recorder(plan, ids);
+    RunRecorder recorder(plan, ids, o.restarts);
     Progress progress(fmt::format("run M={} {:.0f} km/h", plan.stations, plan.speed_mps * 3.6),
                       plan.scenario.steps);
     const auto round_timeout = seconds_to_ms(o.round_timeout_s);
@@ -177,15 +275,36 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
       }
       progress.advance(plan.scenario.steps);
     } else {
+      const auto close_after =
+          std::chrono::milliseconds(std::llround(2.0 * o.round_deadline_ms + 250.0));
       for (int k = 0; k < plan.scenario.steps; ++k) {
-        recorder.add(driver.run_round(static_cast<std::uint64_t>(k), round_timeout));
+        const auto step = static_cast<std::uint64_t>(k);
+        for (const StationEvent& e : o.kills) {
+          if (e.step != step) continue;
+          children.kill_now(fmt::format("station {}", e.station_id));
+          driver.set_down(e.station_id, true);
+          spdlog::info("killed station {} before step {}", e.station_id, step);
+        }
+        for (const StationEvent& e : o.restarts) {
+          if (e.step != step) continue;
+          spawn_station(e.station_id, step);
+          driver.wait_until_ready(e.station_id, seconds_to_ms(o.discovery_timeout_s));
+          driver.set_down(e.station_id, false);
+          spdlog::info("restarted station {} before step {}", e.station_id, step);
+        }
+        recorder.add(driver.run_round(step, close_after, round_timeout));
         progress.advance();
       }
     }
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     progress.finish();
 
-    // Nodes exit by themselves after their last track; anything else is worth a word.
+    // Nodes announce FINISHED after their last track and wait to be released; anything else
+    // is worth a word.
+    if (!driver.wait_until_finished(std::chrono::seconds(5))) {
+      spdlog::warn("not every node announced FINISHED within 5 s of the last step");
+    }
+    driver.stop();
     if (!children.wait_all(std::chrono::seconds(5))) {
       spdlog::warn("{} node process(es) still running after the last step; terminating",
                    children.alive());
@@ -198,7 +317,10 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
     RunSummary summary =
         recorder.summarise(std::chrono::duration<double>(discovery).count(), elapsed);
     summary.realtime_deadline_ms = o.realtime_deadline_ms;
-    summary.dropped_by_node = driver.finished_drops();
+    summary.node_counts = driver.finished_counts();
+    summary.round_deadline_ms = o.round_deadline_ms;
+    summary.loss = o.loss;
+    summary.best_effort = o.best_effort;
     recorder.write(out, summary, run_id);
     return summary;
   } catch (...) {

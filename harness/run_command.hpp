@@ -7,8 +7,10 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "run_report.hpp"
+#include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 
 namespace skyfuse::harness {
@@ -21,7 +23,14 @@ struct RunOptions {
   std::optional<std::uint64_t> run_id;  ///< default: random
   std::optional<std::string> qos_file;
   double discovery_timeout_s = 30.0;
-  double round_timeout_s = 10.0;
+  double round_timeout_s = 10.0;  ///< a running node silent this long ends the run
+  /// A lock-step round closes this long after its tick with what has arrived (nodes), and the
+  /// harness records it at twice this plus 250 ms.
+  double round_deadline_ms = 1000.0;
+  LinkLoss loss;
+  bool best_effort = false;
+  std::vector<StationEvent> kills;     ///< SIGKILL a station before a step's round
+  std::vector<StationEvent> restarts;  ///< start a killed station again before a step's round
   std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating
   bool external = false;    ///< stations and center are started elsewhere (by hand, compose)
   /// Real-time mode when > 0: nodes step on the wall clock at the scenario's dt, rounds close

@@ -1,7 +1,8 @@
 #pragma once
 
 // What a DDS run leaves behind, and the numbers that summarise it.
-//   steps.csv         per step: truth, central and peer-to-peer position, their errors
+//   steps.csv         per step: truth, central and peer-to-peer position, their errors, and the
+//                     spread between the peers' tracks
 //   tracks.csv        per step and source: the full state, printed to round-trip exactly
 //   measurements.csv  every station's measurement, in the format `skyfuse-station --replay` reads
 //   rounds.csv        per step: round latency (timing: the only file that differs run to run)
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "lockstep_driver.hpp"
+#include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
@@ -28,6 +30,13 @@ struct RunSummary {
   double rmse_p2p_m = 0.0;
   double max_abs_diff_central_vs_p2p = 0.0;  ///< m, position
   double max_abs_diff_between_peers = 0.0;   ///< over every state and covariance entry
+  double peer_spread_end = 0.0;              ///< the same, at the last step only
+  /// Per station: rounds in which no peer's track contained it (it was down, restarting, or
+  /// every peer lost its increment).
+  std::map<int, int> rounds_missing_by_station;
+  /// Per restarted station: the first step at which a peer's track contained it again.
+  std::map<int, std::uint64_t> rejoin_step_by_station;
+  int rounds_closed_incomplete = 0;  ///< rounds in which some live node's track was missing
   double rounds_per_s = 0.0;
   double round_latency_us_p50 = 0.0;
   double round_latency_us_p99 = 0.0;
@@ -41,13 +50,26 @@ struct RunSummary {
   double track_age_ms_p50 = 0.0;
   double track_age_ms_p99 = 0.0;
   double track_age_ms_max = 0.0;
-  /// Samples the nodes refused, by node (0: the center) as each reported when it finished.
-  std::map<int, DropCounts> dropped_by_node;
+  /// What each node reported when it finished (0: the center): samples refused by kind,
+  /// samples lost to the simulated loss, rounds resynchronised.
+  std::map<int, NodeCounts> node_counts;
+  /// The settings that shape the rounds, echoed into summary.json.
+  double round_deadline_ms = 0.0;
+  LinkLoss loss;
+  bool best_effort = false;
+};
+
+/// A station the harness kills (SIGKILL) or starts again, before the round of `step`.
+struct StationEvent {
+  int station_id = 0;
+  std::uint64_t step = 0;
 };
 
 class RunRecorder {
  public:
-  RunRecorder(const RunPlan& plan, std::vector<int> station_ids);
+  /// `restarts`: the stations started again during the run, for rejoin_step_by_station.
+  RunRecorder(const RunPlan& plan, std::vector<int> station_ids,
+              std::vector<StationEvent> restarts = {});
   void add(RoundRecord round);
 
   RunSummary summarise(double discovery_s, double rounds_elapsed_s) const;
@@ -57,6 +79,7 @@ class RunRecorder {
  private:
   const RunPlan& plan_;
   std::vector<int> station_ids_;
+  std::vector<StationEvent> restarts_;
   TruthTrajectory truth_;
   std::vector<RoundRecord> rounds_;
 };

@@ -132,8 +132,7 @@ class Station {
     presence_.set_drops(drops_.counts());
     presence_.set_link_counts(lost_, resyncs_);
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
-    io_.tracks.wait_acknowledged(2s);
-    presence_.wait_delivered(2s);
+    transport::finish_when_released(io_.ticks, options_.node.run_id, presence_, io_.tracks, 5s);
     spdlog::info("finished {} steps ({} rounds resynchronised, {} samples lost to --loss)",
                  steps - first, resyncs_, lost_);
     return transport::kExitOk;

@@ -12,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
@@ -53,6 +54,26 @@ class NodePresence {
   std::uint64_t lost_ = 0;
   std::uint32_t resyncs_ = 0;
 };
+
+/// A node's last act after announcing FINISHED: waits until the harness releases it with a
+/// stop tick of `run_id` (it sends one once it holds every node's last track and status), and
+/// if none comes within `timeout`, until its last samples are acknowledged. Waiting for the
+/// release rather than for acknowledgements matters after a crash: a killed peer's readers
+/// stay matched until their lease expires, and would never acknowledge anything.
+template <typename TrackWriter>
+void finish_when_released(Reader<wire::Tick>& ticks, std::uint64_t run_id, NodePresence& presence,
+                          TrackWriter& tracks, std::chrono::milliseconds timeout) {
+  const auto give_up = std::chrono::steady_clock::now() + timeout;
+  wire::Tick tick;
+  while (std::chrono::steady_clock::now() < give_up) {
+    while (ticks.take(tick)) {
+      if (tick.run_id() == run_id && tick.stop()) return;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  tracks.wait_acknowledged(std::chrono::seconds(2));
+  presence.wait_delivered(std::chrono::seconds(2));
+}
 
 }  // namespace skyfuse::transport
 
