@@ -40,9 +40,9 @@ class Center {
             ConstantAcceleration3D(plan.scenario.time_step_s, plan.scenario.filter.process_noise),
             initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run)),
         collector_(plan.participant_ids()),
-        observations_(static_cast<std::size_t>(plan.stations)) {
-    partial_.reserve(observations_.size());
-    partial_ids_.reserve(observations_.size());
+        gated_(static_cast<std::size_t>(plan.stations), false) {
+    stacked_.reserve(gated_.size());
+    stacked_ids_.reserve(gated_.size());
     wait_set_.attach(ticks_);
     wait_set_.attach(measurements_);
     // index_of_slot_[i]: where the i-th participant of the scenario sits in the collector
@@ -76,27 +76,29 @@ class Center {
     for (std::uint64_t k = 0; k < steps; ++k) {
       if (const int code = wait_for_measurements(k); code >= 0) return code;
       // Stack in scenario order, as the in-process sweep does, so that both compute the same
-      // bits; in real time only the measurements that made the deadline.
+      // bits: the measurements that arrived by the deadline and passed the NIS gate.
       const std::span<const StationObservation9> by_id = collector_.payloads();
-      std::span<const StationObservation9> stacked = observations_;
-      std::span<const int> contributors = collector_.station_ids();
-      if (collector_.complete()) {
-        for (std::size_t slot = 0; slot < observations_.size(); ++slot) {
-          observations_[slot] = by_id[index_of_slot_[slot]];
+      const std::span<const int> ids = collector_.station_ids();
+      std::fill(gated_.begin(), gated_.end(), false);
+      for (std::size_t j = 0; j < by_id.size(); ++j) {
+        const StationObservation9& o = by_id[j];
+        if (collector_.filled(j) &&
+            options_.nis_gate().refuses(tracker_.estimate(), o.sensor, o.z, o.noise)) {
+          gated_[j] = true;
+          transport::count_drop(drops_, DropKind::kNisGate, "measurement", ids[j], k);
         }
-      } else {
-        partial_.clear();
-        partial_ids_.clear();
-        for (std::size_t slot = 0; slot < observations_.size(); ++slot) {
-          const std::size_t j = index_of_slot_[slot];
-          if (collector_.filled(j)) partial_.push_back(by_id[j]);
-        }
-        for (std::size_t j = 0; j < by_id.size(); ++j) {
-          if (collector_.filled(j)) partial_ids_.push_back(collector_.station_ids()[j]);
-        }
-        stacked = partial_;
-        contributors = partial_ids_;
       }
+      const auto fused = [&](std::size_t j) { return collector_.filled(j) && !gated_[j]; };
+      stacked_.clear();
+      stacked_ids_.clear();
+      for (std::size_t slot = 0; slot < index_of_slot_.size(); ++slot) {
+        if (fused(index_of_slot_[slot])) stacked_.push_back(by_id[index_of_slot_[slot]]);
+      }
+      for (std::size_t j = 0; j < by_id.size(); ++j) {
+        if (fused(j)) stacked_ids_.push_back(ids[j]);
+      }
+      const std::span<const StationObservation9> stacked = stacked_;
+      const std::span<const int> contributors = stacked_ids_;
       const UpdateReport report =
           stacked.empty() ? UpdateReport{NumericalStatus::kOk, 0.0} : tracker_.update(stacked);
       if (report.status != NumericalStatus::kOk) {
@@ -207,11 +209,13 @@ class Center {
   transport::ReaderWaitSet wait_set_;
   CentralTracker tracker_;
   StepCollector<StationObservation9> collector_;
-  std::vector<StationObservation9> observations_;
   std::vector<std::size_t> index_of_slot_;
-  std::uint64_t epoch_ns_ = 0;                // real time: system-clock start of step 0
-  std::vector<StationObservation9> partial_;  // real time: what made the deadline
-  std::vector<int> partial_ids_;
+  std::uint64_t epoch_ns_ = 0;  // real time: system-clock start of step 0
+  // This step's measurements refused by the NIS gate (by collector index), and what is fused:
+  // sized once, no allocation per step.
+  std::vector<bool> gated_;
+  std::vector<StationObservation9> stacked_;
+  std::vector<int> stacked_ids_;
   transport::SourceBinding sources_;
   DropTally drops_;
   std::uint64_t lost_ = 0;  // measurements removed by the simulated loss

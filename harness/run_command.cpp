@@ -69,6 +69,10 @@ std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan
   for (std::string& a : transport::loss_arguments(o.loss, o.best_effort)) {
     args.push_back(std::move(a));
   }
+  if (o.gate.enabled()) {
+    args.push_back("--nis-gate");
+    args.push_back(fmt::format("{:.17g}", o.gate.probability()));
+  }
   if (o.qos_file) {
     args.push_back("--qos");
     args.push_back(*o.qos_file);
@@ -180,6 +184,7 @@ void add_run_command(CLI::App& app, RunOptions& o) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   transport::add_loss_options(*cmd, o.loss, o.best_effort);
+  transport::add_nis_gate_option(*cmd, o.gate);
   cmd->add_option_function<std::vector<std::string>>(
          "--kill",
          [&o](const std::vector<std::string>& all) {

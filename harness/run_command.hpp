@@ -12,6 +12,7 @@
 #include "run_report.hpp"
 #include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/validation/nis_gate.hpp"
 
 namespace skyfuse::harness {
 
@@ -29,6 +30,7 @@ struct RunOptions {
   double round_deadline_ms = 1000.0;
   LinkLoss loss;
   bool best_effort = false;
+  NisGate gate;                        ///< the nodes' chi^2 gate on measurements (default: none)
   std::vector<StationEvent> kills;     ///< SIGKILL a station before a step's round
   std::vector<StationEvent> restarts;  ///< start a killed station again before a step's round
   std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating

@@ -35,12 +35,13 @@ struct Attack {
 
 // The malformed variants to send when the harness ticks step k of run `run`.
 std::vector<Attack> attacks_at(std::uint64_t run, std::uint32_t k, int victim) {
-  return {{DropKind::kWrongRun, run ^ 0x5a5a5a5aULL, k, victim},
+  // The one whose kind depends on timing goes first: k + 1 is in every receiver's window
+  // whether it has closed step k yet or not, but not once it has closed k + 1 as well.
+  return {{DropKind::kDuplicate, run, k + 1, victim},
+          {DropKind::kWrongRun, run ^ 0x5a5a5a5aULL, k, victim},
           {DropKind::kStaleStep, run, k - 1, victim},
           {DropKind::kFutureStep, run, k + 5, victim},
           {DropKind::kUnknownStation, run, k, 999},
-          // k + 1 is in every receiver's window whether it has closed step k yet or not.
-          {DropKind::kDuplicate, run, k + 1, victim},
           {DropKind::kNonFinite, run, k, victim},
           {DropKind::kNotPositive, run, k, victim},
           {DropKind::kOutOfRange, run, k, victim}};
@@ -123,16 +124,23 @@ int main(int argc, char** argv) {
                       timeout_s);
         return transport::kExitIdleTimeout;
       }
+      // Attack at the newest tick: on a loaded machine this process may wake several rounds
+      // late, and samples timed against an old tick would land outside the receivers' window.
+      std::optional<std::uint32_t> newest;
       wire::Tick tick;
       while (ticks.take(tick)) {
-        if (tick.run_id() != run_id || left.erase(tick.step()) == 0) continue;
+        if (tick.run_id() == run_id && !tick.stop())
+          newest = std::max(newest.value_or(0), tick.step());
+      }
+      if (newest && !left.empty() && *left.begin() <= *newest) {
+        left.erase(left.begin());
         // Every reader must be matched, or a sample could miss one and the counts not add up.
         if (increments.matched() < stations || measurements.matched() < 1) {
           spdlog::warn("step {}: only {} increment and {} measurement readers matched; skipped",
-                       tick.step(), increments.matched(), measurements.matched());
+                       *newest, increments.matched(), measurements.matched());
           continue;
         }
-        for (const Attack& a : attacks_at(run_id, tick.step(), victim)) {
+        for (const Attack& a : attacks_at(run_id, *newest, victim)) {
           const auto kind = static_cast<std::size_t>(a.kind);
           if (a.kind != DropKind::kOutOfRange) {
             increments.write(increment_for(a));

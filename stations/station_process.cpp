@@ -241,6 +241,14 @@ class Station {
 
     PeerContribution own;
     own.prior = tracker_.estimate();
+    own.increment.station_id = me_.id;
+    if (options_.node.nis_gate().refuses(own.prior, sensor_, observation.z, noise_)) {
+      // An outlier adds nothing; a zero increment still tells the peers not to wait for one.
+      transport::count_drop(drops_, DropKind::kNisGate, "own measurement", me_.id, k);
+      io_.increments_out.write(transport::to_wire(own, options_.node.run_id, step));
+      collector_.offer(k, me_.id, own);
+      return;
+    }
     const NumericalStatus status =
         tracker_.make_increment(me_.id, sensor_, observation.z, noise_, own.increment);
     if (status != NumericalStatus::kOk) {

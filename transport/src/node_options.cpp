@@ -76,6 +76,7 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   add_loss_options(app, o.loss, o.best_effort);
+  add_nis_gate_option(app, o.gate);
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();
@@ -112,6 +113,21 @@ void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort) {
   app.add_option("--loss-seed", loss.seed, "Seed of the simulated loss")->capture_default_str();
   app.add_flag("--best-effort", best_effort,
                "Increments and measurements travel BEST_EFFORT: lost datagrams are not repaired");
+}
+
+void add_nis_gate_option(CLI::App& app, NisGate& gate) {
+  app.add_option_function<double>(
+         "--nis-gate",
+         [&gate](double probability) {
+           if (!(probability > 0.0 && probability < 1.0)) {
+             throw CLI::ValidationError("--nis-gate",
+                                        "expected a probability in (0, 1), e.g. 0.9999");
+           }
+           gate = NisGate::at_probability(probability);
+         },
+         "Refuse a measurement whose NIS exceeds the chi^2(3) quantile at this probability, "
+         "e.g. 0.9999 (default: no gate)")
+      ->type_name("P");
 }
 
 std::vector<std::string> loss_arguments(const LinkLoss& loss, bool best_effort) {

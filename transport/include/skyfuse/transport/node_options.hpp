@@ -13,6 +13,7 @@
 #include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/validation/nis_gate.hpp"
 
 namespace CLI {
 class App;
@@ -37,10 +38,13 @@ struct NodeOptions {
   /// Simulated loss of received increments and measurements (`--loss`, `--loss-steps`).
   LinkLoss loss;
   bool best_effort = false;  ///< increments and measurements BEST_EFFORT instead of RELIABLE
+  /// The chi^2 gate on measurements (`--nis-gate P`; default: none).
+  NisGate gate;
   std::string log_level = "info";
 
   NodeConfig node_config(const std::string& name) const;
   std::chrono::microseconds round_deadline() const;
+  const NisGate& nis_gate() const { return gate; }
   RunPlan load_plan() const;
   std::chrono::milliseconds discovery_timeout() const;
   std::chrono::milliseconds idle_timeout() const;
@@ -51,6 +55,8 @@ void add_node_options(CLI::App& app, NodeOptions& options);
 /// `--loss P`, `--loss-steps A:B`, `--loss-seed S` and `--best-effort` into `loss` and
 /// `best_effort`: shared by the nodes and `skyfuse run`, which passes them on.
 void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort);
+/// `--nis-gate P` into `gate`.
+void add_nis_gate_option(CLI::App& app, NisGate& gate);
 /// The arguments that give a node the same loss settings (empty when there is no loss).
 std::vector<std::string> loss_arguments(const LinkLoss& loss, bool best_effort);
 
