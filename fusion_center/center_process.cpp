@@ -105,6 +105,7 @@ class Center {
         const std::string detail =
             fmt::format("step {}: stacked update failed: {}", k, to_string(report.status));
         spdlog::error("{}", detail);
+        presence_.set_drops(drops_.counts());  // a failure report says what was refused too
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
         return transport::kExitNumerical;
       }
@@ -173,6 +174,7 @@ class Center {
             fmt::format("no progress for {} s at step {} waiting for measurements of stations {}",
                         options_.idle_timeout_s, k, collector_.missing());
         spdlog::error("{}", detail);
+        presence_.set_drops(drops_.counts());  // a failure report says what was refused too
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
         return transport::kExitIdleTimeout;
       }

@@ -324,12 +324,34 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
                        std::chrono::milliseconds(static_cast<long>(steps * time_step_s * 1000.0));
   while (done.size() < static_cast<std::size_t>(steps)) {
     wire::TrackEstimate t;
-    while (d.tracks.take(t)) {
-      if (t.run_id() != d.run_id || t.step() >= static_cast<std::uint32_t>(steps)) continue;
+    transport::WriterId writer;
+    // The same refusals as in lock-step, by kind, except the step window: in real time the
+    // nodes run ahead of each other by design, so any step of the run is kept until complete.
+    const auto refuse = [&](DropKind kind, const char* what, int id, std::uint32_t step) {
+      transport::count_drop(d.own_drops, kind, what, id, step);
+    };
+    while (d.tracks.take(t, &writer)) {
       const std::size_t i = source_index(t.source_id());
-      if (i > m) continue;
+      const GaussianState<9> estimate = transport::from_wire(t);
+      std::optional<DropKind> why;
+      if (t.run_id() != d.run_id) {
+        why = DropKind::kWrongRun;
+      } else if (i > m || (t.mode() == wire::CENTRAL) != (i == 0)) {
+        why = DropKind::kUnknownStation;
+      } else if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) {
+        why = DropKind::kNonFinite;
+      } else if (t.step() >= static_cast<std::uint32_t>(steps)) {
+        why = DropKind::kFutureStep;
+      } else if (t.step() < done.size()) {
+        why = DropKind::kStaleStep;
+      } else if (!d.track_sources.accept(t.source_id(), writer) || entry(t.step()).have[i]) {
+        why = DropKind::kDuplicate;
+      }
+      if (why) {
+        refuse(*why, "track", t.source_id(), t.step());
+        continue;
+      }
       Pending& p = entry(t.step());
-      if (p.have[i]) continue;
       p.have[i] = true;
       ++p.tracks;
       const auto scheduled = transport::step_start(epoch_ns, t.step(), time_step_s);
@@ -337,16 +359,32 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
           std::chrono::duration<double, std::micro>(std::chrono::system_clock::now() - scheduled)
               .count();
       if (t.contributors().size() != m) p.record.all_inputs_in_time = false;
-      (i == 0 ? p.record.central : p.record.peers[i - 1]) = ReceivedTrack{
-          transport::from_wire(t), {t.contributors().begin(), t.contributors().end()}};
+      (i == 0 ? p.record.central : p.record.peers[i - 1]) =
+          ReceivedTrack{estimate, {t.contributors().begin(), t.contributors().end()}};
     }
     wire::Measurement z;
-    while (d.measurements.take(z)) {
-      if (z.run_id() != d.run_id || z.step() >= static_cast<std::uint32_t>(steps)) continue;
+    while (d.measurements.take(z, &writer)) {
       const std::size_t i = source_index(z.station_id());
-      if (i == 0 || i > m) continue;
+      std::optional<DropKind> why;
+      if (z.run_id() != d.run_id) {
+        why = DropKind::kWrongRun;
+      } else if (i == 0 || i > m) {
+        why = DropKind::kUnknownStation;
+      } else if (const auto bad = check_observation(transport::from_wire(z))) {
+        why = bad;
+      } else if (z.step() >= static_cast<std::uint32_t>(steps)) {
+        why = DropKind::kFutureStep;
+      } else if (z.step() < done.size()) {
+        why = DropKind::kStaleStep;
+      } else if (!d.measurement_sources.accept(z.station_id(), writer) ||
+                 entry(z.step()).have[m + i]) {
+        why = DropKind::kDuplicate;
+      }
+      if (why) {
+        refuse(*why, "measurement", z.station_id(), z.step());
+        continue;
+      }
       Pending& p = entry(z.step());
-      if (p.have[m + i]) continue;
       p.have[m + i] = true;
       ++p.measurements;
       p.record.measurements[i - 1] = Vector3(z.z()[0], z.z()[1], z.z()[2]);

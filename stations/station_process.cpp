@@ -197,6 +197,7 @@ class Station {
         const std::string detail = fmt::format("no progress for {} s at step {} waiting for {}",
                                                options_.node.idle_timeout_s, k, what());
         spdlog::error("{}", detail);
+        presence_.set_drops(drops_.counts());  // a failure report says what was refused too
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
         return transport::kExitIdleTimeout;
       }
@@ -279,6 +280,7 @@ class Station {
       const std::string detail =
           fmt::format("step {}: fusion failed: {}", k, to_string(fused.status));
       spdlog::error("{}", detail);
+      presence_.set_drops(drops_.counts());  // a failure report says what was refused too
       presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
       return transport::kExitNumerical;
     }
