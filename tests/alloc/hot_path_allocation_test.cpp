@@ -17,6 +17,7 @@
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"
+#include "skyfuse/tracking/step_collector.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -68,12 +69,19 @@ TEST(HotPathAllocations, StationStepFusionAndStackedUpdateAllocateNothing) {
   const Problem p;
   const ConstantAcceleration3D motion(p.scenario.time_step_s, p.scenario.filter.process_noise);
   for (int m : {1, 4, 10}) {
-    PeerTracker peer(motion, initial_estimate(p.scenario, p.truth.states[0], 0));
+    const auto count = static_cast<std::size_t>(m);
+    PeerTracker peer(motion, initial_estimate(p.scenario, p.truth.states[0], 0), count);
     GaussianState<9> central = peer.estimate();
     StackedEkf<9, StationSensor> stacked;
-    std::vector<StationObservation<StationSensor>> observations(static_cast<std::size_t>(m));
-    std::vector<Increment9> increments(static_cast<std::size_t>(m));
-    const std::vector<double> weights(static_cast<std::size_t>(m), 1.0);
+    std::vector<StationObservation<StationSensor>> observations(count);
+    // A station's side as the process runs it: contributions (increment + prior) gathered by
+    // a StepCollector, copied into the round in id order, fused onto the reference prior.
+    std::vector<int> ids;
+    for (int i = 0; i < m; ++i) ids.push_back(p.scenario.stations[static_cast<std::size_t>(i)].id);
+    StepCollector<PeerContribution> collector(ids);
+    std::vector<PeerContribution> round;
+    round.reserve(count);
+    const std::vector<double> weights(count, 1.0);
     for (int i = 0; i < m; ++i) {
       const StationConfig& s = p.scenario.stations[static_cast<std::size_t>(i)];
       observations[static_cast<std::size_t>(i)] = {s.id, StationSensor(s.position_m),
@@ -86,12 +94,17 @@ TEST(HotPathAllocations, StationStepFusionAndStackedUpdateAllocateNothing) {
         obs.z = simulate_measurement(obs.sensor, p.truth.position(k), obs.noise, 1, 0,
                                      obs.station_id, k);
       }
-      for (std::size_t i = 0; i < observations.size(); ++i) {
-        const auto& obs = observations[i];
-        ASSERT_EQ(peer.make_increment(obs.station_id, obs.sensor, obs.z, obs.noise, increments[i]),
+      for (const auto& obs : observations) {
+        PeerContribution c;
+        c.prior = peer.estimate();
+        ASSERT_EQ(peer.make_increment(obs.station_id, obs.sensor, obs.z, obs.noise, c.increment),
                   NumericalStatus::kOk);
+        ASSERT_FALSE(collector.offer(k, obs.station_id, c).has_value());
       }
-      ASSERT_EQ(peer.fuse(increments, weights), NumericalStatus::kOk);
+      round.clear();
+      for (const PeerContribution& c : collector.payloads()) round.push_back(c);
+      ASSERT_EQ(peer.fuse_round(round, weights).status, NumericalStatus::kOk);
+      collector.advance();
       ASSERT_EQ(stacked.update(central, observations).status, NumericalStatus::kOk);
       peer.predict();
       predict(central, motion);
