@@ -45,7 +45,13 @@ std::optional<YamlField> YamlField::optional(const std::string& key) const {
 void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
   if (!node_.IsMap()) fail(fmt::format("expected a mapping, got '{}'", text()));
   for (const auto& entry : node_) {
-    const std::string key = entry.first.as<std::string>();
+    // YAML allows any node as a key (`? [a, b] : 1`); as<std::string>() would throw yaml-cpp's
+    // own exception for those, past every caller that expects a ConfigError.
+    const YamlField key_field(entry.first, path_, *source_);
+    if (!key_field.is_scalar()) {
+      key_field.fail(fmt::format("expected a field name, got '{}'", key_field.text()));
+    }
+    const std::string key = entry.first.Scalar();
     const bool known =
         std::any_of(allowed.begin(), allowed.end(), [&](const char* name) { return key == name; });
     if (!known) {

@@ -13,9 +13,13 @@ std::optional<DropKind> check_increment(const InformationIncrement<9>& increment
     return DropKind::kNonFinite;
   }
   // dQ = H^T R^-1 H is singular (rank 3 for one sensor), so a Cholesky cannot test it; the
-  // eigenvalues of a 9 x 9 cost a few microseconds, once per received sample.
-  const Eigen::SelfAdjointEigenSolver<Covariance<9>> eigen(increment.delta_information,
-                                                           Eigen::EigenvaluesOnly);
+  // eigenvalues of a 9 x 9 cost a few microseconds, once per received sample. They are taken
+  // of dQ scaled to a largest entry of 1: near the largest double they overflow to +-Inf, and
+  // -Inf < -1e-9 * Inf is false, which let an indefinite dQ through.
+  const double largest_entry = increment.delta_information.cwiseAbs().maxCoeff();
+  if (largest_entry == 0.0) return std::nullopt;
+  const Eigen::SelfAdjointEigenSolver<Covariance<9>> eigen(
+      increment.delta_information / largest_entry, Eigen::EigenvaluesOnly);
   if (eigen.info() != Eigen::Success) return DropKind::kNotPositive;
   const double smallest = eigen.eigenvalues().minCoeff();
   const double scale = eigen.eigenvalues().cwiseAbs().maxCoeff();

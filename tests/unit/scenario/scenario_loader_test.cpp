@@ -110,6 +110,15 @@ TEST(ScenarioLoader, RefusesUnknownAndMisspeltFields) {
       << message;
 }
 
+TEST(ScenarioLoader, RefusesAKeyThatIsNotAFieldName) {
+  // YAML allows a list or a mapping as a key; found by the fuzzer, this once escaped the loader
+  // as yaml-cpp's own exception instead of a ConfigError.
+  EXPECT_EQ(rejection(default_with("seed: 20250601\n", "seed: 20250601\n? [complex, key]\n: 1\n")),
+            "test.yaml: (top level): expected a field name, got '[complex, key]'");
+  EXPECT_EQ(rejection(default_with("{id: 1,", "{[1, 2]: 3, id: 1,")),
+            "test.yaml: stations[0]: expected a field name, got '[1, 2]' (line 34)");
+}
+
 TEST(ScenarioLoader, RefusesOverlappingManoeuvres) {
   EXPECT_EQ(rejection(default_with("start_s: 30.0", "start_s: 15.0")),
             "test.yaml: target.manoeuvres[1]: overlaps manoeuvres[0] (line 30)");

@@ -54,6 +54,19 @@ TEST(SampleChecks, RefusesAnIncrementWithANegativeDirection) {
   EXPECT_EQ(check_increment(negated), DropKind::kNotPositive);
 }
 
+TEST(SampleChecks, JudgesAnIncrementNearTheLargestDoubleWithoutOverflow) {
+  // Found by the fuzzer: eigenvalues of +-1.4 * DBL_MAX overflow to +-Inf, and the tolerance
+  // -1e-9 * Inf let the indefinite matrix through.
+  constexpr double kMax = std::numeric_limits<double>::max();
+  InformationIncrement<9> indefinite;
+  indefinite.delta_information.topLeftCorner<2, 2>() << kMax, kMax, kMax, -kMax;
+  EXPECT_EQ(check_increment(indefinite), DropKind::kNotPositive);
+  // Positive semi-definite at the same size: eigenvalues 2 * DBL_MAX and 0.
+  InformationIncrement<9> huge;
+  huge.delta_information.topLeftCorner<2, 2>().setConstant(kMax);
+  EXPECT_EQ(check_increment(huge), std::nullopt);
+}
+
 TEST(SampleChecks, AcceptsAZeroIncrement) {
   // A station that saw nothing adds nothing: zero is positive semi-definite.
   EXPECT_EQ(check_increment(InformationIncrement<9>{}), std::nullopt);

@@ -1,0 +1,106 @@
+// Fuzz target: parse_scenario on arbitrary bytes. The loader's contract is a Scenario or a
+// ConfigError naming the problem; any other exception, a crash, undefined behaviour or a hang is
+// a finding. An accepted scenario must also hold only what the loader promises to have checked.
+// Inputs whose validation is long by design are skipped (see costs_too_much).
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+#include <string_view>
+#include <typeinfo>
+
+#include "skyfuse/scenario/scenario_loader.hpp"
+
+namespace {
+
+using skyfuse::Scenario;
+
+[[noreturn]] void finding(const char* what) {
+  std::fprintf(stderr, "scenario_loader_fuzz: %s\n", what);
+  std::abort();
+}
+
+// Validation walks the whole trajectory, for every speed, past every station and manoeuvre:
+// about 1 us per step, speed and station here (ASan, UBSan), so `steps: 10000000` takes over a
+// minute. That is the loader doing its job, not a hang; such inputs are skipped, and kept out of
+// the corpus, so that a timeout in a long run points at a real one. Work is counted the way the
+// loader will see it, from the same YAML.
+bool costs_too_much(std::string_view text) {
+  constexpr double kBudget = 1e5;  // about 0.1 s
+  try {
+    const YAML::Node root = YAML::Load(std::string(text));
+    std::int64_t steps = 0;
+    if (!root.IsMap() || !YAML::convert<std::int64_t>::decode(root["steps"], steps)) return false;
+    // Missing or not a list: the loader reads one item (one speed from velocity_mps) or none.
+    const auto items = [](const YAML::Node& node) {
+      return node.IsDefined() && node.IsSequence() ? static_cast<double>(node.size()) : 1.0;
+    };
+    const YAML::Node target = root["target"];
+    if (!target.IsDefined() || !target.IsMap()) return false;
+    const double per_step =
+        items(target["speeds_kmh"]) * (items(root["stations"]) + items(target["manoeuvres"]));
+    return static_cast<double>(steps) * per_step > kBudget;
+  } catch (const YAML::Exception&) {
+    return false;  // the loader will refuse it quickly
+  }
+}
+
+bool finite_positive(double value) {
+  return std::isfinite(value) && value > 0.0;
+}
+
+// The numbers a run computes with: a non-finite or non-positive one here would have passed the
+// loader and surfaced later as NaN in a track.
+void check_accepted(const Scenario& s) {
+  if (!finite_positive(s.time_step_s) || s.steps < 1) finding("bad time_step_s or steps");
+  if (s.target.speeds_mps.empty() || s.stations.empty()) finding("no speed or no station");
+  for (double speed : s.target.speeds_mps) {
+    if (!finite_positive(speed)) finding("speed not finite and > 0");
+  }
+  if (!s.target.initial_position_m.allFinite()) finding("initial position not finite");
+  if (!(std::abs(s.target.direction.norm() - 1.0) < 1e-9)) finding("direction not a unit vector");
+  for (const auto& m : s.target.manoeuvres) {
+    if (!std::isfinite(m.start_s) || !finite_positive(m.duration_s) ||
+        !m.acceleration_mps2.allFinite() || !std::isfinite(m.turn_rate_rad_s)) {
+      finding("manoeuvre not finite");
+    }
+  }
+  for (const auto& station : s.stations) {
+    if (!station.position_m.allFinite() || !finite_positive(station.weight)) {
+      finding("station position or weight not finite");
+    }
+    for (double sigma : station.noise_std) {
+      if (!finite_positive(sigma)) finding("noise_std not finite and > 0");
+    }
+  }
+  const auto& q = s.filter.process_noise;
+  if (!finite_positive(q.position) || !finite_positive(q.velocity) ||
+      !finite_positive(q.acceleration)) {
+    finding("process noise not finite and > 0");
+  }
+  for (double p : s.filter.initial_covariance_diag) {
+    if (!finite_positive(p)) finding("initial covariance not finite and > 0");
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  if (costs_too_much(text)) return -1;
+  try {
+    check_accepted(skyfuse::parse_scenario(text, "fuzz.yaml"));
+  } catch (const skyfuse::ConfigError&) {
+    // The documented refusal.
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "scenario_loader_fuzz: %s escaped the loader: %s\n", typeid(e).name(),
+                 e.what());
+    std::abort();
+  }
+  return 0;
+}
