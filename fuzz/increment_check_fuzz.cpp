@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 #include "fuzz_input.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
@@ -88,6 +89,12 @@ void verify_accepted(const InformationIncrement<9>& increment) {
   const Covariance<9>& dq = increment.delta_information;
   if (!dq.allFinite() || !increment.delta_vector.allFinite()) finding("is not finite");
   if (dq != dq.transpose()) finding("is not symmetric");
+  // 256 accepted increments (the most stations a run has) must sum to a finite matrix.
+  if (!(256.0 * dq.cwiseAbs().maxCoeff() < std::numeric_limits<double>::max()) ||
+      !(256.0 * increment.delta_vector.cwiseAbs().maxCoeff() <
+        std::numeric_limits<double>::max())) {
+    finding("is large enough to overflow a fused sum");
+  }
   const double largest_entry = dq.cwiseAbs().maxCoeff();
   if (largest_entry == 0.0) return;
   const auto eigenvalues = jacobi_eigenvalues(dq / largest_entry);

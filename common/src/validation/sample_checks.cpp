@@ -12,6 +12,10 @@ std::optional<DropKind> check_increment(const InformationIncrement<9>& increment
   if (!increment.delta_information.allFinite() || !increment.delta_vector.allFinite()) {
     return DropKind::kNonFinite;
   }
+  if (increment.delta_information.cwiseAbs().maxCoeff() > kMaxInformation ||
+      increment.delta_vector.cwiseAbs().maxCoeff() > kMaxInformation * kMaxRangeM) {
+    return DropKind::kOutOfRange;
+  }
   // dQ = H^T R^-1 H is singular (rank 3 for one sensor), so a Cholesky cannot test it; the
   // eigenvalues of a 9 x 9 cost a few microseconds, once per received sample. They are taken
   // of dQ scaled to a largest entry of 1: near the largest double they overflow to +-Inf, and
@@ -29,6 +33,10 @@ std::optional<DropKind> check_increment(const InformationIncrement<9>& increment
 
 std::optional<DropKind> check_estimate(const GaussianState<9>& estimate) {
   if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) return DropKind::kNonFinite;
+  if (estimate.mean.cwiseAbs().maxCoeff() > kMaxStateMagnitude ||
+      estimate.covariance.cwiseAbs().maxCoeff() > kMaxStateMagnitude) {
+    return DropKind::kOutOfRange;
+  }
   SmallCholesky<9> factor;
   if (!factor.compute(estimate.covariance)) return DropKind::kNotPositive;
   return std::nullopt;
@@ -52,6 +60,7 @@ std::optional<DropKind> check_observation(
   const double range = observation.z(Sensor::kRange);
   const double azimuth = observation.z(Sensor::kAzimuth);
   const double elevation = observation.z(Sensor::kElevation);
+  if (observation.sensor.station_position().norm() > kMaxRangeM) return DropKind::kOutOfRange;
   if (!(range > 0.0 && range <= kMaxRangeM) || std::abs(azimuth) > kPi ||
       std::abs(elevation) > kPi / 2.0) {
     return DropKind::kOutOfRange;

@@ -56,15 +56,19 @@ TEST(SampleChecks, RefusesAnIncrementWithANegativeDirection) {
 
 TEST(SampleChecks, JudgesAnIncrementNearTheLargestDoubleWithoutOverflow) {
   // Found by the fuzzer: eigenvalues of +-1.4 * DBL_MAX overflow to +-Inf, and the tolerance
-  // -1e-9 * Inf let the indefinite matrix through.
+  // -1e-9 * Inf let the indefinite matrix through. Such sizes are now out of range; the
+  // eigenvalue test itself is scaled, so it judges the largest allowed entries correctly too.
   constexpr double kMax = std::numeric_limits<double>::max();
   InformationIncrement<9> indefinite;
   indefinite.delta_information.topLeftCorner<2, 2>() << kMax, kMax, kMax, -kMax;
-  EXPECT_EQ(check_increment(indefinite), DropKind::kNotPositive);
-  // Positive semi-definite at the same size: eigenvalues 2 * DBL_MAX and 0.
-  InformationIncrement<9> huge;
-  huge.delta_information.topLeftCorner<2, 2>().setConstant(kMax);
-  EXPECT_EQ(check_increment(huge), std::nullopt);
+  EXPECT_EQ(check_increment(indefinite), DropKind::kOutOfRange);
+  InformationIncrement<9> at_limit;
+  at_limit.delta_information.topLeftCorner<2, 2>() << kMaxInformation, kMaxInformation,
+      kMaxInformation, -kMaxInformation;
+  EXPECT_EQ(check_increment(at_limit), DropKind::kNotPositive);
+  InformationIncrement<9> semi_definite;  // eigenvalues 2 * kMaxInformation and 0
+  semi_definite.delta_information.topLeftCorner<2, 2>().setConstant(kMaxInformation);
+  EXPECT_EQ(check_increment(semi_definite), std::nullopt);
 }
 
 TEST(SampleChecks, AcceptsAZeroIncrement) {
@@ -86,6 +90,23 @@ TEST(SampleChecks, RefusesAContributionWhosePriorCannotBeAdopted) {
   PeerContribution bad_increment = good;
   bad_increment.increment.delta_vector(0) = std::numeric_limits<double>::infinity();
   EXPECT_EQ(check_contribution(bad_increment), DropKind::kNonFinite);
+}
+
+TEST(SampleChecks, RefusesMagnitudesThatWouldOverflowTheFusion) {
+  // Finite, positive semi-definite, and still impossible: two of these overflow a fused sum.
+  InformationIncrement<9> huge = real_increment();
+  huge.delta_information(0, 0) = 1e308;
+  EXPECT_EQ(check_increment(huge), DropKind::kOutOfRange);
+  InformationIncrement<9> huge_y = real_increment();
+  huge_y.delta_vector(2) = -1e300;
+  EXPECT_EQ(check_increment(huge_y), DropKind::kOutOfRange);
+  PeerContribution far{real_increment(), {}};
+  far.prior.covariance = Covariance<9>::Identity();
+  far.prior.mean(0) = 1e300;
+  EXPECT_EQ(check_contribution(far), DropKind::kOutOfRange);
+  Observation distant = real_observation();
+  distant.sensor = RangeAzimuthElevation<9>(Vector3(1e300, -1e300, 0.0));
+  EXPECT_EQ(check_observation(distant), DropKind::kOutOfRange);
 }
 
 TEST(SampleChecks, AcceptsARealObservation) {

@@ -18,18 +18,27 @@ namespace skyfuse {
 /// [-pi, pi], elevation in [-pi/2, pi/2].
 inline constexpr double kMaxRangeM = 1.0e6;
 
-/// dQ and dy finite; dQ positive semi-definite (smallest eigenvalue >= -1e-9 times the
-/// largest magnitude: rounding in H^T R^-1 H is allowed, a negative direction is not).
+/// Largest plausible entry of an increment's dQ: the information of a range known to 3e-8 m.
+/// Finite but larger values pass every other check and then overflow the fused sum, which
+/// would stop the receiving station (found by fuzzing).
+inline constexpr double kMaxInformation = 1.0e15;
+/// Largest plausible entry of a prior's mean and covariance (SI units): far beyond any track.
+inline constexpr double kMaxStateMagnitude = 1.0e12;
+
+/// dQ and dy finite; their entries within kMaxInformation (dy: times kMaxRangeM); dQ positive
+/// semi-definite (smallest eigenvalue >= -1e-9 times the largest magnitude: rounding in
+/// H^T R^-1 H is allowed, a negative direction is not).
 std::optional<DropKind> check_increment(const InformationIncrement<9>& increment);
 
-/// Mean and covariance finite; covariance positive definite (a prior or a track a peer may
-/// adopt).
+/// Mean and covariance finite and within kMaxStateMagnitude; covariance positive definite (a
+/// prior or a track a peer may adopt).
 std::optional<DropKind> check_estimate(const GaussianState<9>& estimate);
 
 /// The increment as check_increment(), then the prior it travels with as check_estimate().
 std::optional<DropKind> check_contribution(const PeerContribution& contribution);
 
-/// z, R and the station position finite; R positive definite; z within the sensor's range.
+/// z, R and the station position finite; R positive definite; z within the sensor's range and
+/// the station within kMaxRangeM of the origin.
 std::optional<DropKind> check_observation(
     const StationObservation<RangeAzimuthElevation<9>>& observation);
 
