@@ -26,6 +26,7 @@
 #include <string>
 
 #include "skyfuse/transport/qos.hpp"
+#include "skyfuse/transport/security.hpp"
 #include "skyfuse/transport/topics.hpp"
 
 namespace skyfuse::transport {
@@ -48,6 +49,7 @@ struct NodeConfig {
   int domain_id = 0;
   std::string name;  ///< participant name, shown by DDS tools
   std::optional<std::filesystem::path> qos_file;
+  std::optional<SecurityConfig> security;  ///< none: plain DDS
 };
 
 /// Domain ids above 232 make Fast DDS 2.9 exit the process during participant creation.
