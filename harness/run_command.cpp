@@ -15,6 +15,7 @@
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/security_folder.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
@@ -67,6 +68,9 @@ std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan
     args.push_back("--qos");
     args.push_back(*o.qos_file);
   }
+  if (o.secure_dir) {
+    args.insert(args.end(), {"--secure", std::filesystem::absolute(*o.secure_dir).string()});
+  }
   return args;
 }
 
@@ -99,6 +103,10 @@ void add_run_command(CLI::App& app, RunOptions& o) {
   cmd->add_option("--run-id", o.run_id, "Run id (default: random)");
   cmd->add_option("--qos", o.qos_file, "Fast DDS XML profiles overriding the built-in QoS")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--secure", o.secure_dir,
+                  "DDS-Security: authenticate, authorise and encrypt with the identities in DIR "
+                  "(made by `skyfuse certs DIR`)")
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--discovery-timeout", o.discovery_timeout_s,
                   "Seconds to wait until every process has joined")
       ->check(CLI::PositiveNumber)
@@ -142,6 +150,10 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
   config.domain_id = o.domain;
   config.name = "skyfuse-harness";
   if (o.qos_file) config.qos_file = *o.qos_file;
+  if (o.secure_dir) {  // every node's identity checked here: one message instead of M + 1
+    transport::SecurityFolder{*o.secure_dir}.check(transport::run_identities(ids));
+    config.security = transport::SecurityConfig{*o.secure_dir, transport::kHarnessIdentity};
+  }
   LockstepDriver driver(config, run_id, ids, check);
 
   try {

@@ -20,6 +20,7 @@ struct RunOptions {
   int domain = 0;
   std::optional<std::uint64_t> run_id;  ///< default: random
   std::optional<std::string> qos_file;
+  std::optional<std::string> secure_dir;  ///< DDS-Security: a folder made by `skyfuse certs`
   double discovery_timeout_s = 30.0;
   double round_timeout_s = 10.0;
   std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating
