@@ -12,6 +12,7 @@
 #include "lockstep_driver.hpp"
 #include "output_files.hpp"
 #include "progress.hpp"
+#include "secure_start.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -224,7 +225,7 @@ int run_run(const RunOptions& o) {
   const RunPlan plan = plan_from(
       scenario_text(o.scenario_path),
       o.scenario_path.empty() ? "<embedded paper000.yaml>" : o.scenario_path, o.overrides);
-  const RunSummary summary = execute_run(o, plan);
+  const RunSummary summary = o.secure_dir ? execute_secure_run(o, plan) : execute_run(o, plan);
   print_run_table(summary, stdout);
   fmt::print("results in {}\n", o.out_dir);
   return 0;
