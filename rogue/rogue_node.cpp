@@ -18,6 +18,7 @@
 #include <limits>
 #include <set>
 
+#include "secure_probe.hpp"
 #include "skyfuse/transport/node_options.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
@@ -91,6 +92,8 @@ int main(int argc, char** argv) {
   app.add_option("--victim", victim, "A real station id to impersonate");
   app.add_option("--at-steps", steps, "Steps (>= 1) at which to attack")->capture_default_str();
   app.add_option("--timeout", timeout_s, "Seconds to wait for the run's ticks");
+  rogue::ProbeOptions probe;
+  rogue::add_probe_options(app, probe);
   CLI11_PARSE(app, argc, argv);
   spdlog::set_pattern("[rogue] %^%l%$: %v");
   transport::install_shutdown_handlers();
@@ -100,7 +103,8 @@ int main(int argc, char** argv) {
   }
 
   try {
-    transport::DdsNode node({domain, "skyfuse-rogue", std::nullopt});
+    if (probe.probe) return rogue::run_probe(probe, {domain, run_id, victim, timeout_s});
+    transport::DdsNode node({domain, "skyfuse-rogue", std::nullopt, probe.security()});
     auto ticks = node.make_reader<wire::Tick>();
     auto increments = node.make_writer<wire::InformationIncrement>();
     auto measurements = node.make_writer<wire::Measurement>();
