@@ -18,6 +18,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr auto kSendPeriod = std::chrono::milliseconds(10);
+constexpr std::uint32_t kStepAhead = 2;
 
 // Samples that pass every content check, so that only who sent them can keep them out.
 wire::InformationIncrement plausible_increment(std::uint64_t run, std::uint32_t step, int station) {
@@ -127,13 +128,12 @@ void probe(transport::DdsNode& node, const ProbeOptions& options, const ProbeTar
     increments.listen();
     measurements.listen();
 
-    // Where the probe can be heard, it speaks only from step 1 on: by then every receiver has
-    // bound the victim's id to the real station, so the outcome does not depend on who was
-    // first. Where nobody hears it, it speaks all along - that is the attack to show failing.
-    const bool heard_by_nobody =
-        increments.remote_readers() <= 0 && measurements.remote_readers() <= 0;
-    if (Clock::now() >= next_send && (heard_by_nobody || latest_tick.value_or(0) >= 1)) {
-      const std::uint32_t step = latest_tick.value_or(0);
+    // It speaks for the step it last heard ticked, or - before any tick, or never hearing one -
+    // for step 2, a step just ahead that every receiver accepts once it gets there. Either way
+    // every receiver has by then bound the victim's id to the real station (at step 0), so a
+    // sample that arrives is refused and counted, never fused, whatever the timing.
+    if (Clock::now() >= next_send) {
+      const std::uint32_t step = std::max(latest_tick.value_or(0), kStepAhead);
       increments.writer.write(plausible_increment(target.run_id, step, target.victim));
       measurements.writer.write(plausible_measurement(target.run_id, step, target.victim));
       ++increments.sent;
