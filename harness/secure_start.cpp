@@ -12,14 +12,14 @@
 
 namespace skyfuse::harness {
 
-bool is_discovery_failure(const RunAborted& aborted) {
+bool is_stalled_start(const RunAborted& aborted) {
   const std::string_view what = aborted.what();
   // The harness's timeout and a node's FAILED status both say so; a node that timed out first
   // may also be seen only by its exit code.
   const std::string node_exit =
       fmt::format("exited with status {}", static_cast<int>(transport::kExitDiscoveryTimeout));
   return what.find("discovery timed out") != std::string_view::npos ||
-         what.find(node_exit) != std::string_view::npos;
+         what.find(node_exit) != std::string_view::npos || what.starts_with("round 0 timed out");
 }
 
 RunSummary execute_secure_run(const RunOptions& options, const RunPlan& plan) {
@@ -33,7 +33,7 @@ RunSummary execute_secure_run(const RunOptions& options, const RunPlan& plan) {
     try {
       return execute_run(attempt, plan);
     } catch (const RunAborted& e) {
-      if (i >= attempts || transport::shutdown_requested() || !is_discovery_failure(e)) throw;
+      if (i >= attempts || transport::shutdown_requested() || !is_stalled_start(e)) throw;
       spdlog::warn(
           "secure discovery did not complete ({}); starting every process again "
           "(attempt {} of {})",
