@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "bench_command.hpp"
+#include "certs_command.hpp"
 #include "lockstep_driver.hpp"
 #include "run_command.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -21,11 +22,13 @@ int main(int argc, char** argv) {
   DemoOptions demo;
   BenchOptions bench;
   SoakOptions soak;
+  CertsOptions certs;
   add_sweep_command(app, sweep);
   add_run_command(app, run);
   add_demo_command(app, demo);
   add_bench_command(app, bench);
   add_soak_command(app, soak);
+  add_certs_command(app, certs);
   CLI11_PARSE(app, argc, argv);
 
   // Line-buffered even into a file or pipe, so that tables and child messages keep their order.
@@ -37,6 +40,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("demo")) return run_demo(demo);
     if (app.got_subcommand("bench")) return run_bench(bench);
     if (app.got_subcommand("soak")) return run_soak(soak);
+    if (app.got_subcommand("certs")) return run_certs(certs);
   } catch (const RunAborted& e) {
     std::fprintf(stderr, "skyfuse: run aborted: %s\n", e.what());
     return skyfuse::transport::shutdown_requested() ? 130 : 1;

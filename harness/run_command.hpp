@@ -23,6 +23,7 @@ struct RunOptions {
   int domain = 0;
   std::optional<std::uint64_t> run_id;  ///< default: random
   std::optional<std::string> qos_file;
+  std::optional<std::string> secure_dir;  ///< DDS-Security: a folder made by `skyfuse certs`
   double discovery_timeout_s = 30.0;
   double round_timeout_s = 10.0;  ///< a running node silent this long ends the run
   /// A lock-step round closes this long after its tick with what has arrived (nodes), and the

@@ -18,8 +18,10 @@
 #include <limits>
 #include <set>
 
+#include "secure_probe.hpp"
 #include "skyfuse/transport/node_options.hpp"
 #include "skyfuse/transport/shutdown.hpp"
+#include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
 namespace {
@@ -48,18 +50,13 @@ std::vector<Attack> attacks_at(std::uint64_t run, std::uint32_t k, int victim) {
 }
 
 wire::InformationIncrement increment_for(const Attack& a) {
-  wire::InformationIncrement s;
-  s.run_id(a.run_id);
-  s.step(a.step);
-  s.station_id(a.station);
-  s.delta_information().fill(0.0);
-  s.delta_vector().fill(0.0);
-  s.delta_information()[0] = 1e-4;  // a plausible range-like information along x
-  // A well-formed prior (P = I, upper triangle row-major), so that each sample is refused for
-  // the one fault it carries.
-  s.prior_x().fill(0.0);
-  s.prior_covariance().fill(0.0);
-  for (int row = 0, index = 0; row < 9; index += 9 - row, ++row) s.prior_covariance()[index] = 1.0;
+  // Well-formed but for the one fault the attack carries: a plausible range-like information
+  // along x, about a prior with P = I.
+  PeerContribution c;
+  c.increment.station_id = a.station;
+  c.increment.delta_information(0, 0) = 1e-4;
+  c.prior.covariance = Covariance<9>::Identity();
+  wire::InformationIncrement s = transport::to_wire(c, a.run_id, a.step);
   if (a.kind == DropKind::kNonFinite) s.delta_information()[10] = std::nan("");
   if (a.kind == DropKind::kNotPositive) s.delta_information()[0] = -1.0;
   return s;
@@ -97,6 +94,8 @@ int main(int argc, char** argv) {
   app.add_option("--victim", victim, "A real station id to impersonate");
   app.add_option("--at-steps", steps, "Steps (>= 1) at which to attack")->capture_default_str();
   app.add_option("--timeout", timeout_s, "Seconds to wait for the run's ticks");
+  rogue::ProbeOptions probe;
+  rogue::add_probe_options(app, probe);
   CLI11_PARSE(app, argc, argv);
   spdlog::set_pattern("[rogue] %^%l%$: %v");
   transport::install_shutdown_handlers();
@@ -106,7 +105,9 @@ int main(int argc, char** argv) {
   }
 
   try {
-    transport::DdsNode node({domain, "skyfuse-rogue", std::nullopt});
+    if (probe.probe) return rogue::run_probe(probe, {domain, run_id, victim, timeout_s});
+    transport::DdsNode node(
+        {.domain_id = domain, .name = "skyfuse-rogue", .security = probe.security()});
     auto ticks = node.make_reader<wire::Tick>();
     auto increments = node.make_writer<wire::InformationIncrement>();
     auto measurements = node.make_writer<wire::Measurement>();

@@ -17,9 +17,12 @@ DdsNode::DdsNode(const NodeConfig& config) : qos_(config.qos_file, config.best_e
         fmt::format("--domain: must be in [0, {}], got {}", kMaxDomainId, config.domain_id));
   }
   auto* factory = dds::DomainParticipantFactory::get_instance();
-  participant_ = factory->create_participant(config.domain_id, qos_.participant(config.name));
+  dds::DomainParticipantQos participant_qos = qos_.participant(config.name);
+  if (config.security) add_security_properties(participant_qos, *config.security);
+  participant_ = factory->create_participant(config.domain_id, participant_qos);
   if (participant_ == nullptr) {
-    throw DdsError(fmt::format("cannot create a DDS participant on domain {}", config.domain_id));
+    throw DdsError(fmt::format("cannot create a DDS participant on domain {}{}", config.domain_id,
+                               config.security ? " with DDS-Security (see the log above)" : ""));
   }
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/security_folder.hpp"
 
 namespace skyfuse::transport {
 
@@ -17,6 +18,7 @@ NodeConfig NodeOptions::node_config(const std::string& name) const {
   config.name = name;
   if (qos_file) config.qos_file = *qos_file;
   config.best_effort_data = best_effort;
+  if (secure_dir) config.security = SecurityConfig{*secure_dir, identity_for_participant(name)};
   return config;
 }
 
@@ -59,6 +61,9 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
       ->capture_default_str();
   app.add_option("--qos", o.qos_file, "Fast DDS XML profiles overriding the built-in QoS")
       ->check(CLI::ExistingFile);
+  app.add_option("--secure", o.secure_dir,
+                 "DDS-Security: this node's identity from a folder made by `skyfuse certs`")
+      ->check(CLI::ExistingDirectory);
   app.add_option("--discovery-timeout", o.discovery_timeout_s,
                  "Seconds to wait for every peer to be discovered")
       ->check(CLI::PositiveNumber)

@@ -37,3 +37,28 @@ TEST(StepCollector, SaysWhyASampleIsRefused) {
 
 }  // namespace
 }  // namespace skyfuse
+
+namespace skyfuse {
+namespace {
+
+TEST(StepCollector, KnowsWhoWasAbsentFromTheStepClosedLast) {
+  // A new writer may take a silent station's id (a restarted process), so "absent" must mean
+  // a closed step without it - never the start of the run, where two writers could race.
+  const std::vector<int> ids{1, 2, 3};
+  StepCollector<int> c(ids);
+  for (int id : ids) EXPECT_FALSE(c.absent_last_step(id)) << "nothing has closed yet";
+  EXPECT_FALSE(c.offer(0, 1, 10).has_value());
+  EXPECT_FALSE(c.offer(0, 3, 30).has_value());
+  c.advance();
+  EXPECT_FALSE(c.absent_last_step(1));
+  EXPECT_TRUE(c.absent_last_step(2));
+  EXPECT_FALSE(c.absent_last_step(3));
+  EXPECT_FALSE(c.absent_last_step(99)) << "an unknown id is not a station that fell silent";
+  EXPECT_FALSE(c.offer(1, 2, 20).has_value());
+  c.advance();
+  EXPECT_FALSE(c.absent_last_step(2));
+  EXPECT_TRUE(c.absent_last_step(1));
+}
+
+}  // namespace
+}  // namespace skyfuse

@@ -32,7 +32,10 @@ class StepCollector {
       row->payloads.resize(ids_.size());
       row->filled.assign(ids_.size(), false);
     }
-    last_filled_.assign(ids_.size(), false);
+    // Before any step has closed nobody counts as absent: a new writer may take a station id
+    // only after a closed step showed that station silent (see SourceBinding), never at the
+    // start, where two writers racing for one id would otherwise take it from each other.
+    last_filled_.assign(ids_.size(), true);
   }
 
   /// Makes `step` the current one (a process that joins a run late starts there).
@@ -77,7 +80,7 @@ class StepCollector {
     return out;
   }
 
-  /// Whether the station delivered nothing in the step closed last (true before the first).
+  /// Whether the station delivered nothing in the step closed last (false before the first).
   bool absent_last_step(int station_id) const {
     const std::optional<std::size_t> index = index_of(station_id);
     return index && !last_filled_[*index];

@@ -26,6 +26,7 @@
 #include <string>
 
 #include "skyfuse/transport/qos.hpp"
+#include "skyfuse/transport/security.hpp"
 #include "skyfuse/transport/topics.hpp"
 
 namespace skyfuse::transport {
@@ -51,6 +52,7 @@ struct NodeConfig {
   /// Increments and measurements travel BEST_EFFORT (`--best-effort`): a lost datagram is
   /// not repaired, and a round closes at its deadline without the sample.
   bool best_effort_data = false;
+  std::optional<SecurityConfig> security;  ///< none: plain DDS
 };
 
 /// Domain ids above 232 make Fast DDS 2.9 exit the process during participant creation.

@@ -27,6 +27,7 @@ struct NodeOptions {
   std::uint64_t run_id = 1;
   RunOverrides overrides;
   std::optional<std::string> qos_file;
+  std::optional<std::string> secure_dir;  ///< DDS-Security identities from `skyfuse certs`
   double discovery_timeout_s = 30.0;
   double idle_timeout_s = 60.0;
   /// Real-time mode when > 0: each step starts on the wall clock at epoch + k dt and closes

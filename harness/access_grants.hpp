@@ -1,0 +1,29 @@
+#pragma once
+// Who may publish and subscribe to which topic under `skyfuse run --secure`: the least each
+// role needs for the endpoints it creates, so that a stolen or misused identity can do no more
+// than its role.
+//
+//   role       publishes                              subscribes
+//   station    increment, measurement, track, status  tick, increment, status
+//   center     track, status                          tick, measurement, status
+//   harness    tick                                   track, measurement, status
+//   observer   -                                      tick, track, status
+//
+// The harness subscribes to measurements because it records them (measurements.csv, and the
+// replay that rests on it); it still may not publish them, nor read any increment.
+
+#include <string>
+#include <vector>
+
+namespace skyfuse::harness {
+
+struct AccessGrant {
+  std::string identity;
+  std::vector<std::string> publish;    ///< topic names
+  std::vector<std::string> subscribe;  ///< topic names
+};
+
+/// The grant for a harness, center, station-N or observer identity.
+AccessGrant access_grant(const std::string& identity);
+
+}  // namespace skyfuse::harness
