@@ -27,8 +27,8 @@ NisGate NisGate::at_probability(double probability) {
   return gate;
 }
 
-bool NisGate::refuses(const GaussianState<9>& prior, const StationSensor& sensor,
-                      const Vector3& z, const Covariance<3>& noise) const {
+bool NisGate::refuses(const GaussianState<9>& prior, const StationSensor& sensor, const Vector3& z,
+                      const Covariance<3>& noise) const {
   if (!enabled()) return false;
   const std::optional<double> nis = measurement_nis(prior, sensor, z, noise);
   return !nis || *nis > threshold_;
