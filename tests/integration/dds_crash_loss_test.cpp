@@ -53,6 +53,10 @@ TEST(DdsCrash, AKilledStationRestartsAndHoldsItsPeersTrackFromTheNextRound) {
       run_args(171, dir / "run", 400, 50, {"--kill", "2@100", "--restart", "2@150"}),
       dir / "run.log", 180s);
   ASSERT_EQ(done.status.code, 0) << done.output;
+  // Every process the harness did not kill itself ended by itself, on time and successfully.
+  EXPECT_EQ(done.output.find("still running"), std::string::npos) << done.output;
+  EXPECT_EQ(done.output.find("exited with status"), std::string::npos) << done.output;
+  EXPECT_EQ(done.output.find("was killed by signal"), std::string::npos) << done.output;
   const auto summary = summary_of(dir / "run");
 
   // Rounds 100-149 closed without station 2; in round 150 the new process takes its peers'
