@@ -40,7 +40,6 @@ class StepCollector {
 
   /// Makes `step` the current one (a process that joins a run late starts there).
   void start_at(std::uint64_t step) { step_ = step; }
-  std::uint64_t step() const { return step_; }
 
   /// Why a sample for (step, station_id) would be refused now, or nothing if it would be kept:
   /// unknown station, then stale or future step, then a slot already filled.
