@@ -59,15 +59,14 @@ class Station {
         io_(node_),
         tracker_(
             ConstantAcceleration3D(plan.scenario.time_step_s, plan.scenario.filter.process_noise),
-            initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run),
-            static_cast<std::size_t>(plan.stations)),
+            initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run)),
         collector_(plan.participant_ids()),
         sensor_(me.position_m),
         noise_(station_noise_covariance(plan.scenario, me, plan.mc_run)),
         syncing_(options.rejoin_step.has_value()) {
     // Weights in the collector's (ascending id) order.
     for (int id : collector_.station_ids()) weights_.push_back(plan.participant(id)->weight);
-    round_.reserve(weights_.size());
+    round_increments_.reserve(weights_.size());
     round_weights_.reserve(weights_.size());
     round_ids_.reserve(weights_.size());
     sources_.bind(me_.id, io_.increments_out.id());
@@ -262,20 +261,23 @@ class Station {
   int fuse_and_publish(std::uint64_t k) {
     // What arrived, in ascending id (everything, in a healthy lock-step round); the track names
     // exactly these stations.
-    round_.clear();
+    round_increments_.clear();
     round_weights_.clear();
     round_ids_.clear();
+    const GaussianState<9>* reference = nullptr;  // the lowest-id contribution's prior
     for (std::size_t i = 0; i < collector_.station_ids().size(); ++i) {
       if (!collector_.filled(i)) continue;
-      round_.push_back(collector_.payloads()[i]);
+      const PeerContribution& c = collector_.payloads()[i];
+      if (reference == nullptr) reference = &c.prior;
+      round_increments_.push_back(c.increment);
       round_weights_.push_back(weights_[i]);
       round_ids_.push_back(collector_.station_ids()[i]);
     }
-    if (round_.empty()) {  // only while resynchronising: no peer's prior arrived this round
+    if (reference == nullptr) {  // only while resynchronising: no peer's prior arrived this round
       spdlog::warn("step {}: no peer increment arrived; still without a prior", k);
       return -1;
     }
-    const RoundFusion fused = tracker_.fuse_round(round_, round_weights_);
+    const RoundFusion fused = tracker_.fuse_round(*reference, round_increments_, round_weights_);
     if (fused.status != NumericalStatus::kOk) {
       const std::string detail =
           fmt::format("step {}: fusion failed: {}", k, to_string(fused.status));
@@ -311,8 +313,8 @@ class Station {
   std::vector<double> weights_;
   std::uint64_t epoch_ns_ = 0;  // real time: the system-clock start of step 0
   bool syncing_;                // restarted, and no peer's prior taken yet
-  // The round's contributions, weights and ids (reserved once: no allocation per step).
-  std::vector<PeerContribution> round_;
+  // The round's increments, weights and ids (reserved once: no allocation per step).
+  std::vector<Increment9> round_increments_;
   std::vector<double> round_weights_;
   std::vector<int> round_ids_;
   std::uint64_t lost_ = 0;     // increments removed by the simulated loss

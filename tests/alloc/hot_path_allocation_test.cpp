@@ -70,16 +70,17 @@ TEST(HotPathAllocations, StationStepFusionAndStackedUpdateAllocateNothing) {
   const ConstantAcceleration3D motion(p.scenario.time_step_s, p.scenario.filter.process_noise);
   for (int m : {1, 4, 10}) {
     const auto count = static_cast<std::size_t>(m);
-    PeerTracker peer(motion, initial_estimate(p.scenario, p.truth.states[0], 0), count);
+    PeerTracker peer(motion, initial_estimate(p.scenario, p.truth.states[0], 0));
     GaussianState<9> central = peer.estimate();
     StackedEkf<9, StationSensor> stacked;
     std::vector<StationObservation<StationSensor>> observations(count);
     // A station's side as the process runs it: contributions (increment + prior) gathered by
-    // a StepCollector, copied into the round in id order, fused onto the reference prior.
+    // a StepCollector, their increments copied into the round in id order and fused onto the
+    // lowest id's prior.
     std::vector<int> ids;
     for (int i = 0; i < m; ++i) ids.push_back(p.scenario.stations[static_cast<std::size_t>(i)].id);
     StepCollector<PeerContribution> collector(ids);
-    std::vector<PeerContribution> round;
+    std::vector<Increment9> round;
     round.reserve(count);
     const std::vector<double> weights(count, 1.0);
     for (int i = 0; i < m; ++i) {
@@ -102,8 +103,9 @@ TEST(HotPathAllocations, StationStepFusionAndStackedUpdateAllocateNothing) {
         ASSERT_FALSE(collector.offer(k, obs.station_id, c).has_value());
       }
       round.clear();
-      for (const PeerContribution& c : collector.payloads()) round.push_back(c);
-      ASSERT_EQ(peer.fuse_round(round, weights).status, NumericalStatus::kOk);
+      for (const PeerContribution& c : collector.payloads()) round.push_back(c.increment);
+      ASSERT_EQ(peer.fuse_round(collector.payloads().front().prior, round, weights).status,
+                NumericalStatus::kOk);
       collector.advance();
       ASSERT_EQ(stacked.update(central, observations).status, NumericalStatus::kOk);
       peer.predict();

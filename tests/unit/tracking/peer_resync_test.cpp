@@ -37,7 +37,7 @@ PeerRun run_peers(const LinkLoss& loss, int stations = 4, int steps = 300) {
   const GaussianState<9> initial =
       initial_estimate(plan.scenario, truth.states.front(), plan.mc_run);
   const auto m = static_cast<std::size_t>(stations);
-  std::vector<PeerTracker> peers(m, PeerTracker(motion, initial, m));
+  std::vector<PeerTracker> peers(m, PeerTracker(motion, initial));
 
   // Ascending id, as every receiver orders its round.
   std::vector<StationConfig> by_id(plan.participants().begin(), plan.participants().end());
@@ -46,7 +46,7 @@ PeerRun run_peers(const LinkLoss& loss, int stations = 4, int steps = 300) {
   PeerRun out;
   double sq = 0.0;
   std::vector<PeerContribution> sent(m);
-  std::vector<PeerContribution> received;
+  std::vector<Increment9> received;
   std::vector<double> weights;
   for (int k = 0; k < steps; ++k) {
     const auto step = static_cast<std::uint64_t>(k);
@@ -62,12 +62,14 @@ PeerRun run_peers(const LinkLoss& loss, int stations = 4, int steps = 300) {
     for (std::size_t r = 0; r < m; ++r) {
       received.clear();
       weights.clear();
+      const GaussianState<9>* reference = nullptr;  // the lowest id's prior, as a station takes it
       for (std::size_t s = 0; s < m; ++s) {
         if (loss.lost(by_id[r].id, by_id[s].id, step)) continue;
-        received.push_back(sent[s]);
+        if (reference == nullptr) reference = &sent[s].prior;
+        received.push_back(sent[s].increment);
         weights.push_back(by_id[s].weight);
       }
-      const RoundFusion fused = peers[r].fuse_round(received, weights);
+      const RoundFusion fused = peers[r].fuse_round(*reference, received, weights);
       EXPECT_EQ(fused.status, NumericalStatus::kOk);
       if (fused.resynced) ++out.resyncs;
     }

@@ -12,7 +12,6 @@
 /// station, which has no prior at all, takes its peers' the same way.
 
 #include <span>
-#include <vector>
 
 #include "skyfuse/filters/kalman.hpp"
 #include "skyfuse/fusion/increment_fusion.hpp"
@@ -39,13 +38,8 @@ struct RoundFusion {
 
 class PeerTracker {
  public:
-  /// `max_contributions`: the most contributions one round can bring (the station count); the
-  /// scratch space for them is reserved here, so fuse_round() does not allocate.
-  PeerTracker(const ConstantAcceleration3D& motion, const GaussianState<9>& initial,
-              std::size_t max_contributions = 0)
-      : motion_(motion), estimate_(initial) {
-    increments_.reserve(max_contributions);
-  }
+  PeerTracker(const ConstantAcceleration3D& motion, const GaussianState<9>& initial)
+      : motion_(motion), estimate_(initial) {}
 
   /// This station's increment against the current (common) prior.
   NumericalStatus make_increment(int station_id, const StationSensor& sensor, const Vector3& z,
@@ -56,19 +50,16 @@ class PeerTracker {
   NumericalStatus fuse(std::span<const Increment9> increments, std::span<const double> weights) {
     return fuse_increments(estimate_, increments, weights, estimate_, &information_);
   }
-  /// Fuses one round's contributions (ascending station id, at least one; weights[i] for
-  /// contributions[i]) onto the reference prior, the first contribution's.
-  RoundFusion fuse_round(std::span<const PeerContribution> contributions,
+  /// Fuses one round's increments (ascending station id; weights[i] for increments[i]) onto
+  /// `reference`, the prior that came with the lowest-id increment of the round.
+  RoundFusion fuse_round(const GaussianState<9>& reference, std::span<const Increment9> increments,
                          std::span<const double> weights) {
     RoundFusion result;
-    const GaussianState<9>& reference = contributions.front().prior;
     if (reference.mean != estimate_.mean || reference.covariance != estimate_.covariance) {
       estimate_ = reference;
       result.resynced = true;
     }
-    increments_.clear();
-    for (const PeerContribution& c : contributions) increments_.push_back(c.increment);
-    result.status = fuse(increments_, weights);
+    result.status = fuse(increments, weights);
     return result;
   }
   /// Y = P^-1 of the estimate after the last fuse().
@@ -80,7 +71,6 @@ class PeerTracker {
   ConstantAcceleration3D motion_;
   GaussianState<9> estimate_;
   Covariance<9> information_ = Covariance<9>::Identity();
-  std::vector<Increment9> increments_;  // fuse_round()'s scratch
 };
 
 }  // namespace skyfuse
