@@ -7,6 +7,7 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
+#include <limits>
 #include <random>
 
 #include "child_processes.hpp"
@@ -111,21 +112,11 @@ std::optional<std::string> missing_from(const RoundRecord& r, std::size_t statio
 
 // "ID@STEP" -> {ID, STEP}.
 StationEvent parse_station_event(const std::string& option, const std::string& text) {
-  const auto at = text.find('@');
-  StationEvent e;
-  std::size_t used_id = 0;
-  std::size_t used_step = 0;
-  try {
-    if (at == std::string::npos) throw std::invalid_argument(text);
-    e.station_id = std::stoi(text.substr(0, at), &used_id);
-    e.step = std::stoull(text.substr(at + 1), &used_step);
-  } catch (const std::logic_error&) {
-    used_id = std::string::npos;
-  }
-  if (used_id != at || used_step != text.size() - at - 1) {
+  const auto pair = transport::parse_number_pair(text, '@');
+  if (!pair || pair->first > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
     throw CLI::ValidationError(option, "expected ID@STEP, e.g. 2@100, got " + text);
   }
-  return e;
+  return {static_cast<int>(pair->first), pair->second};
 }
 
 // Kills and restarts must name participants, fit in the run, and alternate per station:

@@ -4,8 +4,10 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/security_folder.hpp"
@@ -96,28 +98,37 @@ void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort) {
          "--loss-steps",
          [&loss](const std::string& text) {
            // "A:B": steps A (inclusive) to B (exclusive).
-           const auto colon = text.find(':');
-           std::size_t used_first = 0;
-           std::size_t used_end = 0;
-           try {
-             if (colon == std::string::npos) throw std::invalid_argument(text);
-             loss.first_step = std::stoull(text.substr(0, colon), &used_first);
-             loss.end_step = std::stoull(text.substr(colon + 1), &used_end);
-           } catch (const std::logic_error&) {
-             throw CLI::ValidationError("--loss-steps",
-                                        "expected A:B (steps A to B-1), got " + text);
-           }
-           if (used_first != colon || used_end != text.size() - colon - 1 ||
-               loss.first_step >= loss.end_step) {
+           const auto steps = parse_number_pair(text, ':');
+           if (!steps || steps->first >= steps->second) {
              throw CLI::ValidationError("--loss-steps",
                                         "expected A:B with A < B (steps A to B-1), got " + text);
            }
+           std::tie(loss.first_step, loss.end_step) = *steps;
          },
          "Apply --loss only to steps A to B-1, as A:B (default: every step)")
       ->type_name("A:B");
   app.add_option("--loss-seed", loss.seed, "Seed of the simulated loss")->capture_default_str();
   app.add_flag("--best-effort", best_effort,
                "Increments and measurements travel BEST_EFFORT: lost datagrams are not repaired");
+}
+
+std::optional<std::pair<std::uint64_t, std::uint64_t>> parse_number_pair(std::string_view text,
+                                                                         char separator) {
+  // from_chars, unlike stoull, takes no sign and no leading space, and says where it stopped.
+  const auto number = [](std::string_view digits) -> std::optional<std::uint64_t> {
+    std::uint64_t value = 0;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (error != std::errc() || end != digits.data() + digits.size() || digits.empty()) {
+      return std::nullopt;
+    }
+    return value;
+  };
+  const auto at = text.find(separator);
+  if (at == std::string_view::npos) return std::nullopt;
+  const auto first = number(text.substr(0, at));
+  const auto second = number(text.substr(at + 1));
+  if (!first || !second) return std::nullopt;
+  return std::pair{*first, *second};
 }
 
 void add_nis_gate_option(CLI::App& app, NisGate& gate) {

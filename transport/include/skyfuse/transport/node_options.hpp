@@ -8,6 +8,8 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "skyfuse/random/link_loss.hpp"
@@ -56,6 +58,11 @@ void add_node_options(CLI::App& app, NodeOptions& options);
 /// `--loss P`, `--loss-steps A:B`, `--loss-seed S` and `--best-effort` into `loss` and
 /// `best_effort`: shared by the nodes and `skyfuse run`, which passes them on.
 void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort);
+/// "A<separator>B" with A and B unsigned decimal integers and nothing else (no sign, no
+/// spaces); nothing if the text is not that. For option values like `100:200` and `2@100`.
+std::optional<std::pair<std::uint64_t, std::uint64_t>> parse_number_pair(std::string_view text,
+                                                                         char separator);
+
 /// `--nis-gate P` into `gate`.
 void add_nis_gate_option(CLI::App& app, NisGate& gate);
 /// The arguments that give a node the same loss settings (empty when there is no loss).
