@@ -106,8 +106,11 @@ int main(int argc, char** argv) {
 
   try {
     if (probe.probe) return rogue::run_probe(probe, {domain, run_id, victim, timeout_s});
-    transport::DdsNode node(
-        {.domain_id = domain, .name = "skyfuse-rogue", .security = probe.security()});
+    transport::NodeConfig config;
+    config.domain_id = domain;
+    config.name = "skyfuse-rogue";
+    config.security = probe.security();
+    transport::DdsNode node(config);
     auto ticks = node.make_reader<wire::Tick>();
     auto increments = node.make_writer<wire::InformationIncrement>();
     auto measurements = node.make_writer<wire::Measurement>();

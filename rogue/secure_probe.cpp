@@ -170,8 +170,11 @@ void add_probe_options(CLI::App& app, ProbeOptions& o) {
 }
 
 int run_probe(const ProbeOptions& options, const ProbeTarget& target) {
-  transport::DdsNode node(
-      {.domain_id = target.domain, .name = "skyfuse-rogue", .security = options.security()});
+  transport::NodeConfig config;
+  config.domain_id = target.domain;
+  config.name = "skyfuse-rogue";
+  config.security = options.security();
+  transport::DdsNode node(config);
   try {
     probe(node, options, target);
     return transport::kExitOk;
