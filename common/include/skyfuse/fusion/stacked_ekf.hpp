@@ -13,6 +13,7 @@
 
 #include "skyfuse/core/stacked_cholesky.hpp"
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/core/unroll.hpp"
 #include "skyfuse/filters/kalman.hpp"
 
 namespace skyfuse {
@@ -50,52 +51,84 @@ class StackedEkf {
           obs.sensor.residual(obs.z, obs.sensor.predict(state.mean));
     }
 
-    // S = H P H^T + R (3M x 3M). Only its lower triangle is read by the factorisation, and H
-    // has kCols non-zero columns: S_ij = H_i P_cc H_j^T, with coefficient-wise products (the
-    // inner dimension is kCols, where a blocked GEMM would be mostly overhead).
+    // S = H P H^T + R (3M x 3M), by blocks: S_ij = (H_i P_cc) H_j^T, fixed-size products over
+    // the kCols columns where H is not zero. The factorisation reads the lower triangle only.
     hp_.noalias() = h_.lazyProduct(state.covariance.template topLeftCorner<kCols, kCols>());
-    for (Eigen::Index c = 0; c < m; ++c) {
-      const double* hc = h_.data() + c * kCols;  // rows of the row-major H are contiguous
-      for (Eigen::Index r = c; r < m; ++r) {
-        const double* hpr = hp_.data() + r * kCols;
-        double sum = 0.0;
-        for (int k = 0; k < kCols; ++k) sum += hpr[k] * hc[k];
-        s_(r, c) = sum;
+    const Eigen::Index blocks = static_cast<Eigen::Index>(observations.size());
+    for (Eigen::Index j = 0; j < blocks; ++j) {
+      const auto h_j = h_.template middleRows<kMeasDim>(j * kMeasDim);
+      for (Eigen::Index i = j; i < blocks; ++i) {
+        s_.template block<kMeasDim, kMeasDim>(i * kMeasDim, j * kMeasDim).noalias() =
+            hp_.template middleRows<kMeasDim>(i * kMeasDim).lazyProduct(h_j.transpose());
       }
-    }
-    for (std::size_t i = 0; i < observations.size(); ++i) {
-      const Eigen::Index row = static_cast<Eigen::Index>(i) * kMeasDim;
-      s_.template block<kMeasDim, kMeasDim>(row, row) += observations[i].noise;
+      s_.template block<kMeasDim, kMeasDim>(j * kMeasDim, j * kMeasDim) +=
+          observations[static_cast<std::size_t>(j)].noise;
     }
     if (!s_factor_.compute(s_)) return {NumericalStatus::kNotPositiveDefinite};
 
-    // K^T = S^-1 H P = (S^-1 H_c) P[0:kCols, :]: the solve needs kCols right-hand sides, not N.
+    // Everything else goes through G = S^-1 H_c (3M x kCols) and kCols x kCols reductions of
+    // it; the 9 x 3M gain K = P[:, 0:kCols] G^T is never formed:
+    //   K nu = P_c (G^T nu),  K H = P_c (H_c^T G),  K R K^T = P_c (sum_i G_i^T R_i G_i) P_c^T.
     s_inv_h_ = h_;
     s_factor_.solve_in_place(s_inv_h_);
-    gain_t_.noalias() = s_inv_h_.lazyProduct(state.covariance.template topRows<kCols>());
-    state.mean.noalias() += gain_t_.transpose() * innovation_;
-
-    // Joseph form; K R K^T as a sum over the diagonal blocks of R.
-    const Matrix<N, kCols> kh = gain_t_.transpose().lazyProduct(h_);
-    Covariance<N> joseph = joseph_without_noise<N, kCols>(state.covariance, kh);
-    // K R K^T = sum_i K_i R_i K_i^T, symmetric: accumulate the upper triangle only.
+    const Matrix<N, kCols> p_c = state.covariance.template leftCols<kCols>();
+    const Vector<kCols> g_nu = s_inv_h_.transpose().lazyProduct(innovation_);
+    const Covariance<kCols> c_hg = h_.transpose().lazyProduct(s_inv_h_);
+    Covariance<kCols> noise_part = Covariance<kCols>::Zero();
     for (std::size_t i = 0; i < observations.size(); ++i) {
       const Eigen::Index row = static_cast<Eigen::Index>(i) * kMeasDim;
-      const Matrix<N, kMeasDim> k_i = gain_t_.template middleRows<kMeasDim>(row).transpose();
-      const Matrix<N, kMeasDim> kr = k_i.lazyProduct(observations[i].noise);
-      for (int c = 0; c < N; ++c) {
-        for (int r = 0; r <= c; ++r) joseph(r, c) += kr.row(r).dot(k_i.row(c));
+      const Matrix<kMeasDim, kCols> g_i = s_inv_h_.template middleRows<kMeasDim>(row);
+      const Matrix<kMeasDim, kCols> r_g = observations[i].noise.lazyProduct(g_i);
+      noise_part.noalias() += g_i.transpose().lazyProduct(r_g);
+    }
+
+    // Joseph form, (I - KH) P (I - KH)^T + K R K^T. The products with N rows are plain loops in a
+    // fixed order: Eigen vectorises fixed-size results of 9 rows with a peel that depends on the
+    // object's address, and its scalar and packet paths round differently, so the same inputs
+    // could give other bits in another process.
+    Matrix<N, kCols> kh;
+    Matrix<N, kCols> p_noise;
+    SKYFUSE_UNROLL
+    for (int r = 0; r < N; ++r) {
+      SKYFUSE_UNROLL
+      for (int c = 0; c < kCols; ++c) {
+        double k_h = 0.0;
+        double p_n = 0.0;
+        SKYFUSE_UNROLL
+        for (int q = 0; q < kCols; ++q) {
+          k_h += p_c(r, q) * c_hg(q, c);
+          p_n += p_c(r, q) * noise_part(q, c);
+        }
+        kh(r, c) = k_h;
+        p_noise(r, c) = p_n;
       }
     }
-    // The upper triangle now holds the sum; Joseph's own part was symmetric up to rounding.
+    Covariance<N> joseph = joseph_without_noise<N, kCols>(state.covariance, kh);
+    // K R K^T = p_noise P_c^T is symmetric: the upper triangle, mirrored.
+    for (int c = 0; c < N; ++c) {
+      for (int r = 0; r <= c; ++r) {
+        double sum = 0.0;
+        SKYFUSE_UNROLL
+        for (int q = 0; q < kCols; ++q) sum += p_noise(r, q) * p_c(c, q);
+        joseph(r, c) += sum;
+      }
+    }
     for (int c = 0; c < N; ++c) {
       for (int r = c + 1; r < N; ++r) joseph(r, c) = joseph(c, r);
     }
+    SKYFUSE_UNROLL
+    for (int r = 0; r < N; ++r) {
+      double sum = 0.0;
+      SKYFUSE_UNROLL
+      for (int q = 0; q < kCols; ++q) sum += p_c(r, q) * g_nu(q);
+      state.mean(r) += sum;
+    }
     state.covariance = joseph;
 
+    // NIS = nu^T S^-1 nu = |L^-1 nu|^2: the forward half of a solve is enough.
     whitened_ = innovation_;
-    s_factor_.solve_in_place(whitened_);
-    return {NumericalStatus::kOk, innovation_.dot(whitened_)};
+    s_factor_.forward_solve_in_place(whitened_);
+    return {NumericalStatus::kOk, whitened_.squaredNorm()};
   }
 
  private:
@@ -107,7 +140,6 @@ class StackedEkf {
     hp_.resize(m, kCols);
     s_inv_h_.resize(m, kCols);
     s_.resize(m, m);
-    gain_t_.resize(m, N);
     s_factor_.reserve(m);
   }
 
@@ -115,10 +147,9 @@ class StackedEkf {
   Eigen::VectorXd innovation_;
   Eigen::VectorXd whitened_;
   Eigen::Matrix<double, Eigen::Dynamic, kCols, Eigen::RowMajor> hp_;  // H_c P_cc
-  typename StackedCholesky<kCols>::RowMajorRhs s_inv_h_;
+  typename StackedCholesky<kMeasDim, kCols>::RowMajorRhs s_inv_h_;
   Eigen::MatrixXd s_;
-  Eigen::Matrix<double, Eigen::Dynamic, N> gain_t_;
-  StackedCholesky<kCols> s_factor_;
+  StackedCholesky<kMeasDim, kCols> s_factor_;
 };
 
 }  // namespace skyfuse
