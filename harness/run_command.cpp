@@ -19,6 +19,7 @@
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/node_options.hpp"
+#include "skyfuse/transport/scenario_option.hpp"
 #include "skyfuse/transport/security_folder.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
@@ -167,9 +168,7 @@ void check_station_events(const RunOptions& o, const RunPlan& plan) {
 void add_run_command(CLI::App& app, RunOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "run", "Run the stations and the fusion center as processes over DDS, in lock-step");
-  cmd->add_option("--scenario", o.scenario_path,
-                  "Scenario YAML file (default: the embedded paper000 scenario)")
-      ->check(CLI::ExistingFile);
+  transport::add_scenario_option(*cmd, o.scenario_path);
   cmd->add_option("--stations", o.overrides.stations, "Number of station processes M (the first M)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--steps", o.overrides.steps, "Override the scenario's number of steps")

@@ -6,15 +6,14 @@
 
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/soak.hpp"
+#include "skyfuse/transport/scenario_option.hpp"
 
 namespace skyfuse::harness {
 
 void add_soak_command(CLI::App& app, SoakOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "soak", "Long in-process run: no NaN, every covariance symmetric positive definite");
-  cmd->add_option("--scenario", options.scenario_path,
-                  "Scenario YAML file (default: the embedded paper000 scenario)")
-      ->check(CLI::ExistingFile);
+  transport::add_scenario_option(*cmd, options.scenario_path);
   cmd->add_option("--steps", options.steps, "Steps to run (the trajectory is flown on)")
       ->check(CLI::Range(std::int64_t{1}, std::int64_t{2'000'000'000}))
       ->capture_default_str();
@@ -23,9 +22,7 @@ void add_soak_command(CLI::App& app, SoakOptions& options) {
 }
 
 int run_soak(const SoakOptions& options) {
-  const Scenario scenario = options.scenario_path.empty()
-                                ? load_default_scenario()
-                                : load_scenario_file(options.scenario_path);
+  const Scenario scenario = load_scenario_or_default(options.scenario_path);
   const int stations =
       options.stations == 0 ? static_cast<int>(scenario.stations.size()) : options.stations;
   const auto start = std::chrono::steady_clock::now();

@@ -10,6 +10,7 @@
 #include "progress.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
+#include "skyfuse/transport/scenario_option.hpp"
 #include "sweep_report.hpp"
 
 namespace skyfuse::harness {
@@ -17,9 +18,7 @@ namespace skyfuse::harness {
 void add_sweep_command(CLI::App& app, SweepOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "sweep", "Monte-Carlo comparison of central and peer-to-peer fusion, in-process");
-  cmd->add_option("--scenario", options.scenario_path,
-                  "Scenario YAML file (default: the embedded paper000 scenario)")
-      ->check(CLI::ExistingFile);
+  transport::add_scenario_option(*cmd, options.scenario_path);
   cmd->add_option("--runs", options.runs, "Monte-Carlo runs per (M, speed)")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
@@ -37,8 +36,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
 }
 
 int run_sweep(const SweepOptions& options) {
-  Scenario scenario = options.scenario_path.empty() ? load_default_scenario()
-                                                    : load_scenario_file(options.scenario_path);
+  Scenario scenario = load_scenario_or_default(options.scenario_path);
   if (options.seed) scenario.seed = *options.seed;
   if (options.steps) {
     scenario.steps = *options.steps;

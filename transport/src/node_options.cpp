@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/scenario_option.hpp"
 #include "skyfuse/transport/security_folder.hpp"
 
 namespace skyfuse::transport {
@@ -29,9 +30,7 @@ std::chrono::microseconds NodeOptions::round_deadline() const {
 }
 
 RunPlan NodeOptions::load_plan() const {
-  Scenario scenario =
-      scenario_path.empty() ? load_default_scenario() : load_scenario_file(scenario_path);
-  return make_run_plan(std::move(scenario), overrides);
+  return make_run_plan(load_scenario_or_default(scenario_path), overrides);
 }
 
 std::chrono::milliseconds NodeOptions::discovery_timeout() const {
@@ -42,9 +41,7 @@ std::chrono::milliseconds NodeOptions::idle_timeout() const {
 }
 
 void add_node_options(CLI::App& app, NodeOptions& o) {
-  app.add_option("--scenario", o.scenario_path,
-                 "Scenario YAML file (default: the embedded paper000 scenario)")
-      ->check(CLI::ExistingFile);
+  add_scenario_option(app, o.scenario_path);
   app.add_option("--domain", o.domain, "DDS domain id")
       ->check(CLI::Range(0, kMaxDomainId))
       ->capture_default_str();

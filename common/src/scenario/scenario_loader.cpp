@@ -266,4 +266,8 @@ Scenario load_default_scenario() {
   return parse_scenario(default_scenario_yaml(), "<embedded paper000.yaml>");
 }
 
+Scenario load_scenario_or_default(const std::string& path) {
+  return path.empty() ? load_default_scenario() : load_scenario_file(path);
+}
+
 }  // namespace skyfuse

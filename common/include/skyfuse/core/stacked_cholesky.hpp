@@ -73,7 +73,7 @@ class StackedCholesky {
     forward(x);
     const Eigen::Index blocks = size_ / B;
     for (Eigen::Index i = blocks - 1; i >= 0; --i) {  // L^T X = W, block by block
-      RhsBlock w = x.template middleRows<B>(i * B);
+      BlockRows<N> w = x.template middleRows<B>(i * B);
       for (Eigen::Index k = i + 1; k < blocks; ++k) {
         w.noalias() -= l(k, i).transpose().lazyProduct(x.template middleRows<B>(k * B));
       }
@@ -108,7 +108,9 @@ class StackedCholesky {
 
  private:
   using Block = Eigen::Matrix<double, B, B>;
-  using RhsBlock = Eigen::Matrix<double, B, N, (N == 1 ? Eigen::ColMajor : Eigen::RowMajor)>;
+  // B rows of a right-hand side with C columns (a vector when C is 1).
+  template <int C>
+  using BlockRows = Eigen::Matrix<double, B, C, (C == 1 ? Eigen::ColMajor : Eigen::RowMajor)>;
 
   auto l(Eigen::Index i, Eigen::Index j) { return l_.template block<B, B>(i * B, j * B); }
   auto l(Eigen::Index i, Eigen::Index j) const { return l_.template block<B, B>(i * B, j * B); }
@@ -139,10 +141,9 @@ class StackedCholesky {
   template <typename Rhs>
   void forward(Rhs& x) const {
     constexpr int kCols = Rhs::ColsAtCompileTime;
-    using Part = Eigen::Matrix<double, B, kCols, (kCols == 1 ? Eigen::ColMajor : Eigen::RowMajor)>;
     const Eigen::Index blocks = size_ / B;
     for (Eigen::Index i = 0; i < blocks; ++i) {
-      Part w = x.template middleRows<B>(i * B);
+      BlockRows<kCols> w = x.template middleRows<B>(i * B);
       for (Eigen::Index k = 0; k < i; ++k) {
         w.noalias() -= l(i, k).lazyProduct(x.template middleRows<B>(k * B));
       }

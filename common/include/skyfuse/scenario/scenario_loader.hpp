@@ -30,6 +30,8 @@ Scenario load_scenario_file(const std::filesystem::path& path);
 /// The default scenario (scenarios/paper000.yaml), compiled into the library.
 std::string_view default_scenario_yaml();
 Scenario load_default_scenario();
+/// The file at `path`, or the default scenario when `path` is empty (what `--scenario` means).
+Scenario load_scenario_or_default(const std::string& path);
 
 /// Refuses anything a run cannot use: unknown station ids, a station closer to the target
 /// than `kMinStationSeparationM` at any step of any listed speed, and so on. parse_scenario
