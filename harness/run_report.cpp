@@ -231,7 +231,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
     if (node > 0) resyncs[node_key(node)] = counts.resyncs;
   }
   nlohmann::json missing = nlohmann::json::object();
-  for (const auto& [id, rounds] : summary.rounds_missing_by_station) missing[node_key(id)] = rounds;
+  for (const auto& [id, count] : summary.rounds_missing_by_station) missing[node_key(id)] = count;
   nlohmann::json rejoin = nlohmann::json::object();
   for (const auto& [id, step] : summary.rejoin_step_by_station) rejoin[node_key(id)] = step;
   full["rounds_missing_by_station"] = missing;

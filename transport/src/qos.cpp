@@ -1,6 +1,7 @@
 #include "skyfuse/transport/qos.hpp"
 
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
 #include <fmt/format.h>
 
 #include <fastdds/dds/core/policy/QosPolicies.hpp>
@@ -40,6 +41,28 @@ bool is_data_link_topic(const std::string& topic) {
   return topic == "skyfuse_increment" || topic == "skyfuse_measurement";
 }
 
+// The RTPS port mapping (PB = 7400, DG = 250) gives domain d its user-multicast port at
+// 7401 + 250 d and its first unicast port at 7410 + 250 d; the ports between are never used by
+// it, and the one-to-many topics take theirs from there.
+constexpr int kPortBase = 7400;
+constexpr int kDomainGain = 250;
+constexpr int kFirstFreeOffset = 2;
+
+}  // namespace
+
+std::optional<int> multicast_port(std::string_view topic, int domain_id) {
+  // Ticks go to every node, measurements to the center and the harness's recorder, increments
+  // to every station. Tracks have one reader, statuses are few: unicast.
+  constexpr std::string_view kOneToMany[] = {"skyfuse_tick", "skyfuse_measurement",
+                                             "skyfuse_increment"};
+  for (int i = 0; i < static_cast<int>(std::size(kOneToMany)); ++i) {
+    if (topic == kOneToMany[i]) return kPortBase + kDomainGain * domain_id + kFirstFreeOffset + i;
+  }
+  return std::nullopt;
+}
+
+namespace {
+
 template <typename EndpointQos>
 void apply_common(EndpointQos& qos, const std::string& topic, bool best_effort_data) {
   qos.reliability().kind = best_effort_data && is_data_link_topic(topic)
@@ -63,14 +86,17 @@ void apply_common(EndpointQos& qos, const std::string& topic, bool best_effort_d
 }  // namespace
 
 QosProfiles::QosProfiles(const std::optional<std::filesystem::path>& xml_file,
-                         bool best_effort_data)
-    : best_effort_data_(best_effort_data) {
-  if (!xml_file) return;
-  if (dds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(xml_file->string()) !=
-      ReturnCode_t::RETCODE_OK) {
+                         bool best_effort_data, int domain_id)
+    : best_effort_data_(best_effort_data), domain_id_(domain_id) {
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  if (xml_file &&
+      factory->load_XML_profiles_file(xml_file->string()) != ReturnCode_t::RETCODE_OK) {
     throw std::runtime_error(
         fmt::format("--qos: cannot load Fast DDS XML profiles from {}", xml_file->string()));
   }
+  dds::DomainParticipantQos user_profile;
+  multicast_ = factory->get_participant_qos_from_profile("skyfuse_participant", user_profile) !=
+               ReturnCode_t::RETCODE_OK;
 }
 
 dds::DomainParticipantQos QosProfiles::participant(const std::string& name) const {
@@ -129,6 +155,18 @@ dds::DataReaderQos QosProfiles::reader(const dds::Subscriber& subscriber,
   }
   apply_common(qos, topic, best_effort_data_);
   qos.reliable_reader_qos().times.heartbeatResponseDelay = Duration_t(0, 0);
+  // One datagram per write for all readers instead of one per reader: a station's increment
+  // is 1 send instead of M - 1. `skyfuse run --steps 3000`, three runs each way: M = 8 used
+  // 4.46 -> 3.72 ms of CPU per round (all processes) and ran 433 -> 524 rounds/s; M = 4 is
+  // unchanged within the noise (1.68 -> 1.64 ms). The reader keeps its unicast locators for
+  // repairs. Multicast leaves the host only if the participant's interfaces do, and the
+  // built-in participant's is 127.0.0.1.
+  if (const auto port = multicast_port(topic, domain_id_); port && multicast_) {
+    eprosima::fastrtps::rtps::Locator_t group;
+    eprosima::fastrtps::rtps::IPLocator::createLocator(LOCATOR_KIND_UDPv4, kMulticastGroup,
+                                                       static_cast<std::uint32_t>(*port), group);
+    qos.endpoint().multicast_locator_list.push_back(group);
+  }
   return qos;
 }
 

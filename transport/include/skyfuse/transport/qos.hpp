@@ -8,6 +8,11 @@
 ///   data writer / reader         <topic>_writer / <topic>_reader, e.g. skyfuse_increment_reader
 ///
 /// The file comes from --qos FILE, or from FASTDDS_DEFAULT_PROFILES_FILE as Fast DDS reads it.
+///
+/// With the built-in participant (UDP on 127.0.0.1), the one-to-many topics - ticks,
+/// measurements, increments - reach their readers by UDP multicast: one datagram per write
+/// instead of one per matched reader. A user's participant profile brings its own transport,
+/// and then every topic stays unicast unless the user's reader profiles say otherwise.
 
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
@@ -15,6 +20,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 
 namespace eprosima::fastdds::dds {
 class Publisher;
@@ -26,11 +32,25 @@ namespace skyfuse::transport {
 /// Largest station count the resource limits are sized for (the wire types allow as many).
 inline constexpr int kMaxStations = 256;
 
+/// The multicast group of the one-to-many topics: the RTPS default group.
+inline constexpr const char* kMulticastGroup = "239.255.0.1";
+
+/// The UDP port `topic`'s readers listen on for multicast in `domain_id`; none for the topics
+/// that stay unicast (one reader, or a low rate). Each such topic has a port of its own so
+/// that a process receives only the topics it reads.
+std::optional<int> multicast_port(std::string_view topic, int domain_id);
+
 class QosProfiles {
  public:
   /// Loads `xml_file` if given; a file that does not load is an error, not a silent default.
   /// `best_effort_data`: the data links (increments, measurements) are BEST_EFFORT.
-  QosProfiles(const std::optional<std::filesystem::path>& xml_file, bool best_effort_data);
+  /// `domain_id` places the multicast ports.
+  QosProfiles(const std::optional<std::filesystem::path>& xml_file, bool best_effort_data,
+              int domain_id);
+
+  /// True when the built-in participant is used, and with it multicast for the one-to-many
+  /// topics; false when a `skyfuse_participant` profile replaces it.
+  bool multicast() const { return multicast_; }
 
   eprosima::fastdds::dds::DomainParticipantQos participant(const std::string& name) const;
   eprosima::fastdds::dds::DataWriterQos writer(const eprosima::fastdds::dds::Publisher& publisher,
@@ -40,6 +60,8 @@ class QosProfiles {
 
  private:
   bool best_effort_data_;
+  int domain_id_;
+  bool multicast_ = false;
 };
 
 }  // namespace skyfuse::transport
