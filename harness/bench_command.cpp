@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -13,6 +14,7 @@
 #include "output_files.hpp"
 #include "run_command.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/qos.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -94,7 +96,9 @@ int run_bench(const BenchOptions& o) {
   const Scenario scenario = load_scenario_file(scenario_path);
 
   nlohmann::json doc;
-  doc["machine"] = {{"cores", std::thread::hardware_concurrency()}, {"cpu_model", cpu_model()}};
+  doc["machine"] = {{"cores", std::thread::hardware_concurrency()},
+                    {"cpu_model", cpu_model()},
+                    {"rmem_max", transport::receive_buffer_cap().value_or(0)}};
   fmt::print("skyfuse bench on {} ({} cores)\n", cpu_model(), std::thread::hardware_concurrency());
 
   if (o.micro) {
@@ -119,6 +123,10 @@ int run_bench(const BenchOptions& o) {
                m.at("StationStep"));
   }
 
+  const int largest = o.stations.empty() ? 0 : *std::max_element(o.stations.begin(), o.stations.end());
+  if (const auto warning = transport::receive_buffer_warning(largest)) {
+    fmt::print(stderr, "skyfuse: warning: {}\n", *warning);
+  }
   fmt::print("\nlock-step rounds over DDS ({} rounds each; floor = commander + M echo processes)\n",
              o.rounds);
   fmt::print("{:>4} {:>10} {:>10} {:>7} {:>21} {:>21} {:>11}\n", "M", "rounds/s", "floor/s",

@@ -19,6 +19,7 @@
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/node_options.hpp"
+#include "skyfuse/transport/qos.hpp"
 #include "skyfuse/transport/scenario_option.hpp"
 #include "skyfuse/transport/security_folder.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -371,6 +372,9 @@ int run_run(const RunOptions& o) {
   const RunPlan plan = plan_from(
       scenario_text(o.scenario_path),
       o.scenario_path.empty() ? "<embedded paper000.yaml>" : o.scenario_path, o.overrides);
+  if (const auto warning = transport::receive_buffer_warning(plan.stations)) {
+    fmt::print(stderr, "skyfuse: warning: {}\n", *warning);
+  }
   const RunSummary summary = o.secure_dir ? execute_secure_run(o, plan) : execute_run(o, plan);
   print_run_table(summary, stdout);
   fmt::print("results in {}\n", o.out_dir);

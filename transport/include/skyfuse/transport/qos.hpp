@@ -17,6 +17,7 @@
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -31,6 +32,18 @@ namespace skyfuse::transport {
 
 /// Largest station count the resource limits are sized for (the wire types allow as many).
 inline constexpr int kMaxStations = 256;
+
+/// Socket receive buffer the built-in participant asks for. The kernel grants at most
+/// net.core.rmem_max (208 KiB on a stock Debian 12).
+inline constexpr std::uint64_t kReceiveBufferBytes = 4u << 20;
+
+/// net.core.rmem_max, if /proc says; below kReceiveBufferBytes, large runs lose datagrams to
+/// full socket buffers and wait for their repair.
+std::optional<std::uint64_t> receive_buffer_cap();
+
+/// What to tell the user when a run of `stations` stations needs larger socket buffers than
+/// the kernel grants; nothing when it does not.
+std::optional<std::string> receive_buffer_warning(int stations);
 
 /// The multicast group of the one-to-many topics: the RTPS default group.
 inline constexpr const char* kMulticastGroup = "239.255.0.1";

@@ -1,6 +1,7 @@
-// The one-to-many topics travel by UDP multicast on the built-in loopback participant: a real
+// The built-in loopback UDP participant. The one-to-many topics travel by multicast: a real
 // tick written by this process reaches a real skyfuse-echo process through the tick topic's
-// multicast group, and a plain socket joined to that group sees the same datagram.
+// multicast group, and a plain socket joined to that group sees the same datagram. Large runs
+// need large socket buffers, and the user hears when the kernel grants less.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
@@ -86,6 +87,18 @@ TEST(Multicast, OneToManyTopicsHaveAPortEachBetweenTheDomainsStandardPorts) {
   EXPECT_FALSE(multicast_port("skyfuse_track", 0));
   EXPECT_FALSE(multicast_port("skyfuse_status", 0));
   EXPECT_FALSE(multicast_port("skyfuse_echo", 0));
+}
+
+TEST(ReceiveBuffers, AWarningNamesTheKernelsCapOnlyWhenALargeRunNeedsMore) {
+  const auto cap = receive_buffer_cap();
+  ASSERT_TRUE(cap) << "no /proc/sys/net/core/rmem_max";
+  EXPECT_FALSE(receive_buffer_warning(4)) << "small runs fit in any buffer";
+  const auto warning = receive_buffer_warning(64);
+  EXPECT_EQ(warning.has_value(), *cap < kReceiveBufferBytes);
+  if (warning) {
+    EXPECT_NE(warning->find(std::to_string(*cap)), std::string::npos) << *warning;
+    EXPECT_NE(warning->find("sysctl -w net.core.rmem_max="), std::string::npos) << *warning;
+  }
 }
 
 TEST(Multicast, ATickReachesARemoteReaderThroughTheTopicsGroup) {
