@@ -123,7 +123,8 @@ int run_bench(const BenchOptions& o) {
                m.at("StationStep"));
   }
 
-  const int largest = o.stations.empty() ? 0 : *std::max_element(o.stations.begin(), o.stations.end());
+  const int largest =
+      o.stations.empty() ? 0 : *std::max_element(o.stations.begin(), o.stations.end());
   if (const auto warning = transport::receive_buffer_warning(largest)) {
     fmt::print(stderr, "skyfuse: warning: {}\n", *warning);
   }

@@ -11,7 +11,8 @@ bool ReaderWaitSet::wait(std::chrono::microseconds timeout) {
   return wait_set_.wait(active, to_dds_duration(timeout)) == ReturnCode_t::RETCODE_OK;
 }
 
-DdsNode::DdsNode(const NodeConfig& config) : qos_(config.qos_file, config.best_effort_data, config.domain_id) {
+DdsNode::DdsNode(const NodeConfig& config)
+    : qos_(config.qos_file, config.best_effort_data, config.domain_id) {
   if (config.domain_id < 0 || config.domain_id > kMaxDomainId) {
     throw DdsError(
         fmt::format("--domain: must be in [0, {}], got {}", kMaxDomainId, config.domain_id));

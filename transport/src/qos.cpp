@@ -109,8 +109,7 @@ QosProfiles::QosProfiles(const std::optional<std::filesystem::path>& xml_file,
                          bool best_effort_data, int domain_id)
     : best_effort_data_(best_effort_data), domain_id_(domain_id) {
   auto* factory = dds::DomainParticipantFactory::get_instance();
-  if (xml_file &&
-      factory->load_XML_profiles_file(xml_file->string()) != ReturnCode_t::RETCODE_OK) {
+  if (xml_file && factory->load_XML_profiles_file(xml_file->string()) != ReturnCode_t::RETCODE_OK) {
     throw std::runtime_error(
         fmt::format("--qos: cannot load Fast DDS XML profiles from {}", xml_file->string()));
   }

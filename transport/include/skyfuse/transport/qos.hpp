@@ -14,10 +14,10 @@
 /// instead of one per matched reader. A user's participant profile brings its own transport,
 /// and then every topic stays unicast unless the user's reader profiles say otherwise.
 
+#include <cstdint>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
-#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
