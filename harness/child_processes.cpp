@@ -47,6 +47,10 @@ pid_t ChildProcesses::spawn(const std::string& name, const std::vector<std::stri
     // Die with the harness, however it dies; and if it died before this line, go now.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(127);
+    // Keep only stdin, stdout and stderr: the harness's DDS sockets (Fast DDS does not open
+    // them close-on-exec) would otherwise stay bound in every node, and stay open after the
+    // harness has gone.
+    close_range(3, ~0U, 0);
     execv(args[0], args.data());
     _exit(127);
   }

@@ -4,7 +4,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <csignal>
+#include <filesystem>
+#include <iterator>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "integration/run_fixture.hpp"
 
@@ -32,6 +38,18 @@ std::unique_ptr<Process> start_long_run(int domain, int stations, const std::fil
 
 std::vector<pid_t> processes_on_domain(int domain) {
   return find_processes({"--domain", std::to_string(domain)});
+}
+
+// The inode numbers of the sockets a process has open, from /proc/<pid>/fd.
+std::set<std::string> socket_inodes(pid_t pid) {
+  std::set<std::string> inodes;
+  std::error_code error;
+  for (const auto& fd : std::filesystem::directory_iterator(
+           std::filesystem::path("/proc") / std::to_string(pid) / "fd", error)) {
+    const std::string target = std::filesystem::read_symlink(fd.path(), error).string();
+    if (target.starts_with("socket:")) inodes.insert(target);
+  }
+  return inodes;
 }
 
 TEST(DdsFaults, RefusesABadCommandLine) {
@@ -114,6 +132,29 @@ TEST(DdsFaults, HarnessReportsAStationThatDiedInsteadOfHanging) {
   EXPECT_TRUE(eventually([&] { return processes_on_domain(domain).empty(); }, 10s))
       << "processes left behind";
   EXPECT_EQ(fastdds_shm_entries(), shm_before);
+}
+
+// A node that inherited the harness's sockets would keep the harness's DDS ports bound, and
+// its multicast datagrams queued, after the harness is gone.
+TEST(DdsFaults, NodesHoldNoSocketOfTheHarness) {
+  const auto dir = test_dir();
+  const int domain = 124;
+  const auto run = start_long_run(domain, 2, dir);
+  const auto harness_sockets = socket_inodes(run->pid());
+  ASSERT_FALSE(harness_sockets.empty());
+  const auto nodes = processes_on_domain(domain);
+  EXPECT_EQ(nodes.size(), 4U);  // harness, center, 2 stations
+  for (const pid_t pid : nodes) {
+    if (pid == run->pid()) continue;
+    const auto node_sockets = socket_inodes(pid);
+    EXPECT_FALSE(node_sockets.empty()) << "pid " << pid;
+    std::vector<std::string> shared;
+    std::set_intersection(harness_sockets.begin(), harness_sockets.end(), node_sockets.begin(),
+                          node_sockets.end(), std::back_inserter(shared));
+    EXPECT_THAT(shared, ::testing::IsEmpty()) << "pid " << pid;
+  }
+  run->signal(SIGINT);
+  EXPECT_TRUE(run->wait(20s).has_value());
 }
 
 TEST(DdsFaults, CtrlCStopsEveryProcessAndLeavesNothingBehind) {
