@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/QR>
+#include <cmath>
 #include <limits>
 
 namespace skyfuse {
@@ -69,6 +71,34 @@ TEST(SampleChecks, JudgesAnIncrementNearTheLargestDoubleWithoutOverflow) {
   InformationIncrement<9> semi_definite;  // eigenvalues 2 * kMaxInformation and 0
   semi_definite.delta_information.topLeftCorner<2, 2>().setConstant(kMaxInformation);
   EXPECT_EQ(check_increment(semi_definite), std::nullopt);
+}
+
+// dQ = V diag(eigenvalues) V^T for a fixed rotation V.
+InformationIncrement<9> with_eigenvalues(const Vector<9>& eigenvalues) {
+  Covariance<9> seed;
+  for (int i = 0; i < 9; ++i) {
+    for (int j = 0; j < 9; ++j) seed(i, j) = std::sin(1.0 + i + 9.0 * j);
+  }
+  const Covariance<9> v = Eigen::HouseholderQR<Covariance<9>>(seed).householderQ();
+  InformationIncrement<9> out;
+  const Covariance<9> dq = v * eigenvalues.asDiagonal() * v.transpose();
+  out.delta_information = dq.selfadjointView<Eigen::Lower>();  // exactly symmetric
+  return out;
+}
+
+TEST(SampleChecks, DrawsThePositivityLineAtMinusOneBillionthOfTheLargestEigenvalue) {
+  // The cheap shifted-Cholesky test settles clear cases; near the line the eigenvalues decide.
+  Vector<9> eigenvalues;
+  eigenvalues << 1.0, 0.5, 0.2, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0;
+  EXPECT_EQ(check_increment(with_eigenvalues(eigenvalues)), std::nullopt);
+  for (const double inside : {-0.1e-9, -0.5e-9, -0.9e-9}) {
+    eigenvalues(8) = inside;
+    EXPECT_EQ(check_increment(with_eigenvalues(eigenvalues)), std::nullopt) << inside;
+  }
+  for (const double outside : {-1.2e-9, -2e-9, -1e-6}) {
+    eigenvalues(8) = outside;
+    EXPECT_EQ(check_increment(with_eigenvalues(eigenvalues)), DropKind::kNotPositive) << outside;
+  }
 }
 
 TEST(SampleChecks, AcceptsAZeroIncrement) {
