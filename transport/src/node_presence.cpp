@@ -72,7 +72,8 @@ JoinResult join_run(NodePresence& presence, const std::function<bool()>& all_mat
   constexpr auto kStatusSettle = std::chrono::milliseconds(200);
   // Every node polls while all of them discover each other, and the CPU is what discovery
   // lacks: at M = 64 (66 processes on 2 cores) a 5 ms poll took 28-32 s to all-matched, a
-  // 25 ms poll 16-26 s. Up to M = 8 discovery takes 0.25-0.4 s either way.
+  // 25 ms poll 16-26 s, this 20 ms poll 23 s (one run). Up to M = 8 discovery takes 0.25-0.4 s
+  // either way.
   constexpr auto kJoinPoll = std::chrono::milliseconds(20);
   presence.announce(wire::STARTING);
   const auto deadline = std::chrono::steady_clock::now() + timeout;

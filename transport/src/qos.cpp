@@ -31,7 +31,7 @@ const Duration_t kHeartbeatPeriod{0, 20'000'000};
 // Fast DDS arms a per-reader nack-suppression timer on every write; at the default of 0 it
 // expires at once, so every write woke the participant's event thread (and that thread then
 // queued on the writer's mutex): ~3 wake-ups per station per round. A 10 ms window keeps the
-// timer armed across the writes of many rounds. `skyfuse run --steps 3000`, two runs each:
+// timer armed across the writes of several rounds. `skyfuse run --steps 3000`, two runs each:
 // context switches per round M = 4 66-75 -> 50-54, M = 8 139-141 -> 110-111. The price: a NACK
 // that arrives within 10 ms of the DATA it asks for is ignored, and the next heartbeat repairs.
 const Duration_t kNackSuppression{0, 10'000'000};

@@ -11,14 +11,14 @@ namespace skyfuse {
 namespace {
 
 // A sufficient test for check_increment's rule, at a third of the eigenvalues' cost
-// (CheckIncrement 1.26 -> 0.39 us; they were ~3 % of a station's CPU at M = 8, paid for every
-// increment received). dQ = H^T R^-1 H is singular
-// (rank 3 for one sensor), so it has no Cholesky factor itself; dQ + t I has one exactly when
-// every eigenvalue of dQ is above -t. With t below 1e-9 times the largest eigenvalue magnitude
-// the rule holds whenever the factorisation succeeds. That magnitude is bounded from below by
-// every |diagonal entry| and by the Frobenius norm / 3 (the norm is the root of the sum of the
-// nine squared eigenvalues); t is 0.9e-9 times the larger bound, and the 0.1e-9 left over
-// covers the factorisation's rounding (~1e-14 of the norm at 9 x 9).
+// (CheckIncrement 1.26 -> 0.39 us; the eigenvalues were ~3 % of a station's CPU at M = 8, paid
+// for every increment received). dQ = H^T R^-1 H is singular (rank 3 for one sensor), so it
+// has no Cholesky factor itself; dQ + t I has one exactly when every eigenvalue of dQ is above
+// -t. With t below 1e-9 times the largest eigenvalue magnitude the rule holds whenever the
+// factorisation succeeds. That magnitude is bounded from below by every |diagonal entry| and
+// by the Frobenius norm / 3 (the norm is the root of the sum of the nine squared eigenvalues);
+// t is 0.9e-9 times the larger bound, and the 0.1e-9 left over covers the factorisation's
+// rounding (~1e-14 of the norm at 9 x 9).
 bool passes_shifted_cholesky(const Covariance<9>& dq) {
   const double magnitude_bound = std::max(dq.diagonal().cwiseAbs().maxCoeff(), dq.norm() / 3.0);
   const Covariance<9> shifted = dq + Covariance<9>::Identity() * (0.9e-9 * magnitude_bound);
