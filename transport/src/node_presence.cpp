@@ -70,10 +70,11 @@ JoinResult join_run(NodePresence& presence, const std::function<bool()>& all_mat
                     std::chrono::milliseconds timeout) {
   // Durable samples follow discovery by a few milliseconds; this margin lets them land.
   constexpr auto kStatusSettle = std::chrono::milliseconds(200);
-  // Every node polls while all of them discover each other, and the CPU is what discovery
-  // lacks: at M = 64 (66 processes on 2 cores) a 5 ms poll took 28-32 s to all-matched, a
-  // 25 ms poll 16-26 s, this 20 ms poll 23 s (one run). Up to M = 8 discovery takes 0.25-0.4 s
-  // either way.
+  // Every node polls while all of them discover each other, on a machine whose CPU is what
+  // discovery lacks, so the poll is kept coarse. Whether 20 ms rather than 5 ms shortens
+  // discovery was not shown: at M = 64 (66 processes on 2 cores), one run each back to back,
+  // 5 ms took 23 s and 20 ms 26 s, the other run of each failing; earlier comparisons
+  // (28-44 s against 16-26 s) had another change mixed in. Up to M = 8 it takes 0.3-0.4 s.
   constexpr auto kJoinPoll = std::chrono::milliseconds(20);
   presence.announce(wire::STARTING);
   const auto deadline = std::chrono::steady_clock::now() + timeout;

@@ -121,18 +121,16 @@ QosProfiles::QosProfiles(const std::optional<std::filesystem::path>& xml_file,
         fmt::format("--qos: cannot load Fast DDS XML profiles from {}", xml_file->string()));
   }
   dds::DomainParticipantQos user_profile;
-  multicast_ = factory->get_participant_qos_from_profile("skyfuse_participant", user_profile) !=
-               ReturnCode_t::RETCODE_OK;
+  if (factory->get_participant_qos_from_profile("skyfuse_participant", user_profile) ==
+      ReturnCode_t::RETCODE_OK) {
+    user_participant_ = user_profile;
+  }
 }
 
 dds::DomainParticipantQos QosProfiles::participant(const std::string& name) const {
-  dds::DomainParticipantQos qos;
-  if (dds::DomainParticipantFactory::get_instance()->get_participant_qos_from_profile(
-          "skyfuse_participant", qos) == ReturnCode_t::RETCODE_OK) {
-    qos.name(name);
-    return qos;
-  }
+  dds::DomainParticipantQos qos = user_participant_.value_or(dds::DomainParticipantQos());
   qos.name(name);
+  if (user_participant_) return qos;
   // UDP on the loopback interface only: one host, no traffic leaves it, and no shared-memory
   // segments for a killed process to leave in /dev/shm. Runs across hosts or containers give
   // a profile with their own transport (docker/fastdds_profile.xml).
@@ -192,7 +190,7 @@ dds::DataReaderQos QosProfiles::reader(const dds::Subscriber& subscriber,
   // unchanged within the noise (1.68 -> 1.64 ms). The reader keeps its unicast locators for
   // repairs. Multicast leaves the host only if the participant's interfaces do, and the
   // built-in participant's is 127.0.0.1.
-  if (const auto port = multicast_port(topic, domain_id_); port && multicast_) {
+  if (const auto port = multicast_port(topic, domain_id_); port && multicast()) {
     eprosima::fastrtps::rtps::Locator_t group;
     eprosima::fastrtps::rtps::IPLocator::createLocator(LOCATOR_KIND_UDPv4, kMulticastGroup,
                                                        static_cast<std::uint32_t>(*port), group);

@@ -63,7 +63,7 @@ class QosProfiles {
 
   /// True when the built-in participant is used, and with it multicast for the one-to-many
   /// topics; false when a `skyfuse_participant` profile replaces it.
-  bool multicast() const { return multicast_; }
+  bool multicast() const { return !user_participant_; }
 
   eprosima::fastdds::dds::DomainParticipantQos participant(const std::string& name) const;
   eprosima::fastdds::dds::DataWriterQos writer(const eprosima::fastdds::dds::Publisher& publisher,
@@ -74,7 +74,8 @@ class QosProfiles {
  private:
   bool best_effort_data_;
   int domain_id_;
-  bool multicast_ = false;
+  // The user's `skyfuse_participant` profile, read once; none: the built-in participant.
+  std::optional<eprosima::fastdds::dds::DomainParticipantQos> user_participant_;
 };
 
 }  // namespace skyfuse::transport
