@@ -140,6 +140,44 @@ TEST(DdsRunReplay, ReplayingRecordedMeasurementsReproducesTheRun) {
 namespace skyfuse::test {
 namespace {
 
+TEST(DdsBench, MeasuresEachStationCountAgainstItsFloorIntoBenchJson) {
+  // Behaviour only: every requested M gets a row with the run and its floor measured, the
+  // latencies are ordered, and the machine is named. What the numbers are is the bench's job.
+  const auto dir = test_dir();
+  const Completed bench = run_to_completion(
+      {bin("skyfuse"), "bench", "--no-micro", "--stations", "1", "2", "--rounds", "30",
+       "--domain", "190", "--out", (dir / "out").string()},
+      dir / "bench.log", std::chrono::seconds(180));
+  ASSERT_EQ(bench.status.code, 0) << bench.output;
+  const auto doc = nlohmann::json::parse(read_file(dir / "out" / "bench.json"));
+  EXPECT_GE(doc.at("machine").at("cores").get<int>(), 1);
+  EXPECT_FALSE(doc.at("machine").at("cpu_model").get<std::string>().empty());
+  EXPECT_FALSE(doc.contains("micro_ns"));
+  const auto& rows = doc.at("dds");
+  ASSERT_EQ(rows.size(), 2U) << doc.dump(2);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    SCOPED_TRACE(row.dump());
+    ASSERT_FALSE(row.contains("error"));
+    EXPECT_EQ(row.at("stations").get<int>(), static_cast<int>(i) + 1);
+    EXPECT_EQ(row.at("rounds").get<int>(), 30);
+    EXPECT_GT(row.at("rounds_per_s").get<double>(), 0.0);
+    EXPECT_GT(row.at("floor_rounds_per_s").get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(row.at("ratio_to_floor").get<double>(),
+                     row.at("rounds_per_s").get<double>() /
+                         row.at("floor_rounds_per_s").get<double>());
+    EXPECT_GT(row.at("round_latency_us_p50").get<double>(), 0.0);
+    EXPECT_LE(row.at("round_latency_us_p50").get<double>(),
+              row.at("round_latency_us_p99").get<double>());
+    EXPECT_LE(row.at("round_latency_us_p99").get<double>(),
+              row.at("round_latency_us_max").get<double>());
+    EXPECT_GT(row.at("discovery_s").get<double>(), 0.0);
+    EXPECT_GT(row.at("floor_discovery_s").get<double>(), 0.0);
+  }
+  // The run behind each row is kept, all its rounds recorded.
+  EXPECT_EQ(read_tracks(dir / "out" / "run-M2" / "tracks.csv").size(), 30U * 3U);
+}
+
 TEST(DdsRunRealtime, NodesStepOnTheWallClockAndTheHarnessReportsDeadlinesAndAges) {
   // Behaviour only (speed is for the benchmarks): every step is recorded, every track names
   // the stations it fused, and the summary carries the real-time figures.
