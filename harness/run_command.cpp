@@ -63,7 +63,7 @@ std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan
                                    "--mc-run",
                                    std::to_string(plan.mc_run),
                                    "--discovery-timeout",
-                                   fmt::format("{}", o.discovery_timeout_s),
+                                   fmt::format("{}", discovery_timeout_s(o, plan.stations)),
                                    "--idle-timeout",
                                    fmt::format("{}", std::max(30.0, 3.0 * o.round_timeout_s)),
                                    "--log-level",
@@ -192,9 +192,9 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "(made by `skyfuse certs DIR`)")
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--discovery-timeout", o.discovery_timeout_s,
-                  "Seconds to wait until every process has joined")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+                  "Seconds to wait until every process has joined (default: 30, or 2 per station "
+                  "from 16 stations up)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--round-timeout", o.round_timeout_s,
                   "Seconds a running node may deliver no track before the run is abandoned")
       ->check(CLI::PositiveNumber)
@@ -233,6 +233,12 @@ void add_run_command(CLI::App& app, RunOptions& o) {
   cmd->add_flag("--external", o.external,
                 "Do not start processes: drive stations and a center started elsewhere");
   cmd->add_flag("-v,--verbose", o.verbose, "Let the node processes log at info level");
+}
+
+double discovery_timeout_s(const RunOptions& o, int stations) {
+  constexpr double kFloorS = 30.0;
+  constexpr double kPerStationS = 2.0;
+  return o.discovery_timeout_s.value_or(std::max(kFloorS, kPerStationS * stations));
 }
 
 RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
@@ -288,7 +294,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
       children.spawn("center", center);
       for (int id : ids) spawn_station(id, std::nullopt);
     }
-    const auto discovery = driver.wait_until_joined(seconds_to_ms(o.discovery_timeout_s));
+    const auto discovery = driver.wait_until_joined(seconds_to_ms(discovery_timeout_s(o, plan.stations)));
 
     RunRecorder recorder(plan, ids, o.restarts);
     Progress progress(fmt::format("run M={} {:.0f} km/h", plan.stations, plan.speed_mps * 3.6),
@@ -317,7 +323,8 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
         for (const StationEvent& e : o.restarts) {
           if (e.step != step) continue;
           spawn_station(e.station_id, step);
-          driver.wait_until_ready(e.station_id, seconds_to_ms(o.discovery_timeout_s));
+          driver.wait_until_ready(e.station_id,
+                                 seconds_to_ms(discovery_timeout_s(o, plan.stations)));
           driver.set_down(e.station_id, false);
           spdlog::info("restarted station {} before step {}", e.station_id, step);
         }

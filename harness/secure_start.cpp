@@ -27,9 +27,10 @@ RunSummary execute_secure_run(const RunOptions& options, const RunPlan& plan) {
   // Processes started elsewhere cannot be started again from here.
   if (options.external) return execute_run(options, plan);
   RunOptions attempt = options;
-  attempt.discovery_timeout_s = std::min(options.discovery_timeout_s, kSecureAttemptS);
-  const int attempts =
-      std::max(1, static_cast<int>(options.discovery_timeout_s / attempt.discovery_timeout_s));
+  const double total_s = discovery_timeout_s(options, plan.stations);
+  const double attempt_s = std::min(total_s, kSecureAttemptS);
+  attempt.discovery_timeout_s = attempt_s;
+  const int attempts = std::max(1, static_cast<int>(total_s / attempt_s));
   for (int i = 1;; ++i) {
     try {
       return execute_run(attempt, plan);
