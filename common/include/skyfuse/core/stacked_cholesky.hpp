@@ -47,18 +47,10 @@ class StackedCholesky {
         for (Eigen::Index k = 0; k < j; ++k) {
           b.noalias() -= l(i, k).lazyProduct(l(j, k).transpose());
         }
-        // Row by row, X L_jj^T = b is L_jj x = b^T: a forward substitution.
-        SKYFUSE_UNROLL
-        for (int r = 0; r < B; ++r) {
-          SKYFUSE_UNROLL
-          for (int c = 0; c < B; ++c) {
-            double s = b(r, c);
-            SKYFUSE_UNROLL
-            for (int q = 0; q < c; ++q) s -= b(r, q) * l_(j * B + c, j * B + q);
-            b(r, c) = s * inv_diag_(j * B + c);
-          }
-        }
-        l(i, j) = b;
+        // X L_jj^T = b is L_jj X^T = b^T: a forward substitution on b^T.
+        Block x = b.transpose();
+        forward_in_block(j, x);
+        l(i, j) = x.transpose();
       }
     }
     return true;
@@ -147,13 +139,19 @@ class StackedCholesky {
       for (Eigen::Index k = 0; k < i; ++k) {
         w.noalias() -= l(i, k).lazyProduct(x.template middleRows<B>(k * B));
       }
-      SKYFUSE_UNROLL
-      for (int r = 0; r < B; ++r) {
-        SKYFUSE_UNROLL
-        for (int q = 0; q < r; ++q) w.row(r) -= l_(i * B + r, i * B + q) * w.row(q);
-        w.row(r) *= inv_diag_(i * B + r);
-      }
+      forward_in_block(i, w);
       x.template middleRows<B>(i * B) = w;
+    }
+  }
+
+  // W <- L_ii^-1 W for the B rows of W: the forward substitution within diagonal block i.
+  template <typename Rows>
+  void forward_in_block(Eigen::Index i, Rows& w) const {
+    SKYFUSE_UNROLL
+    for (int r = 0; r < B; ++r) {
+      SKYFUSE_UNROLL
+      for (int q = 0; q < r; ++q) w.row(r) -= l_(i * B + r, i * B + q) * w.row(q);
+      w.row(r) *= inv_diag_(i * B + r);
     }
   }
 
