@@ -93,12 +93,19 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
 }
 
 int run_bench(const BenchOptions& o) {
-  const std::filesystem::path out(o.out_dir);
-  std::filesystem::create_directories(out);
   const std::string scenario_path = o.scenario_path.empty()
                                         ? (executable_dir() / "scenarios" / "ring64.yaml").string()
                                         : o.scenario_path;
   const Scenario scenario = load_scenario_file(scenario_path);
+  // Refused before anything runs: a bad count found midway would lose the rows measured so far.
+  for (int m : o.stations) {
+    if (m > static_cast<int>(scenario.stations.size())) {
+      throw std::invalid_argument(fmt::format("--stations: {} exceeds the {} stations of {}", m,
+                                              scenario.stations.size(), scenario_path));
+    }
+  }
+  const std::filesystem::path out(o.out_dir);
+  std::filesystem::create_directories(out);
 
   nlohmann::json doc;
   doc["machine"] = {{"cores", std::thread::hardware_concurrency()},
@@ -139,10 +146,6 @@ int run_bench(const BenchOptions& o) {
              "ratio", "latency p50/p99/max", "floor p50/p99", "discovery");
   nlohmann::json rows = nlohmann::json::array();
   for (int m : o.stations) {
-    if (m > static_cast<int>(scenario.stations.size())) {
-      throw std::invalid_argument(fmt::format("--stations: {} exceeds the {} stations of {}", m,
-                                              scenario.stations.size(), scenario_path));
-    }
     transport::NodeConfig config;
     config.domain_id = floor_domain(o.domain);
     config.name = "skyfuse-bench";
