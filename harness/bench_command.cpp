@@ -15,6 +15,7 @@
 #include "run_command.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/qos.hpp"
+#include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -145,6 +146,11 @@ int run_bench(const BenchOptions& o) {
   fmt::print("{:>4} {:>10} {:>10} {:>7} {:>21} {:>21} {:>11}\n", "M", "rounds/s", "floor/s",
              "ratio", "latency p50/p99/max", "floor p50/p99", "discovery");
   nlohmann::json rows = nlohmann::json::array();
+  // Rewritten after every station count: a bench of hours keeps what it measured if stopped.
+  const auto save_rows = [&] {
+    doc["dds"] = rows;
+    write_file_atomically(out / "bench.json", doc.dump(2) + "\n");
+  };
   for (int m : o.stations) {
     transport::NodeConfig config;
     config.domain_id = floor_domain(o.domain);
@@ -156,9 +162,18 @@ int run_bench(const BenchOptions& o) {
       floor = measure_floor(config, m, o.rounds, timeout);
       s = run_for_bench(o, scenario, scenario_path, m, out);
     } catch (const RunAborted& e) {
-      // One station count failing (say, a machine too small for it) must not lose the others.
+      // An interrupt ends the bench with the rows measured so far on disk; one station count
+      // failing (say, a machine too small for it) must not lose the others.
+      if (transport::shutdown_requested()) {
+        save_rows();
+        fmt::print("\n{} keeps what was measured before the interrupt ({} of {} station "
+                   "counts)\n",
+                   (out / "bench.json").string(), rows.size(), o.stations.size());
+        throw;
+      }
       fmt::print("{:>4} failed: {}\n", m, e.what());
       rows.push_back({{"stations", m}, {"rounds", o.rounds}, {"error", e.what()}});
+      save_rows();
       continue;
     }
 
@@ -181,9 +196,9 @@ int run_bench(const BenchOptions& o) {
                     {"floor_latency_us_p99", floor.latency_us_p99},
                     {"discovery_s", s.discovery_s},
                     {"floor_discovery_s", floor.discovery_s}});
+    save_rows();
   }
-  doc["dds"] = rows;
-  write_file_atomically(out / "bench.json", doc.dump(2) + "\n");
+  save_rows();
   fmt::print("\nwrote {}\n", (out / "bench.json").string());
   return 0;
 }

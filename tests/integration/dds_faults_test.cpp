@@ -8,6 +8,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
@@ -172,6 +173,32 @@ TEST(DdsFaults, CtrlCStopsEveryProcessAndLeavesNothingBehind) {
   EXPECT_TRUE(eventually([&] { return processes_on_domain(domain).empty(); }, 10s))
       << "processes left behind";
   EXPECT_EQ(fastdds_shm_entries(), shm_before);
+}
+
+TEST(DdsFaults, CtrlCDuringABenchKeepsTheRowsMeasuredSoFar) {
+  const auto dir = test_dir();
+  const int domain = 125;  // the floor's: 126
+  const auto out = dir / "out";
+  Process bench({bin("skyfuse"), "bench", "--no-micro", "--stations", "1", "4", "--rounds",
+                 "20000", "--domain", std::to_string(domain), "--out", out.string()},
+                dir / "bench.log");
+  // bench.json appears once M = 1 is measured; M = 4 then takes tens of seconds.
+  ASSERT_TRUE(eventually([&] { return std::filesystem::exists(out / "bench.json"); }, 90s))
+      << bench.output();
+  bench.signal(SIGINT);
+  const auto status = bench.wait(20s);
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(status->code, 130) << bench.output();
+
+  const auto doc = nlohmann::json::parse(read_file(out / "bench.json"));
+  ASSERT_EQ(doc.at("dds").size(), 1U) << doc.dump(2);
+  EXPECT_EQ(doc.at("dds")[0].at("stations").get<int>(), 1);
+  EXPECT_FALSE(doc.at("dds")[0].contains("error"));
+  EXPECT_GT(doc.at("dds")[0].at("rounds_per_s").get<double>(), 0.0);
+  EXPECT_TRUE(eventually(
+      [&] { return processes_on_domain(domain).empty() && processes_on_domain(domain + 1).empty(); },
+      10s))
+      << "processes left behind";
 }
 
 }  // namespace
