@@ -1,10 +1,14 @@
-// skyfuse-echo: the other half of the bare Fast DDS lock-step floor that `skyfuse bench`
+// skyfuse-echo: the other half of the bare Fast DDS lock-step floors that `skyfuse bench`
 // measures. It answers every Tick with an Echo, through the same participant setup and QoS as
-// a station, and does nothing else: the round rate a skyfuse run could reach at best.
+// a station, and does nothing else: the round rate a skyfuse run could reach at best. With
+// --all-to-all M it first sends an increment-sized sample on the increment topic and waits for
+// those of the M - 1 other echoes, as a station does: the cost of the peer-to-peer exchange
+// itself, without estimation, center or recorder.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <optional>
 
 #include "skyfuse/transport/node_options.hpp"
 #include "skyfuse/transport/node_presence.hpp"
@@ -18,7 +22,13 @@ int main(int argc, char** argv) {
   std::uint64_t run_id = 1;
   std::optional<std::string> qos;
   double timeout_s = 30.0;
+  int all_to_all = 0;
   app.add_option("--id", id, "Node id (>= 1)")->required()->check(CLI::PositiveNumber);
+  app.add_option("--all-to-all", all_to_all,
+                 "Before each answer, send an increment-sized sample to the other M - 1 echoes "
+                 "and wait for theirs")
+      ->type_name("M")
+      ->check(CLI::PositiveNumber);
   app.add_option("--domain", domain, "DDS domain id")
       ->check(CLI::Range(0, transport::kMaxDomainId));
   app.add_option("--run-id", run_id, "Run id");
@@ -37,13 +47,28 @@ int main(int argc, char** argv) {
     transport::NodePresence presence(node, run_id, id);
     auto ticks = node.make_reader<wire::Tick>();
     auto echoes = node.make_writer<wire::Echo>();
+    // Only with --all-to-all: a reader or writer nobody matches would still cost discovery.
+    std::optional<transport::Reader<wire::InformationIncrement>> peers_in;
+    std::optional<transport::Writer<wire::InformationIncrement>> peers_out;
     transport::ReaderWaitSet wait_set;
     wait_set.attach(ticks);
+    if (all_to_all > 0) {
+      peers_in.emplace(node.make_reader<wire::InformationIncrement>());
+      peers_out.emplace(node.make_writer<wire::InformationIncrement>());
+      wait_set.attach(*peers_in);
+    }
+    const auto peers_matched = [&] {
+      return all_to_all == 0 ||
+             (peers_in->matched() >= all_to_all && peers_out->matched() >= all_to_all);
+    };
     const auto joined = transport::join_run(
-        presence, [&] { return ticks.matched() >= 1 && echoes.matched() >= 1; },
+        presence,
+        [&] { return ticks.matched() >= 1 && echoes.matched() >= 1 && peers_matched(); },
         [&] {
-          return fmt::format("tick writer {}/1, echo reader {}/1", ticks.matched(),
-                             echoes.matched());
+          return fmt::format("tick writer {}/1, echo reader {}/1, peers {}/{} and {}/{}",
+                             ticks.matched(), echoes.matched(),
+                             peers_in ? peers_in->matched() : 0, all_to_all,
+                             peers_out ? peers_out->matched() : 0, all_to_all);
         },
         std::chrono::milliseconds(static_cast<long>(timeout_s * 1000)));
     if (const auto code = transport::exit_code_unless_joined(
@@ -54,14 +79,45 @@ int main(int argc, char** argv) {
     wire::Echo echo;
     echo.run_id(run_id);
     echo.node_id(id);
+    wire::InformationIncrement sample;  // zeros: only its size and its path matter
+    sample.run_id(run_id);
+    sample.station_id(id);
+    // Lock-step: every peer sample in flight is of the current round, though it may come
+    // before this echo's tick; one step and its count suffice.
+    std::uint32_t heard_step = 0;
+    int heard = 0;
+    std::optional<std::uint32_t> waiting;  // ticked, sample sent, peers' samples not all in
     while (!transport::shutdown_requested()) {
       wire::Tick tick;
       while (ticks.take(tick)) {
         if (tick.run_id() != run_id) continue;
         if (tick.stop()) return transport::kExitOk;
-        echo.step(tick.step());
-        echoes.write(echo);
         last_tick = std::chrono::steady_clock::now();
+        if (all_to_all == 0) {
+          echo.step(tick.step());
+          echoes.write(echo);
+          continue;
+        }
+        sample.step(tick.step());
+        peers_out->write(sample);
+        waiting = tick.step();
+      }
+      if (all_to_all > 0) {
+        wire::InformationIncrement received;
+        while (peers_in->take(received)) {
+          if (received.run_id() != run_id || received.station_id() == id) continue;
+          if (received.step() != heard_step) {
+            heard_step = received.step();
+            heard = 0;
+          }
+          ++heard;
+        }
+        const int peers = all_to_all - 1;
+        if (waiting && (peers == 0 || (heard_step == *waiting && heard >= peers))) {
+          echo.step(*waiting);
+          echoes.write(echo);
+          waiting.reset();
+        }
       }
       if (std::chrono::steady_clock::now() - last_tick > std::chrono::duration<double>(timeout_s)) {
         spdlog::error("no tick for {} s", timeout_s);

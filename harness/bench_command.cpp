@@ -141,10 +141,13 @@ int run_bench(const BenchOptions& o) {
   if (const auto warning = transport::receive_buffer_warning(largest)) {
     fmt::print(stderr, "skyfuse: warning: {}\n", *warning);
   }
-  fmt::print("\nlock-step rounds over DDS ({} rounds each; floor = commander + M echo processes)\n",
-             o.rounds);
-  fmt::print("{:>4} {:>10} {:>10} {:>7} {:>21} {:>21} {:>11}\n", "M", "rounds/s", "floor/s",
-             "ratio", "latency p50/p99/max", "floor p50/p99", "discovery");
+  fmt::print(
+      "\nlock-step rounds over DDS ({} rounds each; floor = commander + M echo processes; "
+      "all-to-all = the same, each echo also exchanging a sample with the others)\n",
+      o.rounds);
+  fmt::print("{:>4} {:>9} {:>9} {:>6} {:>11} {:>6} {:>23} {:>17} {:>10}\n", "M", "rounds/s",
+             "floor/s", "ratio", "all-to-all/s", "ratio", "latency p50/p99/max us",
+             "floor p50/p99 us", "discovery");
   nlohmann::json rows = nlohmann::json::array();
   // Rewritten after every station count: a bench of hours keeps what it measured if stopped.
   const auto save_rows = [&] {
@@ -157,9 +160,11 @@ int run_bench(const BenchOptions& o) {
     config.name = "skyfuse-bench";
     const auto timeout = std::chrono::milliseconds(120'000);
     FloorResult floor;
+    FloorResult all_to_all;
     RunSummary s;
     try {
-      floor = measure_floor(config, m, o.rounds, timeout);
+      floor = measure_floor(config, m, o.rounds, timeout, FloorKind::kEcho);
+      all_to_all = measure_floor(config, m, o.rounds, timeout, FloorKind::kAllToAll);
       s = run_for_bench(o, scenario, scenario_path, m, out);
     } catch (const RunAborted& e) {
       // An interrupt ends the bench with the rows measured so far on disk; one station count
@@ -178,17 +183,23 @@ int run_bench(const BenchOptions& o) {
     }
 
     const double ratio = s.rounds_per_s / floor.rounds_per_s;
+    const double ratio_all_to_all = s.rounds_per_s / all_to_all.rounds_per_s;
     fmt::print(
-        "{:>4} {:>10.0f} {:>10.0f} {:>6.0f}% {:>8.0f}/{:.0f}/{:.0f} us {:>10.0f}/{:.0f} us "
-        "{:>6.2f} s\n",
-        m, s.rounds_per_s, floor.rounds_per_s, 100.0 * ratio, s.round_latency_us_p50,
-        s.round_latency_us_p99, s.round_latency_us_max, floor.latency_us_p50, floor.latency_us_p99,
-        s.discovery_s);
+        "{:>4} {:>9.0f} {:>9.0f} {:>5.0f}% {:>12.0f} {:>5.0f}% {:>23} {:>17} {:>8.2f} s\n", m,
+        s.rounds_per_s, floor.rounds_per_s, 100.0 * ratio, all_to_all.rounds_per_s,
+        100.0 * ratio_all_to_all,
+        fmt::format("{:.0f}/{:.0f}/{:.0f}", s.round_latency_us_p50, s.round_latency_us_p99,
+                    s.round_latency_us_max),
+        fmt::format("{:.0f}/{:.0f}", floor.latency_us_p50, floor.latency_us_p99), s.discovery_s);
     rows.push_back({{"stations", m},
                     {"rounds", o.rounds},
                     {"rounds_per_s", s.rounds_per_s},
                     {"floor_rounds_per_s", floor.rounds_per_s},
                     {"ratio_to_floor", ratio},
+                    {"all_to_all_floor_rounds_per_s", all_to_all.rounds_per_s},
+                    {"ratio_to_all_to_all_floor", ratio_all_to_all},
+                    {"all_to_all_floor_latency_us_p50", all_to_all.latency_us_p50},
+                    {"all_to_all_floor_latency_us_p99", all_to_all.latency_us_p99},
                     {"round_latency_us_p50", s.round_latency_us_p50},
                     {"round_latency_us_p99", s.round_latency_us_p99},
                     {"round_latency_us_max", s.round_latency_us_max},

@@ -21,7 +21,7 @@ using Clock = std::chrono::steady_clock;
 }  // namespace
 
 FloorResult measure_floor(const transport::NodeConfig& config, int nodes, int rounds,
-                          std::chrono::milliseconds timeout) {
+                          std::chrono::milliseconds timeout, FloorKind kind) {
   std::random_device device;
   const std::uint64_t run_id = (static_cast<std::uint64_t>(device()) << 32) ^ device();
   ChildProcesses children;
@@ -50,6 +50,10 @@ FloorResult measure_floor(const transport::NodeConfig& config, int nodes, int ro
     if (config.qos_file) {
       args.push_back("--qos");
       args.push_back(config.qos_file->string());
+    }
+    if (kind == FloorKind::kAllToAll) {
+      args.push_back("--all-to-all");
+      args.push_back(std::to_string(nodes));
     }
     children.spawn(fmt::format("echo {}", id), args);
   }

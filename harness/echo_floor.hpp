@@ -1,7 +1,9 @@
 #pragma once
-// The bare Fast DDS lock-step floor: a commander publishes Tick{k} and waits until each of M
+// The bare Fast DDS lock-step floors: a commander publishes Tick{k} and waits until each of M
 // echo processes has answered, then ticks k+1. Same participant setup and QoS as a skyfuse
-// run, no estimation and no all-to-all traffic: the best round rate a run could reach here.
+// run, no estimation: the best round rate a run could reach here. In the all-to-all floor each
+// echo first exchanges an increment-sized sample with the others, as stations do: what the
+// peer-to-peer exchange alone costs.
 
 #include <chrono>
 
@@ -18,7 +20,12 @@ struct FloorResult {
   double discovery_s = 0.0;
 };
 
+enum class FloorKind {
+  kEcho,      ///< tick -> M echoes -> commander
+  kAllToAll,  ///< tick -> M echoes, each sample to every other echo, then -> commander
+};
+
 FloorResult measure_floor(const transport::NodeConfig& config, int nodes, int rounds,
-                          std::chrono::milliseconds timeout);
+                          std::chrono::milliseconds timeout, FloorKind kind = FloorKind::kEcho);
 
 }  // namespace skyfuse::harness

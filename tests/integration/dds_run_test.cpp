@@ -141,7 +141,7 @@ namespace skyfuse::test {
 namespace {
 
 TEST(DdsBench, MeasuresEachStationCountAgainstItsFloorIntoBenchJson) {
-  // Behaviour only: every requested M gets a row with the run and its floor measured, the
+  // Behaviour only: every requested M gets a row with the run and its floors measured, the
   // latencies are ordered, and the machine is named. What the numbers are is the bench's job.
   const auto dir = test_dir();
   const Completed bench = run_to_completion(
@@ -166,6 +166,13 @@ TEST(DdsBench, MeasuresEachStationCountAgainstItsFloorIntoBenchJson) {
     EXPECT_DOUBLE_EQ(row.at("ratio_to_floor").get<double>(),
                      row.at("rounds_per_s").get<double>() /
                          row.at("floor_rounds_per_s").get<double>());
+    // At M = 2 each round of this floor needs every echo to hear the other's sample.
+    EXPECT_GT(row.at("all_to_all_floor_rounds_per_s").get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(row.at("ratio_to_all_to_all_floor").get<double>(),
+                     row.at("rounds_per_s").get<double>() /
+                         row.at("all_to_all_floor_rounds_per_s").get<double>());
+    EXPECT_LE(row.at("all_to_all_floor_latency_us_p50").get<double>(),
+              row.at("all_to_all_floor_latency_us_p99").get<double>());
     EXPECT_GT(row.at("round_latency_us_p50").get<double>(), 0.0);
     EXPECT_LE(row.at("round_latency_us_p50").get<double>(),
               row.at("round_latency_us_p99").get<double>());
