@@ -30,7 +30,7 @@ std::string cpu_model() {
 
 // Runs the Google Benchmark binary beside this one and returns median real times in ns by
 // benchmark name ("StationStep", "FuseIncrements/4", ...).
-std::map<std::string, double> run_micro_benchmarks(const std::filesystem::path& out) {
+std::map<std::string, double> micro_benchmark_medians(const std::filesystem::path& out) {
   const auto json_path = out / "micro.json";
   const std::string command = fmt::format(
       "'{}' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true "
@@ -51,6 +51,59 @@ std::map<std::string, double> run_micro_benchmarks(const std::filesystem::path& 
     medians[b.at("run_name").get<std::string>()] = ns;
   }
   return medians;
+}
+
+// Runs the micro-benchmarks, prints their table and returns bench.json's "micro_ns".
+nlohmann::json micro_benchmark_section(const std::filesystem::path& out) {
+  fmt::print("\nmicro-benchmarks (median of 5, ns)...\n");
+  const auto m = micro_benchmark_medians(out);
+  nlohmann::json fuse;
+  nlohmann::json stacked;
+  fmt::print("{:>5} {:>14} {:>14} {:>10}\n", "M", "fuse M incr.", "stacked EKF", "ratio");
+  for (int k = 1; k <= 128; k *= 2) {
+    const std::string key = std::to_string(k);
+    const double f = m.at("FuseIncrements/" + key);
+    const double s = m.at("StackedEkfUpdate/" + key);
+    fuse[key] = f;
+    stacked[key] = s;
+    fmt::print("{:>5} {:>14.0f} {:>14.0f} {:>9.1f}x\n", k, f, s, s / f);
+  }
+  fmt::print("station step (predict + measurement model + increment): {:.0f} ns\n",
+             m.at("StationStep"));
+  return {{"station_step", m.at("StationStep")},
+          {"predict", m.at("Predict")},
+          {"fuse_increments", fuse},
+          {"stacked_ekf_update", stacked}};
+}
+
+// Prints one station count's line of the DDS table and returns its row of bench.json.
+nlohmann::json report_row(int m, int rounds, const RunSummary& s, const FloorResult& floor,
+                          const FloorResult& all_to_all) {
+  const double ratio = s.rounds_per_s / floor.rounds_per_s;
+  const double ratio_all_to_all = s.rounds_per_s / all_to_all.rounds_per_s;
+  fmt::print("{:>4} {:>9.0f} {:>9.0f} {:>5.0f}% {:>12.0f} {:>5.0f}% {:>23} {:>17} {:>8.2f} s\n",
+             m, s.rounds_per_s, floor.rounds_per_s, 100.0 * ratio, all_to_all.rounds_per_s,
+             100.0 * ratio_all_to_all,
+             fmt::format("{:.0f}/{:.0f}/{:.0f}", s.round_latency_us_p50, s.round_latency_us_p99,
+                         s.round_latency_us_max),
+             fmt::format("{:.0f}/{:.0f}", floor.latency_us_p50, floor.latency_us_p99),
+             s.discovery_s);
+  return {{"stations", m},
+          {"rounds", rounds},
+          {"rounds_per_s", s.rounds_per_s},
+          {"floor_rounds_per_s", floor.rounds_per_s},
+          {"ratio_to_floor", ratio},
+          {"all_to_all_floor_rounds_per_s", all_to_all.rounds_per_s},
+          {"ratio_to_all_to_all_floor", ratio_all_to_all},
+          {"all_to_all_floor_latency_us_p50", all_to_all.latency_us_p50},
+          {"all_to_all_floor_latency_us_p99", all_to_all.latency_us_p99},
+          {"round_latency_us_p50", s.round_latency_us_p50},
+          {"round_latency_us_p99", s.round_latency_us_p99},
+          {"round_latency_us_max", s.round_latency_us_max},
+          {"floor_latency_us_p50", floor.latency_us_p50},
+          {"floor_latency_us_p99", floor.latency_us_p99},
+          {"discovery_s", s.discovery_s},
+          {"floor_discovery_s", floor.discovery_s}};
 }
 
 RunSummary run_for_bench(const BenchOptions& o, const Scenario& scenario,
@@ -114,27 +167,7 @@ int run_bench(const BenchOptions& o) {
                     {"rmem_max", transport::receive_buffer_cap().value_or(0)}};
   fmt::print("skyfuse bench on {} ({} cores)\n", cpu_model(), std::thread::hardware_concurrency());
 
-  if (o.micro) {
-    fmt::print("\nmicro-benchmarks (median of 5, ns)...\n");
-    const auto m = run_micro_benchmarks(out);
-    nlohmann::json fuse;
-    nlohmann::json stacked;
-    fmt::print("{:>5} {:>14} {:>14} {:>10}\n", "M", "fuse M incr.", "stacked EKF", "ratio");
-    for (int k = 1; k <= 128; k *= 2) {
-      const std::string key = std::to_string(k);
-      const double f = m.at("FuseIncrements/" + key);
-      const double s = m.at("StackedEkfUpdate/" + key);
-      fuse[key] = f;
-      stacked[key] = s;
-      fmt::print("{:>5} {:>14.0f} {:>14.0f} {:>9.1f}x\n", k, f, s, s / f);
-    }
-    doc["micro_ns"] = {{"station_step", m.at("StationStep")},
-                       {"predict", m.at("Predict")},
-                       {"fuse_increments", fuse},
-                       {"stacked_ekf_update", stacked}};
-    fmt::print("station step (predict + measurement model + increment): {:.0f} ns\n",
-               m.at("StationStep"));
-  }
+  if (o.micro) doc["micro_ns"] = micro_benchmark_section(out);
 
   const int largest =
       o.stations.empty() ? 0 : *std::max_element(o.stations.begin(), o.stations.end());
@@ -154,17 +187,17 @@ int run_bench(const BenchOptions& o) {
     doc["dds"] = rows;
     write_file_atomically(out / "bench.json", doc.dump(2) + "\n");
   };
+  transport::NodeConfig floor_config;
+  floor_config.domain_id = floor_domain(o.domain);
+  floor_config.name = "skyfuse-bench";
+  const auto floor_timeout = std::chrono::milliseconds(120'000);
   for (int m : o.stations) {
-    transport::NodeConfig config;
-    config.domain_id = floor_domain(o.domain);
-    config.name = "skyfuse-bench";
-    const auto timeout = std::chrono::milliseconds(120'000);
     FloorResult floor;
     FloorResult all_to_all;
     RunSummary s;
     try {
-      floor = measure_floor(config, m, o.rounds, timeout, FloorKind::kEcho);
-      all_to_all = measure_floor(config, m, o.rounds, timeout, FloorKind::kAllToAll);
+      floor = measure_floor(floor_config, m, o.rounds, floor_timeout, FloorKind::kEcho);
+      all_to_all = measure_floor(floor_config, m, o.rounds, floor_timeout, FloorKind::kAllToAll);
       s = run_for_bench(o, scenario, scenario_path, m, out);
     } catch (const RunAborted& e) {
       // An interrupt ends the bench with the rows measured so far on disk; one station count
@@ -182,31 +215,7 @@ int run_bench(const BenchOptions& o) {
       continue;
     }
 
-    const double ratio = s.rounds_per_s / floor.rounds_per_s;
-    const double ratio_all_to_all = s.rounds_per_s / all_to_all.rounds_per_s;
-    fmt::print(
-        "{:>4} {:>9.0f} {:>9.0f} {:>5.0f}% {:>12.0f} {:>5.0f}% {:>23} {:>17} {:>8.2f} s\n", m,
-        s.rounds_per_s, floor.rounds_per_s, 100.0 * ratio, all_to_all.rounds_per_s,
-        100.0 * ratio_all_to_all,
-        fmt::format("{:.0f}/{:.0f}/{:.0f}", s.round_latency_us_p50, s.round_latency_us_p99,
-                    s.round_latency_us_max),
-        fmt::format("{:.0f}/{:.0f}", floor.latency_us_p50, floor.latency_us_p99), s.discovery_s);
-    rows.push_back({{"stations", m},
-                    {"rounds", o.rounds},
-                    {"rounds_per_s", s.rounds_per_s},
-                    {"floor_rounds_per_s", floor.rounds_per_s},
-                    {"ratio_to_floor", ratio},
-                    {"all_to_all_floor_rounds_per_s", all_to_all.rounds_per_s},
-                    {"ratio_to_all_to_all_floor", ratio_all_to_all},
-                    {"all_to_all_floor_latency_us_p50", all_to_all.latency_us_p50},
-                    {"all_to_all_floor_latency_us_p99", all_to_all.latency_us_p99},
-                    {"round_latency_us_p50", s.round_latency_us_p50},
-                    {"round_latency_us_p99", s.round_latency_us_p99},
-                    {"round_latency_us_max", s.round_latency_us_max},
-                    {"floor_latency_us_p50", floor.latency_us_p50},
-                    {"floor_latency_us_p99", floor.latency_us_p99},
-                    {"discovery_s", s.discovery_s},
-                    {"floor_discovery_s", floor.discovery_s}});
+    rows.push_back(report_row(m, o.rounds, s, floor, all_to_all));
     save_rows();
   }
   save_rows();

@@ -26,6 +26,6 @@ enum class FloorKind {
 };
 
 FloorResult measure_floor(const transport::NodeConfig& config, int nodes, int rounds,
-                          std::chrono::milliseconds timeout, FloorKind kind = FloorKind::kEcho);
+                          std::chrono::milliseconds timeout, FloorKind kind);
 
 }  // namespace skyfuse::harness
