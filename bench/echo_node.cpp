@@ -62,13 +62,11 @@ int main(int argc, char** argv) {
              (peers_in->matched() >= all_to_all && peers_out->matched() >= all_to_all);
     };
     const auto joined = transport::join_run(
-        presence,
-        [&] { return ticks.matched() >= 1 && echoes.matched() >= 1 && peers_matched(); },
+        presence, [&] { return ticks.matched() >= 1 && echoes.matched() >= 1 && peers_matched(); },
         [&] {
           return fmt::format("tick writer {}/1, echo reader {}/1, peers {}/{} and {}/{}",
-                             ticks.matched(), echoes.matched(),
-                             peers_in ? peers_in->matched() : 0, all_to_all,
-                             peers_out ? peers_out->matched() : 0, all_to_all);
+                             ticks.matched(), echoes.matched(), peers_in ? peers_in->matched() : 0,
+                             all_to_all, peers_out ? peers_out->matched() : 0, all_to_all);
         },
         std::chrono::milliseconds(static_cast<long>(timeout_s * 1000)));
     if (const auto code = transport::exit_code_unless_joined(

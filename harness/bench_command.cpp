@@ -81,8 +81,8 @@ nlohmann::json report_row(int m, int rounds, const RunSummary& s, const FloorRes
                           const FloorResult& all_to_all) {
   const double ratio = s.rounds_per_s / floor.rounds_per_s;
   const double ratio_all_to_all = s.rounds_per_s / all_to_all.rounds_per_s;
-  fmt::print("{:>4} {:>9.0f} {:>9.0f} {:>5.0f}% {:>12.0f} {:>5.0f}% {:>23} {:>17} {:>8.2f} s\n",
-             m, s.rounds_per_s, floor.rounds_per_s, 100.0 * ratio, all_to_all.rounds_per_s,
+  fmt::print("{:>4} {:>9.0f} {:>9.0f} {:>5.0f}% {:>12.0f} {:>5.0f}% {:>23} {:>17} {:>8.2f} s\n", m,
+             s.rounds_per_s, floor.rounds_per_s, 100.0 * ratio, all_to_all.rounds_per_s,
              100.0 * ratio_all_to_all,
              fmt::format("{:.0f}/{:.0f}/{:.0f}", s.round_latency_us_p50, s.round_latency_us_p99,
                          s.round_latency_us_max),
@@ -204,9 +204,10 @@ int run_bench(const BenchOptions& o) {
       // failing (say, a machine too small for it) must not lose the others.
       if (transport::shutdown_requested()) {
         save_rows();
-        fmt::print("\n{} keeps what was measured before the interrupt ({} of {} station "
-                   "counts)\n",
-                   (out / "bench.json").string(), rows.size(), o.stations.size());
+        fmt::print(
+            "\n{} keeps what was measured before the interrupt ({} of {} station "
+            "counts)\n",
+            (out / "bench.json").string(), rows.size(), o.stations.size());
         throw;
       }
       fmt::print("{:>4} failed: {}\n", m, e.what());

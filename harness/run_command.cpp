@@ -294,7 +294,8 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
       children.spawn("center", center);
       for (int id : ids) spawn_station(id, std::nullopt);
     }
-    const auto discovery = driver.wait_until_joined(seconds_to_ms(discovery_timeout_s(o, plan.stations)));
+    const auto discovery =
+        driver.wait_until_joined(seconds_to_ms(discovery_timeout_s(o, plan.stations)));
 
     RunRecorder recorder(plan, ids, o.restarts);
     Progress progress(fmt::format("run M={} {:.0f} km/h", plan.stations, plan.speed_mps * 3.6),
@@ -324,7 +325,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
           if (e.step != step) continue;
           spawn_station(e.station_id, step);
           driver.wait_until_ready(e.station_id,
-                                 seconds_to_ms(discovery_timeout_s(o, plan.stations)));
+                                  seconds_to_ms(discovery_timeout_s(o, plan.stations)));
           driver.set_down(e.station_id, false);
           spdlog::info("restarted station {} before step {}", e.station_id, step);
         }

@@ -23,9 +23,9 @@ struct RunOptions {
   int domain = 0;
   std::optional<std::uint64_t> run_id;  ///< default: random
   std::optional<std::string> qos_file;
-  std::optional<std::string> secure_dir;  ///< DDS-Security: a folder made by `skyfuse certs`
+  std::optional<std::string> secure_dir;      ///< DDS-Security: a folder made by `skyfuse certs`
   std::optional<double> discovery_timeout_s;  ///< default: discovery_timeout_s() below
-  double round_timeout_s = 10.0;  ///< a running node silent this long ends the run
+  double round_timeout_s = 10.0;              ///< a running node silent this long ends the run
   /// A lock-step round closes this long after its tick with what has arrived (nodes), and the
   /// harness records it at twice this plus 250 ms.
   double round_deadline_ms = 1000.0;

@@ -179,8 +179,8 @@ TEST(DdsFaults, CtrlCDuringABenchKeepsTheRowsMeasuredSoFar) {
   const auto dir = test_dir();
   const int domain = 125;  // the floor's: 126
   const auto out = dir / "out";
-  Process bench({bin("skyfuse"), "bench", "--no-micro", "--stations", "1", "4", "--rounds",
-                 "20000", "--domain", std::to_string(domain), "--out", out.string()},
+  Process bench({bin("skyfuse"), "bench", "--no-micro", "--stations", "1", "4", "--rounds", "20000",
+                 "--domain", std::to_string(domain), "--out", out.string()},
                 dir / "bench.log");
   // bench.json appears once M = 1 is measured; M = 4 then takes tens of seconds.
   ASSERT_TRUE(eventually([&] { return std::filesystem::exists(out / "bench.json"); }, 90s))
@@ -196,7 +196,9 @@ TEST(DdsFaults, CtrlCDuringABenchKeepsTheRowsMeasuredSoFar) {
   EXPECT_FALSE(doc.at("dds")[0].contains("error"));
   EXPECT_GT(doc.at("dds")[0].at("rounds_per_s").get<double>(), 0.0);
   EXPECT_TRUE(eventually(
-      [&] { return processes_on_domain(domain).empty() && processes_on_domain(domain + 1).empty(); },
+      [&] {
+        return processes_on_domain(domain).empty() && processes_on_domain(domain + 1).empty();
+      },
       10s))
       << "processes left behind";
 }

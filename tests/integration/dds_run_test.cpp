@@ -144,10 +144,10 @@ TEST(DdsBench, MeasuresEachStationCountAgainstItsFloorIntoBenchJson) {
   // Behaviour only: every requested M gets a row with the run and its floors measured, the
   // latencies are ordered, and the machine is named. What the numbers are is the bench's job.
   const auto dir = test_dir();
-  const Completed bench = run_to_completion(
-      {bin("skyfuse"), "bench", "--no-micro", "--stations", "1", "2", "--rounds", "30",
-       "--domain", "190", "--out", (dir / "out").string()},
-      dir / "bench.log", std::chrono::seconds(180));
+  const Completed bench =
+      run_to_completion({bin("skyfuse"), "bench", "--no-micro", "--stations", "1", "2", "--rounds",
+                         "30", "--domain", "190", "--out", (dir / "out").string()},
+                        dir / "bench.log", std::chrono::seconds(180));
   ASSERT_EQ(bench.status.code, 0) << bench.output;
   const auto doc = nlohmann::json::parse(read_file(dir / "out" / "bench.json"));
   EXPECT_GE(doc.at("machine").at("cores").get<int>(), 1);
@@ -163,9 +163,9 @@ TEST(DdsBench, MeasuresEachStationCountAgainstItsFloorIntoBenchJson) {
     EXPECT_EQ(row.at("rounds").get<int>(), 30);
     EXPECT_GT(row.at("rounds_per_s").get<double>(), 0.0);
     EXPECT_GT(row.at("floor_rounds_per_s").get<double>(), 0.0);
-    EXPECT_DOUBLE_EQ(row.at("ratio_to_floor").get<double>(),
-                     row.at("rounds_per_s").get<double>() /
-                         row.at("floor_rounds_per_s").get<double>());
+    EXPECT_DOUBLE_EQ(
+        row.at("ratio_to_floor").get<double>(),
+        row.at("rounds_per_s").get<double>() / row.at("floor_rounds_per_s").get<double>());
     // At M = 2 each round of this floor needs every echo to hear the other's sample.
     EXPECT_GT(row.at("all_to_all_floor_rounds_per_s").get<double>(), 0.0);
     EXPECT_DOUBLE_EQ(row.at("ratio_to_all_to_all_floor").get<double>(),
