@@ -140,7 +140,10 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
   cmd->add_option("--rounds", o.rounds, "Lock-step rounds per measurement")
       ->check(CLI::Range(10, 1000000))
       ->capture_default_str();
-  cmd->add_option("--domain", o.domain, "DDS domain id of the runs (the floor uses the next one)")
+  cmd->add_option("--domain", o.domain,
+                  fmt::format("DDS domain id of the runs (the floors use the next id; {} when "
+                              "this is {})",
+                              transport::kMaxDomainId - 1, transport::kMaxDomainId))
       ->check(CLI::Range(0, transport::kMaxDomainId))
       ->capture_default_str();
   cmd->add_flag("!--no-micro", o.micro, "Skip the micro-benchmarks");
