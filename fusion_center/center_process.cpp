@@ -129,7 +129,8 @@ class Center {
   // start tick). Measurements that arrive before the tick are kept all the same.
   int wait_for_measurements(std::uint64_t k) {
     const bool realtime = options_.realtime_deadline_ms > 0.0;
-    const auto idle_limit = std::chrono::steady_clock::now() + options_.idle_timeout();
+    const auto limit = k == 0 ? options_.first_tick_timeout() : options_.idle_timeout();
+    const auto idle_limit = std::chrono::steady_clock::now() + limit;
     std::optional<std::chrono::system_clock::time_point> close;
     while (true) {
       if (const auto code =
@@ -172,7 +173,7 @@ class Center {
       if (std::chrono::steady_clock::now() >= idle_limit) {
         const std::string detail =
             fmt::format("no progress for {} s at step {} waiting for measurements of stations {}",
-                        options_.idle_timeout_s, k, collector_.missing());
+                        std::chrono::duration<double>(limit).count(), k, collector_.missing());
         spdlog::error("{}", detail);
         presence_.set_drops(drops_.counts());  // a failure report says what was refused too
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);

@@ -105,7 +105,7 @@ class Station {
     if (realtime) {
       bool started = false;
       if (const int code = wait(
-              0, started, [&] { return epoch_ns_ != 0; },
+              0, started, options_.node.first_tick_timeout(), [&] { return epoch_ns_ != 0; },
               [] { return std::string("the start tick"); });
           code >= 0) {
         return code;
@@ -120,7 +120,9 @@ class Station {
         std::this_thread::sleep_until(start);
         close = start + realtime_deadline();
       } else {
-        if (const int code = wait_for_tick(k); code >= 0) return code;
+        const auto limit =
+            k == first ? options_.node.first_tick_timeout() : options_.node.idle_timeout();
+        if (const int code = wait_for_tick(k, limit); code >= 0) return code;
         close = std::chrono::system_clock::now() + options_.node.round_deadline();
       }
       publish_own_sample(k);
@@ -184,17 +186,19 @@ class Station {
                             contribution);
   }
 
-  // Waits until `done()` or the idle timeout; returns an exit code to end the run, or -1.
+  // Waits until `done()` or for `limit` at most; returns an exit code to end the run, or -1.
   template <typename Done, typename Describe>
-  int wait(std::uint64_t k, bool& got_tick, Done done, Describe what) {
-    const auto deadline = std::chrono::steady_clock::now() + options_.node.idle_timeout();
+  int wait(std::uint64_t k, bool& got_tick, std::chrono::milliseconds limit, Done done,
+           Describe what) {
+    const auto deadline = std::chrono::steady_clock::now() + limit;
     while (true) {
       if (const int code = drain(k, got_tick); code >= 0) return code;
       if (done()) return -1;
       if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
       if (std::chrono::steady_clock::now() >= deadline) {
-        const std::string detail = fmt::format("no progress for {} s at step {} waiting for {}",
-                                               options_.node.idle_timeout_s, k, what());
+        const std::string detail =
+            fmt::format("no progress for {} s at step {} waiting for {}",
+                        std::chrono::duration<double>(limit).count(), k, what());
         spdlog::error("{}", detail);
         presence_.set_drops(drops_.counts());  // a failure report says what was refused too
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
@@ -204,10 +208,10 @@ class Station {
     }
   }
 
-  int wait_for_tick(std::uint64_t k) {
+  int wait_for_tick(std::uint64_t k, std::chrono::milliseconds limit) {
     bool got_tick = false;
     return wait(
-        k, got_tick, [&] { return got_tick; }, [] { return std::string("the tick"); });
+        k, got_tick, limit, [&] { return got_tick; }, [] { return std::string("the tick"); });
   }
 
   std::chrono::system_clock::time_point step_start(std::uint64_t k) const {

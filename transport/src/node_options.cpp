@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
@@ -38,6 +39,9 @@ std::chrono::milliseconds NodeOptions::discovery_timeout() const {
 }
 std::chrono::milliseconds NodeOptions::idle_timeout() const {
   return std::chrono::milliseconds(static_cast<long>(idle_timeout_s * 1000.0));
+}
+std::chrono::milliseconds NodeOptions::first_tick_timeout() const {
+  return std::max(discovery_timeout(), idle_timeout());
 }
 
 void add_node_options(CLI::App& app, NodeOptions& o) {

@@ -51,6 +51,11 @@ struct NodeOptions {
   RunPlan load_plan() const;
   std::chrono::milliseconds discovery_timeout() const;
   std::chrono::milliseconds idle_timeout() const;
+  /// The wait for the first tick after joining. The harness ticks once every node has joined,
+  /// and the others may still be discovering: this wait is discovery's, not the idle one (at
+  /// M = 64 on 2 cores, discovery took 12-44 s and stations that joined first gave up after
+  /// their 30 s idle timeout).
+  std::chrono::milliseconds first_tick_timeout() const;
 };
 
 void add_node_options(CLI::App& app, NodeOptions& options);
