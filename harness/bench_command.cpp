@@ -174,9 +174,7 @@ int run_bench(const BenchOptions& o) {
 
   const int largest =
       o.stations.empty() ? 0 : *std::max_element(o.stations.begin(), o.stations.end());
-  if (const auto warning = transport::receive_buffer_warning(largest)) {
-    fmt::print(stderr, "skyfuse: warning: {}\n", *warning);
-  }
+  warn_if_receive_buffers_too_small(largest);
   fmt::print(
       "\nlock-step rounds over DDS ({} rounds each; floor = commander + M echo processes; "
       "all-to-all = the same, each echo also exchanging a sample with the others)\n",

@@ -46,6 +46,10 @@ struct RunOptions {
 /// station from 16 stations up - discovery at M = 64 took 23-44 s on 2 cores.
 double discovery_timeout_s(const RunOptions& options, int stations);
 
+/// Tells the user on stderr when `stations` stations need larger socket buffers than the
+/// kernel grants (transport::receive_buffer_warning); says nothing otherwise.
+void warn_if_receive_buffers_too_small(int stations);
+
 void add_run_command(CLI::App& app, RunOptions& options);
 int run_run(const RunOptions& options);
 
