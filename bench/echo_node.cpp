@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   int domain = 0;
   std::uint64_t run_id = 1;
   std::optional<std::string> qos;
+  double discovery_timeout_s = 30.0;
   double timeout_s = 30.0;
   int all_to_all = 0;
   app.add_option("--id", id, "Node id (>= 1)")->required()->check(CLI::PositiveNumber);
@@ -33,12 +34,19 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, transport::kMaxDomainId));
   app.add_option("--run-id", run_id, "Run id");
   app.add_option("--qos", qos, "Fast DDS XML profiles")->check(CLI::ExistingFile);
-  app.add_option("--idle-timeout", timeout_s, "Seconds without a tick before giving up");
+  app.add_option("--discovery-timeout", discovery_timeout_s,
+                 "Seconds to wait until the commander (and with --all-to-all the other echoes) "
+                 "matched, and then for the first tick")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--idle-timeout", timeout_s, "Seconds without a tick before giving up")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   spdlog::set_pattern(fmt::format("[echo {}] %^%l%$: %v", id));
   transport::install_shutdown_handlers();
 
-  try {
+  return transport::run_node([&]() -> int {
     transport::NodeConfig config;
     config.domain_id = domain;
     config.name = fmt::format("skyfuse-echo-{}", id);
@@ -68,12 +76,15 @@ int main(int argc, char** argv) {
                              ticks.matched(), echoes.matched(), peers_in ? peers_in->matched() : 0,
                              all_to_all, peers_out ? peers_out->matched() : 0, all_to_all);
         },
-        std::chrono::milliseconds(static_cast<long>(timeout_s * 1000)));
+        std::chrono::milliseconds(static_cast<long>(discovery_timeout_s * 1000)));
     if (const auto code = transport::exit_code_unless_joined(
-            joined, presence, fmt::format("echo {}", id), run_id, timeout_s)) {
+            joined, presence, fmt::format("echo {}", id), run_id, discovery_timeout_s)) {
       return *code;
     }
+    // The commander ticks once every echo has joined; those that joined first wait for the
+    // others' discovery, so the first tick may take as long as discovery does.
     auto last_tick = std::chrono::steady_clock::now();
+    double tick_wait_s = std::max(discovery_timeout_s, timeout_s);
     wire::Echo echo;
     echo.run_id(run_id);
     echo.node_id(id);
@@ -84,13 +95,17 @@ int main(int argc, char** argv) {
     // before this echo's tick; one step and its count suffice.
     std::uint32_t heard_step = 0;
     int heard = 0;
-    std::optional<std::uint32_t> waiting;  // ticked, sample sent, peers' samples not all in
+    // Ticked and sample sent, the peers' samples not all in yet. (Not a std::optional: g++ 12
+    // then warns of a maybe-uninitialised payload.)
+    bool waiting = false;
+    std::uint32_t waiting_step = 0;
     while (!transport::shutdown_requested()) {
       wire::Tick tick;
       while (ticks.take(tick)) {
         if (tick.run_id() != run_id) continue;
         if (tick.stop()) return transport::kExitOk;
         last_tick = std::chrono::steady_clock::now();
+        tick_wait_s = timeout_s;
         if (all_to_all == 0) {
           echo.step(tick.step());
           echoes.write(echo);
@@ -98,7 +113,8 @@ int main(int argc, char** argv) {
         }
         sample.step(tick.step());
         peers_out->write(sample);
-        waiting = tick.step();
+        waiting = true;
+        waiting_step = tick.step();
       }
       if (all_to_all > 0) {
         wire::InformationIncrement received;
@@ -111,21 +127,19 @@ int main(int argc, char** argv) {
           ++heard;
         }
         const int peers = all_to_all - 1;
-        if (waiting && (peers == 0 || (heard_step == *waiting && heard >= peers))) {
-          echo.step(*waiting);
+        if (waiting && (peers == 0 || (heard_step == waiting_step && heard >= peers))) {
+          echo.step(waiting_step);
           echoes.write(echo);
-          waiting.reset();
+          waiting = false;
         }
       }
-      if (std::chrono::steady_clock::now() - last_tick > std::chrono::duration<double>(timeout_s)) {
-        spdlog::error("no tick for {} s", timeout_s);
+      if (std::chrono::steady_clock::now() - last_tick >
+          std::chrono::duration<double>(tick_wait_s)) {
+        spdlog::error("no tick for {} s", tick_wait_s);
         return transport::kExitIdleTimeout;
       }
       wait_set.wait(std::chrono::milliseconds(50));
     }
     return 128 + transport::shutdown_signal();
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return transport::kExitError;
-  }
+  });
 }

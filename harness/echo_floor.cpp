@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 #include <set>
 #include <vector>
 
@@ -22,8 +21,7 @@ using Clock = std::chrono::steady_clock;
 
 FloorResult measure_floor(const transport::NodeConfig& config, int nodes, int rounds,
                           std::chrono::milliseconds timeout, FloorKind kind) {
-  std::random_device device;
-  const std::uint64_t run_id = (static_cast<std::uint64_t>(device()) << 32) ^ device();
+  const std::uint64_t run_id = fresh_run_id();
   ChildProcesses children;
   transport::DdsNode node(config);
   auto ticks = node.make_writer<wire::Tick>();
@@ -46,7 +44,9 @@ FloorResult measure_floor(const transport::NodeConfig& config, int nodes, int ro
                                      "--domain",
                                      std::to_string(config.domain_id),
                                      "--run-id",
-                                     std::to_string(run_id)};
+                                     std::to_string(run_id),
+                                     "--discovery-timeout",
+                                     fmt::format("{}", default_discovery_timeout_s(nodes))};
     if (config.qos_file) {
       args.push_back("--qos");
       args.push_back(config.qos_file->string());

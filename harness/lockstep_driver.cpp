@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <map>
 #include <optional>
+#include <random>
 #include <set>
 
 #include "skyfuse/tracking/step_collector.hpp"
@@ -36,6 +37,17 @@ std::string node_name(int id) {
 }
 
 }  // namespace
+
+std::uint64_t fresh_run_id() {
+  std::random_device device;
+  return (static_cast<std::uint64_t>(device()) << 32) ^ device();
+}
+
+double default_discovery_timeout_s(int nodes) {
+  constexpr double kFloorS = 30.0;
+  constexpr double kPerNodeS = 2.0;
+  return std::max(kFloorS, kPerNodeS * nodes);
+}
 
 struct LockstepDriver::Impl {
   Impl(const transport::NodeConfig& config, std::uint64_t run, std::vector<int> ids,

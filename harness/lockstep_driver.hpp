@@ -46,6 +46,13 @@ struct RoundRecord {
   bool all_inputs_in_time = true;
 };
 
+/// A random run id: samples of another run on the same domain carry another id and are dropped.
+std::uint64_t fresh_run_id();
+
+/// How long `nodes` processes on one host may take to discover each other: 30 s, and 2 s per
+/// node from 16 nodes up - at 64 stations on 2 cores discovery took 12-44 s.
+double default_discovery_timeout_s(int nodes);
+
 /// The harness's key among node ids in drop counts.
 inline constexpr int kHarnessNodeId = -1;
 

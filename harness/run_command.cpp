@@ -8,7 +8,6 @@
 #include <ctime>
 #include <filesystem>
 #include <limits>
-#include <random>
 
 #include "child_processes.hpp"
 #include "lockstep_driver.hpp"
@@ -37,11 +36,6 @@ std::string scenario_text(const std::string& path) {
 RunPlan plan_from(const std::string& text, const std::string& source,
                   const RunOverrides& overrides) {
   return make_run_plan(parse_scenario(text, source), overrides);
-}
-
-std::uint64_t fresh_run_id() {
-  std::random_device device;
-  return (static_cast<std::uint64_t>(device()) << 32) ^ device();
 }
 
 // The arguments every node gets, so that it builds the same plan as the harness.
@@ -236,9 +230,7 @@ void add_run_command(CLI::App& app, RunOptions& o) {
 }
 
 double discovery_timeout_s(const RunOptions& o, int stations) {
-  constexpr double kFloorS = 30.0;
-  constexpr double kPerStationS = 2.0;
-  return o.discovery_timeout_s.value_or(std::max(kFloorS, kPerStationS * stations));
+  return o.discovery_timeout_s.value_or(default_discovery_timeout_s(stations));
 }
 
 void warn_if_receive_buffers_too_small(int stations) {

@@ -42,8 +42,8 @@ struct RunOptions {
   bool verbose = false;
 };
 
-/// Seconds to wait until every process has joined: the option if given, else 30 s and 2 s per
-/// station from 16 stations up - discovery at M = 64 took 23-44 s on 2 cores.
+/// Seconds to wait until every process has joined: the option if given, else
+/// default_discovery_timeout_s(stations).
 double discovery_timeout_s(const RunOptions& options, int stations);
 
 /// Tells the user on stderr when `stations` stations need larger socket buffers than the
