@@ -43,7 +43,9 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("certs")) return run_certs(certs);
   } catch (const RunAborted& e) {
     std::fprintf(stderr, "skyfuse: run aborted: %s\n", e.what());
-    return skyfuse::transport::shutdown_requested() ? 130 : 1;
+    // As a shell reports a process its signal ended: 130 for Ctrl-C, 143 for SIGTERM.
+    return skyfuse::transport::shutdown_requested() ? 128 + skyfuse::transport::shutdown_signal()
+                                                    : 1;
   } catch (const skyfuse::ConfigError& e) {
     std::fprintf(stderr, "skyfuse: error: %s\n", e.what());
     return 2;

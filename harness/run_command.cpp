@@ -240,15 +240,19 @@ void warn_if_receive_buffers_too_small(int stations) {
 }
 
 RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
+  // Refusals first: a refused command leaves an earlier run's folder as it was.
+  check_station_events(o, plan);
+  const std::vector<int> ids = plan.participant_ids();
+  if (o.secure_dir) {  // every node's identity checked here: one message instead of M + 1
+    transport::SecurityFolder{*o.secure_dir}.check(transport::run_identities(ids));
+  }
+
   const std::filesystem::path out(o.out_dir);
   std::filesystem::create_directories(out);
   // The processes read the very file saved with the results: what ran is what is on disk.
   const std::filesystem::path scenario_file = std::filesystem::absolute(out / "scenario.yaml");
   write_file_atomically(scenario_file, scenario_text(o.scenario_path));
-
-  check_station_events(o, plan);
   const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
-  const std::vector<int> ids = plan.participant_ids();
 
   ChildProcesses children;
   const auto check = [&] {
@@ -264,8 +268,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
   config.name = "skyfuse-harness";
   if (o.qos_file) config.qos_file = *o.qos_file;
   config.best_effort_data = o.best_effort;
-  if (o.secure_dir) {  // every node's identity checked here: one message instead of M + 1
-    transport::SecurityFolder{*o.secure_dir}.check(transport::run_identities(ids));
+  if (o.secure_dir) {
     config.security = transport::SecurityConfig{*o.secure_dir, transport::kHarnessIdentity};
   }
   LockstepDriver driver(config, run_id, ids, check);

@@ -158,6 +158,23 @@ TEST(DdsFaults, NodesHoldNoSocketOfTheHarness) {
   EXPECT_TRUE(run->wait(20s).has_value());
 }
 
+// A service manager stops the harness with SIGTERM and reads the status: 128 + 15, as for
+// Ctrl-C 128 + 2, and the nodes go with it.
+TEST(DdsFaults, SigtermEndsTheRunWithStatus143) {
+  const auto dir = test_dir();
+  const int domain = 127;
+  const auto run = start_long_run(domain, 2, dir);
+
+  run->signal(SIGTERM);
+  const auto status = run->wait(20s);
+  ASSERT_TRUE(status.has_value());
+  EXPECT_TRUE(status->exited);
+  EXPECT_EQ(status->code, 143) << run->output();
+  EXPECT_THAT(run->output(), HasSubstr("run aborted: interrupted by signal 15"));
+  EXPECT_TRUE(eventually([&] { return processes_on_domain(domain).empty(); }, 10s))
+      << "processes left behind";
+}
+
 TEST(DdsFaults, CtrlCStopsEveryProcessAndLeavesNothingBehind) {
   const auto dir = test_dir();
   const int domain = 123;
