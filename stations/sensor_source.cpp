@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "skyfuse/validation/sample_checks.hpp"
+
 namespace skyfuse::station {
 
 SimulatedSensor::SimulatedSensor(const RunPlan& plan, const StationConfig& station)
@@ -70,6 +72,12 @@ ReplayedSensor::ReplayedSensor(const std::filesystem::path& csv, int station_id)
                                            csv.string(), number, kReplayHeader, line));
     }
     if (id != station_id) continue;
+    if (check_reported_values(z)) {
+      throw std::runtime_error(fmt::format(
+          "{}: line {}: station {} step {}: range must be in (0, {}] m, azimuth in [-pi, pi] and "
+          "elevation in [-pi/2, pi/2] rad, got {}, {}, {}",
+          csv.string(), number, id, step, kMaxRangeM, z(0), z(1), z(2)));
+    }
     if (!rows_.emplace(step, z).second) {
       throw std::runtime_error(fmt::format("{}: line {}: second row for station {} at step {}",
                                            csv.string(), number, id, step));

@@ -243,12 +243,18 @@ class Station {
     io_.measurements.write(transport::to_wire(observation, options_.node.run_id, step));
     if (syncing_) return;  // no prior yet: nothing to compute an increment against
 
-    PeerContribution own;
+    PeerContribution own;  // a zero increment until computed
     own.prior = tracker_.estimate();
     own.increment.station_id = me_.id;
-    if (options_.node.nis_gate().refuses(own.prior, sensor_, observation.z, noise_)) {
-      // An outlier adds nothing; a zero increment still tells the peers not to wait for one.
-      transport::count_drop(drops_, DropKind::kNisGate, "own measurement", me_.id, k);
+    // What the center refuses, this station does not fuse either: both architectures see the
+    // same measurements. A refused one, or an outlier, adds nothing; the zero increment still
+    // tells the peers not to wait for one.
+    std::optional<DropKind> refused = check_observation(observation);
+    if (!refused && options_.node.nis_gate().refuses(own.prior, sensor_, observation.z, noise_)) {
+      refused = DropKind::kNisGate;
+    }
+    if (refused) {
+      transport::count_drop(drops_, *refused, "own measurement", me_.id, k);
       io_.increments_out.write(transport::to_wire(own, options_.node.run_id, step));
       collector_.offer(k, me_.id, own);
       return;

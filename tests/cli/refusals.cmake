@@ -1,5 +1,6 @@
 # Each bad invocation exits non-zero with one line naming the problem, before doing any work.
 file(MAKE_DIRECTORY "${WORK}")
+set(program ${SKYFUSE})
 if(CASE STREQUAL "missing_scenario")
   set(args sweep --scenario ${WORK}/does_not_exist.yaml)
   set(expect "--scenario: File does not exist")
@@ -23,9 +24,17 @@ elseif(CASE STREQUAL "run_station_not_in_run")
   set(args run --stations 4 --kill 9@5 --out ${WORK}/run)
   set(expect "--kill 9@5: station 9 does not take part in the run")
   set(untouched ${WORK}/run)
+elseif(CASE STREQUAL "station_replay_out_of_range")
+  # No receiver would take an elevation past the zenith: refused when the file is read, with
+  # its line, not fused by the station alone.
+  file(WRITE ${WORK}/replay.csv
+       "step,station_id,range_m,azimuth_rad,elevation_rad\n0,1,1500,0.5,0.2\n1,1,1500,0.5,1.6\n")
+  set(program ${STATION})
+  set(args --id 1 --replay ${WORK}/replay.csv --domain 193)
+  set(expect "replay.csv: line 3: station 1 step 1: range must be in \\(0, 1000000\\] m, azimuth in \\[-pi, pi\\] and elevation in \\[-pi/2, pi/2\\] rad, got 1500, 0.5, 1.6")
 endif()
 file(REMOVE_RECURSE "${untouched}")
-execute_process(COMMAND ${SKYFUSE} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+execute_process(COMMAND ${program} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(rc EQUAL 0)
   message(FATAL_ERROR "${CASE}: exit status 0, expected a refusal")
 endif()

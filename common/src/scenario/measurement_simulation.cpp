@@ -1,6 +1,8 @@
 #include "skyfuse/scenario/measurement_simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "skyfuse/core/angles.hpp"
 #include "skyfuse/random/counter_rng.hpp"
@@ -35,6 +37,11 @@ Vector3 simulate_measurement(const StationSensor& sensor, const Vector3& true_po
   Vector3 z = sensor.measure_position(true_position);
   for (int i = 0; i < 3; ++i) z(i) += std::sqrt(noise(i, i)) * rng.normal();
   z(StationSensor::kAzimuth) = wrap_angle(z(StationSensor::kAzimuth));
+  // A sensor reports elevation within [-pi/2, pi/2]. Near the zenith the noise would carry it
+  // past, and every receiver - the station itself, the center, the harness's recorder - would
+  // refuse the measurement (check_reported_values).
+  constexpr double kHalfPi = std::numbers::pi / 2.0;
+  z(StationSensor::kElevation) = std::clamp(z(StationSensor::kElevation), -kHalfPi, kHalfPi);
   return z;
 }
 

@@ -69,6 +69,18 @@ std::optional<DropKind> check_contribution(const PeerContribution& contribution)
   return check_estimate(contribution.prior);
 }
 
+std::optional<DropKind> check_reported_values(const Vector3& z) {
+  if (!z.allFinite()) return DropKind::kNonFinite;
+  constexpr double kPi = std::numbers::pi;
+  using Sensor = RangeAzimuthElevation<9>;
+  const double range = z(Sensor::kRange);
+  if (!(range > 0.0 && range <= kMaxRangeM) || std::abs(z(Sensor::kAzimuth)) > kPi ||
+      std::abs(z(Sensor::kElevation)) > kPi / 2.0) {
+    return DropKind::kOutOfRange;
+  }
+  return std::nullopt;
+}
+
 std::optional<DropKind> check_observation(
     const StationObservation<RangeAzimuthElevation<9>>& observation) {
   if (!observation.z.allFinite() || !observation.noise.allFinite() ||
@@ -77,17 +89,8 @@ std::optional<DropKind> check_observation(
   }
   SmallCholesky<3> factor;
   if (!factor.compute(observation.noise)) return DropKind::kNotPositive;
-  constexpr double kPi = std::numbers::pi;
-  using Sensor = RangeAzimuthElevation<9>;
-  const double range = observation.z(Sensor::kRange);
-  const double azimuth = observation.z(Sensor::kAzimuth);
-  const double elevation = observation.z(Sensor::kElevation);
   if (observation.sensor.station_position().norm() > kMaxRangeM) return DropKind::kOutOfRange;
-  if (!(range > 0.0 && range <= kMaxRangeM) || std::abs(azimuth) > kPi ||
-      std::abs(elevation) > kPi / 2.0) {
-    return DropKind::kOutOfRange;
-  }
-  return std::nullopt;
+  return check_reported_values(observation.z);
 }
 
 }  // namespace skyfuse

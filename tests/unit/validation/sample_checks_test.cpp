@@ -5,6 +5,7 @@
 #include <Eigen/QR>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace skyfuse {
 namespace {
@@ -168,7 +169,12 @@ TEST(SampleChecks, RefusesMeasurementsTheSensorCannotReport) {
     Observation o = real_observation();
     o.z = z;
     EXPECT_EQ(check_observation(o), DropKind::kOutOfRange) << z.transpose();
+    EXPECT_EQ(check_reported_values(z), DropKind::kOutOfRange) << z.transpose();
   }
+  // The edges themselves are reportable.
+  EXPECT_FALSE(check_reported_values(Vector3(1.0e6, std::numbers::pi, std::numbers::pi / 2.0)));
+  EXPECT_FALSE(check_reported_values(Vector3(1e-9, -std::numbers::pi, -std::numbers::pi / 2.0)));
+  EXPECT_EQ(check_reported_values(Vector3(100.0, std::nan(""), 0.1)), DropKind::kNonFinite);
 }
 
 TEST(DropKind, NamesAreDistinctSnakeCase) {

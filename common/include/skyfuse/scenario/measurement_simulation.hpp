@@ -23,7 +23,8 @@ double draw_noise_scale(const NoiseScaleConfig& config, std::uint64_t seed, std:
 Covariance<3> station_noise_covariance(const Scenario& scenario, const StationConfig& station,
                                        std::uint64_t run);
 
-/// z = h(p) + nu with nu ~ N(0, R) (R diagonal), azimuth wrapped into (-pi, pi].
+/// z = h(p) + nu with nu ~ N(0, R) (R diagonal), azimuth wrapped into (-pi, pi], elevation
+/// held within [-pi/2, pi/2] (past the zenith a sensor reports the zenith).
 Vector3 simulate_measurement(const StationSensor& sensor, const Vector3& true_position,
                              const Covariance<3>& noise, std::uint64_t seed, std::uint64_t run,
                              int station_id, std::uint64_t step);

@@ -37,6 +37,10 @@ std::optional<DropKind> check_estimate(const GaussianState<9>& estimate);
 /// The increment as check_increment(), then the prior it travels with as check_estimate().
 std::optional<DropKind> check_contribution(const PeerContribution& contribution);
 
+/// z finite and within what the sensor can report (see kMaxRangeM): kOutOfRange or
+/// kNonFinite otherwise. The part of check_observation that needs z alone.
+std::optional<DropKind> check_reported_values(const Vector3& z);
+
 /// z, R and the station position finite; R positive definite; z within the sensor's range and
 /// the station within kMaxRangeM of the origin.
 std::optional<DropKind> check_observation(
