@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 namespace skyfuse {
@@ -66,6 +67,18 @@ TEST(StackedCholesky, RefusesAMatrixThatIsNotPositiveDefinite) {
     const Eigen::Index n = 3 * stations;
     Eigen::MatrixXd lower = random_spd_lower(n, 7);
     lower(n - 2, n - 2) = -1.0;  // a negative variance in the last block
+    Factor factor;
+    EXPECT_FALSE(factor.compute(lower)) << stations << " stations";
+  }
+}
+
+// A NaN is not positive: refused by the block algorithm and by the hand-over to Eigen's LLT
+// alike (whose pivot test, x <= 0, a NaN passes).
+TEST(StackedCholesky, RefusesAMatrixWithANaN) {
+  for (const int stations : {4, 90}) {
+    const Eigen::Index n = 3 * stations;
+    Eigen::MatrixXd lower = random_spd_lower(n, 7);
+    lower(n - 1, 1) = std::nan("");
     Factor factor;
     EXPECT_FALSE(factor.compute(lower)) << stations << " stations";
   }

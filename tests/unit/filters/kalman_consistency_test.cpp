@@ -114,5 +114,18 @@ TEST(KalmanFilter, UpdateReportsANonPositiveInnovationCovarianceAndLeavesTheStat
   EXPECT_EQ(state.mean, before.mean);
 }
 
+// A NaN in the innovation covariance is a failure, not a NaN state reported as kOk.
+TEST(KalmanFilter, UpdateReportsANaNInnovationCovarianceAndLeavesTheState) {
+  GaussianState<9> state;
+  state.covariance.setIdentity();
+  state.covariance(1, 1) = std::nan("");
+  const GaussianState<9> before = state;
+  const PositionSensor<9> sensor;
+  const UpdateReport report =
+      update(state, sensor, Vector3(1.0, 2.0, 3.0), 0.01 * Covariance<3>::Identity());
+  EXPECT_EQ(report.status, NumericalStatus::kNotPositiveDefinite);
+  EXPECT_EQ(state.mean, before.mean);
+}
+
 }  // namespace
 }  // namespace skyfuse

@@ -32,7 +32,9 @@ class StackedCholesky {
     size_ = a.rows();
     if (size_ >= kBlockedFromSize) {
       blocked_.compute(a);
-      return blocked_.info() == Eigen::Success;
+      // Eigen's LLT tests each pivot with `x <= 0`, which a NaN passes: it reports success
+      // with NaN in L. A NaN or Inf anywhere in the lower triangle reaches the diagonal.
+      return blocked_.info() == Eigen::Success && blocked_.matrixLLT().diagonal().allFinite();
     }
     reserve(size_);
     const Eigen::Index blocks = size_ / B;

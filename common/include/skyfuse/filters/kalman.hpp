@@ -79,7 +79,10 @@ UpdateReport update(GaussianState<N>& state, const Sensor& sensor,
   const Covariance<M> s = h.lazyProduct(pht.template topRows<C>()) + noise;
 
   const Eigen::LLT<Covariance<M>> s_factor(s);
-  if (s_factor.info() != Eigen::Success) return {NumericalStatus::kNotPositiveDefinite};
+  // Eigen's LLT lets a NaN pivot through (it tests `x <= 0`); a NaN in S reaches L's diagonal.
+  if (s_factor.info() != Eigen::Success || !s_factor.matrixLLT().diagonal().allFinite()) {
+    return {NumericalStatus::kNotPositiveDefinite};
+  }
 
   // K = P H^T S^-1, computed as (S^-1 H P)^T since S is symmetric.
   const Matrix<N, M> gain = s_factor.solve(pht.transpose()).transpose();
