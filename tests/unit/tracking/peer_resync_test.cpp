@@ -114,6 +114,32 @@ TEST(PeerResync, TwentyPercentLossAtMostDoublesTheError) {
       << "lossless " << lossless.rmse_m << " m, 20 % loss " << lossy.rmse_m << " m";
 }
 
+// A round that cannot be fused (here the reference prior is not positive definite) leaves
+// the peer's estimate as it was: the station reports the failure with the state it held.
+TEST(PeerResync, AFailedRoundLeavesTheEstimateAndIsNoResync) {
+  GaussianState<9> initial;
+  initial.mean.setConstant(1.0);
+  initial.covariance.setIdentity();
+  PeerTracker peer(ConstantAcceleration3D(0.02, {0.5, 0.1, 0.05}), initial);
+  GaussianState<9> reference = initial;
+  reference.mean(0) = 2.0;
+  reference.covariance(4, 4) = -1.0;
+  const std::vector<Increment9> none;
+  const std::vector<double> no_weights;
+  const RoundFusion fused = peer.fuse_round(reference, none, no_weights);
+  EXPECT_EQ(fused.status, NumericalStatus::kNotPositiveDefinite);
+  EXPECT_FALSE(fused.resynced);
+  EXPECT_EQ(peer.estimate().mean, initial.mean);
+  EXPECT_EQ(peer.estimate().covariance, initial.covariance);
+
+  // The same reference made valid: adopted, and reported as a resync.
+  reference.covariance(4, 4) = 1.0;
+  const RoundFusion adopted = peer.fuse_round(reference, none, no_weights);
+  EXPECT_EQ(adopted.status, NumericalStatus::kOk);
+  EXPECT_TRUE(adopted.resynced);
+  EXPECT_NEAR(peer.estimate().mean(0), 2.0, 1e-12);
+}
+
 TEST(LinkLoss, DrawsArePureFunctionsOfLinkAndStepAndMatchTheRate) {
   LinkLoss loss;
   loss.probability = 0.2;

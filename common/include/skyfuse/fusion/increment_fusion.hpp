@@ -7,6 +7,7 @@
 /// The sums run in ascending station id and every inverse goes through a Cholesky factor, so any
 /// two peers holding the same prior and the same increments compute the same bits.
 
+#include <cassert>
 #include <span>
 
 #include "skyfuse/core/small_cholesky.hpp"
@@ -25,6 +26,7 @@ NumericalStatus fuse_increments(const GaussianState<N>& prior,
                                 std::span<const InformationIncrement<N>> increments,
                                 std::span<const double> weights, GaussianState<N>& posterior,
                                 Covariance<N>* fused_information = nullptr) {
+  assert(weights.size() == increments.size() && "one weight per increment");
   for (std::size_t i = 1; i < increments.size(); ++i) {
     if (increments[i].station_id <= increments[i - 1].station_id) {
       return NumericalStatus::kIncrementsOutOfOrder;

@@ -51,15 +51,15 @@ class PeerTracker {
     return fuse_increments(estimate_, increments, weights, estimate_, &information_);
   }
   /// Fuses one round's increments (ascending station id; weights[i] for increments[i]) onto
-  /// `reference`, the prior that came with the lowest-id increment of the round.
+  /// `reference`, the prior that came with the lowest-id increment of the round. On failure the
+  /// estimate is left as it was, and nothing counts as resynchronised.
   RoundFusion fuse_round(const GaussianState<9>& reference, std::span<const Increment9> increments,
                          std::span<const double> weights) {
+    const bool differs =
+        reference.mean != estimate_.mean || reference.covariance != estimate_.covariance;
     RoundFusion result;
-    if (reference.mean != estimate_.mean || reference.covariance != estimate_.covariance) {
-      estimate_ = reference;
-      result.resynced = true;
-    }
-    result.status = fuse(increments, weights);
+    result.status = fuse_increments(reference, increments, weights, estimate_, &information_);
+    result.resynced = differs && result.status == NumericalStatus::kOk;
     return result;
   }
   /// Y = P^-1 of the estimate after the last fuse().
