@@ -15,7 +15,7 @@ namespace skyfuse::harness {
 
 struct BenchOptions {
   std::string out_dir = "results/bench";
-  std::string scenario_path;  ///< default: the embedded ring64-like scenario file
+  std::string scenario_path;  ///< default: scenarios/ring64.yaml beside the executable
   std::vector<int> stations = {1, 2, 4, 8, 16, 32, 64};
   int rounds = 300;
   int domain = 0;

@@ -7,8 +7,9 @@
 //   measurements.csv  every station's measurement, in the format `skyfuse-station --replay` reads
 //   rounds.csv        per step: round latency (timing: the only file that differs run to run)
 //   summary.json      the figures below
-// Everything but rounds.csv and the timing fields of summary.json is a pure function of the
-// scenario, the seed and the options: two runs give the same bytes.
+// In a lock-step run, everything but rounds.csv and the timing fields and run id of
+// summary.json is a pure function of the scenario, the seed and the options: two runs give
+// the same bytes. (A real-time run fuses what arrived by each deadline: not reproducible.)
 
 #include <cstdio>
 #include <filesystem>
@@ -36,7 +37,9 @@ struct RunSummary {
   std::map<int, int> rounds_missing_by_station;
   /// Per restarted station: the first step at which a peer's track contained it again.
   std::map<int, std::uint64_t> rejoin_step_by_station;
-  int rounds_closed_incomplete = 0;  ///< rounds in which some live node's track was missing
+  /// Rounds in which some node's track was missing, for whatever reason (a station the run
+  /// killed on purpose included).
+  int rounds_closed_incomplete = 0;
   double rounds_per_s = 0.0;
   double round_latency_us_p50 = 0.0;
   double round_latency_us_p99 = 0.0;

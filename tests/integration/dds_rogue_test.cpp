@@ -15,7 +15,7 @@ using namespace std::chrono_literals;
 using ::testing::HasSubstr;
 
 constexpr int kStations = 4;
-constexpr int kAttackSteps = 3;  // steps 100, 300, 500 of 800: the rogue has matched by then
+constexpr int kAttackSteps = 3;  // the rogue's default steps 5, 10 and 15 of the run's 60
 
 std::vector<std::string> run_args(int domain, const std::filesystem::path& out) {
   return {bin("skyfuse"), "run",  "--stations", std::to_string(kStations), "--steps", "60",

@@ -1,9 +1,11 @@
 // The system over loopback DDS: station processes and the fusion center, driven by the harness.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <thread>
 
 #include "integration/run_fixture.hpp"
@@ -13,6 +15,17 @@
 
 namespace skyfuse::test {
 namespace {
+
+// The latency_us column of rounds.csv (header step,latency_us), in file order.
+std::vector<double> read_round_latencies(const std::filesystem::path& csv) {
+  std::istringstream in(read_file(csv));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "step,latency_us");
+  std::vector<double> latencies;
+  while (std::getline(in, line)) latencies.push_back(std::stod(line.substr(line.find(',') + 1)));
+  return latencies;
+}
 
 using namespace std::chrono_literals;
 constexpr int kSteps = 200;
@@ -82,13 +95,15 @@ TEST_P(DdsRun, EveryPeerAgreesAndTheRunEqualsTheInProcessOneBitForBit) {
   EXPECT_FALSE(summary.contains("realtime")) << "a lock-step run has no real-time figures";
   EXPECT_LT(summary.at("max_abs_diff_central_vs_p2p").get<double>(), 1e-6);
   EXPECT_GT(summary.at("rounds_per_s").get<double>(), 0.0);
-  // Every round was timed: latencies are positive and bounded by the slowest round.
-  EXPECT_GT(summary.at("round_latency_us_p50").get<double>(), 0.0);
-  EXPECT_LE(summary.at("round_latency_us_p99").get<double>(),
-            summary.at("round_latency_us_max").get<double>());
-  for (const char* key : {"rmse_central_m", "rmse_p2p_m", "round_latency_us_p50"}) {
-    EXPECT_TRUE(summary.contains(key)) << key;
-  }
+  // Every round was timed, and the summary's latencies are those of rounds.csv.
+  std::vector<double> latencies = read_round_latencies(dir / "out" / "rounds.csv");
+  ASSERT_EQ(latencies.size(), static_cast<std::size_t>(kSteps));
+  std::sort(latencies.begin(), latencies.end());
+  EXPECT_GT(latencies.front(), 0.0);
+  const double median = latencies[(latencies.size() + 1) / 2 - 1];  // nearest rank
+  EXPECT_NEAR(summary.at("round_latency_us_p50").get<double>(), median, 0.051);
+  EXPECT_NEAR(summary.at("round_latency_us_max").get<double>(), latencies.back(), 0.051);
+  EXPECT_GT(summary.at("rmse_p2p_m").get<double>(), 0.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Stations, DdsRun, ::testing::Values(1, 3, 8), [](const auto& param_info) {
@@ -171,13 +186,8 @@ TEST(DdsBench, MeasuresEachStationCountAgainstItsFloorIntoBenchJson) {
     EXPECT_DOUBLE_EQ(row.at("ratio_to_all_to_all_floor").get<double>(),
                      row.at("rounds_per_s").get<double>() /
                          row.at("all_to_all_floor_rounds_per_s").get<double>());
-    EXPECT_LE(row.at("all_to_all_floor_latency_us_p50").get<double>(),
-              row.at("all_to_all_floor_latency_us_p99").get<double>());
+    EXPECT_GT(row.at("all_to_all_floor_latency_us_p50").get<double>(), 0.0);
     EXPECT_GT(row.at("round_latency_us_p50").get<double>(), 0.0);
-    EXPECT_LE(row.at("round_latency_us_p50").get<double>(),
-              row.at("round_latency_us_p99").get<double>());
-    EXPECT_LE(row.at("round_latency_us_p99").get<double>(),
-              row.at("round_latency_us_max").get<double>());
     EXPECT_GT(row.at("discovery_s").get<double>(), 0.0);
     EXPECT_GT(row.at("floor_discovery_s").get<double>(), 0.0);
   }
@@ -199,11 +209,11 @@ TEST(DdsRunRealtime, NodesStepOnTheWallClockAndTheHarnessReportsDeadlinesAndAges
   ASSERT_TRUE(summary.contains("realtime")) << summary.dump(2);
   const auto& rt = summary.at("realtime");
   EXPECT_EQ(rt.at("deadline_ms"), 15.0);
-  const double in_time = rt.at("rounds_all_inputs_in_time").get<double>();
-  EXPECT_GE(in_time, 0.0);
-  EXPECT_LE(in_time, 1.0);
+  // 3 stations at 50 Hz are far from what this machine can do: most rounds in time.
+  EXPECT_GT(rt.at("rounds_all_inputs_in_time").get<double>(), 0.5);
+  // A track is at least as old as the work of its round, and younger than the step.
   EXPECT_GT(rt.at("track_age_ms_p50").get<double>(), 0.0);
-  EXPECT_GE(rt.at("track_age_ms_max").get<double>(), rt.at("track_age_ms_p99").get<double>());
+  EXPECT_LT(rt.at("track_age_ms_p50").get<double>(), 20.0);
   // Fusing what arrived by the deadline still tracks (3 stations: well under a metre).
   EXPECT_LT(summary.at("rmse_p2p_m").get<double>(), 1.0);
 }

@@ -137,7 +137,7 @@ dds::DomainParticipantQos QosProfiles::participant(const std::string& name) cons
   qos.transport().use_builtin_transports = false;
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
   udp->interfaceWhiteList.emplace_back("127.0.0.1");
-  // With the default 208 KiB, a round's burst overflowed the sockets from ~24 stations on and
+  // With the default 208 KiB, a round's burst overflowed the sockets from ~20 stations on and
   // each lost datagram waited for a repair: M = 32, 300 rounds: 33 810 datagrams dropped,
   // 14 rounds/s; with 4 MiB none, 19 rounds/s. The kernel caps it at net.core.rmem_max.
   udp->receiveBufferSize = static_cast<std::uint32_t>(kReceiveBufferBytes);

@@ -2,27 +2,16 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse {
-namespace {
-
-// What is wrong with `state`, or nothing.
-std::optional<std::string> problem_with(const GaussianState<9>& state) {
-  if (!state.mean.allFinite()) return "non-finite mean";
-  if (!state.covariance.allFinite()) return "non-finite covariance";
-  const Eigen::LLT<Covariance<9>> llt(state.covariance);
-  if (llt.info() != Eigen::Success) return "covariance not positive definite";
-  return std::nullopt;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 SoakReport soak(const Scenario& base, int stations, std::int64_t steps) {
   if (steps < 1) throw std::invalid_argument("soak: steps must be >= 1");
@@ -42,18 +31,16 @@ SoakReport soak(const Scenario& base, int stations, std::int64_t steps) {
       bool bad = false;
       for (const auto& [name, state] :
            {std::pair{"central", &r.central}, std::pair{"peer-to-peer", &r.decentralised}}) {
-        const Covariance<9>& p = state->covariance;
-        if (const auto problem = problem_with(*state)) {
+        if (const auto problem = check_estimate(*state)) {
           bad = true;
           if (!report.first_problem) {
-            report.first_problem = fmt::format("step {}, {}: {}", r.step, name, *problem);
+            report.first_problem =
+                fmt::format("step {}, {}: posterior {}", r.step, name, to_string(*problem));
           }
           continue;
         }
-        const double scale = p.cwiseAbs().maxCoeff();
-        report.max_relative_asymmetry = std::max(report.max_relative_asymmetry,
-                                                 (p - p.transpose()).cwiseAbs().maxCoeff() / scale);
-        report.min_diagonal = std::min(report.min_diagonal, p.diagonal().minCoeff());
+        report.min_diagonal =
+            std::min(report.min_diagonal, state->covariance.diagonal().minCoeff());
       }
       if (bad) ++report.bad_steps;
       if (r.step >= window_start) {

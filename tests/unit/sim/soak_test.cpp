@@ -7,14 +7,13 @@
 namespace skyfuse {
 namespace {
 
-TEST(Soak, CovariancesStaySymmetricPositiveDefiniteOverALongRun) {
+TEST(Soak, CovariancesStayPositiveDefiniteOverALongRun) {
   // The README quotes `skyfuse soak` at 10^6 steps; 30 000 steps is ten times the scenario
   // and runs past every manoeuvre into a long straight flight away from the stations.
   const Scenario scenario = load_default_scenario();
   const SoakReport r = soak(scenario, 4, 30'000);
   EXPECT_EQ(r.bad_steps, 0) << r.first_problem.value_or("");
   EXPECT_FALSE(r.first_problem.has_value());
-  EXPECT_LT(r.max_relative_asymmetry, 1e-12);
   EXPECT_GT(r.min_diagonal, 0.0);
   EXPECT_TRUE(std::isfinite(r.final_rmse_window_m));
 }

@@ -7,8 +7,8 @@
 ///   dy_i = H_i^T R_i^-1 (nu_i + H_i x^-),   nu_i = z_i - h_i(x^-)  (angles wrapped)
 ///
 /// This equals the paper's (P_i^+)^-1 - (P^-)^-1 and (P_i^+)^-1 x_i^+ - (P^-)^-1 x^- exactly
-/// in exact arithmetic (tests/unit/information_increment_test.cpp shows it numerically), while
-/// needing only a 3x3 Cholesky of R_i instead of two N x N inversions.
+/// in exact arithmetic (tests/unit/fusion/information_increment_test.cpp shows it numerically),
+/// while needing only a 3x3 Cholesky of R_i instead of two N x N inversions.
 
 #include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/core/status.hpp"

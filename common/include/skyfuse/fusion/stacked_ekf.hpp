@@ -82,10 +82,12 @@ class StackedEkf {
       noise_part.noalias() += g_i.transpose().lazyProduct(r_g);
     }
 
-    // Joseph form, (I - KH) P (I - KH)^T + K R K^T. The products with N rows are plain loops in a
+    // Joseph form, (I - KH) P (I - KH)^T + K R K^T. KH and P_c (RG^T) are plain loops in a
     // fixed order: Eigen vectorises fixed-size results of 9 rows with a peel that depends on the
     // object's address, and its scalar and packet paths round differently, so the same inputs
-    // could give other bits in another process.
+    // could give other bits in another process. joseph_without_noise, shared with the
+    // single-sensor update, keeps Eigen's lazy products on local matrices; the integration tests
+    // (every state component of every step, DDS center against in-process) show the same bits.
     Matrix<N, kCols> kh;
     Matrix<N, kCols> p_noise;
     SKYFUSE_UNROLL

@@ -47,8 +47,9 @@ class RangeAzimuthElevation {
 
   Measurement predict(const State& x) const { return measure_position(x.template head<3>()); }
 
-  /// Analytic dh/dx. Directly above the station (rho = 0) the azimuth carries no information
-  /// and its row is left zero instead of dividing by zero.
+  /// Analytic dh/dx. Directly above the station (rho = 0) the azimuth is undefined and the
+  /// elevation has a cusp (it falls at 1/r in whichever horizontal direction the aircraft
+  /// moves): both rows are left zero instead of dividing by zero, and only the range informs.
   Jacobian<3, StateDim> jacobian(const State& x) const {
     const Vector3 d = x.template head<3>() - station_position_;
     const double rho_sq = d.x() * d.x() + d.y() * d.y();

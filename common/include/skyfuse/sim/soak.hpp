@@ -14,11 +14,11 @@ namespace skyfuse {
 
 struct SoakReport {
   std::int64_t steps = 0;
-  /// Steps at which a mean or covariance held a NaN or Inf, or a covariance was not
-  /// symmetric positive definite (a Cholesky factorisation failed), in either architecture.
+  /// Steps at which either architecture's posterior failed check_estimate: a NaN or Inf, an
+  /// implausible magnitude, or a covariance not positive definite. (Symmetry needs no check:
+  /// every filter step ends by symmetrising P.)
   std::int64_t bad_steps = 0;
   std::optional<std::string> first_problem;  ///< which step and architecture, and what
-  double max_relative_asymmetry = 0.0;       ///< max |P - P^T| / max |P| seen
   double min_diagonal = 0.0;                 ///< smallest variance seen (> 0 when healthy)
   double final_rmse_window_m = 0.0;          ///< p2p position RMSE over the last 1000 steps
 };

@@ -84,9 +84,9 @@ class Writer {
   bool wait_acknowledged(std::chrono::microseconds timeout) {
     return writer_->wait_for_acknowledgments(to_dds_duration(timeout)) == ReturnCode_t::RETCODE_OK;
   }
-  /// Remote readers currently matched (this participant's own matching reader included).
   /// What a reader's take() reports as this writer's id.
   WriterId id() const { return to_writer_id(writer_->get_instance_handle()); }
+  /// Remote readers currently matched (this participant's own matching reader included).
   int matched() const {
     dds::PublicationMatchedStatus status;
     writer_->get_publication_matched_status(status);
