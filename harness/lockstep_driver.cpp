@@ -36,6 +36,30 @@ std::string node_name(int id) {
   return id == kCenterId ? "center" : fmt::format("station {}", id);
 }
 
+// What is wrong with a track whatever its step and source's place in the run: another run, a
+// mode that does not match its source, numbers that are not finite. The harness records what
+// the nodes fused, so it refuses what they refuse; lock-step and real time alike.
+std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
+                                              const GaussianState<9>& estimate,
+                                              std::uint64_t run_id) {
+  if (t.run_id() != run_id) return DropKind::kWrongRun;
+  if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterId)) {
+    return DropKind::kUnknownStation;
+  }
+  if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) {
+    return DropKind::kNonFinite;
+  }
+  return std::nullopt;
+}
+
+// The same for a measurement: another run, or an observation the center would refuse.
+std::optional<DropKind> measurement_content_refusal(const wire::Measurement& m,
+                                                    const StationObservation9& observation,
+                                                    std::uint64_t run_id) {
+  if (m.run_id() != run_id) return DropKind::kWrongRun;
+  return check_observation(observation);
+}
+
 }  // namespace
 
 std::uint64_t fresh_run_id() {
@@ -108,25 +132,18 @@ struct LockstepDriver::Impl {
     }
   }
 
-  // The harness records what the nodes fused, so it refuses what they refuse.
+  // The content checks, then the step window, the source and duplicates (admit).
   std::optional<DropKind> track_refusal(const wire::TrackEstimate& t,
                                         const transport::WriterId& writer) {
-    if (t.run_id() != run_id) return DropKind::kWrongRun;
-    if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterId)) {
-      return DropKind::kUnknownStation;
-    }
     ReceivedTrack track{transport::from_wire(t),
                         {t.contributors().begin(), t.contributors().end()}};
-    if (!track.estimate.mean.allFinite() || !track.estimate.covariance.allFinite()) {
-      return DropKind::kNonFinite;
-    }
+    if (const auto why = track_content_refusal(t, track.estimate, run_id)) return why;
     return transport::admit(track_collector, track_sources, t.step(), t.source_id(), writer, track);
   }
   std::optional<DropKind> measurement_refusal(const wire::Measurement& m,
                                               const transport::WriterId& writer) {
-    if (m.run_id() != run_id) return DropKind::kWrongRun;
     const StationObservation9 observation = transport::from_wire(m);
-    if (const auto why = check_observation(observation)) return why;
+    if (const auto why = measurement_content_refusal(m, observation, run_id)) return why;
     return transport::admit(measurement_collector, measurement_sources, m.step(), m.station_id(),
                             writer, Vector3(observation.z));
   }
@@ -345,20 +362,16 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     while (d.tracks.take(t, &writer)) {
       const std::size_t i = source_index(t.source_id());
       const GaussianState<9> estimate = transport::from_wire(t);
-      std::optional<DropKind> why;
-      if (t.run_id() != d.run_id) {
-        why = DropKind::kWrongRun;
-      } else if (i > m || (t.mode() == wire::CENTRAL) != (i == 0)) {
-        why = DropKind::kUnknownStation;
-      } else if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) {
-        why = DropKind::kNonFinite;
-      } else if (t.step() >= static_cast<std::uint32_t>(steps)) {
-        why = DropKind::kFutureStep;
-      } else if (t.step() < done.size()) {
-        why = DropKind::kStaleStep;
-      } else if (!d.track_sources.accept(t.source_id(), writer) || entry(t.step()).have[i]) {
-        why = DropKind::kDuplicate;
-      }
+      const std::optional<DropKind> why = [&]() -> std::optional<DropKind> {
+        if (const auto bad = track_content_refusal(t, estimate, d.run_id)) return bad;
+        if (i > m) return DropKind::kUnknownStation;
+        if (t.step() >= static_cast<std::uint32_t>(steps)) return DropKind::kFutureStep;
+        if (t.step() < done.size()) return DropKind::kStaleStep;
+        if (!d.track_sources.accept(t.source_id(), writer) || entry(t.step()).have[i]) {
+          return DropKind::kDuplicate;
+        }
+        return std::nullopt;
+      }();
       if (why) {
         refuse(*why, "track", t.source_id(), t.step());
         continue;
@@ -377,21 +390,18 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     wire::Measurement z;
     while (d.measurements.take(z, &writer)) {
       const std::size_t i = source_index(z.station_id());
-      std::optional<DropKind> why;
-      if (z.run_id() != d.run_id) {
-        why = DropKind::kWrongRun;
-      } else if (i == 0 || i > m) {
-        why = DropKind::kUnknownStation;
-      } else if (const auto bad = check_observation(transport::from_wire(z))) {
-        why = bad;
-      } else if (z.step() >= static_cast<std::uint32_t>(steps)) {
-        why = DropKind::kFutureStep;
-      } else if (z.step() < done.size()) {
-        why = DropKind::kStaleStep;
-      } else if (!d.measurement_sources.accept(z.station_id(), writer) ||
-                 entry(z.step()).have[m + i]) {
-        why = DropKind::kDuplicate;
-      }
+      const std::optional<DropKind> why = [&]() -> std::optional<DropKind> {
+        if (const auto bad = measurement_content_refusal(z, transport::from_wire(z), d.run_id)) {
+          return bad;
+        }
+        if (i == 0 || i > m) return DropKind::kUnknownStation;
+        if (z.step() >= static_cast<std::uint32_t>(steps)) return DropKind::kFutureStep;
+        if (z.step() < done.size()) return DropKind::kStaleStep;
+        if (!d.measurement_sources.accept(z.station_id(), writer) || entry(z.step()).have[m + i]) {
+          return DropKind::kDuplicate;
+        }
+        return std::nullopt;
+      }();
       if (why) {
         refuse(*why, "measurement", z.station_id(), z.step());
         continue;

@@ -19,8 +19,7 @@ bool is_stalled_start(const RunAborted& aborted) {
   const std::string node_exit =
       fmt::format("exited with status {}", static_cast<int>(transport::kExitDiscoveryTimeout));
   return what.find("discovery timed out") != std::string_view::npos ||
-         what.find(node_exit) != std::string_view::npos || what.starts_with("round 0 timed out") ||
-         what.starts_with("round 0 incomplete");
+         what.find(node_exit) != std::string_view::npos || what.starts_with("round 0 incomplete");
 }
 
 RunSummary execute_secure_run(const RunOptions& options, const RunPlan& plan) {

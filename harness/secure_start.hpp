@@ -21,7 +21,7 @@ RunSummary execute_secure_run(const RunOptions& options, const RunPlan& plan);
 
 /// True if `aborted` says that the run stalled before its first round completed: discovery did
 /// not complete (the harness's timeout, or a node's, seen as its status or its exit code), or
-/// round 0 timed out.
+/// round 0 closed incomplete because some pair of processes never matched.
 bool is_stalled_start(const RunAborted& aborted);
 
 }  // namespace skyfuse::harness
