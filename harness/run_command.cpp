@@ -164,15 +164,7 @@ void add_run_command(CLI::App& app, RunOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "run", "Run the stations and the fusion center as processes over DDS, in lock-step");
   transport::add_scenario_option(*cmd, o.scenario_path);
-  cmd->add_option("--stations", o.overrides.stations, "Number of station processes M (the first M)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--steps", o.overrides.steps, "Override the scenario's number of steps")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--speed-kmh", o.overrides.speed_kmh,
-                  "Target speed (default: the first the scenario lists)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--mc-run", o.overrides.mc_run, "Monte-Carlo run index (selects the noise)")
-      ->capture_default_str();
+  transport::add_plan_options(*cmd, o.overrides);
   cmd->add_option("--out", o.out_dir, "Folder for the per-step CSVs and summary.json")
       ->capture_default_str();
   cmd->add_option("--domain", o.domain, "DDS domain id")

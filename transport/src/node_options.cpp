@@ -44,6 +44,20 @@ std::chrono::milliseconds NodeOptions::first_tick_timeout() const {
   return std::max(discovery_timeout(), idle_timeout());
 }
 
+void add_plan_options(CLI::App& app, RunOverrides& overrides) {
+  app.add_option("--stations", overrides.stations,
+                 "Number of participating stations: the first M of the scenario (default: all)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--steps", overrides.steps, "Override the scenario's number of steps")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--speed-kmh", overrides.speed_kmh,
+                 "Target speed (default: the first the scenario lists)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--mc-run", overrides.mc_run,
+                 "Monte-Carlo run index; selects the noise realisation")
+      ->capture_default_str();
+}
+
 void add_node_options(CLI::App& app, NodeOptions& o) {
   add_scenario_option(app, o.scenario_path);
   app.add_option("--domain", o.domain, "DDS domain id")
@@ -51,17 +65,7 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
       ->capture_default_str();
   app.add_option("--run-id", o.run_id, "Run id shared by every process of the run")
       ->capture_default_str();
-  app.add_option("--stations", o.overrides.stations,
-                 "Number of participating stations: the first M of the scenario (default: all)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--steps", o.overrides.steps, "Override the scenario's number of steps")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--speed-kmh", o.overrides.speed_kmh,
-                 "Target speed (default: the first the scenario lists)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--mc-run", o.overrides.mc_run,
-                 "Monte-Carlo run index; selects the noise realisation")
-      ->capture_default_str();
+  add_plan_options(app, o.overrides);
   app.add_option("--qos", o.qos_file, "Fast DDS XML profiles overriding the built-in QoS")
       ->check(CLI::ExistingFile);
   app.add_option("--secure", o.secure_dir,

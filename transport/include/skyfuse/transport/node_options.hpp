@@ -60,6 +60,10 @@ struct NodeOptions {
 
 void add_node_options(CLI::App& app, NodeOptions& options);
 
+/// `--stations M`, `--steps K`, `--speed-kmh V` and `--mc-run N` into `overrides`: what makes a
+/// RunPlan of the scenario, shared by the nodes and `skyfuse run`, which passes them on.
+void add_plan_options(CLI::App& app, RunOverrides& overrides);
+
 /// `--loss P`, `--loss-steps A:B`, `--loss-seed S` and `--best-effort` into `loss` and
 /// `best_effort`: shared by the nodes and `skyfuse run`, which passes them on.
 void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort);
