@@ -25,15 +25,10 @@ constexpr auto kPollSlice = std::chrono::milliseconds(50);
 // may have matched the tick writer a moment after the first copy went out. Nodes take a tick
 // once, so a repeat changes nothing for the others.
 constexpr auto kTickRepeat = std::chrono::milliseconds(50);
-constexpr int kCenterId = 0;
 
 std::vector<int> with_center(std::vector<int> ids) {
-  ids.push_back(kCenterId);
+  ids.push_back(kCenterNodeId);
   return ids;
-}
-
-std::string node_name(int id) {
-  return id == kCenterId ? "center" : fmt::format("station {}", id);
 }
 
 // What is wrong with a track whatever its step and source's place in the run: another run, a
@@ -43,7 +38,7 @@ std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
                                               const GaussianState<9>& estimate,
                                               std::uint64_t run_id) {
   if (t.run_id() != run_id) return DropKind::kWrongRun;
-  if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterId)) {
+  if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterNodeId)) {
     return DropKind::kUnknownStation;
   }
   if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) {
@@ -61,6 +56,10 @@ std::optional<DropKind> measurement_content_refusal(const wire::Measurement& m,
 }
 
 }  // namespace
+
+std::string node_name(int id) {
+  return id == kCenterNodeId ? "center" : fmt::format("station {}", id);
+}
 
 std::uint64_t fresh_run_id() {
   std::random_device device;
@@ -194,7 +193,7 @@ std::chrono::nanoseconds LockstepDriver::wait_until_joined(std::chrono::millisec
   const int m = static_cast<int>(d.station_ids.size());
   const auto start = Clock::now();
   const auto all_ready = [&] {
-    if (!d.ready.contains(kCenterId)) return false;
+    if (!d.ready.contains(kCenterNodeId)) return false;
     return std::all_of(d.station_ids.begin(), d.station_ids.end(),
                        [&](int id) { return d.ready.contains(id); });
   };
@@ -264,7 +263,7 @@ RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds
                                    node_name(id),
                                    std::chrono::duration<double>(silence_limit).count(), k));
     }
-    if (id == kCenterId) {
+    if (id == kCenterNodeId) {
       record.central = std::move(track);
     } else {
       record.peers.push_back(std::move(track));
@@ -323,7 +322,7 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
 
   const std::size_t m = d.station_ids.size();
   auto source_index = [&](int source) -> std::size_t {  // 0: center, 1..M: stations by id
-    if (source == kCenterId) return 0;
+    if (source == kCenterNodeId) return 0;
     const auto it = std::lower_bound(d.station_ids.begin(), d.station_ids.end(), source);
     return (it != d.station_ids.end() && *it == source)
                ? static_cast<std::size_t>(it - d.station_ids.begin()) + 1
@@ -452,7 +451,7 @@ bool LockstepDriver::wait_until_finished(std::chrono::milliseconds timeout) {
     const bool all = std::all_of(d.station_ids.begin(), d.station_ids.end(), [&](int id) {
       return d.down.contains(id) || d.finished.contains(id);
     });
-    if (all && d.finished.contains(kCenterId)) return true;
+    if (all && d.finished.contains(kCenterNodeId)) return true;
     if (Clock::now() >= give_up) return false;
     d.wait_set.wait(std::chrono::milliseconds(10));
   }

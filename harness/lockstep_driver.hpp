@@ -12,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
@@ -46,12 +47,19 @@ struct RoundRecord {
   bool all_inputs_in_time = true;
 };
 
+/// How messages name node `id`: "center" (id 0) or "station <id>"; also the name its process
+/// is started under, so that a message about either points at the same node.
+std::string node_name(int id);
+
 /// A random run id: samples of another run on the same domain carry another id and are dropped.
 std::uint64_t fresh_run_id();
 
 /// How long `nodes` processes on one host may take to discover each other: 30 s, and 2 s per
 /// node from 16 nodes up - at 64 stations on 2 cores discovery took 12-44 s.
 double default_discovery_timeout_s(int nodes);
+
+/// The center's node id (stations are numbered from 1).
+inline constexpr int kCenterNodeId = 0;
 
 /// The harness's key among node ids in drop counts.
 inline constexpr int kHarnessNodeId = -1;

@@ -279,12 +279,12 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
         station.push_back("--rejoin-at-step");
         station.push_back(std::to_string(*rejoin_step));
       }
-      children.spawn(fmt::format("station {}", id), station);
+      children.spawn(node_name(id), station);
     };
     if (!o.external) {
       std::vector<std::string> center{(executable_dir() / "skyfuse-center").string()};
       center.insert(center.end(), common.begin(), common.end());
-      children.spawn("center", center);
+      children.spawn(node_name(kCenterNodeId), center);
       for (int id : ids) spawn_station(id, std::nullopt);
     }
     const auto discovery =
@@ -310,7 +310,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
         const auto step = static_cast<std::uint64_t>(k);
         for (const StationEvent& e : o.kills) {
           if (e.step != step) continue;
-          children.kill_now(fmt::format("station {}", e.station_id));
+          children.kill_now(node_name(e.station_id));
           driver.set_down(e.station_id, true);
           spdlog::info("killed station {} before step {}", e.station_id, step);
         }

@@ -44,7 +44,7 @@ bool fused_by_a_peer(const RoundRecord& r, int id) {
 }
 
 std::string node_key(int node) {
-  return node == 0                ? std::string("center")
+  return node == kCenterNodeId    ? std::string("center")
          : node == kHarnessNodeId ? std::string("harness")
                                   : std::to_string(node);
 }
@@ -192,7 +192,6 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
                                {"rmse_p2p_m", summary.rmse_p2p_m},
                                {"max_abs_diff_central_vs_p2p", summary.max_abs_diff_central_vs_p2p},
                                {"max_abs_diff_between_peers", summary.max_abs_diff_between_peers},
-                               {"peer_spread_max", summary.max_abs_diff_between_peers},
                                {"peer_spread_end", summary.peer_spread_end},
                                {"rounds_closed_incomplete", summary.rounds_closed_incomplete},
                                {"round_deadline_ms", summary.round_deadline_ms},

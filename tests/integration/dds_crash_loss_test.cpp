@@ -70,7 +70,7 @@ TEST(DdsCrash, AKilledStationRestartsAndHoldsItsPeersTrackFromTheNextRound) {
   EXPECT_EQ(summary["rounds_closed_incomplete"].get<int>(), 50);  // no track from 2: 100-149
 
   // Every peer that delivered a track holds the same bits, the restarted station included.
-  EXPECT_EQ(summary["peer_spread_max"].get<double>(), 0.0);
+  EXPECT_EQ(summary["max_abs_diff_between_peers"].get<double>(), 0.0);
   const auto tracks = read_tracks(dir / "run" / "tracks.csv");
   for (int k = 100; k < 150; ++k) EXPECT_FALSE(tracks.contains({k, 2})) << k;
   for (int k = 150; k < 400; ++k) {
@@ -99,8 +99,9 @@ TEST(DdsLoss, TwentyPercentLossOnEveryLinkAtMostDoublesTheError) {
     lost += count.get<std::uint64_t>();
   // 300 steps x (12 peer links + 4 measurement links) at 20 %: 960 expected, sd 28.
   EXPECT_NEAR(static_cast<double>(lost), 960.0, 6 * 28.0);
-  EXPECT_GT(summary["peer_spread_max"].get<double>(), 0.0) << "peers that lost different "
-                                                              "increments cannot agree";
+  EXPECT_GT(summary["max_abs_diff_between_peers"].get<double>(), 0.0)
+      << "peers that lost different "
+         "increments cannot agree";
   const double rmse_clean = clean["rmse_p2p_m"].get<double>();
   const double rmse_lossy = summary["rmse_p2p_m"].get<double>();
   EXPECT_LE(rmse_lossy, 2.0 * rmse_clean) << "lossless " << rmse_clean << " m";
