@@ -36,9 +36,7 @@ class Center {
         ticks_(node_.make_reader<wire::Tick>()),
         measurements_(node_.make_reader<wire::Measurement>()),
         tracks_(node_.make_writer<wire::TrackEstimate>()),
-        tracker_(
-            ConstantAcceleration3D(plan.scenario.time_step_s, plan.scenario.filter.process_noise),
-            initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run)),
+        tracker_(plan.motion_model(), plan.initial_estimate()),
         collector_(plan.participant_ids()),
         gated_(static_cast<std::size_t>(plan.stations), false) {
     stacked_.reserve(gated_.size());
@@ -166,7 +164,7 @@ class Center {
       if (collector_.complete()) return -1;
       if (realtime && epoch_ns_ != 0) {
         close = transport::step_start(epoch_ns_, k, plan_.scenario.time_step_s) +
-                std::chrono::microseconds(std::llround(options_.realtime_deadline_ms * 1000.0));
+                options_.realtime_deadline();
       }
       if (close && std::chrono::system_clock::now() >= *close) return -1;
       if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();

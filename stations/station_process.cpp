@@ -57,9 +57,7 @@ class Station {
         node_(options.node.node_config(fmt::format("skyfuse-station-{}", me.id))),
         presence_(node_, options.node.run_id, me.id),
         io_(node_),
-        tracker_(
-            ConstantAcceleration3D(plan.scenario.time_step_s, plan.scenario.filter.process_noise),
-            initial_estimate(plan.scenario, plan.truth().states.front(), plan.mc_run)),
+        tracker_(plan.motion_model(), plan.initial_estimate()),
         collector_(plan.participant_ids()),
         sensor_(me.position_m),
         noise_(station_noise_covariance(plan.scenario, me, plan.mc_run)),
@@ -118,7 +116,7 @@ class Station {
       if (realtime) {
         const auto start = step_start(k);
         std::this_thread::sleep_until(start);
-        close = start + realtime_deadline();
+        close = start + options_.node.realtime_deadline();
       } else {
         const auto limit =
             k == first ? options_.node.first_tick_timeout() : options_.node.idle_timeout();
@@ -216,9 +214,6 @@ class Station {
 
   std::chrono::system_clock::time_point step_start(std::uint64_t k) const {
     return transport::step_start(epoch_ns_, k, plan_.scenario.time_step_s);
-  }
-  std::chrono::microseconds realtime_deadline() const {
-    return std::chrono::microseconds(std::llround(options_.node.realtime_deadline_ms * 1000.0));
   }
 
   // Collects increments until every expected one is in (all but this station's own while it

@@ -26,6 +26,9 @@ NodeConfig NodeOptions::node_config(const std::string& name) const {
   return config;
 }
 
+std::chrono::microseconds NodeOptions::realtime_deadline() const {
+  return std::chrono::microseconds(std::llround(realtime_deadline_ms * 1000.0));
+}
 std::chrono::microseconds NodeOptions::round_deadline() const {
   return std::chrono::microseconds(std::llround(round_deadline_ms * 1000.0));
 }

@@ -31,5 +31,18 @@ TEST(ConstantAcceleration3D, ProcessNoiseIsBlockDiagonalPerStep) {
   EXPECT_EQ((q - Covariance<9>(q.diagonal().asDiagonal())).norm(), 0.0) << "off-diagonal terms";
 }
 
+// The block-wise covariance propagation is the dense F P F^T + Q with F = jacobian(), and the
+// mean propagation is F x.
+TEST(ConstantAcceleration3D, BlockPropagationIsTheDenseProduct) {
+  const ConstantAcceleration3D model(0.02, {0.5, 0.1, 0.05});
+  const Matrix<9, 9> a = Matrix<9, 9>::Random();
+  const Covariance<9> p = a * a.transpose() + Covariance<9>::Identity();
+  const Vector<9> x = Vector<9>::Random();
+  const Covariance<9>& f = model.jacobian(x);
+  const Covariance<9> dense = f * p * f.transpose() + model.process_noise();
+  EXPECT_LT((model.propagate_covariance(p) - dense).norm(), 1e-13 * dense.norm());
+  EXPECT_LT((model.propagate(x) - f * x).norm(), 1e-14 * x.norm());
+}
+
 }  // namespace
 }  // namespace skyfuse

@@ -10,6 +10,8 @@
 #include <span>
 #include <vector>
 
+#include "skyfuse/core/types.hpp"
+#include "skyfuse/models/constant_acceleration.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
@@ -31,6 +33,10 @@ struct RunPlan {
   TruthTrajectory truth() const {
     return generate_truth(scenario.target, speed_mps, scenario.time_step_s, scenario.steps);
   }
+  /// The filter's motion model and its start x0_hat for this run: what the center and every
+  /// station begin from, so that they begin from the same bits.
+  ConstantAcceleration3D motion_model() const;
+  GaussianState<9> initial_estimate() const;
 };
 
 struct RunOverrides {

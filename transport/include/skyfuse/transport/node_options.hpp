@@ -47,6 +47,8 @@ struct NodeOptions {
 
   NodeConfig node_config(const std::string& name) const;
   std::chrono::microseconds round_deadline() const;
+  /// Real time: how long after its scheduled start a step closes (zero in lock-step).
+  std::chrono::microseconds realtime_deadline() const;
   const NisGate& nis_gate() const { return gate; }
   RunPlan load_plan() const;
   std::chrono::milliseconds discovery_timeout() const;
