@@ -156,8 +156,9 @@ namespace skyfuse::test {
 namespace {
 
 TEST(DdsBench, MeasuresEachStationCountAgainstItsFloorIntoBenchJson) {
-  // Behaviour only: every requested M gets a row with the run and its floors measured, the
-  // latencies are ordered, and the machine is named. What the numbers are is the bench's job.
+  // Behaviour only: every requested M gets a row with the run and its floors measured, its
+  // ratios are those of its rates, and the machine is named. What the numbers are is the bench's
+  // job.
   const auto dir = test_dir();
   const Completed bench =
       run_to_completion({bin("skyfuse"), "bench", "--no-micro", "--stations", "1", "2", "--rounds",

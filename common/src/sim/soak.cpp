@@ -11,7 +11,6 @@
 #include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse {
-namespace {}  // namespace
 
 SoakReport soak(const Scenario& base, int stations, std::int64_t steps) {
   if (steps < 1) throw std::invalid_argument("soak: steps must be >= 1");

@@ -14,6 +14,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 
+#include "skyfuse/core/llt_success.hpp"
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/core/unroll.hpp"
 
@@ -32,9 +33,7 @@ class StackedCholesky {
     size_ = a.rows();
     if (size_ >= kBlockedFromSize) {
       blocked_.compute(a);
-      // Eigen's LLT tests each pivot with `x <= 0`, which a NaN passes: it reports success
-      // with NaN in L. A NaN or Inf anywhere in the lower triangle reaches the diagonal.
-      return blocked_.info() == Eigen::Success && blocked_.matrixLLT().diagonal().allFinite();
+      return llt_succeeded(blocked_);
     }
     reserve(size_);
     const Eigen::Index blocks = size_ / B;

@@ -12,6 +12,7 @@
 #include <Eigen/Cholesky>
 #include <limits>
 
+#include "skyfuse/core/llt_success.hpp"
 #include "skyfuse/core/status.hpp"
 #include "skyfuse/core/types.hpp"
 
@@ -79,10 +80,7 @@ UpdateReport update(GaussianState<N>& state, const Sensor& sensor,
   const Covariance<M> s = h.lazyProduct(pht.template topRows<C>()) + noise;
 
   const Eigen::LLT<Covariance<M>> s_factor(s);
-  // Eigen's LLT lets a NaN pivot through (it tests `x <= 0`); a NaN in S reaches L's diagonal.
-  if (s_factor.info() != Eigen::Success || !s_factor.matrixLLT().diagonal().allFinite()) {
-    return {NumericalStatus::kNotPositiveDefinite};
-  }
+  if (!llt_succeeded(s_factor)) return {NumericalStatus::kNotPositiveDefinite};
 
   // K = P H^T S^-1, computed as (S^-1 H P)^T since S is symmetric.
   const Matrix<N, M> gain = s_factor.solve(pht.transpose()).transpose();
