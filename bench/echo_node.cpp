@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <optional>
 
+#include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/node_options.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/shutdown.hpp"

@@ -9,6 +9,7 @@
 
 #include "lockstep_driver.hpp"
 #include "output_files.hpp"
+#include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "statistics.hpp"
 

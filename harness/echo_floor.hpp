@@ -8,7 +8,7 @@
 #include <chrono>
 
 #include "child_processes.hpp"
-#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/node_config.hpp"
 
 namespace skyfuse::harness {
 

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"
 #include "skyfuse/transport/source_binding.hpp"

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
-#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/node_config.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {

@@ -6,6 +6,7 @@
 
 #include "bench_command.hpp"
 #include "certs_command.hpp"
+#include "demo_command.hpp"
 #include "lockstep_driver.hpp"
 #include "run_command.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"

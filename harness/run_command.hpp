@@ -1,7 +1,6 @@
 #pragma once
 // `skyfuse run`: the system as it is meant to run - one process per station plus the fusion
-// center, over DDS, driven in lock-step by this harness - and `skyfuse demo`, the default
-// scenario through it with a comparison table and plots.
+// center, over DDS, driven in lock-step by this harness.
 
 #include <CLI/App.hpp>
 #include <cstdint>
@@ -55,13 +54,5 @@ int run_run(const RunOptions& options);
 
 /// One DDS run of `plan` with results written to options.out_dir; throws RunAborted on failure.
 RunSummary execute_run(const RunOptions& options, const RunPlan& plan);
-
-struct DemoOptions {
-  std::string out_dir;  ///< empty: results/demo-<date>-<time>
-  int domain = 0;
-  int stations = 4;
-};
-void add_demo_command(CLI::App& app, DemoOptions& options);
-int run_demo(const DemoOptions& options);
 
 }  // namespace skyfuse::harness

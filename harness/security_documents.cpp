@@ -5,7 +5,7 @@
 
 #include <ctime>
 
-#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/node_config.hpp"
 #include "skyfuse/transport/topics.hpp"
 
 namespace skyfuse::harness {

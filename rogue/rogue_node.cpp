@@ -19,6 +19,7 @@
 #include <set>
 
 #include "secure_probe.hpp"
+#include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/node_options.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"

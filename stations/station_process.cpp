@@ -11,6 +11,7 @@
 
 #include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"

@@ -25,6 +25,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "skyfuse/transport/node_config.hpp"
 #include "skyfuse/transport/qos.hpp"
 #include "skyfuse/transport/security.hpp"
 #include "skyfuse/transport/topics.hpp"
@@ -39,34 +40,12 @@ inline std::array<std::uint8_t, 16> to_writer_id(const dds::InstanceHandle_t& ha
   return id;
 }
 
-/// A DDS call failed: entity creation, or a write that could not be delivered in time.
-class DdsError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
-struct NodeConfig {
-  int domain_id = 0;
-  std::string name;  ///< participant name, shown by DDS tools
-  std::optional<std::filesystem::path> qos_file;
-  /// Increments and measurements travel BEST_EFFORT (`--best-effort`): a lost datagram is
-  /// not repaired, and a round closes at its deadline without the sample.
-  bool best_effort_data = false;
-  std::optional<SecurityConfig> security;  ///< none: plain DDS
-};
-
-/// Domain ids above 232 make Fast DDS 2.9 exit the process during participant creation.
-inline constexpr int kMaxDomainId = 232;
-
 /// A std::chrono duration as a DDS Duration_t.
 inline eprosima::fastrtps::Duration_t to_dds_duration(std::chrono::microseconds d) {
   const auto seconds = std::chrono::duration_cast<std::chrono::seconds>(d);
   const auto nanos = std::chrono::duration_cast<std::chrono::nanoseconds>(d - seconds);
   return {static_cast<int32_t>(seconds.count()), static_cast<uint32_t>(nanos.count())};
 }
-
-/// Which writer a sample came from: its DDS instance handle (the writer's GUID), as bytes.
-using WriterId = std::array<std::uint8_t, 16>;
 
 template <typename T>
 class Writer {

@@ -14,7 +14,7 @@
 
 #include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/sim/run_plan.hpp"
-#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/node_config.hpp"
 #include "skyfuse/validation/nis_gate.hpp"
 
 namespace CLI {

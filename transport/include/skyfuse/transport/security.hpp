@@ -9,15 +9,10 @@
 /// or subscribe to which topic comes from the signed permissions document.
 
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
-#include <filesystem>
-#include <string>
+
+#include "skyfuse/transport/node_config.hpp"
 
 namespace skyfuse::transport {
-
-struct SecurityConfig {
-  std::filesystem::path dir;  ///< written by `skyfuse certs`
-  std::string identity;       ///< "harness", "center", "station-3", "observer"
-};
 
 /// Adds the security plugins' properties for `config.identity` to `qos`. Throws
 /// SecurityFolderError if the folder lacks a file this identity needs.

@@ -15,7 +15,7 @@
 #include <optional>
 
 #include "skyfuse/tracking/step_collector.hpp"
-#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/node_config.hpp"
 
 namespace skyfuse::transport {
 
