@@ -9,6 +9,7 @@
 #include <random>
 #include <set>
 
+#include "realtime_rounds.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
@@ -321,109 +322,43 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
   tick.epoch_ns(epoch_ns);
   d.ticks.write(tick);
 
-  const std::size_t m = d.station_ids.size();
-  auto source_index = [&](int source) -> std::size_t {  // 0: center, 1..M: stations by id
-    if (source == kCenterNodeId) return 0;
-    const auto it = std::lower_bound(d.station_ids.begin(), d.station_ids.end(), source);
-    return (it != d.station_ids.end() && *it == source)
-               ? static_cast<std::size_t>(it - d.station_ids.begin()) + 1
-               : m + 1;
-  };
-  struct Pending {
-    RoundRecord record;
-    std::vector<bool> have;
-    std::size_t tracks = 0;
-    std::size_t measurements = 0;
-  };
-  std::map<std::uint64_t, Pending> pending;
-  auto entry = [&](std::uint64_t step) -> Pending& {
-    Pending& p = pending[step];
-    if (p.have.empty()) {
-      p.record.step = step;
-      p.record.peers.resize(m);
-      p.record.measurements.resize(m);
-      p.record.track_age_us.assign(m + 1, 0.0);
-      p.have.assign(2 * m + 1, false);  // tracks (M + 1), then measurements (M)
-    }
-    return p;
-  };
-
+  RealtimeRounds rounds(d.station_ids, static_cast<std::uint64_t>(steps));
   std::vector<RoundRecord> done;
   const auto give_up = Clock::now() + timeout +
                        std::chrono::milliseconds(static_cast<long>(steps * time_step_s * 1000.0));
   while (done.size() < static_cast<std::size_t>(steps)) {
+    // The same refusals as in lock-step, by kind: content, then where the sample belongs,
+    // then whether its writer speaks for its node, then duplicates.
     wire::TrackEstimate t;
     transport::WriterId writer;
-    // The same refusals as in lock-step, by kind, except the step window: in real time the
-    // nodes run ahead of each other by design, so any step of the run is kept until complete.
-    const auto refuse = [&](DropKind kind, const char* what, int id, std::uint32_t step) {
-      transport::count_drop(d.own_drops, kind, what, id, step);
-    };
     while (d.tracks.take(t, &writer)) {
-      const std::size_t i = source_index(t.source_id());
       const GaussianState<9> estimate = transport::from_wire(t);
-      const std::optional<DropKind> why = [&]() -> std::optional<DropKind> {
-        if (const auto bad = track_content_refusal(t, estimate, d.run_id)) return bad;
-        if (i > m) return DropKind::kUnknownStation;
-        if (t.step() >= static_cast<std::uint32_t>(steps)) return DropKind::kFutureStep;
-        if (t.step() < done.size()) return DropKind::kStaleStep;
-        if (!d.track_sources.accept(t.source_id(), writer) || entry(t.step()).have[i]) {
-          return DropKind::kDuplicate;
-        }
-        return std::nullopt;
-      }();
-      if (why) {
-        refuse(*why, "track", t.source_id(), t.step());
-        continue;
+      auto why = track_content_refusal(t, estimate, d.run_id);
+      if (!why) why = rounds.check_track(t.source_id(), t.step());
+      if (!why && !d.track_sources.accept(t.source_id(), writer)) why = DropKind::kDuplicate;
+      if (!why) {
+        const auto scheduled = transport::step_start(epoch_ns, t.step(), time_step_s);
+        const double age_us =
+            std::chrono::duration<double, std::micro>(std::chrono::system_clock::now() - scheduled)
+                .count();
+        why = rounds.offer_track(
+            t.source_id(), t.step(),
+            ReceivedTrack{estimate, {t.contributors().begin(), t.contributors().end()}}, age_us);
       }
-      Pending& p = entry(t.step());
-      p.have[i] = true;
-      ++p.tracks;
-      const auto scheduled = transport::step_start(epoch_ns, t.step(), time_step_s);
-      p.record.track_age_us[i] =
-          std::chrono::duration<double, std::micro>(std::chrono::system_clock::now() - scheduled)
-              .count();
-      if (t.contributors().size() != m) p.record.all_inputs_in_time = false;
-      (i == 0 ? p.record.central : p.record.peers[i - 1]) =
-          ReceivedTrack{estimate, {t.contributors().begin(), t.contributors().end()}};
+      if (why) transport::count_drop(d.own_drops, *why, "track", t.source_id(), t.step());
     }
     wire::Measurement z;
     while (d.measurements.take(z, &writer)) {
-      const std::size_t i = source_index(z.station_id());
-      const std::optional<DropKind> why = [&]() -> std::optional<DropKind> {
-        if (const auto bad = measurement_content_refusal(z, transport::from_wire(z), d.run_id)) {
-          return bad;
-        }
-        if (i == 0 || i > m) return DropKind::kUnknownStation;
-        if (z.step() >= static_cast<std::uint32_t>(steps)) return DropKind::kFutureStep;
-        if (z.step() < done.size()) return DropKind::kStaleStep;
-        if (!d.measurement_sources.accept(z.station_id(), writer) || entry(z.step()).have[m + i]) {
-          return DropKind::kDuplicate;
-        }
-        return std::nullopt;
-      }();
-      if (why) {
-        refuse(*why, "measurement", z.station_id(), z.step());
-        continue;
+      const StationObservation9 observation = transport::from_wire(z);
+      auto why = measurement_content_refusal(z, observation, d.run_id);
+      if (!why) why = rounds.check_measurement(z.station_id(), z.step());
+      if (!why && !d.measurement_sources.accept(z.station_id(), writer)) {
+        why = DropKind::kDuplicate;
       }
-      Pending& p = entry(z.step());
-      p.have[m + i] = true;
-      ++p.measurements;
-      p.record.measurements[i - 1] = Vector3(z.z()[0], z.z()[1], z.z()[2]);
+      if (!why) why = rounds.offer_measurement(z.station_id(), z.step(), Vector3(observation.z));
+      if (why) transport::count_drop(d.own_drops, *why, "measurement", z.station_id(), z.step());
     }
-    // Hand over finished steps in order.
-    while (!pending.empty()) {
-      auto first = pending.begin();
-      if (first->first != done.size() || first->second.tracks < m + 1 ||
-          first->second.measurements < m) {
-        break;
-      }
-      RoundRecord& r = first->second.record;
-      r.latency = std::chrono::nanoseconds(
-          static_cast<long>(1e3 * *std::max_element(r.track_age_us.begin(), r.track_age_us.end())));
-      done.push_back(std::move(r));
-      pending.erase(first);
-    }
+    rounds.hand_over(done);
     if (done.size() == static_cast<std::size_t>(steps)) break;
     d.check();
     d.read_statuses();

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "skyfuse/core/types.hpp"
+#include "round_record.hpp"
 #include "skyfuse/transport/node_config.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
@@ -28,25 +28,6 @@ class RunAborted : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// A node's track as received: the estimate and the stations fused into it.
-struct ReceivedTrack {
-  GaussianState<9> estimate;
-  std::vector<int> contributors;  ///< ascending station id
-};
-
-struct RoundRecord {
-  std::uint64_t step = 0;
-  /// Each empty when the node delivered nothing for the step (down, or past the deadline).
-  std::optional<ReceivedTrack> central;
-  std::vector<std::optional<ReceivedTrack>> peers;   ///< ascending station id
-  std::vector<std::optional<Vector3>> measurements;  ///< ascending station id
-  std::chrono::nanoseconds latency{0};               ///< tick published -> last track received
-  /// Real time only: age of each track on arrival (scheduled step start -> received), the center
-  /// first then the stations in ascending id; and whether every node fused all M inputs.
-  std::vector<double> track_age_us;
-  bool all_inputs_in_time = true;
-};
-
 /// How messages name node `id`: "center" (id 0) or "station <id>"; also the name its process
 /// is started under, so that a message about either points at the same node.
 std::string node_name(int id);
@@ -57,9 +38,6 @@ std::uint64_t fresh_run_id();
 /// How long `nodes` processes on one host may take to discover each other: 30 s, and 2 s per
 /// node from 16 nodes up - at 64 stations on 2 cores discovery took 12-44 s.
 double default_discovery_timeout_s(int nodes);
-
-/// The center's node id (stations are numbered from 1).
-inline constexpr int kCenterNodeId = 0;
 
 /// The harness's key among node ids in drop counts.
 inline constexpr int kHarnessNodeId = -1;

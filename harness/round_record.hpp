@@ -1,0 +1,36 @@
+#pragma once
+// What the harness records of one step: every node's track and every station's measurement,
+// as received, with their timing. Plain data, no DDS.
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "skyfuse/core/types.hpp"
+
+namespace skyfuse::harness {
+
+/// The center's node id (stations are numbered from 1).
+inline constexpr int kCenterNodeId = 0;
+
+/// A node's track as received: the estimate and the stations fused into it.
+struct ReceivedTrack {
+  GaussianState<9> estimate;
+  std::vector<int> contributors;  ///< ascending station id
+};
+
+struct RoundRecord {
+  std::uint64_t step = 0;
+  /// Each empty when the node delivered nothing for the step (down, or past the deadline).
+  std::optional<ReceivedTrack> central;
+  std::vector<std::optional<ReceivedTrack>> peers;   ///< ascending station id
+  std::vector<std::optional<Vector3>> measurements;  ///< ascending station id
+  std::chrono::nanoseconds latency{0};               ///< tick published -> last track received
+  /// Real time only: age of each track on arrival (scheduled step start -> received), the center
+  /// first then the stations in ascending id; and whether every node fused all M inputs.
+  std::vector<double> track_age_us;
+  bool all_inputs_in_time = true;
+};
+
+}  // namespace skyfuse::harness
