@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/tracking/central_tracker.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -48,8 +49,7 @@ class Center {
     // (which orders by id), so that rows can be stacked in scenario order.
     const std::span<const int> ids = collector_.station_ids();
     for (const StationConfig& s : plan.participants()) {
-      index_of_slot_.push_back(
-          static_cast<std::size_t>(std::lower_bound(ids.begin(), ids.end(), s.id) - ids.begin()));
+      index_of_slot_.push_back(*position_of(ids, s.id));  // every participant is in it
     }
   }
 

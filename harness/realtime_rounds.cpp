@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "skyfuse/core/sorted_ids.hpp"
+
 namespace skyfuse::harness {
 
 RealtimeRounds::RealtimeRounds(std::vector<int> station_ids, std::uint64_t steps)
@@ -11,9 +13,9 @@ RealtimeRounds::RealtimeRounds(std::vector<int> station_ids, std::uint64_t steps
 
 std::optional<std::size_t> RealtimeRounds::slot(int node) const {
   if (node == kCenterNodeId) return 0;
-  const auto it = std::lower_bound(station_ids_.begin(), station_ids_.end(), node);
-  if (it == station_ids_.end() || *it != node) return std::nullopt;
-  return static_cast<std::size_t>(it - station_ids_.begin()) + 1;
+  const auto station = position_of(station_ids_, node);
+  if (!station) return std::nullopt;
+  return *station + 1;
 }
 
 std::optional<DropKind> RealtimeRounds::check_step(std::uint64_t step) const {

@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse {
@@ -102,9 +103,7 @@ class StepCollector {
   };
 
   std::optional<std::size_t> index_of(int station_id) const {
-    const auto it = std::lower_bound(ids_.begin(), ids_.end(), station_id);
-    if (it == ids_.end() || *it != station_id) return std::nullopt;
-    return static_cast<std::size_t>(it - ids_.begin());
+    return position_of(ids_, station_id);
   }
   const Row* row_for(std::uint64_t step) const {
     if (step == step_) return &current_;
