@@ -10,6 +10,9 @@
 
 #include "skyfuse/fusion/increment_fusion.hpp"
 #include "skyfuse/fusion/stacked_ekf.hpp"
+#include "skyfuse/models/constant_acceleration.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/truth.hpp"
@@ -22,7 +25,7 @@ namespace {
 // A converged prior and M stations' measurements at one instant of the default scenario.
 struct Snapshot {
   GaussianState<9> prior;
-  std::vector<StationObservation<StationSensor>> observations;
+  std::vector<StationObservation<RangeAzimuthElevation<9>>> observations;
   std::vector<InformationIncrement<9>> increments;
   std::vector<double> weights;
 };
@@ -39,11 +42,11 @@ Snapshot make_snapshot(int stations) {
     // Beyond the scenario's ten stations, reuse their sites with new ids.
     const StationConfig& site =
         scenario.stations[static_cast<std::size_t>(i) % scenario.stations.size()];
-    StationObservation<StationSensor> obs;
+    StationObservation<RangeAzimuthElevation<9>> obs;
     obs.station_id = i + 1;
-    obs.sensor = StationSensor(site.position_m + Vector3(0.0, 0.0, i / 10));
-    obs.noise = station_noise_covariance(scenario, site, 0);
-    obs.z = simulate_measurement(obs.sensor, x.head<3>(), obs.noise, 1, 0, i + 1, 500);
+    obs.sensor = RangeAzimuthElevation<9>(site.position_m + Vector3(0.0, 0.0, i / 10));
+    obs.noise = station_noise_covariance<3>(scenario, site, 0);
+    obs.z = simulate_measurement(obs.sensor, x, obs.noise, 1, 0, i + 1, 500);
     s.observations.push_back(obs);
     s.increments.emplace_back();
     compute_increment(obs.station_id, s.prior, obs.sensor, obs.z, obs.noise, s.increments.back());
@@ -55,10 +58,10 @@ Snapshot make_snapshot(int stations) {
 void StationStep(benchmark::State& state) {
   const Snapshot s = make_snapshot(1);
   const Scenario scenario = load_default_scenario();
-  const ConstantAcceleration3D motion(scenario.time_step_s, scenario.filter.process_noise);
+  const auto motion = make_motion_model<ConstantAcceleration3D>(scenario);
   PeerTracker tracker(motion, s.prior);
   const auto& obs = s.observations.front();
-  Increment9 increment;
+  InformationIncrement<9> increment;
   for (auto _ : state) {
     tracker.predict();
     benchmark::DoNotOptimize(
@@ -82,7 +85,7 @@ BENCHMARK(CheckObservation);
 
 void Predict(benchmark::State& state) {
   const Scenario scenario = load_default_scenario();
-  const ConstantAcceleration3D motion(scenario.time_step_s, scenario.filter.process_noise);
+  const auto motion = make_motion_model<ConstantAcceleration3D>(scenario);
   const GaussianState<9> start = make_snapshot(1).prior;
   GaussianState<9> s = start;
   for (auto _ : state) {
@@ -106,7 +109,7 @@ BENCHMARK(FuseIncrements)->RangeMultiplier(2)->Range(1, 128);
 
 void StackedEkfUpdate(benchmark::State& state) {
   const Snapshot s = make_snapshot(static_cast<int>(state.range(0)));
-  StackedEkf<9, StationSensor> stacked;
+  StackedEkf<9, RangeAzimuthElevation<9>> stacked;
   GaussianState<9> posterior;
   for (auto _ : state) {
     posterior = s.prior;

@@ -38,7 +38,8 @@ class Center {
         ticks_(node_.make_reader<wire::Tick>()),
         measurements_(node_.make_reader<wire::Measurement>()),
         tracks_(node_.make_writer<wire::TrackEstimate>()),
-        tracker_(plan.motion_model(), plan.initial_estimate()),
+        tracker_(plan.motion_model<transport::WireModel>(),
+                 plan.initial_estimate<transport::WireModel>()),
         collector_(plan.participant_ids()),
         gated_(static_cast<std::size_t>(plan.stations), false) {
     stacked_.reserve(gated_.size());
@@ -76,11 +77,11 @@ class Center {
       if (const int code = wait_for_measurements(k); code >= 0) return code;
       // Stack in scenario order, as the in-process sweep does, so that both compute the same
       // bits: the measurements that arrived by the deadline and passed the NIS gate.
-      const std::span<const StationObservation9> by_id = collector_.payloads();
+      const std::span<const transport::WireObservation> by_id = collector_.payloads();
       const std::span<const int> ids = collector_.station_ids();
       std::fill(gated_.begin(), gated_.end(), false);
       for (std::size_t j = 0; j < by_id.size(); ++j) {
-        const StationObservation9& o = by_id[j];
+        const transport::WireObservation& o = by_id[j];
         if (collector_.filled(j) &&
             options_.nis_gate().refuses(tracker_.estimate(), o.sensor, o.z, o.noise)) {
           gated_[j] = true;
@@ -96,7 +97,7 @@ class Center {
       for (std::size_t j = 0; j < by_id.size(); ++j) {
         if (fused(j)) stacked_ids_.push_back(ids[j]);
       }
-      const std::span<const StationObservation9> stacked = stacked_;
+      const std::span<const transport::WireObservation> stacked = stacked_;
       const std::span<const int> contributors = stacked_ids_;
       const UpdateReport report =
           stacked.empty() ? UpdateReport{NumericalStatus::kOk, 0.0} : tracker_.update(stacked);
@@ -195,7 +196,7 @@ class Center {
     if (sample.run_id() != options_.run_id) return DropKind::kWrongRun;
     // Garbage is garbage whoever sent it; then who it claims to be and when; then whether the
     // writer really speaks for that station.
-    const StationObservation9 observation = transport::from_wire(sample);
+    const transport::WireObservation observation = transport::from_wire(sample);
     if (const auto why = check_observation(observation)) return why;
     return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
                             observation);
@@ -209,14 +210,14 @@ class Center {
   transport::Reader<wire::Measurement> measurements_;
   transport::Writer<wire::TrackEstimate> tracks_;
   transport::ReaderWaitSet wait_set_;
-  CentralTracker tracker_;
-  StepCollector<StationObservation9> collector_;
+  CentralTracker<transport::WireModel, transport::WireSensor> tracker_;
+  StepCollector<transport::WireObservation> collector_;
   std::vector<std::size_t> index_of_slot_;
   std::uint64_t epoch_ns_ = 0;  // real time: system-clock start of step 0
   // This step's measurements refused by the NIS gate (by collector index), and what is fused:
   // sized once, no allocation per step.
   std::vector<bool> gated_;
-  std::vector<StationObservation9> stacked_;
+  std::vector<transport::WireObservation> stacked_;
   std::vector<int> stacked_ids_;
   transport::SourceBinding sources_;
   DropTally drops_;

@@ -14,6 +14,7 @@
 #include <numbers>
 
 #include "fuzz_input.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 
 namespace {

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <typeinfo>
 
+#include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 
 namespace {
@@ -74,14 +75,26 @@ void check_accepted(const Scenario& s) {
     if (!station.position_m.allFinite() || !finite_positive(station.weight)) {
       finding("station position or weight not finite");
     }
-    for (double sigma : station.noise_std) {
+    const auto sensor = skyfuse::find_sensor(station.sensor.kind);
+    if (!sensor) finding("a sensor kind that is not registered");
+    if (station.sensor.noise_std.size() != sensor->measurement_dim) {
+      finding("noise_std not one value per measured component");
+    }
+    for (double sigma : station.sensor.noise_std) {
       if (!finite_positive(sigma)) finding("noise_std not finite and > 0");
     }
   }
-  const auto& q = s.filter.process_noise;
-  if (!finite_positive(q.position) || !finite_positive(q.velocity) ||
-      !finite_positive(q.acceleration)) {
-    finding("process noise not finite and > 0");
+  const auto model = skyfuse::find_motion_model(s.filter.motion_model.kind);
+  if (!model) finding("a motion model that is not registered");
+  if (s.filter.motion_model.process_noise_std.size() !=
+      static_cast<Eigen::Index>(model->noise_fields.size())) {
+    finding("process noise not one value per field of the model");
+  }
+  for (double q : s.filter.motion_model.process_noise_std) {
+    if (!finite_positive(q)) finding("process noise not finite and > 0");
+  }
+  if (s.filter.initial_covariance_diag.size() != model->state_dim) {
+    finding("initial covariance not one value per state component");
   }
   for (double p : s.filter.initial_covariance_diag) {
     if (!finite_positive(p)) finding("initial covariance not finite and > 0");

@@ -37,7 +37,7 @@ std::vector<int> with_center(std::vector<int> ids) {
 // mode that does not match its source, numbers that are not finite. The harness records what
 // the nodes fused, so it refuses what they refuse; lock-step and real time alike.
 std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
-                                              const GaussianState<9>& estimate,
+                                              const transport::WireEstimate& estimate,
                                               std::uint64_t run_id) {
   if (t.run_id() != run_id) return DropKind::kWrongRun;
   if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterNodeId)) {
@@ -51,7 +51,7 @@ std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
 
 // The same for a measurement: another run, or an observation the center would refuse.
 std::optional<DropKind> measurement_content_refusal(const wire::Measurement& m,
-                                                    const StationObservation9& observation,
+                                                    const transport::WireObservation& observation,
                                                     std::uint64_t run_id) {
   if (m.run_id() != run_id) return DropKind::kWrongRun;
   return check_observation(observation);
@@ -143,7 +143,7 @@ struct LockstepDriver::Impl {
   }
   std::optional<DropKind> measurement_refusal(const wire::Measurement& m,
                                               const transport::WriterId& writer) {
-    const StationObservation9 observation = transport::from_wire(m);
+    const transport::WireObservation observation = transport::from_wire(m);
     if (const auto why = measurement_content_refusal(m, observation, run_id)) return why;
     return transport::admit(measurement_collector, measurement_sources, m.step(), m.station_id(),
                             writer, Vector3(observation.z));
@@ -332,7 +332,7 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     wire::TrackEstimate t;
     transport::WriterId writer;
     while (d.tracks.take(t, &writer)) {
-      const GaussianState<9> estimate = transport::from_wire(t);
+      const transport::WireEstimate estimate = transport::from_wire(t);
       auto why = track_content_refusal(t, estimate, d.run_id);
       if (!why) why = rounds.check_track(t.source_id(), t.step());
       if (!why && !d.track_sources.accept(t.source_id(), writer)) why = DropKind::kDuplicate;
@@ -349,7 +349,7 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     }
     wire::Measurement z;
     while (d.measurements.take(z, &writer)) {
-      const StationObservation9 observation = transport::from_wire(z);
+      const transport::WireObservation observation = transport::from_wire(z);
       auto why = measurement_content_refusal(z, observation, d.run_id);
       if (!why) why = rounds.check_measurement(z.station_id(), z.step());
       if (!why && !d.measurement_sources.accept(z.station_id(), writer)) {

@@ -53,7 +53,7 @@ std::vector<Attack> attacks_at(std::uint64_t run, std::uint32_t k, int victim) {
 wire::InformationIncrement increment_for(const Attack& a) {
   // Well-formed but for the one fault the attack carries: a plausible range-like information
   // along x, about a prior with P = I.
-  PeerContribution c;
+  transport::WireContribution c;
   c.increment.station_id = a.station;
   c.increment.delta_information(0, 0) = 1e-4;
   c.prior.covariance = Covariance<9>::Identity();

@@ -23,7 +23,7 @@ constexpr std::uint32_t kStepAhead = 2;
 
 // Samples that pass every content check, so that only who sent them can keep them out.
 wire::InformationIncrement plausible_increment(std::uint64_t run, std::uint32_t step, int station) {
-  PeerContribution c;
+  transport::WireContribution c;
   c.increment.station_id = station;
   c.increment.delta_information(0, 0) = 1e-4;  // a plausible range-like information along x
   c.prior.covariance = Covariance<9>::Identity();

@@ -8,14 +8,14 @@
 #include <string>
 #include <vector>
 
-#include "skyfuse/validation/sample_checks.hpp"
+#include "skyfuse/validation/physical_bounds.hpp"
 
 namespace skyfuse::station {
 
 SimulatedSensor::SimulatedSensor(const RunPlan& plan, const StationConfig& station)
     : truth_(plan.truth()),
       sensor_(station.position_m),
-      noise_(station_noise_covariance(plan.scenario, station, plan.mc_run)),
+      noise_(station_noise_covariance<3>(plan.scenario, station, plan.mc_run)),
       seed_(plan.scenario.seed),
       mc_run_(plan.mc_run),
       station_id_(station.id) {}
@@ -24,7 +24,7 @@ Vector3 SimulatedSensor::measurement(std::uint64_t step) {
   if (step >= truth_.states.size()) {
     throw std::out_of_range(fmt::format("no simulated measurement for step {}", step));
   }
-  return simulate_measurement(sensor_, truth_.position(step), noise_, seed_, mc_run_, station_id_,
+  return simulate_measurement(sensor_, truth_.states[step], noise_, seed_, mc_run_, station_id_,
                               step);
 }
 
@@ -72,7 +72,7 @@ ReplayedSensor::ReplayedSensor(const std::filesystem::path& csv, int station_id)
                                            csv.string(), number, kReplayHeader, line));
     }
     if (id != station_id) continue;
-    if (check_reported_values(z)) {
+    if (transport::WireSensor::check_reported(z)) {
       throw std::runtime_error(fmt::format(
           "{}: line {}: station {} step {}: range must be in (0, {}] m, azimuth in [-pi, pi] and "
           "elevation in [-pi/2, pi/2] rad, got {}, {}, {}",

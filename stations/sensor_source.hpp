@@ -10,6 +10,7 @@
 
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/transport/wire_configuration.hpp"
 
 namespace skyfuse::station {
 
@@ -27,7 +28,7 @@ class SimulatedSensor final : public SensorSource {
 
  private:
   TruthTrajectory truth_;
-  StationSensor sensor_;
+  RangeAzimuthElevation<9> sensor_;  // sees the true kinematics
   Covariance<3> noise_;
   std::uint64_t seed_;
   std::uint64_t mc_run_;

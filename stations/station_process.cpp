@@ -58,10 +58,11 @@ class Station {
         node_(options.node.node_config(fmt::format("skyfuse-station-{}", me.id))),
         presence_(node_, options.node.run_id, me.id),
         io_(node_),
-        tracker_(plan.motion_model(), plan.initial_estimate()),
+        tracker_(plan.motion_model<transport::WireModel>(),
+                 plan.initial_estimate<transport::WireModel>()),
         collector_(plan.participant_ids()),
         sensor_(me.position_m),
-        noise_(station_noise_covariance(plan.scenario, me, plan.mc_run)),
+        noise_(station_noise_covariance<3>(plan.scenario, me, plan.mc_run)),
         syncing_(options.rejoin_step.has_value()) {
     // Weights in the collector's (ascending id) order.
     for (int id : collector_.station_ids()) weights_.push_back(plan.participant(id)->weight);
@@ -179,7 +180,7 @@ class Station {
     if (sample.run_id() != options_.node.run_id) return DropKind::kWrongRun;
     // Garbage is garbage whoever sent it; then who it claims to be and when; then whether the
     // writer really speaks for that station.
-    const PeerContribution contribution = transport::from_wire(sample);
+    const transport::WireContribution contribution = transport::from_wire(sample);
     if (const auto why = check_contribution(contribution)) return why;
     return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
                             contribution);
@@ -235,11 +236,11 @@ class Station {
 
   void publish_own_sample(std::uint64_t k) {
     const auto step = static_cast<std::uint32_t>(k);
-    StationObservation9 observation{me_.id, sensor_, source_->measurement(k), noise_};
+    transport::WireObservation observation{me_.id, sensor_, source_->measurement(k), noise_};
     io_.measurements.write(transport::to_wire(observation, options_.node.run_id, step));
     if (syncing_) return;  // no prior yet: nothing to compute an increment against
 
-    PeerContribution own;  // a zero increment until computed
+    transport::WireContribution own;  // a zero increment until computed
     own.prior = tracker_.estimate();
     own.increment.station_id = me_.id;
     // What the center refuses, this station does not fuse either: both architectures see the
@@ -270,10 +271,10 @@ class Station {
     round_increments_.clear();
     round_weights_.clear();
     round_ids_.clear();
-    const GaussianState<9>* reference = nullptr;  // the lowest-id contribution's prior
+    const transport::WireEstimate* reference = nullptr;  // the lowest-id contribution's prior
     for (std::size_t i = 0; i < collector_.station_ids().size(); ++i) {
       if (!collector_.filled(i)) continue;
-      const PeerContribution& c = collector_.payloads()[i];
+      const transport::WireContribution& c = collector_.payloads()[i];
       if (reference == nullptr) reference = &c.prior;
       round_increments_.push_back(c.increment);
       round_weights_.push_back(weights_[i]);
@@ -312,15 +313,15 @@ class Station {
   transport::DdsNode node_;
   transport::NodePresence presence_;
   StationEndpoints io_;
-  PeerTracker tracker_;
-  StepCollector<PeerContribution> collector_;
-  StationSensor sensor_;
+  PeerTracker<transport::WireModel> tracker_;
+  StepCollector<transport::WireContribution> collector_;
+  transport::WireSensor sensor_;
   Covariance<3> noise_;
   std::vector<double> weights_;
   std::uint64_t epoch_ns_ = 0;  // real time: the system-clock start of step 0
   bool syncing_;                // restarted, and no peer's prior taken yet
   // The round's increments, weights and ids (reserved once: no allocation per step).
-  std::vector<Increment9> round_increments_;
+  std::vector<InformationIncrement<transport::WireModel::kDim>> round_increments_;
   std::vector<double> round_weights_;
   std::vector<int> round_ids_;
   std::uint64_t lost_ = 0;     // increments removed by the simulated loss

@@ -13,6 +13,9 @@
 
 #include "skyfuse/fusion/increment_fusion.hpp"
 #include "skyfuse/fusion/stacked_ekf.hpp"
+#include "skyfuse/models/constant_acceleration.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/truth.hpp"
@@ -73,43 +76,44 @@ struct Problem {
 
 TEST(HotPathAllocations, StationStepFusionAndStackedUpdateAllocateNothing) {
   const Problem p;
-  const ConstantAcceleration3D motion(p.scenario.time_step_s, p.scenario.filter.process_noise);
+  const auto motion = make_motion_model<ConstantAcceleration3D>(p.scenario);
   for (int m : {1, 4, 10}) {
     const auto count = static_cast<std::size_t>(m);
-    PeerTracker peer(motion, initial_estimate(p.scenario, p.truth.states[0], 0));
+    PeerTracker peer(motion,
+                     initial_estimate<ConstantAcceleration3D>(p.scenario, p.truth.states[0], 0));
     GaussianState<9> central = peer.estimate();
-    StackedEkf<9, StationSensor> stacked;
-    std::vector<StationObservation<StationSensor>> observations(count);
+    StackedEkf<9, RangeAzimuthElevation<9>> stacked;
+    std::vector<StationObservation<RangeAzimuthElevation<9>>> observations(count);
     // A station's side as the process runs it: contributions (increment + prior) gathered by
     // a StepCollector, their increments copied into the round in id order and fused onto the
     // lowest id's prior.
     std::vector<int> ids;
     for (int i = 0; i < m; ++i) ids.push_back(p.scenario.stations[static_cast<std::size_t>(i)].id);
-    StepCollector<PeerContribution> collector(ids);
-    std::vector<Increment9> round;
+    StepCollector<PeerContribution<9>> collector(ids);
+    std::vector<InformationIncrement<9>> round;
     round.reserve(count);
     const std::vector<double> weights(count, 1.0);
     for (int i = 0; i < m; ++i) {
       const StationConfig& s = p.scenario.stations[static_cast<std::size_t>(i)];
-      observations[static_cast<std::size_t>(i)] = {s.id, StationSensor(s.position_m),
+      observations[static_cast<std::size_t>(i)] = {s.id, RangeAzimuthElevation<9>(s.position_m),
                                                    Vector3::Zero(),
-                                                   station_noise_covariance(p.scenario, s, 0)};
+                                                   station_noise_covariance<3>(p.scenario, s, 0)};
     }
 
     auto step = [&](std::size_t k) {
       for (auto& obs : observations) {
-        obs.z = simulate_measurement(obs.sensor, p.truth.position(k), obs.noise, 1, 0,
-                                     obs.station_id, k);
+        obs.z =
+            simulate_measurement(obs.sensor, p.truth.states[k], obs.noise, 1, 0, obs.station_id, k);
       }
       for (const auto& obs : observations) {
-        PeerContribution c;
+        PeerContribution<9> c;
         c.prior = peer.estimate();
         ASSERT_EQ(peer.make_increment(obs.station_id, obs.sensor, obs.z, obs.noise, c.increment),
                   NumericalStatus::kOk);
         ASSERT_FALSE(collector.offer(k, obs.station_id, c).has_value());
       }
       round.clear();
-      for (const PeerContribution& c : collector.payloads()) round.push_back(c.increment);
+      for (const PeerContribution<9>& c : collector.payloads()) round.push_back(c.increment);
       ASSERT_EQ(peer.fuse_round(collector.payloads().front().prior, round, weights).status,
                 NumericalStatus::kOk);
       collector.advance();

@@ -13,6 +13,7 @@
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/scenario_option.hpp"
 #include "skyfuse/transport/security_folder.hpp"
+#include "skyfuse/transport/wire_configuration.hpp"
 
 namespace skyfuse::transport {
 
@@ -34,7 +35,9 @@ std::chrono::microseconds NodeOptions::round_deadline() const {
 }
 
 RunPlan NodeOptions::load_plan() const {
-  return make_run_plan(load_scenario_or_default(scenario_path), overrides);
+  RunPlan plan = make_run_plan(load_scenario_or_default(scenario_path), overrides);
+  require_wire_configuration(plan.scenario, plan.stations);
+  return plan;
 }
 
 std::chrono::milliseconds NodeOptions::discovery_timeout() const {

@@ -2,7 +2,7 @@
 
 namespace skyfuse::transport {
 
-wire::Measurement to_wire(const StationObservation9& observation, std::uint64_t run_id,
+wire::Measurement to_wire(const WireObservation& observation, std::uint64_t run_id,
                           std::uint32_t step) {
   wire::Measurement sample;
   sample.run_id(run_id);
@@ -10,25 +10,25 @@ wire::Measurement to_wire(const StationObservation9& observation, std::uint64_t 
   sample.station_id(observation.station_id);
   for (int i = 0; i < 3; ++i) {
     sample.z()[i] = observation.z(i);
-    sample.station_position()[i] = observation.sensor.station_position()(i);
+    sample.station_position()[i] = observation.sensor.site()(i);
   }
   pack_upper<3>(observation.noise, sample.noise().data());
   return sample;
 }
 
-StationObservation9 from_wire(const wire::Measurement& sample) {
-  StationObservation9 observation;
+WireObservation from_wire(const wire::Measurement& sample) {
+  WireObservation observation;
   observation.station_id = sample.station_id();
   observation.z = Vector3(sample.z()[0], sample.z()[1], sample.z()[2]);
-  observation.sensor = StationSensor(Vector3(
+  observation.sensor = WireSensor(Vector3(
       sample.station_position()[0], sample.station_position()[1], sample.station_position()[2]));
   observation.noise = unpack_upper<3>(sample.noise().data());
   return observation;
 }
 
-wire::InformationIncrement to_wire(const PeerContribution& contribution, std::uint64_t run_id,
+wire::InformationIncrement to_wire(const WireContribution& contribution, std::uint64_t run_id,
                                    std::uint32_t step) {
-  const Increment9& increment = contribution.increment;
+  const InformationIncrement<9>& increment = contribution.increment;
   wire::InformationIncrement sample;
   sample.run_id(run_id);
   sample.step(step);
@@ -42,9 +42,9 @@ wire::InformationIncrement to_wire(const PeerContribution& contribution, std::ui
   return sample;
 }
 
-PeerContribution from_wire(const wire::InformationIncrement& sample) {
-  PeerContribution contribution;
-  Increment9& increment = contribution.increment;
+WireContribution from_wire(const wire::InformationIncrement& sample) {
+  WireContribution contribution;
+  InformationIncrement<9>& increment = contribution.increment;
   increment.station_id = sample.station_id();
   increment.delta_information = unpack_upper<9>(sample.delta_information().data());
   contribution.prior.covariance = unpack_upper<9>(sample.prior_covariance().data());
@@ -55,8 +55,8 @@ PeerContribution from_wire(const wire::InformationIncrement& sample) {
   return contribution;
 }
 
-wire::TrackEstimate to_wire(const GaussianState<9>& estimate, std::uint64_t run_id,
-                            std::uint32_t step, int source_id, wire::TrackSource mode,
+wire::TrackEstimate to_wire(const WireEstimate& estimate, std::uint64_t run_id, std::uint32_t step,
+                            int source_id, wire::TrackSource mode,
                             std::span<const int> contributors) {
   wire::TrackEstimate sample;
   sample.run_id(run_id);
@@ -69,8 +69,8 @@ wire::TrackEstimate to_wire(const GaussianState<9>& estimate, std::uint64_t run_
   return sample;
 }
 
-GaussianState<9> from_wire(const wire::TrackEstimate& sample) {
-  GaussianState<9> estimate;
+WireEstimate from_wire(const wire::TrackEstimate& sample) {
+  WireEstimate estimate;
   for (int i = 0; i < 9; ++i) estimate.mean(i) = sample.x()[i];
   estimate.covariance = unpack_upper<9>(sample.covariance().data());
   return estimate;

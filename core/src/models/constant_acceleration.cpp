@@ -2,8 +2,9 @@
 
 namespace skyfuse {
 
-ConstantAcceleration3D::ConstantAcceleration3D(double time_step_s, const ProcessNoiseStd& noise)
+ConstantAcceleration3D::ConstantAcceleration3D(double time_step_s, const NoiseStd& noise_std)
     : time_step_s_(time_step_s) {
+  const auto [position, velocity, acceleration] = noise_std;
   const double dt = time_step_s;
   const Matrix3 eye = Matrix3::Identity();
   transition_.setIdentity();
@@ -12,10 +13,9 @@ ConstantAcceleration3D::ConstantAcceleration3D(double time_step_s, const Process
   transition_.block<3, 3>(kVelocity, kAcceleration) = dt * eye;
 
   process_noise_.setZero();
-  process_noise_.block<3, 3>(kPosition, kPosition) = noise.position * noise.position * eye;
-  process_noise_.block<3, 3>(kVelocity, kVelocity) = noise.velocity * noise.velocity * eye;
-  process_noise_.block<3, 3>(kAcceleration, kAcceleration) =
-      noise.acceleration * noise.acceleration * eye;
+  process_noise_.block<3, 3>(kPosition, kPosition) = position * position * eye;
+  process_noise_.block<3, 3>(kVelocity, kVelocity) = velocity * velocity * eye;
+  process_noise_.block<3, 3>(kAcceleration, kAcceleration) = acceleration * acceleration * eye;
 }
 
 ConstantAcceleration3D::State ConstantAcceleration3D::propagate(const State& x) const {

@@ -1,12 +1,5 @@
 #include "skyfuse/scenario/measurement_simulation.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <numbers>
-
-#include "skyfuse/core/angles.hpp"
-#include "skyfuse/random/counter_rng.hpp"
-
 namespace skyfuse {
 
 double draw_noise_scale(const NoiseScaleConfig& config, std::uint64_t seed, std::uint64_t run,
@@ -24,42 +17,19 @@ double draw_noise_scale(const NoiseScaleConfig& config, std::uint64_t seed, std:
   return config.floor;
 }
 
-Covariance<3> station_noise_covariance(const Scenario& scenario, const StationConfig& station,
-                                       std::uint64_t run) {
+Eigen::MatrixXd station_noise_covariance(const Scenario& scenario, const StationConfig& station,
+                                         std::uint64_t run) {
   const double scale = draw_noise_scale(scenario.noise_scale, scenario.seed, run, station.id);
-  return (scale * station.noise_std.array().square()).matrix().asDiagonal();
+  return (scale * station.sensor.noise_std.array().square()).matrix().asDiagonal();
 }
 
-Vector3 simulate_measurement(const StationSensor& sensor, const Vector3& true_position,
-                             const Covariance<3>& noise, std::uint64_t seed, std::uint64_t run,
-                             int station_id, std::uint64_t step) {
-  CounterRng rng(
-      {seed, run, static_cast<std::uint64_t>(station_id), step, NoiseStream::kMeasurement});
-  Vector3 z = sensor.measure_position(true_position);
-  for (int i = 0; i < 3; ++i) z(i) += std::sqrt(noise(i, i)) * rng.normal();
-  z(StationSensor::kAzimuth) = wrap_angle(z(StationSensor::kAzimuth));
-  // A sensor reports elevation within [-pi/2, pi/2]. Near the zenith the noise would carry it
-  // past, and every receiver - the station itself, the center, the harness's recorder - would
-  // refuse the measurement (check_reported_values).
-  constexpr double kHalfPi = std::numbers::pi / 2.0;
-  z(StationSensor::kElevation) = std::clamp(z(StationSensor::kElevation), -kHalfPi, kHalfPi);
-  return z;
-}
-
-GaussianState<9> initial_estimate(const Scenario& scenario, const Vector<9>& true_initial_state,
-                                  std::uint64_t run) {
-  GaussianState<9> estimate;
-  estimate.covariance = scenario.filter.initial_covariance_diag.asDiagonal();
-  if (scenario.filter.initial_state_error) {
-    estimate.mean = true_initial_state + *scenario.filter.initial_state_error;
-    return estimate;
-  }
+Eigen::VectorXd initial_state_error(const Scenario& scenario, std::uint64_t run) {
+  if (scenario.filter.initial_state_error) return *scenario.filter.initial_state_error;
+  const Eigen::VectorXd& p0 = scenario.filter.initial_covariance_diag;
   CounterRng rng({scenario.seed, run, 0, 0, NoiseStream::kInitialState});
-  estimate.mean = true_initial_state;
-  for (int i = 0; i < 9; ++i) {
-    estimate.mean(i) += std::sqrt(scenario.filter.initial_covariance_diag(i)) * rng.normal();
-  }
-  return estimate;
+  Eigen::VectorXd error(p0.size());
+  for (Eigen::Index i = 0; i < p0.size(); ++i) error(i) = std::sqrt(p0(i)) * rng.normal();
+  return error;
 }
 
 }  // namespace skyfuse

@@ -1,8 +1,10 @@
 #include "skyfuse/scenario/scenario_loader.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -10,6 +12,7 @@
 #include <sstream>
 
 #include "scenario/yaml_field.hpp"
+#include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse {
@@ -100,8 +103,43 @@ TargetConfig read_target(const YamlField& field) {
   return target;
 }
 
+// "[range_m, azimuth_rad, elevation_rad]": what a sensor's noise_std lists.
+std::string component_list(const SensorInfo& sensor) {
+  std::string out;
+  for (std::string_view c : sensor.components) out += (out.empty() ? "" : ", ") + std::string(c);
+  return "[" + out + "]";
+}
+
+// One positive standard deviation per component the sensor measures.
+Eigen::VectorXd read_noise_std(const YamlField& noise, const SensorInfo& sensor) {
+  const auto items = noise.sequence();
+  if (items.size() != sensor.components.size()) {
+    noise.fail(fmt::format("expected {}, got '{}'", component_list(sensor), noise.text()));
+  }
+  Eigen::VectorXd out(static_cast<Eigen::Index>(items.size()));
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    out(static_cast<Eigen::Index>(i)) = items[i].positive_number();
+  }
+  return out;
+}
+
+SensorConfig read_sensor(const YamlField& field) {
+  field.allow_only({"kind", "noise_std"});
+  SensorConfig sensor;
+  const YamlField kind = field.required("kind");
+  sensor.kind = kind.string();
+  const std::optional<SensorInfo> info = find_sensor(sensor.kind);
+  if (!info) {
+    kind.fail(
+        fmt::format("unknown sensor kind '{}' (registered: {})", sensor.kind, sensor_kinds()));
+  }
+  sensor.noise_std = read_noise_std(field.required("noise_std"), *info);
+  return sensor;
+}
+
 StationConfig read_station(const YamlField& field) {
-  field.allow_only({"id", "position_m", "noise_std", "weight"});
+  // `noise_std` beside the id is paper 000's shorthand for a range/azimuth/elevation sensor.
+  field.allow_only({"id", "position_m", "sensor", "noise_std", "weight"});
   StationConfig station;
   const YamlField id = field.required("id");
   const std::int64_t raw_id = id.integer();
@@ -110,14 +148,31 @@ StationConfig read_station(const YamlField& field) {
     id.fail(fmt::format("must be an integer in [1, 100000], got {}", id.text()));
   }
   station.id = static_cast<int>(raw_id);
-  station.position_m = read_vector3(field.required("position_m"));
-  const YamlField noise = field.required("noise_std");
-  const auto noise_items = noise.sequence();
-  if (noise_items.size() != 3) {
-    noise.fail(
-        fmt::format("expected [range_m, azimuth_rad, elevation_rad], got '{}'", noise.text()));
+
+  const auto sensor = field.optional("sensor");
+  const auto shorthand_noise = field.optional("noise_std");
+  if (sensor && shorthand_noise) {
+    shorthand_noise->fail("give the noise inside 'sensor', not beside it");
   }
-  for (int i = 0; i < 3; ++i) station.noise_std(i) = noise_items[i].positive_number();
+  if (sensor) {
+    station.sensor = read_sensor(*sensor);
+  } else if (shorthand_noise) {
+    station.sensor.kind = "range_azimuth_elevation";
+    station.sensor.noise_std = read_noise_std(*shorthand_noise, *find_sensor(station.sensor.kind));
+  } else {
+    field.fail("missing field 'sensor' (e.g. {kind: range_azimuth_elevation, noise_std: [...]})");
+  }
+
+  const SensorInfo info = *find_sensor(station.sensor.kind);  // read_sensor checked the kind
+  const auto position = field.optional("position_m");
+  if (info.needs_site && !position) {
+    field.fail(fmt::format("missing field 'position_m' (a {} sensor stands somewhere)", info.kind));
+  }
+  if (!info.needs_site && position) {
+    position->fail(
+        fmt::format("a {} sensor rides on the target and has no site; remove it", info.kind));
+  }
+  if (position) station.position_m = read_vector3(*position);
   if (const auto weight = field.optional("weight")) station.weight = weight->positive_number();
   return station;
 }
@@ -142,32 +197,88 @@ NoiseScaleConfig read_noise_scale(const YamlField& field) {
   return config;
 }
 
-FilterConfig read_filter(const YamlField& field) {
-  field.allow_only({"process_noise_std", "initial_covariance_diag", "initial_state_error"});
-  FilterConfig filter;
-  const YamlField q = field.required("process_noise_std");
-  q.allow_only({"position_m", "velocity_mps", "acceleration_mps2"});
-  filter.process_noise.position = q.required("position_m").positive_number();
-  filter.process_noise.velocity = q.required("velocity_mps").positive_number();
-  filter.process_noise.acceleration = q.required("acceleration_mps2").positive_number();
-
-  const YamlField p0 = field.required("initial_covariance_diag");
-  if (p0.is_scalar()) {
-    filter.initial_covariance_diag.setConstant(p0.positive_number());
-  } else {
-    const auto items = p0.sequence();
-    if (items.size() != 9) p0.fail(fmt::format("expected 1 or 9 numbers, got '{}'", p0.text()));
-    for (int i = 0; i < 9; ++i) filter.initial_covariance_diag(i) = items[i].positive_number();
+// One standard deviation per field the model names, e.g. {position_m: 0.5, velocity_mps: 0.1}.
+Eigen::VectorXd read_process_noise(const YamlField& field, const MotionModelInfo& model) {
+  if (!field.is_map()) {
+    field.fail(fmt::format("expected a mapping {{{}}}, got '{}'",
+                           fmt::join(model.noise_fields, ": ..., "), field.text()));
   }
+  field.allow_only(model.noise_fields);
+  Eigen::VectorXd noise(static_cast<Eigen::Index>(model.noise_fields.size()));
+  for (std::size_t i = 0; i < model.noise_fields.size(); ++i) {
+    noise(static_cast<Eigen::Index>(i)) =
+        field.required(std::string(model.noise_fields[i])).positive_number();
+  }
+  return noise;
+}
+
+MotionModelConfig read_motion_model(const YamlField& field) {
+  field.allow_only({"kind", "process_noise_std"});
+  MotionModelConfig model;
+  const YamlField kind = field.required("kind");
+  model.kind = kind.string();
+  const std::optional<MotionModelInfo> info = find_motion_model(model.kind);
+  if (!info) {
+    kind.fail(fmt::format("unknown motion model '{}' (registered: {})", model.kind,
+                          motion_model_kinds()));
+  }
+  model.process_noise_std = read_process_noise(field.required("process_noise_std"), *info);
+  return model;
+}
+
+// n numbers, or one number for all n.
+Eigen::VectorXd read_diagonal(const YamlField& field, int n) {
+  if (field.is_scalar()) return Eigen::VectorXd::Constant(n, field.positive_number());
+  const auto items = field.sequence();
+  if (static_cast<int>(items.size()) != n) {
+    field.fail(fmt::format("expected 1 or {} numbers, got '{}'", n, field.text()));
+  }
+  Eigen::VectorXd out(n);
+  for (int i = 0; i < n; ++i) out(i) = items[static_cast<std::size_t>(i)].positive_number();
+  return out;
+}
+
+FilterConfig read_filter(const YamlField& field) {
+  // `process_noise_std` directly under the filter is paper 000's shorthand for the
+  // constant-acceleration model.
+  field.allow_only({"kind", "motion_model", "process_noise_std", "initial_covariance_diag",
+                    "initial_state_error"});
+  FilterConfig filter;
+  if (const auto kind = field.optional("kind")) {
+    filter.kind = kind->string();
+    if (std::find(std::begin(kFilterKinds), std::end(kFilterKinds), filter.kind) ==
+        std::end(kFilterKinds)) {
+      kind->fail(fmt::format("unknown filter '{}' (registered: {})", filter.kind,
+                             fmt::join(kFilterKinds, ", ")));
+    }
+  }
+  const auto model = field.optional("motion_model");
+  const auto shorthand_noise = field.optional("process_noise_std");
+  if (model && shorthand_noise) {
+    shorthand_noise->fail("give the process noise inside 'motion_model', not beside it");
+  }
+  if (model) {
+    filter.motion_model = read_motion_model(*model);
+  } else if (shorthand_noise) {
+    filter.motion_model.kind = "constant_acceleration_3d";
+    filter.motion_model.process_noise_std =
+        read_process_noise(*shorthand_noise, *find_motion_model(filter.motion_model.kind));
+  } else {
+    field.fail(
+        "missing field 'motion_model' (e.g. {kind: constant_acceleration_3d, "
+        "process_noise_std: {...}})");
+  }
+  const int dim = find_motion_model(filter.motion_model.kind)->state_dim;
+  filter.initial_covariance_diag = read_diagonal(field.required("initial_covariance_diag"), dim);
 
   if (const auto error = field.optional("initial_state_error")) {
     if (error->is_scalar()) {
       if (error->string() != "sampled") {
-        error->fail(
-            fmt::format("expected 'sampled' or a list of 9 numbers, got '{}'", error->text()));
+        error->fail(fmt::format("expected 'sampled' or a list of {} numbers, got '{}'", dim,
+                                error->text()));
       }
     } else {
-      filter.initial_state_error = error->numbers(9);
+      filter.initial_state_error = error->numbers(dim);
     }
   }
   return filter;
@@ -209,7 +320,17 @@ Scenario read_scenario(const YamlField& root) {
   if (const auto noise = root.optional("measurement_noise")) {
     s.noise_scale = read_noise_scale(*noise);
   }
-  s.filter = read_filter(root.required("filter"));
+  const YamlField filter = root.required("filter");
+  s.filter = read_filter(filter);
+  const MotionModelInfo model = *find_motion_model(s.filter.motion_model.kind);
+  for (std::size_t i = 0; i < s.stations.size(); ++i) {
+    const SensorInfo sensor = *find_sensor(s.stations[i].sensor.kind);
+    if (sensor.state_entries > model.state_dim) {
+      station_items[i].fail(
+          fmt::format("a {} sensor reads {} state entries; motion model {} has only {}",
+                      sensor.kind, sensor.state_entries, model.kind, model.state_dim));
+    }
+  }
   return s;
 }
 
@@ -221,6 +342,12 @@ void validate_scenario(const Scenario& scenario, const std::string& source) {
         generate_truth(scenario.target, speed, scenario.time_step_s, scenario.steps);
     for (std::size_t i = 0; i < scenario.stations.size(); ++i) {
       const StationConfig& station = scenario.stations[i];
+      const std::optional<SensorInfo> sensor = find_sensor(station.sensor.kind);
+      if (!sensor) {
+        throw ConfigError(fmt::format("{}: stations[{}].sensor.kind: unknown sensor kind '{}'",
+                                      source, i, station.sensor.kind));
+      }
+      if (!sensor->needs_site) continue;  // it rides on the target
       for (std::size_t k = 0; k < truth.states.size(); ++k) {
         const double distance = (truth.position(k) - station.position_m).norm();
         if (distance < kMinStationSeparationM) {

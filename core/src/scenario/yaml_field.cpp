@@ -42,7 +42,11 @@ std::optional<YamlField> YamlField::optional(const std::string& key) const {
   return YamlField(child, path_.empty() ? key : path_ + "." + key, *source_);
 }
 
-void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
+void YamlField::allow_only(std::initializer_list<std::string_view> allowed) const {
+  allow_only(std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+void YamlField::allow_only(std::span<const std::string_view> allowed) const {
   if (!node_.IsMap()) fail(fmt::format("expected a mapping, got '{}'", text()));
   for (const auto& entry : node_) {
     // YAML allows any node as a key (`? [a, b] : 1`); as<std::string>() would throw yaml-cpp's
@@ -52,8 +56,8 @@ void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
       key_field.fail(fmt::format("expected a field name, got '{}'", key_field.text()));
     }
     const std::string key = entry.first.Scalar();
-    const bool known =
-        std::any_of(allowed.begin(), allowed.end(), [&](const char* name) { return key == name; });
+    const bool known = std::any_of(allowed.begin(), allowed.end(),
+                                   [&](std::string_view name) { return key == name; });
     if (!known) {
       YamlField(entry.first, path_.empty() ? key : path_ + "." + key, *source_)
           .fail(fmt::format("unknown field (allowed: {})", fmt::join(allowed, ", ")));

@@ -7,7 +7,9 @@
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
@@ -20,6 +22,7 @@ class YamlField {
 
   const std::string& path() const { return path_; }
   bool is_scalar() const { return node_.IsScalar(); }
+  bool is_map() const { return node_.IsMap(); }
   bool is_sequence() const { return node_.IsSequence(); }
   /// The value as the user wrote it, for error messages.
   std::string text() const;
@@ -27,7 +30,8 @@ class YamlField {
   YamlField required(const std::string& key) const;
   std::optional<YamlField> optional(const std::string& key) const;
   /// Refuses keys outside `allowed`, so a misspelt field is not silently ignored.
-  void allow_only(std::initializer_list<const char*> allowed) const;
+  void allow_only(std::initializer_list<std::string_view> allowed) const;
+  void allow_only(std::span<const std::string_view> allowed) const;
 
   double number() const;
   double positive_number() const;

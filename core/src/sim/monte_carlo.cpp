@@ -10,6 +10,9 @@
 #include <span>
 #include <thread>
 
+#include "skyfuse/registry/dispatch.hpp"
+#include "skyfuse/registry/make_parts.hpp"
+#include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/tracking/central_tracker.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"
@@ -21,13 +24,20 @@ namespace {
 // One station count's pair of trackers stepping through one run. Measurements come from
 // outside, indexed like scenario.stations, so that several station counts can share one
 // simulation of them: station i's draw does not depend on how many stations run.
+template <typename Model, template <int> class SensorOf>
 class RunStepper {
  public:
+  static constexpr int kDim = Model::kDim;
+  using Sensor = SensorOf<kDim>;
+  using Measurement = Vector<Sensor::kMeasDim>;
+  using Observation = StationObservation<Sensor>;
+  using Increment = InformationIncrement<kDim>;
+
   RunStepper(const Scenario& scenario, const TruthTrajectory& truth, int stations,
              std::uint64_t run)
-      : motion_(scenario.time_step_s, scenario.filter.process_noise),
-        central_(motion_, initial_estimate(scenario, truth.states.front(), run)),
-        peers_(motion_, initial_estimate(scenario, truth.states.front(), run)) {
+      : motion_(make_motion_model<Model>(scenario)),
+        central_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
+        peers_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)) {
     const auto m = static_cast<std::size_t>(stations);
     // Everything sized once per run: the step loop allocates nothing.
     observations_.resize(m);
@@ -35,8 +45,8 @@ class RunStepper {
     for (std::size_t i = 0; i < m; ++i) {
       const StationConfig& station = scenario.stations[i];
       observations_[i].station_id = station.id;
-      observations_[i].sensor = StationSensor(station.position_m);
-      observations_[i].noise = station_noise_covariance(scenario, station, run);
+      observations_[i].sensor = make_sensor<Sensor>(station);
+      observations_[i].noise = station_noise_covariance<Sensor::kMeasDim>(scenario, station, run);
     }
     // Fusion sums in ascending station id whatever order the scenario lists them in.
     order_.resize(m);
@@ -54,14 +64,14 @@ class RunStepper {
     trace_.nis_central.resize(steps);
   }
 
-  const std::vector<StationObservation9>& observations() const { return observations_; }
+  const std::vector<Observation>& observations() const { return observations_; }
 
   // Updates both trackers with step k's measurements (z[i] belongs to scenario.stations[i]),
   // records, then predicts to k + 1.
-  void step(std::size_t k, const Vector<9>& x, std::span<const Vector3> z,
+  void step(std::size_t k, const Vector<9>& x, std::span<const Measurement> z,
             const StepObserver& observer) {
     for (std::size_t j = 0; j < order_.size(); ++j) {
-      StationObservation9& obs = observations_[order_[j]];
+      Observation& obs = observations_[order_[j]];
       obs.z = z[order_[j]];
       const NumericalStatus status =
           peers_.make_increment(obs.station_id, obs.sensor, obs.z, obs.noise, increments_[j]);
@@ -81,18 +91,18 @@ class RunStepper {
     }
 
     const Vector3 p = x.head<3>();
-    const Vector3 p_central = central_.estimate().mean.head<3>();
-    const Vector3 p_p2p = peers_.estimate().mean.head<3>();
+    const Vector3 p_central = central_.estimate().mean.template head<3>();
+    const Vector3 p_p2p = peers_.estimate().mean.template head<3>();
     trace_.sq_error_central[k] = (p - p_central).squaredNorm();
     trace_.sq_error_p2p[k] = (p - p_p2p).squaredNorm();
     // P^-1 is the fused information matrix the peers hold anyway: e^T Y e.
-    const Vector<9> error = x - peers_.estimate().mean;
+    const Vector<kDim> error = Model::from_kinematics(x) - peers_.estimate().mean;
     trace_.nees_p2p[k] = error.dot(peers_.information() * error);
     trace_.nis_central[k] = central_report.nis;
     trace_.max_abs_diff_m = std::max(trace_.max_abs_diff_m, (p_central - p_p2p).norm());
     if (observer) {
-      observer(
-          {static_cast<int>(k), x, central_.estimate(), peers_.estimate(), central_report.nis});
+      observer({static_cast<int>(k), x, EstimateView::of(central_.estimate()),
+                EstimateView::of(peers_.estimate()), central_report.nis});
     }
     central_.predict();
     peers_.predict();
@@ -101,43 +111,79 @@ class RunStepper {
   RunTrace take_trace() { return std::move(trace_); }
 
  private:
-  ConstantAcceleration3D motion_;
-  CentralTracker central_;
-  PeerTracker peers_;
-  std::vector<StationObservation9> observations_;  // scenario order
-  std::vector<Increment9> increments_;             // ascending station id
-  std::vector<std::size_t> order_;                 // ascending id -> scenario index
+  Model motion_;
+  CentralTracker<Model, Sensor> central_;
+  PeerTracker<Model> peers_;
+  std::vector<Observation> observations_;  // scenario order
+  std::vector<Increment> increments_;      // ascending station id
+  std::vector<std::size_t> order_;         // ascending id -> scenario index
   std::vector<double> ordered_weights_;
   RunTrace trace_;
 };
 
 // One run for each of `station_counts`, all fed from one simulation of the measurements of the
 // largest count's stations.
+template <typename Model, template <int> class SensorOf>
 std::vector<RunTrace> simulate_runs(const Scenario& scenario, const TruthTrajectory& truth,
                                     std::span<const int> station_counts, std::uint64_t run,
                                     const StepObserver& observer = {}) {
-  std::vector<RunStepper> steppers;
+  using Stepper = RunStepper<Model, SensorOf>;
+  // The sensors as they see the truth: the target's kinematics, whatever the filter's model.
+  using TruthSensor = SensorOf<9>;
+  std::vector<Stepper> steppers;
   steppers.reserve(station_counts.size());
   for (int m : station_counts) steppers.emplace_back(scenario, truth, m, run);
   // The stepper with the most stations knows every station that is simulated.
   const auto most = static_cast<std::size_t>(
       std::max_element(station_counts.begin(), station_counts.end()) - station_counts.begin());
-  const std::vector<StationObservation9>& stations = steppers[most].observations();
-  std::vector<Vector3> z(stations.size());
+  const auto& stations = steppers[most].observations();
+  std::vector<TruthSensor> truth_sensors;
+  truth_sensors.reserve(stations.size());
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    truth_sensors.push_back(make_sensor<TruthSensor>(scenario.stations[i]));
+  }
+  std::vector<typename Stepper::Measurement> z(stations.size());
 
   const auto steps = static_cast<std::size_t>(scenario.steps);
   for (std::size_t k = 0; k < steps; ++k) {
     const Vector<9>& x = truth.states[k];
     for (std::size_t i = 0; i < z.size(); ++i) {
-      z[i] = simulate_measurement(stations[i].sensor, x.head<3>(), stations[i].noise, scenario.seed,
-                                  run, stations[i].station_id, k);
+      z[i] = simulate_measurement(truth_sensors[i], x, stations[i].noise, scenario.seed, run,
+                                  stations[i].station_id, k);
     }
-    for (RunStepper& stepper : steppers) stepper.step(k, x, z, observer);
+    for (Stepper& stepper : steppers) stepper.step(k, x, z, observer);
   }
   std::vector<RunTrace> traces;
   traces.reserve(steppers.size());
-  for (RunStepper& stepper : steppers) traces.push_back(stepper.take_trace());
+  for (Stepper& stepper : steppers) traces.push_back(stepper.take_trace());
   return traces;
+}
+
+// simulate_runs for the scenario's motion model and sensor kind.
+std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
+                                               const TruthTrajectory& truth,
+                                               std::span<const int> station_counts,
+                                               std::uint64_t run,
+                                               const StepObserver& observer = {}) {
+  std::vector<RunTrace> traces;
+  const int most = *std::max_element(station_counts.begin(), station_counts.end());
+  dispatch_configuration(scenario, most,
+                         [&]<typename Model, template <int> class SensorOf>(
+                             std::type_identity<Model>, SensorTemplate<SensorOf>) {
+                           traces = simulate_runs<Model, SensorOf>(scenario, truth, station_counts,
+                                                                   run, observer);
+                         });
+  return traces;
+}
+
+// Degrees of freedom of the NEES (the state) and of one station's NIS (its sensor).
+struct Dof {
+  int state = 0;
+  int measurement = 0;
+};
+Dof dof_of(const Scenario& scenario) {
+  return {find_motion_model(scenario.filter.motion_model.kind)->state_dim,
+          find_sensor(scenario.stations.front().sensor.kind)->measurement_dim};
 }
 
 void check_station_count(const Scenario& scenario, int stations) {
@@ -153,7 +199,7 @@ RunTrace simulate_run(const Scenario& scenario, const TruthTrajectory& truth, in
                       std::uint64_t run, const StepObserver& observer) {
   check_station_count(scenario, stations);
   const int counts[] = {stations};
-  return std::move(simulate_runs(scenario, truth, counts, run, observer).front());
+  return std::move(simulate_configured_runs(scenario, truth, counts, run, observer).front());
 }
 
 namespace {
@@ -190,13 +236,13 @@ namespace {
 
 // Reduces one station count's traces in run order: the same bits whatever the thread count.
 MonteCarloSummary summarise(const std::vector<RunTrace>& traces, int stations, double speed_mps,
-                            int steps_in_run) {
+                            int steps_in_run, Dof dof) {
   MonteCarloSummary s;
   s.stations = stations;
   s.speed_mps = speed_mps;
   s.runs = static_cast<int>(traces.size());
   s.steps = steps_in_run;
-  s.anees_band = average_chi_square_band(9, s.runs);
+  s.anees_band = average_chi_square_band(dof.state, s.runs);
   const auto steps = static_cast<std::size_t>(steps_in_run);
   double sum_sq_central = 0.0;
   double sum_sq_p2p = 0.0;
@@ -223,7 +269,7 @@ MonteCarloSummary summarise(const std::vector<RunTrace>& traces, int stations, d
   s.rmse_p2p_m = std::sqrt(sum_sq_p2p / samples);
   s.anees = sum_anees / static_cast<double>(steps);
   s.anees_steps_in_band = in_band / static_cast<double>(steps);
-  s.anis_per_dof = sum_nis / samples / (3.0 * stations);
+  s.anis_per_dof = sum_nis / samples / static_cast<double>(dof.measurement * stations);
   return s;
 }
 
@@ -243,8 +289,8 @@ std::vector<MonteCarloSummary> run_monte_carlo(const Scenario& scenario,
       settings.stations.size(), std::vector<RunTrace>(static_cast<std::size_t>(settings.runs)));
   std::mutex progress_mutex;
   parallel_runs(settings.runs, settings.threads, [&](int run) {
-    std::vector<RunTrace> traces =
-        simulate_runs(scenario, truth, settings.stations, static_cast<std::uint64_t>(run));
+    std::vector<RunTrace> traces = simulate_configured_runs(scenario, truth, settings.stations,
+                                                            static_cast<std::uint64_t>(run));
     for (std::size_t c = 0; c < traces.size(); ++c) {
       by_count[c][static_cast<std::size_t>(run)] = std::move(traces[c]);
     }
@@ -256,8 +302,8 @@ std::vector<MonteCarloSummary> run_monte_carlo(const Scenario& scenario,
 
   std::vector<MonteCarloSummary> summaries;
   for (std::size_t c = 0; c < by_count.size(); ++c) {
-    summaries.push_back(
-        summarise(by_count[c], settings.stations[c], settings.speed_mps, scenario.steps));
+    summaries.push_back(summarise(by_count[c], settings.stations[c], settings.speed_mps,
+                                  scenario.steps, dof_of(scenario)));
   }
   return summaries;
 }

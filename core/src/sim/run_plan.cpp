@@ -4,19 +4,13 @@
 
 #include <stdexcept>
 
-#include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 
 namespace skyfuse {
 
-ConstantAcceleration3D RunPlan::motion_model() const {
-  return ConstantAcceleration3D(scenario.time_step_s, scenario.filter.process_noise);
-}
-
-GaussianState<9> RunPlan::initial_estimate() const {
+Vector<9> RunPlan::true_initial_state() const {
   // Only the first true state is needed: a trajectory of one step, not of the whole run.
-  const TruthTrajectory start = generate_truth(scenario.target, speed_mps, scenario.time_step_s, 1);
-  return skyfuse::initial_estimate(scenario, start.states.front(), mc_run);
+  return generate_truth(scenario.target, speed_mps, scenario.time_step_s, 1).states.front();
 }
 
 const StationConfig* RunPlan::participant(int station_id) const {

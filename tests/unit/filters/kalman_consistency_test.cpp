@@ -32,8 +32,8 @@ Vector<9> draw(CounterRng& rng, const Covariance<9>& cov) {
 }
 
 // Truth from (q_truth), filter told q_filter; position measured with std 2 m.
-ConsistencyResult run_linear_gaussian(const ProcessNoiseStd& q_truth,
-                                      const ProcessNoiseStd& q_filter) {
+ConsistencyResult run_linear_gaussian(const ConstantAcceleration3D::NoiseStd& q_truth,
+                                      const ConstantAcceleration3D::NoiseStd& q_filter) {
   const ConstantAcceleration3D truth_model(0.1, q_truth);
   const ConstantAcceleration3D filter_model(0.1, q_filter);
   const PositionSensor<9> sensor;
@@ -72,7 +72,7 @@ ConsistencyResult run_linear_gaussian(const ProcessNoiseStd& q_truth,
 }
 
 TEST(KalmanFilter, AneesLiesInsideIts95PercentBandOnALinearGaussianCase) {
-  const ProcessNoiseStd q{0.05, 0.2, 0.5};
+  const ConstantAcceleration3D::NoiseStd q{0.05, 0.2, 0.5};
   const ConsistencyResult r = run_linear_gaussian(q, q);
   EXPECT_TRUE(r.band.contains(r.time_averaged_anees))
       << "ANEES " << r.time_averaged_anees << " outside [" << r.band.lower << ", " << r.band.upper

@@ -19,6 +19,17 @@ std::string default_with(const std::string& from, const std::string& to) {
   return text.replace(at, from.size(), to);
 }
 
+// The embedded default scenario with every occurrence of `from` replaced (at least one).
+std::string default_with_all(const std::string& from, const std::string& to) {
+  std::string text(default_scenario_yaml());
+  std::size_t at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error("test fixture: '" + from + "' not found");
+  for (; at != std::string::npos; at = text.find(from, at + to.size())) {
+    text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
 // The message the loader throws for `yaml`, or a failure if it accepts it.
 std::string rejection(const std::string& yaml) {
   try {
@@ -39,12 +50,15 @@ TEST(ScenarioLoader, LoadsTheDefaultScenarioWithThePapersParameters) {
   ASSERT_EQ(s.target.speeds_mps.size(), 2U);
   EXPECT_DOUBLE_EQ(s.target.speeds_mps[0] * 3.6, 100.0);
   EXPECT_DOUBLE_EQ(s.target.speeds_mps[1] * 3.6, 300.0);
-  EXPECT_DOUBLE_EQ(s.filter.process_noise.position, 0.5);
-  EXPECT_DOUBLE_EQ(s.filter.process_noise.velocity, 0.1);
-  EXPECT_DOUBLE_EQ(s.filter.process_noise.acceleration, 0.05);
-  EXPECT_EQ(s.filter.initial_covariance_diag, Vector<9>::Ones());
+  EXPECT_EQ(s.filter.kind, "ekf");
+  EXPECT_EQ(s.filter.motion_model.kind, "constant_acceleration_3d");
+  EXPECT_EQ(s.filter.motion_model.process_noise_std, Vector3(0.5, 0.1, 0.05));
+  EXPECT_EQ(s.filter.initial_covariance_diag, Eigen::VectorXd::Ones(9));
   EXPECT_FALSE(s.filter.initial_state_error.has_value());
-  EXPECT_EQ(s.stations[0].noise_std, Vector3(0.1, 0.01, 0.01));
+  for (const StationConfig& station : s.stations) {
+    EXPECT_EQ(station.sensor.kind, "range_azimuth_elevation") << "station " << station.id;
+    EXPECT_EQ(station.sensor.noise_std, Vector3(0.1, 0.01, 0.01)) << "station " << station.id;
+  }
   EXPECT_DOUBLE_EQ(s.stations[0].weight, 1.0);
   EXPECT_EQ(s.noise_scale.model, NoiseScaleConfig::Model::kPaper);
   ASSERT_EQ(s.target.manoeuvres.size(), 2U);
@@ -54,8 +68,12 @@ TEST(ScenarioLoader, LoadsTheDefaultScenarioWithThePapersParameters) {
 TEST(ScenarioLoader, RefusesAMissingField) {
   EXPECT_EQ(rejection(default_with("time_step_s: 0.02\n", "")),
             "test.yaml: (top level): missing field 'time_step_s'");
-  EXPECT_EQ(rejection(default_with("position_m: [-400.0, 1200.0, 40.0], ", "")),
-            "test.yaml: stations[0]: missing field 'position_m' (line 34)");
+  EXPECT_EQ(rejection(default_with("    position_m: [-400.0, 1200.0, 40.0]\n", "")),
+            "test.yaml: stations[0]: missing field 'position_m' (a range_azimuth_elevation sensor "
+            "stands somewhere) (line 36)");
+  EXPECT_EQ(rejection(default_with("    sensor: &radar", "    radar: &radar")),
+            "test.yaml: stations[0].radar: unknown field (allowed: id, position_m, sensor, "
+            "noise_std, weight) (line 38)");
 }
 
 TEST(ScenarioLoader, RefusesAWrongType) {
@@ -72,21 +90,22 @@ TEST(ScenarioLoader, RefusesAWrongType) {
 TEST(ScenarioLoader, RefusesANonPositiveVariance) {
   EXPECT_EQ(
       rejection(default_with("noise_std: [0.1, 0.01, 0.01]}", "noise_std: [0.1, 0.0, 0.01]}")),
-      "test.yaml: stations[0].noise_std[1]: must be > 0, got 0.0 (line 34)");
+      "test.yaml: stations[0].sensor.noise_std[1]: must be > 0, got 0.0 (line 38)");
   EXPECT_EQ(
       rejection(default_with("noise_std: [0.1, 0.01, 0.01]}", "noise_std: [-0.1, 0.01, 0.01]}")),
-      "test.yaml: stations[0].noise_std[0]: must be > 0, got -0.1 (line 34)");
+      "test.yaml: stations[0].sensor.noise_std[0]: must be > 0, got -0.1 (line 38)");
   EXPECT_EQ(rejection(default_with("position_m: 0.5", "position_m: 0")),
-            "test.yaml: filter.process_noise_std.position_m: must be > 0, got 0 (line 53)");
+            "test.yaml: filter.motion_model.process_noise_std.position_m: must be > 0, got 0 (line "
+            "60)");
   EXPECT_EQ(rejection(default_with("initial_covariance_diag: 1.0", "initial_covariance_diag: -1")),
-            "test.yaml: filter.initial_covariance_diag: must be > 0, got -1 (line 54)");
+            "test.yaml: filter.initial_covariance_diag: must be > 0, got -1 (line 61)");
   EXPECT_EQ(rejection(default_with("scale_floor: 0.1", "scale_floor: 0")),
-            "test.yaml: measurement_noise.scale_floor: must be > 0, got 0 (line 50)");
+            "test.yaml: measurement_noise.scale_floor: must be > 0, got 0 (line 54)");
 }
 
 TEST(ScenarioLoader, RefusesADuplicateStationId) {
   EXPECT_EQ(rejection(default_with("{id: 2,", "{id: 1,")),
-            "test.yaml: stations[1].id: duplicate station id 1 (line 35)");
+            "test.yaml: stations[1].id: duplicate station id 1 (line 39)");
 }
 
 TEST(ScenarioLoader, RefusesAStationAtTheTargetsPosition) {
@@ -115,8 +134,8 @@ TEST(ScenarioLoader, RefusesAKeyThatIsNotAFieldName) {
   // as yaml-cpp's own exception instead of a ConfigError.
   EXPECT_EQ(rejection(default_with("seed: 20250601\n", "seed: 20250601\n? [complex, key]\n: 1\n")),
             "test.yaml: (top level): expected a field name, got '[complex, key]'");
-  EXPECT_EQ(rejection(default_with("{id: 1,", "{[1, 2]: 3, id: 1,")),
-            "test.yaml: stations[0]: expected a field name, got '[1, 2]' (line 34)");
+  EXPECT_EQ(rejection(default_with("{id: 2,", "{[1, 2]: 3, id: 2,")),
+            "test.yaml: stations[1]: expected a field name, got '[1, 2]' (line 39)");
 }
 
 TEST(ScenarioLoader, RefusesOverlappingManoeuvres) {
@@ -157,6 +176,83 @@ TEST(ScenarioLoader, AcceptsAnExplicitVelocityAndAFixedInitialError) {
   EXPECT_TRUE(s.target.direction.isApprox(Vector3(0.6, 0.8, 0.0)));
   ASSERT_TRUE(s.filter.initial_state_error.has_value());
   EXPECT_EQ((*s.filter.initial_state_error)(0), 1.0);
+}
+
+// Paper 000's files before parts were named: noise_std beside the station id, the process noise
+// directly under the filter. They read as the same scenario.
+TEST(ScenarioLoader, ReadsPaper000sShorthandAsTheNamedParts) {
+  std::string legacy = default_with_all("sensor: *radar}", "noise_std: [0.1, 0.01, 0.01]}");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = legacy.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    legacy.replace(at, from.size(), to);
+  };
+  replace("sensor: &radar {kind: range_azimuth_elevation, noise_std: [0.1, 0.01, 0.01]}",
+          "noise_std: [0.1, 0.01, 0.01]");
+  replace("  kind: ekf\n  motion_model:\n    kind: constant_acceleration_3d\n    process_noise_std",
+          "  process_noise_std");
+  ASSERT_EQ(legacy.find("sensor:"), std::string::npos);
+  ASSERT_EQ(legacy.find("motion_model:"), std::string::npos);
+
+  const Scenario old_form = parse_scenario(legacy, "legacy.yaml");
+  const Scenario named = load_default_scenario();
+  EXPECT_EQ(old_form.filter.kind, named.filter.kind);
+  EXPECT_EQ(old_form.filter.motion_model.kind, named.filter.motion_model.kind);
+  EXPECT_EQ(old_form.filter.motion_model.process_noise_std,
+            named.filter.motion_model.process_noise_std);
+  ASSERT_EQ(old_form.stations.size(), named.stations.size());
+  for (std::size_t i = 0; i < named.stations.size(); ++i) {
+    EXPECT_EQ(old_form.stations[i].sensor.kind, named.stations[i].sensor.kind);
+    EXPECT_EQ(old_form.stations[i].sensor.noise_std, named.stations[i].sensor.noise_std);
+    EXPECT_EQ(old_form.stations[i].position_m, named.stations[i].position_m);
+  }
+}
+
+TEST(ScenarioLoader, RefusesTheShorthandBesideTheNamedPart) {
+  EXPECT_EQ(rejection(default_with("sensor: *radar}", "sensor: *radar, noise_std: [1, 1, 1]}")),
+            "test.yaml: stations[1].noise_std: give the noise inside 'sensor', not beside it "
+            "(line 39)");
+  EXPECT_EQ(rejection(default_with("  initial_covariance_diag: 1.0",
+                                   "  process_noise_std: {position_m: 1}\n"
+                                   "  initial_covariance_diag: 1.0")),
+            "test.yaml: filter.process_noise_std: give the process noise inside 'motion_model', "
+            "not beside it (line 61)");
+}
+
+TEST(ScenarioLoader, RefusesAnUnknownPart) {
+  const std::string sensor =
+      rejection(default_with("kind: range_azimuth_elevation", "kind: sonar"));
+  EXPECT_EQ(sensor.rfind("test.yaml: stations[0].sensor.kind: unknown sensor kind 'sonar' "
+                         "(registered: range_azimuth_elevation",
+                         0),
+            0U)
+      << sensor;
+  const std::string model =
+      rejection(default_with("kind: constant_acceleration_3d", "kind: constant_jerk"));
+  EXPECT_EQ(model.rfind("test.yaml: filter.motion_model.kind: unknown motion model "
+                        "'constant_jerk' (registered: constant_acceleration_3d",
+                        0),
+            0U)
+      << model;
+  EXPECT_EQ(rejection(default_with("kind: ekf", "kind: particle")),
+            "test.yaml: filter.kind: unknown filter 'particle' (registered: ekf) (line 57)");
+}
+
+TEST(ScenarioLoader, RefusesFieldsThatDoNotFitThePart) {
+  EXPECT_EQ(rejection(default_with("noise_std: [0.1, 0.01, 0.01]}", "noise_std: [0.1, 0.01]}")),
+            "test.yaml: stations[0].sensor.noise_std: expected [range_m, azimuth_rad, "
+            "elevation_rad], got '[0.1, 0.01]' (line 38)");
+  EXPECT_EQ(rejection(default_with(", acceleration_mps2: 0.05}", "}")),
+            "test.yaml: filter.motion_model.process_noise_std: missing field 'acceleration_mps2' "
+            "(line 60)");
+  EXPECT_EQ(
+      rejection(default_with("acceleration_mps2: 0.05}", "acceleration_mps2: 0.05, jerk: 1}")),
+      "test.yaml: filter.motion_model.process_noise_std.jerk: unknown field (allowed: "
+      "position_m, velocity_mps, acceleration_mps2) (line 60)");
+  EXPECT_EQ(
+      rejection(default_with("initial_covariance_diag: 1.0", "initial_covariance_diag: [1, 2]")),
+      "test.yaml: filter.initial_covariance_diag: expected 1 or 9 numbers, got '[1, 2]' "
+      "(line 61)");
 }
 
 }  // namespace

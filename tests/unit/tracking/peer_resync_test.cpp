@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+#include "skyfuse/models/constant_acceleration.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/run_plan.hpp"
@@ -32,12 +34,11 @@ PeerRun run_peers(const LinkLoss& loss, int stations = 4, int steps = 300) {
   overrides.steps = steps;
   const RunPlan plan = make_run_plan(load_default_scenario(), overrides);
   const TruthTrajectory truth = plan.truth();
-  const ConstantAcceleration3D motion(plan.scenario.time_step_s,
-                                      plan.scenario.filter.process_noise);
+  const auto motion = plan.motion_model<ConstantAcceleration3D>();
   const GaussianState<9> initial =
-      initial_estimate(plan.scenario, truth.states.front(), plan.mc_run);
+      initial_estimate<ConstantAcceleration3D>(plan.scenario, truth.states.front(), plan.mc_run);
   const auto m = static_cast<std::size_t>(stations);
-  std::vector<PeerTracker> peers(m, PeerTracker(motion, initial));
+  std::vector<PeerTracker<ConstantAcceleration3D>> peers(m, PeerTracker(motion, initial));
 
   // Ascending id, as every receiver orders its round.
   std::vector<StationConfig> by_id(plan.participants().begin(), plan.participants().end());
@@ -45,16 +46,16 @@ PeerRun run_peers(const LinkLoss& loss, int stations = 4, int steps = 300) {
 
   PeerRun out;
   double sq = 0.0;
-  std::vector<PeerContribution> sent(m);
-  std::vector<Increment9> received;
+  std::vector<PeerContribution<9>> sent(m);
+  std::vector<InformationIncrement<9>> received;
   std::vector<double> weights;
   for (int k = 0; k < steps; ++k) {
     const auto step = static_cast<std::uint64_t>(k);
     for (std::size_t i = 0; i < m; ++i) {
-      const StationSensor sensor(by_id[i].position_m);
-      const Covariance<3> noise = station_noise_covariance(plan.scenario, by_id[i], plan.mc_run);
-      const Vector3 z = simulate_measurement(sensor, truth.states[step].head<3>(), noise,
-                                             plan.scenario.seed, plan.mc_run, by_id[i].id, step);
+      const RangeAzimuthElevation<9> sensor(by_id[i].position_m);
+      const Covariance<3> noise = station_noise_covariance<3>(plan.scenario, by_id[i], plan.mc_run);
+      const Vector3 z = simulate_measurement(sensor, truth.states[step], noise, plan.scenario.seed,
+                                             plan.mc_run, by_id[i].id, step);
       sent[i].prior = peers[i].estimate();
       EXPECT_EQ(peers[i].make_increment(by_id[i].id, sensor, z, noise, sent[i].increment),
                 NumericalStatus::kOk);
@@ -79,7 +80,7 @@ PeerRun run_peers(const LinkLoss& loss, int stations = 4, int steps = 300) {
       sq += (peers[r].estimate().mean.head<3>() - truth.states[step].head<3>()).squaredNorm();
     }
     out.spread.push_back(spread);
-    for (PeerTracker& peer : peers) peer.predict();
+    for (auto& peer : peers) peer.predict();
   }
   out.rmse_m = std::sqrt(sq / static_cast<double>(steps * stations));
   return out;
@@ -124,7 +125,7 @@ TEST(PeerResync, AFailedRoundLeavesTheEstimateAndIsNoResync) {
   GaussianState<9> reference = initial;
   reference.mean(0) = 2.0;
   reference.covariance(4, 4) = -1.0;
-  const std::vector<Increment9> none;
+  const std::vector<InformationIncrement<9>> none;
   const std::vector<double> no_weights;
   const RoundFusion fused = peer.fuse_round(reference, none, no_weights);
   EXPECT_EQ(fused.status, NumericalStatus::kNotPositiveDefinite);

@@ -5,6 +5,7 @@
 #include <Eigen/LU>
 
 #include "skyfuse/metrics/chi_square.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
 
 namespace skyfuse {
 namespace {
@@ -16,7 +17,7 @@ GaussianState<9> prior() {
   return p;
 }
 
-const StationSensor kSensor(Vector3(100.0, 200.0, 0.0));
+const RangeAzimuthElevation<9> kSensor(Vector3(100.0, 200.0, 0.0));
 const Covariance<3> kNoise = Vector3(1.0, 1e-4, 1e-4).asDiagonal();
 
 TEST(NisGate, NisIsTheInnovationWeightedByTheInnovationCovariance) {
@@ -32,8 +33,8 @@ TEST(NisGate, NisIsTheInnovationWeightedByTheInnovationCovariance) {
 
 TEST(NisGate, RefusesOnlyWhatLiesBeyondTheChiSquareQuantile) {
   const NisGate gate = NisGate::at_probability(0.9999);
-  EXPECT_NEAR(gate.threshold(), chi_square_quantile(0.9999, 3.0), 1e-12);
-  EXPECT_NEAR(gate.threshold(), 21.108, 1e-3);  // chi^2(3) at 0.9999, from tables
+  EXPECT_NEAR(gate.threshold(3), chi_square_quantile(0.9999, 3.0), 1e-12);
+  EXPECT_NEAR(gate.threshold(3), 21.108, 1e-3);  // chi^2(3) at 0.9999, from tables
   const GaussianState<9> x = prior();
   const Vector3 exact = kSensor.predict(x.mean);
   EXPECT_FALSE(gate.refuses(x, kSensor, exact, kNoise));

@@ -7,6 +7,8 @@
 #include <limits>
 #include <numbers>
 
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+
 namespace skyfuse {
 namespace {
 
@@ -109,16 +111,16 @@ TEST(SampleChecks, AcceptsAZeroIncrement) {
 
 TEST(SampleChecks, RefusesAContributionWhosePriorCannotBeAdopted) {
   // A peer may adopt the prior an increment travels with, so it is checked like a track.
-  PeerContribution good{real_increment(), {}};
+  PeerContribution<9> good{real_increment(), {}};
   good.prior.covariance = Covariance<9>::Identity();
   EXPECT_EQ(check_contribution(good), std::nullopt);
-  PeerContribution nan_prior = good;
+  PeerContribution<9> nan_prior = good;
   nan_prior.prior.mean(4) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(check_contribution(nan_prior), DropKind::kNonFinite);
-  PeerContribution indefinite = good;
+  PeerContribution<9> indefinite = good;
   indefinite.prior.covariance(7, 7) = -1.0;
   EXPECT_EQ(check_contribution(indefinite), DropKind::kNotPositive);
-  PeerContribution bad_increment = good;
+  PeerContribution<9> bad_increment = good;
   bad_increment.increment.delta_vector(0) = std::numeric_limits<double>::infinity();
   EXPECT_EQ(check_contribution(bad_increment), DropKind::kNonFinite);
 }
@@ -131,7 +133,7 @@ TEST(SampleChecks, RefusesMagnitudesThatWouldOverflowTheFusion) {
   InformationIncrement<9> huge_y = real_increment();
   huge_y.delta_vector(2) = -1e300;
   EXPECT_EQ(check_increment(huge_y), DropKind::kOutOfRange);
-  PeerContribution far{real_increment(), {}};
+  PeerContribution<9> far{real_increment(), {}};
   far.prior.covariance = Covariance<9>::Identity();
   far.prior.mean(0) = 1e300;
   EXPECT_EQ(check_contribution(far), DropKind::kOutOfRange);
@@ -169,12 +171,15 @@ TEST(SampleChecks, RefusesMeasurementsTheSensorCannotReport) {
     Observation o = real_observation();
     o.z = z;
     EXPECT_EQ(check_observation(o), DropKind::kOutOfRange) << z.transpose();
-    EXPECT_EQ(check_reported_values(z), DropKind::kOutOfRange) << z.transpose();
+    EXPECT_EQ(RangeAzimuthElevation<9>::check_reported(z), DropKind::kOutOfRange) << z.transpose();
   }
   // The edges themselves are reportable.
-  EXPECT_FALSE(check_reported_values(Vector3(1.0e6, std::numbers::pi, std::numbers::pi / 2.0)));
-  EXPECT_FALSE(check_reported_values(Vector3(1e-9, -std::numbers::pi, -std::numbers::pi / 2.0)));
-  EXPECT_EQ(check_reported_values(Vector3(100.0, std::nan(""), 0.1)), DropKind::kNonFinite);
+  EXPECT_FALSE(RangeAzimuthElevation<9>::check_reported(
+      Vector3(1.0e6, std::numbers::pi, std::numbers::pi / 2.0)));
+  EXPECT_FALSE(RangeAzimuthElevation<9>::check_reported(
+      Vector3(1e-9, -std::numbers::pi, -std::numbers::pi / 2.0)));
+  EXPECT_EQ(RangeAzimuthElevation<9>::check_reported(Vector3(100.0, std::nan(""), 0.1)),
+            DropKind::kNonFinite);
 }
 
 TEST(DropKind, NamesAreDistinctSnakeCase) {

@@ -15,17 +15,9 @@
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/core/unroll.hpp"
 #include "skyfuse/filters/kalman.hpp"
+#include "skyfuse/fusion/station_observation.hpp"
 
 namespace skyfuse {
-
-/// One station's contribution to the stacked update.
-template <typename Sensor>
-struct StationObservation {
-  int station_id = 0;
-  Sensor sensor;
-  Vector<Sensor::kMeasDim> z;
-  Covariance<Sensor::kMeasDim> noise;
-};
 
 template <int N, typename Sensor>
 class StackedEkf {

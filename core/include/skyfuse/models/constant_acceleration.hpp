@@ -7,19 +7,17 @@
 /// and the process noise is the per-step covariance Q = blkdiag(Qp, Qv, Qa) with each block a
 /// multiple of I3, exactly as the paper states it (not a continuous-time white-noise model).
 
+#include <array>
+#include <string_view>
+
 #include "skyfuse/core/types.hpp"
 
 namespace skyfuse {
 
-/// Per-step standard deviations of the process noise, one per kinematic block.
-struct ProcessNoiseStd {
-  double position = 0.0;      ///< m
-  double velocity = 0.0;      ///< m/s
-  double acceleration = 0.0;  ///< m/s^2
-};
-
 class ConstantAcceleration3D {
  public:
+  /// The name a scenario gives this model.
+  static constexpr std::string_view kKind = "constant_acceleration_3d";
   static constexpr int kDim = 9;
   using State = Vector<kDim>;
 
@@ -28,7 +26,16 @@ class ConstantAcceleration3D {
   static constexpr int kVelocity = 3;
   static constexpr int kAcceleration = 6;
 
-  ConstantAcceleration3D(double time_step_s, const ProcessNoiseStd& noise);
+  /// Per-step standard deviations of the process noise, one per kinematic block, in the order
+  /// (and under the names) a scenario gives them.
+  static constexpr std::array<std::string_view, 3> kNoiseFields = {"position_m", "velocity_mps",
+                                                                   "acceleration_mps2"};
+  using NoiseStd = std::array<double, kNoiseFields.size()>;
+
+  ConstantAcceleration3D(double time_step_s, const NoiseStd& noise_std);
+
+  /// The model's state of a target with kinematics [p; v; a] (world frame): all of them.
+  static State from_kinematics(const Vector<9>& kinematics) { return kinematics; }
 
   /// Mean propagation x_{k+1} = F x_k, per block: p + dt v + dt^2/2 a, v + dt a, a.
   State propagate(const State& x) const;

@@ -10,21 +10,38 @@
 ///             [-d_x d_z, -d_y d_z, rho^2] / (r^2 rho) ]
 /// and dh/dx is zero outside the position block. The position must occupy the first three
 /// entries of the state, as it does in every 3-D model of this project.
+///
+/// What it can report: range in (0, kMaxRangeM], azimuth in [-pi, pi], elevation in
+/// [-pi/2, pi/2]; anything else on the wire is refused as out of range.
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <numbers>
+#include <optional>
+#include <string_view>
 
 #include "skyfuse/core/angles.hpp"
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
+#include "skyfuse/validation/physical_bounds.hpp"
 
 namespace skyfuse {
 
 template <int StateDim>
 class RangeAzimuthElevation {
  public:
+  /// The name a scenario gives this sensor.
+  static constexpr std::string_view kKind = "range_azimuth_elevation";
   static constexpr int kStateDim = StateDim;
   static constexpr int kMeasDim = 3;
   /// h depends on the position (the first three state components) only.
   static constexpr int kJacobianCols = 3;
+  /// A ground station: the measurement depends on where it stands.
+  static constexpr bool kNeedsSite = true;
+  /// The measured components, in order, as error messages and the docs name them.
+  static constexpr std::array<std::string_view, kMeasDim> kComponents = {"range_m", "azimuth_rad",
+                                                                         "elevation_rad"};
   using State = Vector<StateDim>;
   using Measurement = Vector<3>;
 
@@ -35,6 +52,9 @@ class RangeAzimuthElevation {
   RangeAzimuthElevation() = default;
   explicit RangeAzimuthElevation(const Vector3& station_position)
       : station_position_(station_position) {}
+
+  /// Where the station stands (world frame, m).
+  const Vector3& site() const { return station_position_; }
 
   const Vector3& station_position() const { return station_position_; }
 
@@ -76,6 +96,28 @@ class RangeAzimuthElevation {
     Measurement nu = z - z_pred;
     nu(kAzimuth) = wrap_angle(nu(kAzimuth));
     return nu;
+  }
+
+  /// A noisy value as the sensor reports it: azimuth wrapped into (-pi, pi], elevation held
+  /// within [-pi/2, pi/2] (past the zenith a sensor reports the zenith; otherwise every receiver
+  /// would refuse the sample).
+  static Measurement to_reported(Measurement z) {
+    constexpr double kHalfPi = std::numbers::pi / 2.0;
+    z(kAzimuth) = wrap_angle(z(kAzimuth));
+    z(kElevation) = std::clamp(z(kElevation), -kHalfPi, kHalfPi);
+    return z;
+  }
+
+  /// Whether z is something this sensor can report: kNonFinite or kOutOfRange if not.
+  static std::optional<DropKind> check_reported(const Measurement& z) {
+    if (!z.allFinite()) return DropKind::kNonFinite;
+    constexpr double kPi = std::numbers::pi;
+    const double range = z(kRange);
+    if (!(range > 0.0 && range <= kMaxRangeM) || std::abs(z(kAzimuth)) > kPi ||
+        std::abs(z(kElevation)) > kPi / 2.0) {
+      return DropKind::kOutOfRange;
+    }
+    return std::nullopt;
   }
 
  private:

@@ -9,15 +9,23 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
-#include "skyfuse/models/constant_acceleration.hpp"
 
 namespace skyfuse {
 
+/// A participant's sensor: its kind (a name in the registry) and its own fields.
+struct SensorConfig {
+  std::string kind = "range_azimuth_elevation";
+  /// Nominal standard deviation of each measured component before scaling, in the order and
+  /// units the sensor names them (range_azimuth_elevation: [range m, azimuth rad, elevation
+  /// rad]).
+  Eigen::VectorXd noise_std;
+};
+
 struct StationConfig {
   int id = 0;
+  /// Where the station stands; zero, and unused, for a sensor that rides on the target.
   Vector3 position_m = Vector3::Zero();
-  /// Nominal standard deviations [range m, azimuth rad, elevation rad] before scaling.
-  Vector3 noise_std = Vector3::Zero();
+  SensorConfig sensor;
   /// Fusion weight w_i of this station's increments.
   double weight = 1.0;
 };
@@ -53,11 +61,21 @@ struct NoiseScaleConfig {
   double floor = 0.1;
 };
 
+/// The filter's motion model: its kind (a name in the registry) and process noise.
+struct MotionModelConfig {
+  std::string kind = "constant_acceleration_3d";
+  /// Per-step standard deviations, in the order of the model's kNoiseFields.
+  Eigen::VectorXd process_noise_std;
+};
+
 struct FilterConfig {
-  ProcessNoiseStd process_noise;
-  Vector<9> initial_covariance_diag = Vector<9>::Ones();
+  /// One of kFilterKinds (registry/part_info.hpp).
+  std::string kind = "ekf";
+  MotionModelConfig motion_model;
+  /// Diagonal of P0, one entry per state component of the motion model.
+  Eigen::VectorXd initial_covariance_diag;
   /// Error of the initial estimate: fixed if set, otherwise drawn from N(0, P0) per run.
-  std::optional<Vector<9>> initial_state_error;
+  std::optional<Eigen::VectorXd> initial_state_error;
 };
 
 struct Scenario {

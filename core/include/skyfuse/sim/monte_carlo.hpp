@@ -22,12 +22,24 @@ class NumericalError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// An estimate of whatever dimension the scenario's motion model has, viewed in place.
+struct EstimateView {
+  Eigen::Map<const Eigen::VectorXd> mean;
+  Eigen::Map<const Eigen::MatrixXd> covariance;
+
+  template <int N>
+  static EstimateView of(const GaussianState<N>& state) {
+    return {Eigen::Map<const Eigen::VectorXd>(state.mean.data(), N),
+            Eigen::Map<const Eigen::MatrixXd>(state.covariance.data(), N, N)};
+  }
+};
+
 /// What one step of one run produced, for callers that want more than the summary.
 struct StepRecord {
   int step;
-  const Vector<9>& truth;
-  const GaussianState<9>& central;
-  const GaussianState<9>& decentralised;
+  const Vector<9>& truth;  ///< true kinematics [p; v; a]
+  EstimateView central;
+  EstimateView decentralised;
   double nis_central;
 };
 using StepObserver = std::function<void(const StepRecord&)>;
@@ -36,13 +48,14 @@ using StepObserver = std::function<void(const StepRecord&)>;
 struct RunTrace {
   std::vector<double> sq_error_central;  ///< |p - p_hat|^2, stacked EKF
   std::vector<double> sq_error_p2p;      ///< |p - p_hat|^2, fused increments
-  std::vector<double> nees_p2p;          ///< NEES of the fused estimate (9 dof)
-  std::vector<double> nis_central;       ///< NIS of the stacked update (3M dof)
+  std::vector<double> nees_p2p;          ///< NEES of the fused estimate (state-dimension dof)
+  std::vector<double> nis_central;       ///< NIS of the stacked update (sum of the sensors' dof)
   double max_abs_diff_m = 0.0;           ///< max over steps of |p_central - p_p2p|
 };
 
-/// One run using the first `stations` stations of the scenario. Step k updates with the
-/// measurements of step k, records, then predicts to k+1; steps = scenario.steps.
+/// One run using the first `stations` stations of the scenario, with the motion model and
+/// sensors it names. Step k updates with the measurements of step k, records, then predicts to
+/// k+1; steps = scenario.steps.
 RunTrace simulate_run(const Scenario& scenario, const TruthTrajectory& truth, int stations,
                       std::uint64_t run, const StepObserver& observer = {});
 
@@ -69,7 +82,8 @@ struct MonteCarloSummary {
   double anees = 0.0;
   ChiSquareBand anees_band;          ///< 95 % band of a per-step ANEES over `runs` runs
   double anees_steps_in_band = 0.0;  ///< fraction of steps whose ANEES lies in the band
-  /// Mean NIS of the stacked update divided by its dof (3M): 1 when consistent.
+  /// Mean NIS of the stacked update divided by its dof (the M sensors' components together):
+  /// 1 when consistent.
   double anis_per_dof = 0.0;
 };
 

@@ -11,7 +11,8 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
-#include "skyfuse/models/constant_acceleration.hpp"
+#include "skyfuse/registry/make_parts.hpp"
+#include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
@@ -33,10 +34,18 @@ struct RunPlan {
   TruthTrajectory truth() const {
     return generate_truth(scenario.target, speed_mps, scenario.time_step_s, scenario.steps);
   }
-  /// The filter's motion model and its start x0_hat for this run: what the center and every
-  /// station begin from, so that they begin from the same bits.
-  ConstantAcceleration3D motion_model() const;
-  GaussianState<9> initial_estimate() const;
+  /// The target's true kinematics [p; v; a] at step 0.
+  Vector<9> true_initial_state() const;
+  /// The filter's motion model (the scenario's, as type `Model`) and its start x0_hat for this
+  /// run: what the center and every station begin from, so that they begin from the same bits.
+  template <typename Model>
+  Model motion_model() const {
+    return make_motion_model<Model>(scenario);
+  }
+  template <typename Model>
+  GaussianState<Model::kDim> initial_estimate() const {
+    return skyfuse::initial_estimate<Model>(scenario, true_initial_state(), mc_run);
+  }
 };
 
 struct RunOverrides {

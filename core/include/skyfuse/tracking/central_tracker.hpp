@@ -6,29 +6,30 @@
 #include <span>
 
 #include "skyfuse/fusion/stacked_ekf.hpp"
-#include "skyfuse/models/constant_acceleration.hpp"
-#include "skyfuse/scenario/measurement_simulation.hpp"
 
 namespace skyfuse {
 
-using StationObservation9 = StationObservation<StationSensor>;
-
+/// The center's tracker over the motion model `Model`, for stations with sensors `Sensor`.
+template <typename Model, typename Sensor>
 class CentralTracker {
  public:
-  CentralTracker(const ConstantAcceleration3D& motion, const GaussianState<9>& initial)
-      : motion_(motion), estimate_(initial) {}
+  static constexpr int kDim = Model::kDim;
+  using State = GaussianState<kDim>;
+  using Observation = StationObservation<Sensor>;
+
+  CentralTracker(const Model& motion, const State& initial) : motion_(motion), estimate_(initial) {}
 
   /// The stacked update for this step; on failure the estimate is unchanged.
-  UpdateReport update(std::span<const StationObservation9> observations) {
+  UpdateReport update(std::span<const Observation> observations) {
     return stacked_.update(estimate_, observations);
   }
   void predict() { skyfuse::predict(estimate_, motion_); }
-  const GaussianState<9>& estimate() const { return estimate_; }
+  const State& estimate() const { return estimate_; }
 
  private:
-  ConstantAcceleration3D motion_;
-  GaussianState<9> estimate_;
-  StackedEkf<9, StationSensor> stacked_;
+  Model motion_;
+  State estimate_;
+  StackedEkf<kDim, Sensor> stacked_;
 };
 
 }  // namespace skyfuse

@@ -16,18 +16,9 @@
 #include "skyfuse/filters/kalman.hpp"
 #include "skyfuse/fusion/increment_fusion.hpp"
 #include "skyfuse/fusion/information_increment.hpp"
-#include "skyfuse/models/constant_acceleration.hpp"
-#include "skyfuse/scenario/measurement_simulation.hpp"
+#include "skyfuse/tracking/peer_contribution.hpp"
 
 namespace skyfuse {
-
-using Increment9 = InformationIncrement<9>;
-
-/// A station's increment and the prior it was computed against, as peers receive it.
-struct PeerContribution {
-  Increment9 increment;
-  GaussianState<9> prior;
-};
 
 /// What fuse_round() did.
 struct RoundFusion {
@@ -36,24 +27,31 @@ struct RoundFusion {
   bool resynced = false;
 };
 
+/// A peer's tracker over the motion model `Model`; it takes increments from any sensor.
+template <typename Model>
 class PeerTracker {
  public:
-  PeerTracker(const ConstantAcceleration3D& motion, const GaussianState<9>& initial)
-      : motion_(motion), estimate_(initial) {}
+  static constexpr int kDim = Model::kDim;
+  using State = GaussianState<kDim>;
+  using Increment = InformationIncrement<kDim>;
+
+  PeerTracker(const Model& motion, const State& initial) : motion_(motion), estimate_(initial) {}
 
   /// This station's increment against the current (common) prior.
-  NumericalStatus make_increment(int station_id, const StationSensor& sensor, const Vector3& z,
-                                 const Covariance<3>& noise, Increment9& out) const {
+  template <typename Sensor>
+  NumericalStatus make_increment(int station_id, const Sensor& sensor,
+                                 const Vector<Sensor::kMeasDim>& z,
+                                 const Covariance<Sensor::kMeasDim>& noise, Increment& out) const {
     return compute_increment(station_id, estimate_, sensor, z, noise, out);
   }
   /// Fuses every station's increment (ascending id; weights[i] for increments[i]).
-  NumericalStatus fuse(std::span<const Increment9> increments, std::span<const double> weights) {
+  NumericalStatus fuse(std::span<const Increment> increments, std::span<const double> weights) {
     return fuse_increments(estimate_, increments, weights, estimate_, &information_);
   }
   /// Fuses one round's increments (ascending station id; weights[i] for increments[i]) onto
   /// `reference`, the prior that came with the lowest-id increment of the round. On failure the
   /// estimate is left as it was, and nothing counts as resynchronised.
-  RoundFusion fuse_round(const GaussianState<9>& reference, std::span<const Increment9> increments,
+  RoundFusion fuse_round(const State& reference, std::span<const Increment> increments,
                          std::span<const double> weights) {
     const bool differs =
         reference.mean != estimate_.mean || reference.covariance != estimate_.covariance;
@@ -63,14 +61,14 @@ class PeerTracker {
     return result;
   }
   /// Y = P^-1 of the estimate after the last fuse().
-  const Covariance<9>& information() const { return information_; }
+  const Covariance<kDim>& information() const { return information_; }
   void predict() { skyfuse::predict(estimate_, motion_); }
-  const GaussianState<9>& estimate() const { return estimate_; }
+  const State& estimate() const { return estimate_; }
 
  private:
-  ConstantAcceleration3D motion_;
-  GaussianState<9> estimate_;
-  Covariance<9> information_ = Covariance<9>::Identity();
+  Model motion_;
+  State estimate_;
+  Covariance<kDim> information_ = Covariance<kDim>::Identity();
 };
 
 }  // namespace skyfuse

@@ -10,9 +10,8 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
-#include "skyfuse/tracking/central_tracker.hpp"
-#include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/transport/topics.hpp"
+#include "skyfuse/transport/wire_configuration.hpp"
 
 namespace skyfuse::transport {
 
@@ -34,17 +33,17 @@ Covariance<N> unpack_upper(const double* in) {
   return m;
 }
 
-wire::Measurement to_wire(const StationObservation9& observation, std::uint64_t run_id,
+wire::Measurement to_wire(const WireObservation& observation, std::uint64_t run_id,
                           std::uint32_t step);
-StationObservation9 from_wire(const wire::Measurement& sample);
+WireObservation from_wire(const wire::Measurement& sample);
 
-wire::InformationIncrement to_wire(const PeerContribution& contribution, std::uint64_t run_id,
+wire::InformationIncrement to_wire(const WireContribution& contribution, std::uint64_t run_id,
                                    std::uint32_t step);
-PeerContribution from_wire(const wire::InformationIncrement& sample);
+WireContribution from_wire(const wire::InformationIncrement& sample);
 
-wire::TrackEstimate to_wire(const GaussianState<9>& estimate, std::uint64_t run_id,
-                            std::uint32_t step, int source_id, wire::TrackSource mode,
+wire::TrackEstimate to_wire(const WireEstimate& estimate, std::uint64_t run_id, std::uint32_t step,
+                            int source_id, wire::TrackSource mode,
                             std::span<const int> contributors);
-GaussianState<9> from_wire(const wire::TrackEstimate& sample);
+WireEstimate from_wire(const wire::TrackEstimate& sample);
 
 }  // namespace skyfuse::transport

@@ -1,0 +1,30 @@
+#pragma once
+/// \file
+/// Builds the typed parts a scenario names: the motion model with its process noise, and a
+/// station's sensor at its site.
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "skyfuse/scenario/scenario.hpp"
+
+namespace skyfuse {
+
+template <typename Model>
+Model make_motion_model(const Scenario& scenario) {
+  const Eigen::VectorXd& values = scenario.filter.motion_model.process_noise_std;
+  typename Model::NoiseStd noise_std{};
+  if (static_cast<std::size_t>(values.size()) != noise_std.size() ||
+      scenario.filter.motion_model.kind != Model::kKind) {
+    throw std::invalid_argument("the scenario's motion model is not " + std::string(Model::kKind));
+  }
+  std::copy(values.begin(), values.end(), noise_std.begin());
+  return Model(scenario.time_step_s, noise_std);
+}
+
+template <typename Sensor>
+Sensor make_sensor(const StationConfig& station) {
+  return Sensor(station.position_m);
+}
+
+}  // namespace skyfuse

@@ -1,0 +1,24 @@
+#pragma once
+/// \file
+/// The parts a scenario can name, and the types that implement them. This file is the one place
+/// where a new motion model or sensor becomes known to the scenario loader, the measurement
+/// simulation, the sample checks, the in-process Monte Carlo and the processes: add its header
+/// below and its type to the list.
+///
+/// A motion model is a class with kKind, kDim, kNoiseFields, NoiseStd, from_kinematics(),
+/// propagate(), jacobian() (or propagate_covariance()) and process_noise(). A sensor is a class
+/// template over the state dimension with kKind, kMeasDim, kJacobianCols, kNeedsSite,
+/// kComponents, predict(), jacobian(), residual(), to_reported() and check_reported(). Every
+/// 3-D model keeps the position in state entries 0-2 and the velocity in 3-5, which is what the
+/// sensors read. See docs/extending.md.
+
+#include "skyfuse/models/constant_acceleration.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/registry/part_lists.hpp"
+
+namespace skyfuse {
+
+using MotionModels = ModelList<ConstantAcceleration3D>;
+using Sensors = SensorList<RangeAzimuthElevation>;
+
+}  // namespace skyfuse
