@@ -13,12 +13,13 @@
 /// sensors read. See docs/extending.md.
 
 #include "skyfuse/models/constant_acceleration.hpp"
+#include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/registry/part_lists.hpp"
 
 namespace skyfuse {
 
 using MotionModels = ModelList<ConstantAcceleration3D>;
-using Sensors = SensorList<RangeAzimuthElevation>;
+using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity>;
 
 }  // namespace skyfuse
