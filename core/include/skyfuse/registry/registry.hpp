@@ -13,13 +13,14 @@
 /// sensors read. See docs/extending.md.
 
 #include "skyfuse/models/constant_acceleration.hpp"
+#include "skyfuse/models/constant_velocity.hpp"
 #include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/registry/part_lists.hpp"
 
 namespace skyfuse {
 
-using MotionModels = ModelList<ConstantAcceleration3D>;
+using MotionModels = ModelList<ConstantAcceleration3D, ConstantVelocity3D>;
 using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity>;
 
 }  // namespace skyfuse

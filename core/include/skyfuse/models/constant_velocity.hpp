@@ -1,0 +1,56 @@
+#pragma once
+/// \file
+/// Nearly-constant-velocity motion in 3-D (paper 003, eq. 1-2).
+///
+/// State x = [p; v] in R^6, each block (x, y, z):
+///   F = [[I3, dt I3], [0, I3]],   Q = blkdiag(sigma_p^2 I3, sigma_v^2 I3),
+/// the per-step process noise exactly as the paper states it (not a continuous-time white-noise
+/// acceleration model).
+
+#include <array>
+#include <string_view>
+
+#include "skyfuse/core/types.hpp"
+
+namespace skyfuse {
+
+class ConstantVelocity3D {
+ public:
+  /// The name a scenario gives this model.
+  static constexpr std::string_view kKind = "constant_velocity_3d";
+  static constexpr int kDim = 6;
+  using State = Vector<kDim>;
+
+  static constexpr int kPosition = 0;
+  static constexpr int kVelocity = 3;
+
+  /// Per-step standard deviations of the process noise, per block, in the order (and under
+  /// the names) a scenario gives them.
+  static constexpr std::array<std::string_view, 2> kNoiseFields = {"position_m", "velocity_mps"};
+  using NoiseStd = std::array<double, kNoiseFields.size()>;
+
+  ConstantVelocity3D(double time_step_s, const NoiseStd& noise_std) {
+    const auto [position, velocity] = noise_std;
+    const Matrix3 eye = Matrix3::Identity();
+    transition_.setIdentity();
+    transition_.block<3, 3>(kPosition, kVelocity) = time_step_s * eye;
+    process_noise_.setZero();
+    process_noise_.block<3, 3>(kPosition, kPosition) = position * position * eye;
+    process_noise_.block<3, 3>(kVelocity, kVelocity) = velocity * velocity * eye;
+  }
+
+  /// The model's state of a target with kinematics [p; v; a]: its position and velocity.
+  static State from_kinematics(const Vector<9>& kinematics) { return kinematics.head<kDim>(); }
+
+  /// x_{k+1} = F x_k: p + dt v, v.
+  State propagate(const State& x) const { return transition_ * x; }
+  /// dF/dx; the model is linear, so this is F wherever it is evaluated.
+  const Covariance<kDim>& jacobian(const State& /*x*/) const { return transition_; }
+  const Covariance<kDim>& process_noise() const { return process_noise_; }
+
+ private:
+  Covariance<kDim> transition_;
+  Covariance<kDim> process_noise_;
+};
+
+}  // namespace skyfuse
