@@ -8,6 +8,7 @@
 #include "certs_command.hpp"
 #include "demo_command.hpp"
 #include "lockstep_driver.hpp"
+#include "reproduce_command.hpp"
 #include "run_command.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -24,12 +25,14 @@ int main(int argc, char** argv) {
   BenchOptions bench;
   SoakOptions soak;
   CertsOptions certs;
+  ReproduceOptions reproduce;
   add_sweep_command(app, sweep);
   add_run_command(app, run);
   add_demo_command(app, demo);
   add_bench_command(app, bench);
   add_soak_command(app, soak);
   add_certs_command(app, certs);
+  add_reproduce_command(app, reproduce);
   CLI11_PARSE(app, argc, argv);
 
   // Line-buffered even into a file or pipe, so that tables and child messages keep their order.
@@ -42,6 +45,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("bench")) return run_bench(bench);
     if (app.got_subcommand("soak")) return run_soak(soak);
     if (app.got_subcommand("certs")) return run_certs(certs);
+    if (app.got_subcommand("reproduce")) return run_reproduce(reproduce);
   } catch (const RunAborted& e) {
     std::fprintf(stderr, "skyfuse: run aborted: %s\n", e.what());
     // As a shell reports a process its signal ended: 130 for Ctrl-C, 143 for SIGTERM.

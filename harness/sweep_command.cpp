@@ -5,13 +5,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <stdexcept>
-#include <thread>
 
-#include "progress.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/transport/scenario_option.hpp"
 #include "sweep_report.hpp"
+#include "sweep_runner.hpp"
 
 namespace skyfuse::harness {
 
@@ -49,26 +48,10 @@ int run_sweep(const SweepOptions& options) {
         fmt::format("--max-stations: {} exceeds the {} stations of scenario '{}'", max_stations,
                     available, scenario.name));
   }
-  const int threads = options.threads > 0
-                          ? options.threads
-                          : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
-
   const std::filesystem::path out_dir(options.out_dir);
   std::filesystem::create_directories(out_dir);
-
-  // Runs outermost: one run simulates its measurements once for every M.
-  std::vector<int> counts(static_cast<std::size_t>(max_stations));
-  for (int m = 1; m <= max_stations; ++m) counts[static_cast<std::size_t>(m - 1)] = m;
-  const long total = static_cast<long>(scenario.target.speeds_mps.size()) * options.runs;
-  Progress progress("sweep", total);
-  std::vector<MonteCarloSummary> rows;
-  for (double speed : scenario.target.speeds_mps) {
-    progress.set_stage(fmt::format("M=1..{} {:.0f} km/h", max_stations, speed * 3.6));
-    const std::vector<MonteCarloSummary> per_m = run_monte_carlo(
-        scenario, {counts, speed, options.runs, threads}, [&] { progress.advance(); });
-    rows.insert(rows.end(), per_m.begin(), per_m.end());
-  }
-  progress.finish();
+  const std::vector<MonteCarloSummary> rows =
+      run_sweep_rows(scenario, options.runs, max_stations, options.threads);
 
   const SweepReport report{scenario, rows};
   print_sweep_table(report, stdout);
