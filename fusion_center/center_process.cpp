@@ -9,8 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "skyfuse/core/sorted_ids.hpp"
-#include "skyfuse/tracking/central_tracker.hpp"
+#include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
@@ -41,17 +40,9 @@ class Center {
         tracker_(plan.motion_model<transport::WireModel>(),
                  plan.initial_estimate<transport::WireModel>()),
         collector_(plan.participant_ids()),
-        gated_(static_cast<std::size_t>(plan.stations), false) {
-    stacked_.reserve(gated_.size());
-    stacked_ids_.reserve(gated_.size());
+        round_(static_cast<std::size_t>(plan.stations)) {
     wait_set_.attach(ticks_);
     wait_set_.attach(measurements_);
-    // index_of_slot_[i]: where the i-th participant of the scenario sits in the collector
-    // (which orders by id), so that rows can be stacked in scenario order.
-    const std::span<const int> ids = collector_.station_ids();
-    for (const StationConfig& s : plan.participants()) {
-      index_of_slot_.push_back(*position_of(ids, s.id));  // every participant is in it
-    }
   }
 
   int run() {
@@ -75,32 +66,14 @@ class Center {
     const auto steps = static_cast<std::uint64_t>(plan_.scenario.steps);
     for (std::uint64_t k = 0; k < steps; ++k) {
       if (const int code = wait_for_measurements(k); code >= 0) return code;
-      // Stack in scenario order, as the in-process sweep does, so that both compute the same
-      // bits: the measurements that arrived by the deadline and passed the NIS gate.
-      const std::span<const transport::WireObservation> by_id = collector_.payloads();
-      const std::span<const int> ids = collector_.station_ids();
-      std::fill(gated_.begin(), gated_.end(), false);
-      for (std::size_t j = 0; j < by_id.size(); ++j) {
-        const transport::WireObservation& o = by_id[j];
-        if (collector_.filled(j) &&
-            options_.nis_gate().refuses(tracker_.estimate(), o.sensor, o.z, o.noise)) {
-          gated_[j] = true;
-          transport::count_drop(drops_, DropKind::kNisGate, "measurement", ids[j], k);
-        }
-      }
-      const auto fused = [&](std::size_t j) { return collector_.filled(j) && !gated_[j]; };
-      stacked_.clear();
-      stacked_ids_.clear();
-      for (std::size_t slot = 0; slot < index_of_slot_.size(); ++slot) {
-        if (fused(index_of_slot_[slot])) stacked_.push_back(by_id[index_of_slot_[slot]]);
-      }
-      for (std::size_t j = 0; j < by_id.size(); ++j) {
-        if (fused(j)) stacked_ids_.push_back(ids[j]);
-      }
-      const std::span<const transport::WireObservation> stacked = stacked_;
-      const std::span<const int> contributors = stacked_ids_;
-      const UpdateReport report =
-          stacked.empty() ? UpdateReport{NumericalStatus::kOk, 0.0} : tracker_.update(stacked);
+      // The measurements that arrived by the deadline, screened and stacked by the round rule,
+      // as the in-process twin does: both compute the same bits.
+      const UpdateReport report = round_.update(
+          tracker_, collector_.station_ids().size(),
+          [&](std::size_t j) { return collector_.filled(j) ? &collector_.payloads()[j] : nullptr; },
+          options_.nis_gate(), [&](int station_id, DropKind why) {
+            transport::count_drop(drops_, why, "measurement", station_id, k);
+          });
       if (report.status != NumericalStatus::kOk) {
         const std::string detail =
             fmt::format("step {}: stacked update failed: {}", k, to_string(report.status));
@@ -111,7 +84,7 @@ class Center {
       }
       tracks_.write(transport::to_wire(tracker_.estimate(), options_.run_id,
                                        static_cast<std::uint32_t>(k), kCenterSourceId,
-                                       wire::CENTRAL, contributors));
+                                       wire::CENTRAL, round_.contributors()));
       tracker_.predict();
       collector_.advance();
     }
@@ -212,13 +185,8 @@ class Center {
   transport::ReaderWaitSet wait_set_;
   CentralTracker<transport::WireModel, transport::WireSensor> tracker_;
   StepCollector<transport::WireObservation> collector_;
-  std::vector<std::size_t> index_of_slot_;
+  CentralRound<transport::WireModel, transport::WireSensor> round_;
   std::uint64_t epoch_ns_ = 0;  // real time: system-clock start of step 0
-  // This step's measurements refused by the NIS gate (by collector index), and what is fused:
-  // sized once, no allocation per step.
-  std::vector<bool> gated_;
-  std::vector<transport::WireObservation> stacked_;
-  std::vector<int> stacked_ids_;
   transport::SourceBinding sources_;
   DropTally drops_;
   std::uint64_t lost_ = 0;  // measurements removed by the simulated loss

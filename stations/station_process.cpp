@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-#include "skyfuse/tracking/peer_tracker.hpp"
+#include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
@@ -47,6 +47,13 @@ struct StationEndpoints {
   transport::ReaderWaitSet wait_set;
 };
 
+// The participants' fusion weights in ascending station id.
+std::vector<double> weights_in_id_order(const RunPlan& plan, std::span<const int> ids) {
+  std::vector<double> weights;
+  for (int id : ids) weights.push_back(plan.participant(id)->weight);
+  return weights;
+}
+
 class Station {
  public:
   Station(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
@@ -63,12 +70,8 @@ class Station {
         collector_(plan.participant_ids()),
         sensor_(me.position_m),
         noise_(station_noise_covariance<3>(plan.scenario, me, plan.mc_run)),
+        round_(collector_.station_ids(), weights_in_id_order(plan, collector_.station_ids())),
         syncing_(options.rejoin_step.has_value()) {
-    // Weights in the collector's (ascending id) order.
-    for (int id : collector_.station_ids()) weights_.push_back(plan.participant(id)->weight);
-    round_increments_.reserve(weights_.size());
-    round_weights_.reserve(weights_.size());
-    round_ids_.reserve(weights_.size());
     sources_.bind(me_.id, io_.increments_out.id());
   }
 
@@ -240,51 +243,35 @@ class Station {
     io_.measurements.write(transport::to_wire(observation, options_.node.run_id, step));
     if (syncing_) return;  // no prior yet: nothing to compute an increment against
 
-    transport::WireContribution own;  // a zero increment until computed
+    // The round rule screens it as the center does, so both architectures fuse the same
+    // measurements; screened out, it still yields a zero increment that tells the peers not to
+    // wait for one.
+    transport::WireContribution own;
     own.prior = tracker_.estimate();
-    own.increment.station_id = me_.id;
-    // What the center refuses, this station does not fuse either: both architectures see the
-    // same measurements. A refused one, or an outlier, adds nothing; the zero increment still
-    // tells the peers not to wait for one.
-    std::optional<DropKind> refused = check_observation(observation);
-    if (!refused && options_.node.nis_gate().refuses(own.prior, sensor_, observation.z, noise_)) {
-      refused = DropKind::kNisGate;
-    }
-    if (refused) {
-      transport::count_drop(drops_, *refused, "own measurement", me_.id, k);
-      io_.increments_out.write(transport::to_wire(own, options_.node.run_id, step));
-      collector_.offer(k, me_.id, own);
-      return;
-    }
-    const NumericalStatus status =
-        tracker_.make_increment(me_.id, sensor_, observation.z, noise_, own.increment);
-    if (status != NumericalStatus::kOk) {
-      throw std::runtime_error(fmt::format("step {}: increment failed: {}", k, to_string(status)));
+    const OwnContribution result =
+        contribute(own.prior, observation, options_.node.nis_gate(), own.increment);
+    if (result.refused) {
+      transport::count_drop(drops_, *result.refused, "own measurement", me_.id, k);
+    } else if (result.status != NumericalStatus::kOk) {
+      throw std::runtime_error(
+          fmt::format("step {}: increment failed: {}", k, to_string(result.status)));
     }
     io_.increments_out.write(transport::to_wire(own, options_.node.run_id, step));
     collector_.offer(k, me_.id, own);
   }
 
   int fuse_and_publish(std::uint64_t k) {
-    // What arrived, in ascending id (everything, in a healthy lock-step round); the track names
-    // exactly these stations.
-    round_increments_.clear();
-    round_weights_.clear();
-    round_ids_.clear();
-    const transport::WireEstimate* reference = nullptr;  // the lowest-id contribution's prior
-    for (std::size_t i = 0; i < collector_.station_ids().size(); ++i) {
-      if (!collector_.filled(i)) continue;
+    // What arrived (everything, in a healthy lock-step round), by the round rule; the track
+    // names exactly these stations.
+    const RoundFusion fused = round_.fuse(tracker_, [&](std::size_t i) {
+      if (!collector_.filled(i)) return PeerSlot<transport::WireModel::kDim>{};
       const transport::WireContribution& c = collector_.payloads()[i];
-      if (reference == nullptr) reference = &c.prior;
-      round_increments_.push_back(c.increment);
-      round_weights_.push_back(weights_[i]);
-      round_ids_.push_back(collector_.station_ids()[i]);
-    }
-    if (reference == nullptr) {  // only while resynchronising: no peer's prior arrived this round
+      return PeerSlot<transport::WireModel::kDim>{&c.increment, &c.prior};
+    });
+    if (!round_.arrived()) {  // only while resynchronising: no peer's prior arrived this round
       spdlog::warn("step {}: no peer increment arrived; still without a prior", k);
       return -1;
     }
-    const RoundFusion fused = tracker_.fuse_round(*reference, round_increments_, round_weights_);
     if (fused.status != NumericalStatus::kOk) {
       const std::string detail =
           fmt::format("step {}: fusion failed: {}", k, to_string(fused.status));
@@ -301,7 +288,7 @@ class Station {
     syncing_ = false;
     io_.tracks.write(transport::to_wire(tracker_.estimate(), options_.node.run_id,
                                         static_cast<std::uint32_t>(k), me_.id, wire::PEER,
-                                        round_ids_));
+                                        round_.contributors()));
     tracker_.predict();
     return -1;
   }
@@ -317,15 +304,11 @@ class Station {
   StepCollector<transport::WireContribution> collector_;
   transport::WireSensor sensor_;
   Covariance<3> noise_;
-  std::vector<double> weights_;
+  PeerRound<transport::WireModel> round_;
   std::uint64_t epoch_ns_ = 0;  // real time: the system-clock start of step 0
   bool syncing_;                // restarted, and no peer's prior taken yet
-  // The round's increments, weights and ids (reserved once: no allocation per step).
-  std::vector<InformationIncrement<transport::WireModel::kDim>> round_increments_;
-  std::vector<double> round_weights_;
-  std::vector<int> round_ids_;
-  std::uint64_t lost_ = 0;     // increments removed by the simulated loss
-  std::uint32_t resyncs_ = 0;  // rounds fused onto another station's prior
+  std::uint64_t lost_ = 0;      // increments removed by the simulated loss
+  std::uint32_t resyncs_ = 0;   // rounds fused onto another station's prior
   transport::SourceBinding sources_;
   DropTally drops_;
 };
@@ -354,6 +337,14 @@ int run_station(const StationOptions& options) {
     if (options.node.realtime_deadline_ms > 0.0) {
       throw std::invalid_argument("--rejoin-at-step: lock-step runs only, not real time");
     }
+  }
+  // The round rule screens every value this station reports; its noise and site, fixed for the
+  // run, are checked here once.
+  if (const auto why =
+          check_observation_source(transport::WireSensor(me->position_m),
+                                   station_noise_covariance<3>(plan.scenario, *me, plan.mc_run))) {
+    throw std::invalid_argument(
+        fmt::format("station {}: its noise or site is unusable: {}", me->id, to_string(*why)));
   }
   Station station(options, plan, *me, std::move(source));
   return station.run();

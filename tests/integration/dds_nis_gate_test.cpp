@@ -4,11 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "integration/run_fixture.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/monte_carlo.hpp"
+#include "skyfuse/sim/run_plan.hpp"
 
 namespace skyfuse::test {
 namespace {
@@ -78,6 +82,60 @@ TEST(DdsNisGate, AnOutlierIsRefusedByItsStationAndTheCenterAndCounted) {
   EXPECT_LT(p2p_error_at(dir / "gated" / "steps.csv", 200), 1.0);
   EXPECT_GT(p2p_error_at(dir / "ungated" / "steps.csv", 200), 10.0);
   EXPECT_LT(summary["rmse_p2p_m"].get<double>(), 0.3);
+}
+
+bool same_bits(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+// A gate at probability 0.5 screens out a large share of ordinary measurements. Stations, center
+// and the in-process twin apply one round rule, so they screen the same ones, count them the
+// same, and hold the same bits.
+TEST(DdsNisGate, AGatedRunEqualsItsInProcessTwinBitForBit) {
+  constexpr int kStations = 4;
+  constexpr int kSteps = 200;
+  const auto dir = test_dir();
+  const Completed run =
+      run_to_completion({bin("skyfuse"), "run", "--stations", std::to_string(kStations), "--steps",
+                         std::to_string(kSteps), "--domain", "178", "--nis-gate", "0.5", "--out",
+                         (dir / "out").string()},
+                        dir / "run.log", 120s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+
+  const RunPlan plan = make_run_plan(load_default_scenario(), {kStations, kSteps, {}, 0});
+  std::vector<std::pair<Vector<9>, Vector<9>>> twin;  // (central, p2p) per step
+  const RunTrace trace = simulate_run(
+      plan.scenario, plan.truth(), kStations, plan.mc_run,
+      [&](const StepRecord& r) { twin.emplace_back(r.central.mean, r.decentralised.mean); },
+      NisGate::at_probability(0.5));
+  ASSERT_EQ(twin.size(), static_cast<std::size_t>(kSteps));
+  EXPECT_GT(trace.refused_p2p, kSteps * kStations / 10) << "the gate must screen a good share";
+  EXPECT_GT(trace.refused_central, kSteps * kStations / 10);
+
+  const auto tracks = read_tracks(dir / "out" / "tracks.csv");
+  for (int k = 0; k < kSteps; ++k) {
+    const StateRow& central = tracks.at({k, 0});
+    for (const StationConfig& s : plan.participants()) {
+      const StateRow& peer = tracks.at({k, s.id});
+      for (int i = 0; i < 9; ++i) {
+        ASSERT_TRUE(same_bits(peer[i], twin[k].second(i)))
+            << "step " << k << ": station " << s.id << " x" << i << " DDS " << peer[i]
+            << " in-process " << twin[k].second(i);
+      }
+    }
+    for (int i = 0; i < 9; ++i) {
+      ASSERT_TRUE(same_bits(central[i], twin[k].first(i)))
+          << "step " << k << ": central x" << i << " DDS " << central[i] << " in-process "
+          << twin[k].first(i);
+    }
+  }
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  int stations_refused = 0;
+  for (const StationConfig& s : plan.participants()) {
+    stations_refused += summary["dropped_by_node"][std::to_string(s.id)]["nis_gate"].get<int>();
+  }
+  EXPECT_EQ(stations_refused, trace.refused_p2p);
+  EXPECT_EQ(summary["dropped_by_node"]["center"]["nis_gate"].get<int>(), trace.refused_central);
 }
 
 }  // namespace

@@ -14,8 +14,7 @@
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
-#include "skyfuse/tracking/central_tracker.hpp"
-#include "skyfuse/tracking/peer_tracker.hpp"
+#include "skyfuse/tracking/round_rule.hpp"
 
 namespace skyfuse {
 
@@ -34,29 +33,30 @@ class RunStepper {
   using Increment = InformationIncrement<kDim>;
 
   RunStepper(const Scenario& scenario, const TruthTrajectory& truth, int stations,
-             std::uint64_t run)
+             std::uint64_t run, const NisGate& gate)
       : motion_(make_motion_model<Model>(scenario)),
         central_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
-        peers_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)) {
-    const auto m = static_cast<std::size_t>(stations);
-    // Everything sized once per run: the step loop allocates nothing.
-    observations_.resize(m);
-    increments_.resize(m);
-    for (std::size_t i = 0; i < m; ++i) {
-      const StationConfig& station = scenario.stations[i];
-      observations_[i].station_id = station.id;
-      observations_[i].sensor = make_sensor<Sensor>(station);
-      observations_[i].noise = station_noise_covariance<Sensor::kMeasDim>(scenario, station, run);
+        peers_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
+        gate_(gate),
+        order_(ascending_ids(scenario, stations)),
+        peer_round_(ids_of(scenario, order_), weights_of(scenario, order_)),
+        central_round_(order_.size()) {
+    // Everything sized once per run: the step loop allocates nothing. Slots are in ascending
+    // station id, the order of every round.
+    observations_.resize(order_.size());
+    increments_.resize(order_.size());
+    for (std::size_t j = 0; j < order_.size(); ++j) {
+      const StationConfig& station = scenario.stations[order_[j]];
+      observations_[j].station_id = station.id;
+      observations_[j].sensor = make_sensor<Sensor>(station);
+      observations_[j].noise = station_noise_covariance<Sensor::kMeasDim>(scenario, station, run);
+      // The round rule screens each value; the source, fixed for the run, is checked once.
+      if (const auto why =
+              check_observation_source(observations_[j].sensor, observations_[j].noise)) {
+        throw NumericalError(fmt::format("station {}: its noise or site is unusable: {}",
+                                         station.id, to_string(*why)));
+      }
     }
-    // Fusion sums in ascending station id whatever order the scenario lists them in.
-    order_.resize(m);
-    for (std::size_t i = 0; i < m; ++i) order_[i] = i;
-    std::sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) {
-      return observations_[a].station_id < observations_[b].station_id;
-    });
-    ordered_weights_.resize(m);
-    for (std::size_t j = 0; j < m; ++j) ordered_weights_[j] = scenario.stations[order_[j]].weight;
-
     const auto steps = static_cast<std::size_t>(scenario.steps);
     trace_.sq_error_central.resize(steps);
     trace_.sq_error_p2p.resize(steps);
@@ -64,30 +64,33 @@ class RunStepper {
     trace_.nis_central.resize(steps);
   }
 
-  const std::vector<Observation>& observations() const { return observations_; }
-
-  // Updates both trackers with step k's measurements (z[i] belongs to scenario.stations[i]),
-  // records, then predicts to k + 1.
+  // Updates both trackers with step k's measurements (z[i] belongs to scenario.stations[i]) by
+  // the round rule, records, then predicts to k + 1.
   void step(std::size_t k, const Vector<9>& x, std::span<const Measurement> z,
             const StepObserver& observer) {
     for (std::size_t j = 0; j < order_.size(); ++j) {
-      Observation& obs = observations_[order_[j]];
+      Observation& obs = observations_[j];
       obs.z = z[order_[j]];
-      const NumericalStatus status =
-          peers_.make_increment(obs.station_id, obs.sensor, obs.z, obs.noise, increments_[j]);
-      if (status != NumericalStatus::kOk) {
+      const OwnContribution own = contribute(peers_.estimate(), obs, gate_, increments_[j]);
+      if (own.status != NumericalStatus::kOk) {
         throw NumericalError(fmt::format("p2p: step {}, station {}: increment failed: {}", k,
-                                         obs.station_id, to_string(status)));
+                                         obs.station_id, to_string(own.status)));
       }
+      if (own.refused) ++trace_.refused_p2p;
     }
-    const UpdateReport central_report = central_.update(observations_);
+    const UpdateReport central_report = central_round_.update(
+        central_, observations_.size(), [&](std::size_t j) { return &observations_[j]; }, gate_,
+        [&](int, DropKind) { ++trace_.refused_central; });
     if (central_report.status != NumericalStatus::kOk) {
       throw NumericalError(fmt::format("central: step {}: stacked update failed: {}", k,
                                        to_string(central_report.status)));
     }
-    const NumericalStatus fused = peers_.fuse(increments_, ordered_weights_);
-    if (fused != NumericalStatus::kOk) {
-      throw NumericalError(fmt::format("p2p: step {}: fusion failed: {}", k, to_string(fused)));
+    const RoundFusion fused = peer_round_.fuse(peers_, [&](std::size_t j) {
+      return PeerSlot<kDim>{&increments_[j], &peers_.estimate()};
+    });
+    if (fused.status != NumericalStatus::kOk) {
+      throw NumericalError(
+          fmt::format("p2p: step {}: fusion failed: {}", k, to_string(fused.status)));
     }
 
     const Vector3 p = x.head<3>();
@@ -111,13 +114,36 @@ class RunStepper {
   RunTrace take_trace() { return std::move(trace_); }
 
  private:
+  // Scenario indices of the first `stations` stations, in ascending station id.
+  static std::vector<std::size_t> ascending_ids(const Scenario& scenario, int stations) {
+    std::vector<std::size_t> order(static_cast<std::size_t>(stations));
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return scenario.stations[a].id < scenario.stations[b].id;
+    });
+    return order;
+  }
+  static std::vector<int> ids_of(const Scenario& scenario, const std::vector<std::size_t>& order) {
+    std::vector<int> ids;
+    for (std::size_t i : order) ids.push_back(scenario.stations[i].id);
+    return ids;
+  }
+  static std::vector<double> weights_of(const Scenario& scenario,
+                                        const std::vector<std::size_t>& order) {
+    std::vector<double> weights;
+    for (std::size_t i : order) weights.push_back(scenario.stations[i].weight);
+    return weights;
+  }
+
   Model motion_;
   CentralTracker<Model, Sensor> central_;
   PeerTracker<Model> peers_;
-  std::vector<Observation> observations_;  // scenario order
-  std::vector<Increment> increments_;      // ascending station id
+  NisGate gate_;
   std::vector<std::size_t> order_;         // ascending id -> scenario index
-  std::vector<double> ordered_weights_;
+  std::vector<Observation> observations_;  // ascending station id
+  std::vector<Increment> increments_;      // ascending station id
+  PeerRound<Model> peer_round_;
+  CentralRound<Model, Sensor> central_round_;
   RunTrace trace_;
 };
 
@@ -126,30 +152,31 @@ class RunStepper {
 template <typename Model, template <int> class SensorOf>
 std::vector<RunTrace> simulate_runs(const Scenario& scenario, const TruthTrajectory& truth,
                                     std::span<const int> station_counts, std::uint64_t run,
-                                    const StepObserver& observer = {}) {
+                                    const NisGate& gate, const StepObserver& observer = {}) {
   using Stepper = RunStepper<Model, SensorOf>;
   // The sensors as they see the truth: the target's kinematics, whatever the filter's model.
   using TruthSensor = SensorOf<9>;
+  constexpr int kMeasDim = TruthSensor::kMeasDim;
   std::vector<Stepper> steppers;
   steppers.reserve(station_counts.size());
-  for (int m : station_counts) steppers.emplace_back(scenario, truth, m, run);
-  // The stepper with the most stations knows every station that is simulated.
-  const auto most = static_cast<std::size_t>(
-      std::max_element(station_counts.begin(), station_counts.end()) - station_counts.begin());
-  const auto& stations = steppers[most].observations();
+  for (int m : station_counts) steppers.emplace_back(scenario, truth, m, run, gate);
+  // Every station of the largest count is simulated, indexed like scenario.stations.
+  const auto simulated =
+      static_cast<std::size_t>(*std::max_element(station_counts.begin(), station_counts.end()));
   std::vector<TruthSensor> truth_sensors;
-  truth_sensors.reserve(stations.size());
-  for (std::size_t i = 0; i < stations.size(); ++i) {
+  std::vector<Covariance<kMeasDim>> noises;
+  for (std::size_t i = 0; i < simulated; ++i) {
     truth_sensors.push_back(make_sensor<TruthSensor>(scenario.stations[i]));
+    noises.push_back(station_noise_covariance<kMeasDim>(scenario, scenario.stations[i], run));
   }
-  std::vector<typename Stepper::Measurement> z(stations.size());
+  std::vector<typename Stepper::Measurement> z(simulated);
 
   const auto steps = static_cast<std::size_t>(scenario.steps);
   for (std::size_t k = 0; k < steps; ++k) {
     const Vector<9>& x = truth.states[k];
     for (std::size_t i = 0; i < z.size(); ++i) {
-      z[i] = simulate_measurement(truth_sensors[i], x, stations[i].noise, scenario.seed, run,
-                                  stations[i].station_id, k);
+      z[i] = simulate_measurement(truth_sensors[i], x, noises[i], scenario.seed, run,
+                                  scenario.stations[i].id, k);
     }
     for (Stepper& stepper : steppers) stepper.step(k, x, z, observer);
   }
@@ -163,7 +190,7 @@ std::vector<RunTrace> simulate_runs(const Scenario& scenario, const TruthTraject
 std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
                                                const TruthTrajectory& truth,
                                                std::span<const int> station_counts,
-                                               std::uint64_t run,
+                                               std::uint64_t run, const NisGate& gate,
                                                const StepObserver& observer = {}) {
   std::vector<RunTrace> traces;
   const int most = *std::max_element(station_counts.begin(), station_counts.end());
@@ -171,7 +198,7 @@ std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
                          [&]<typename Model, template <int> class SensorOf>(
                              std::type_identity<Model>, SensorTemplate<SensorOf>) {
                            traces = simulate_runs<Model, SensorOf>(scenario, truth, station_counts,
-                                                                   run, observer);
+                                                                   run, gate, observer);
                          });
   return traces;
 }
@@ -196,10 +223,10 @@ void check_station_count(const Scenario& scenario, int stations) {
 }  // namespace
 
 RunTrace simulate_run(const Scenario& scenario, const TruthTrajectory& truth, int stations,
-                      std::uint64_t run, const StepObserver& observer) {
+                      std::uint64_t run, const StepObserver& observer, const NisGate& gate) {
   check_station_count(scenario, stations);
   const int counts[] = {stations};
-  return std::move(simulate_configured_runs(scenario, truth, counts, run, observer).front());
+  return std::move(simulate_configured_runs(scenario, truth, counts, run, gate, observer).front());
 }
 
 namespace {
@@ -289,8 +316,8 @@ std::vector<MonteCarloSummary> run_monte_carlo(const Scenario& scenario,
       settings.stations.size(), std::vector<RunTrace>(static_cast<std::size_t>(settings.runs)));
   std::mutex progress_mutex;
   parallel_runs(settings.runs, settings.threads, [&](int run) {
-    std::vector<RunTrace> traces = simulate_configured_runs(scenario, truth, settings.stations,
-                                                            static_cast<std::uint64_t>(run));
+    std::vector<RunTrace> traces = simulate_configured_runs(
+        scenario, truth, settings.stations, static_cast<std::uint64_t>(run), NisGate{});
     for (std::size_t c = 0; c < traces.size(); ++c) {
       by_count[c][static_cast<std::size_t>(run)] = std::move(traces[c]);
     }

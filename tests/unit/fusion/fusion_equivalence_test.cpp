@@ -100,7 +100,8 @@ TEST(IncrementFusion, ReportsAPriorThatIsNotPositiveDefinite) {
   GaussianState<9> prior;
   prior.covariance(4, 4) = -1.0;
   GaussianState<9> out;
-  EXPECT_EQ(fuse_increments<9>(prior, {}, {}, out), NumericalStatus::kNotPositiveDefinite);
+  EXPECT_EQ(fuse_increments<9>(prior, std::span<const InformationIncrement<9>>{}, {}, out),
+            NumericalStatus::kNotPositiveDefinite);
 }
 
 }  // namespace

@@ -12,7 +12,7 @@
 #include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/run_plan.hpp"
-#include "skyfuse/tracking/peer_tracker.hpp"
+#include "skyfuse/tracking/round_rule.hpp"
 
 namespace skyfuse {
 namespace {
@@ -44,33 +44,37 @@ PeerRun run_peers(const LinkLoss& loss, int stations = 4, int steps = 300) {
   std::vector<StationConfig> by_id(plan.participants().begin(), plan.participants().end());
   std::sort(by_id.begin(), by_id.end(), [](auto& a, auto& b) { return a.id < b.id; });
 
+  std::vector<int> ids;
+  std::vector<double> weights;
+  for (const StationConfig& s : by_id) {
+    ids.push_back(s.id);
+    weights.push_back(s.weight);
+  }
+  PeerRound<ConstantAcceleration3D> round(ids, weights);
+
   PeerRun out;
   double sq = 0.0;
   std::vector<PeerContribution<9>> sent(m);
-  std::vector<InformationIncrement<9>> received;
-  std::vector<double> weights;
   for (int k = 0; k < steps; ++k) {
     const auto step = static_cast<std::uint64_t>(k);
     for (std::size_t i = 0; i < m; ++i) {
-      const RangeAzimuthElevation<9> sensor(by_id[i].position_m);
-      const Covariance<3> noise = station_noise_covariance<3>(plan.scenario, by_id[i], plan.mc_run);
-      const Vector3 z = simulate_measurement(sensor, truth.states[step], noise, plan.scenario.seed,
-                                             plan.mc_run, by_id[i].id, step);
+      StationObservation<RangeAzimuthElevation<9>> measured;
+      measured.station_id = by_id[i].id;
+      measured.sensor = RangeAzimuthElevation<9>(by_id[i].position_m);
+      measured.noise = station_noise_covariance<3>(plan.scenario, by_id[i], plan.mc_run);
+      measured.z = simulate_measurement(measured.sensor, truth.states[step], measured.noise,
+                                        plan.scenario.seed, plan.mc_run, by_id[i].id, step);
       sent[i].prior = peers[i].estimate();
-      EXPECT_EQ(peers[i].make_increment(by_id[i].id, sensor, z, noise, sent[i].increment),
-                NumericalStatus::kOk);
+      const OwnContribution own = contribute(sent[i].prior, measured, NisGate{}, sent[i].increment);
+      EXPECT_EQ(own.status, NumericalStatus::kOk);
+      EXPECT_FALSE(own.refused);
     }
+    // Each peer fuses what reached it, by the round rule every station follows.
     for (std::size_t r = 0; r < m; ++r) {
-      received.clear();
-      weights.clear();
-      const GaussianState<9>* reference = nullptr;  // the lowest id's prior, as a station takes it
-      for (std::size_t s = 0; s < m; ++s) {
-        if (loss.lost(by_id[r].id, by_id[s].id, step)) continue;
-        if (reference == nullptr) reference = &sent[s].prior;
-        received.push_back(sent[s].increment);
-        weights.push_back(by_id[s].weight);
-      }
-      const RoundFusion fused = peers[r].fuse_round(*reference, received, weights);
+      const RoundFusion fused = round.fuse(peers[r], [&](std::size_t s) {
+        if (loss.lost(by_id[r].id, by_id[s].id, step)) return PeerSlot<9>{};
+        return PeerSlot<9>{&sent[s].increment, &sent[s].prior};
+      });
       EXPECT_EQ(fused.status, NumericalStatus::kOk);
       if (fused.resynced) ++out.resyncs;
     }

@@ -21,9 +21,10 @@ namespace skyfuse {
 /// and writes the result to `posterior`, which may alias `prior`. On failure `posterior` is
 /// left unchanged. If `fused_information` is given it receives Y = P^-1 of the posterior, which
 /// the fusion computes anyway (NEES = e^T Y e needs no further factorisation).
-template <int N>
-NumericalStatus fuse_increments(const GaussianState<N>& prior,
-                                std::span<const InformationIncrement<N>> increments,
+/// `Increments` is any random-access range of InformationIncrement<N> (a span, an
+/// IndirectView).
+template <int N, typename Increments>
+NumericalStatus fuse_increments(const GaussianState<N>& prior, const Increments& increments,
                                 std::span<const double> weights, GaussianState<N>& posterior,
                                 Covariance<N>* fused_information = nullptr) {
   assert(weights.size() == increments.size() && "one weight per increment");
@@ -41,8 +42,9 @@ NumericalStatus fuse_increments(const GaussianState<N>& prior,
   Covariance<N> information = prior_factor.inverse();
   Vector<N> information_vector = information * prior.mean;
   for (std::size_t i = 0; i < increments.size(); ++i) {
-    information.noalias() += weights[i] * increments[i].delta_information;
-    information_vector.noalias() += weights[i] * increments[i].delta_vector;
+    const InformationIncrement<N>& increment = increments[i];
+    information.noalias() += weights[i] * increment.delta_information;
+    information_vector.noalias() += weights[i] * increment.delta_vector;
   }
 
   SmallCholesky<N> fused_factor;

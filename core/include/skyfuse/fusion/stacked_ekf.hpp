@@ -27,10 +27,11 @@ class StackedEkf {
   static constexpr int kCols = jacobian_cols<Sensor>();
   static_assert(Sensor::kStateDim == N, "sensor and state dimensions differ");
 
-  /// Updates `state` with all observations at once. Buffers are resized only when the number
-  /// of observations changes, so a run with a fixed station count allocates once.
-  UpdateReport update(GaussianState<N>& state,
-                      std::span<const StationObservation<Sensor>> observations) {
+  /// Updates `state` with all observations at once (`Observations`: a random-access range of
+  /// StationObservation<Sensor>, a span or an IndirectView). Buffers are resized only when the
+  /// number of observations changes, so a run with a fixed station count allocates once.
+  template <typename Observations>
+  UpdateReport update(GaussianState<N>& state, const Observations& observations) {
     const Eigen::Index m = static_cast<Eigen::Index>(observations.size()) * kMeasDim;
     resize(m);
 

@@ -13,6 +13,7 @@
 #include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/scenario/truth.hpp"
+#include "skyfuse/validation/nis_gate.hpp"
 
 namespace skyfuse {
 
@@ -51,13 +52,19 @@ struct RunTrace {
   std::vector<double> nees_p2p;          ///< NEES of the fused estimate (state-dimension dof)
   std::vector<double> nis_central;       ///< NIS of the stacked update (sum of the sensors' dof)
   double max_abs_diff_m = 0.0;           ///< max over steps of |p_central - p_p2p|
+  /// Measurements screened out (checks or NIS gate): by the stations' own screening against
+  /// the common prior, and by the center's against its own.
+  int refused_p2p = 0;
+  int refused_central = 0;
 };
 
 /// One run using the first `stations` stations of the scenario, with the motion model and
-/// sensors it names. Step k updates with the measurements of step k, records, then predicts to
-/// k+1; steps = scenario.steps.
+/// sensors it names. Step k updates with the measurements of step k by the round rule
+/// (tracking/round_rule.hpp, with `gate`), records, then predicts to k+1; steps =
+/// scenario.steps. This is the in-process twin of a lock-step `skyfuse run`.
 RunTrace simulate_run(const Scenario& scenario, const TruthTrajectory& truth, int stations,
-                      std::uint64_t run, const StepObserver& observer = {});
+                      std::uint64_t run, const StepObserver& observer = {},
+                      const NisGate& gate = {});
 
 struct MonteCarloSettings {
   /// Station counts M to evaluate (each uses the first M stations). All counts of one run see

@@ -19,8 +19,10 @@ class CentralTracker {
 
   CentralTracker(const Model& motion, const State& initial) : motion_(motion), estimate_(initial) {}
 
-  /// The stacked update for this step; on failure the estimate is unchanged.
-  UpdateReport update(std::span<const Observation> observations) {
+  /// The stacked update for this step (`Observations`: a random-access range of Observation);
+  /// on failure the estimate is unchanged.
+  template <typename Observations>
+  UpdateReport update(const Observations& observations) {
     return stacked_.update(estimate_, observations);
   }
   void predict() { skyfuse::predict(estimate_, motion_); }

@@ -45,13 +45,15 @@ class PeerTracker {
     return compute_increment(station_id, estimate_, sensor, z, noise, out);
   }
   /// Fuses every station's increment (ascending id; weights[i] for increments[i]).
-  NumericalStatus fuse(std::span<const Increment> increments, std::span<const double> weights) {
+  template <typename Increments>
+  NumericalStatus fuse(const Increments& increments, std::span<const double> weights) {
     return fuse_increments(estimate_, increments, weights, estimate_, &information_);
   }
   /// Fuses one round's increments (ascending station id; weights[i] for increments[i]) onto
   /// `reference`, the prior that came with the lowest-id increment of the round. On failure the
   /// estimate is left as it was, and nothing counts as resynchronised.
-  RoundFusion fuse_round(const State& reference, std::span<const Increment> increments,
+  template <typename Increments>
+  RoundFusion fuse_round(const State& reference, const Increments& increments,
                          std::span<const double> weights) {
     const bool differs =
         reference.mean != estimate_.mean || reference.covariance != estimate_.covariance;

@@ -90,17 +90,26 @@ std::optional<DropKind> check_contribution(const PeerContribution<N>& contributi
   return check_estimate(contribution.prior);
 }
 
-/// z, R and the sensor's site finite; R positive definite; the site within kMaxRangeM of the
-/// origin; z something the sensor can report (Sensor::check_reported).
+/// What a measurement's source must be, whatever it reports: R and the sensor's site finite, R
+/// positive definite, the site within kMaxRangeM of the origin. A receiver checks it for every
+/// sample that brings its own R and site; a station and the in-process run, whose R and site do
+/// not change, check them once.
+template <typename Sensor>
+std::optional<DropKind> check_observation_source(const Sensor& sensor,
+                                                 const Covariance<Sensor::kMeasDim>& noise) {
+  if (!noise.allFinite() || !sensor.site().allFinite()) return DropKind::kNonFinite;
+  SmallCholesky<Sensor::kMeasDim> factor;
+  if (!factor.compute(noise)) return DropKind::kNotPositive;
+  if (sensor.site().norm() > kMaxRangeM) return DropKind::kOutOfRange;
+  return std::nullopt;
+}
+
+/// z finite, the source as check_observation_source(), and z something the sensor can report
+/// (Sensor::check_reported).
 template <typename Sensor>
 std::optional<DropKind> check_observation(const StationObservation<Sensor>& observation) {
-  if (!observation.z.allFinite() || !observation.noise.allFinite() ||
-      !observation.sensor.site().allFinite()) {
-    return DropKind::kNonFinite;
-  }
-  SmallCholesky<Sensor::kMeasDim> factor;
-  if (!factor.compute(observation.noise)) return DropKind::kNotPositive;
-  if (observation.sensor.site().norm() > kMaxRangeM) return DropKind::kOutOfRange;
+  if (!observation.z.allFinite()) return DropKind::kNonFinite;
+  if (const auto why = check_observation_source(observation.sensor, observation.noise)) return why;
   return Sensor::check_reported(observation.z);
 }
 

@@ -1,0 +1,168 @@
+#pragma once
+/// \file
+/// The one rule for a round: which samples of step k enter, in which order, through which gate,
+/// and how they become the fused (information) estimate and the stacked one. The station and
+/// center processes, the in-process Monte Carlo and the tests all call it, so a run over DDS
+/// and its in-process twin compute the same bits, with or without the NIS gate.
+///
+///  - Screening: a measurement enters only if its source passed check_observation_source where
+///    it was admitted (every received sample; a station's own sensor once), its value is one
+///    the sensor can report, and it passes the NIS gate against the prior it would update.
+///  - A station screens its own measurement against the common prior; screened out, it still
+///    contributes a zero increment, which tells its peers not to wait for one.
+///  - Peers fuse the contributions that arrived, in ascending station id, onto the prior of the
+///    lowest-id one (peer_tracker.hpp says why).
+///  - The center screens each measurement that arrived against its own prior and stacks those
+///    that pass, in ascending station id.
+
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "skyfuse/core/indirect_view.hpp"
+#include "skyfuse/tracking/central_tracker.hpp"
+#include "skyfuse/tracking/peer_tracker.hpp"
+#include "skyfuse/validation/nis_gate.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
+
+namespace skyfuse {
+
+/// Why `observation` may not update `prior`: a value the sensor cannot report, then the gate;
+/// nothing if it may. Its source (noise, site) must have passed check_observation_source.
+template <int N, typename Sensor>
+std::optional<DropKind> screen_observation(const GaussianState<N>& prior,
+                                           const StationObservation<Sensor>& observation,
+                                           const NisGate& gate) {
+  if (const auto why = Sensor::check_reported(observation.z)) return why;
+  if (gate.refuses(prior, observation.sensor, observation.z, observation.noise)) {
+    return DropKind::kNisGate;
+  }
+  return std::nullopt;
+}
+
+/// What a station's own measurement became.
+struct OwnContribution {
+  std::optional<DropKind> refused;  ///< screened out: the increment is zero
+  NumericalStatus status = NumericalStatus::kOk;
+};
+
+/// A station's increment for its own measurement against the common `prior`, into `out`: the
+/// increment if the measurement passes screening, a zero increment (with the reason) if not.
+template <int N, typename Sensor>
+OwnContribution contribute(const GaussianState<N>& prior,
+                           const StationObservation<Sensor>& observation, const NisGate& gate,
+                           InformationIncrement<N>& out) {
+  OwnContribution result;
+  result.refused = screen_observation(prior, observation, gate);
+  if (result.refused) {
+    out.station_id = observation.station_id;
+    out.delta_information.setZero();
+    out.delta_vector.setZero();
+    return result;
+  }
+  result.status = compute_increment(observation.station_id, prior, observation.sensor,
+                                    observation.z, observation.noise, out);
+  return result;
+}
+
+/// One slot of a round: a participant's contribution, or nothing if none arrived.
+template <int N>
+struct PeerSlot {
+  const InformationIncrement<N>* increment = nullptr;
+  const GaussianState<N>* prior = nullptr;
+};
+
+/// The peers' side of a round for a tracker over `Model`. Holds its buffers: no allocation per
+/// round.
+template <typename Model>
+class PeerRound {
+ public:
+  static constexpr int kDim = Model::kDim;
+
+  /// `weights[i]` belongs to the i-th participant in ascending station id `ids`.
+  PeerRound(std::span<const int> ids, std::span<const double> weights)
+      : ids_(ids.begin(), ids.end()), weights_(weights.begin(), weights.end()) {
+    increments_.reserve(ids_.size());
+    round_weights_.reserve(ids_.size());
+    contributors_.reserve(ids_.size());
+  }
+
+  /// Fuses the round into `tracker`: slot_at(i) is the i-th participant's slot (ascending id).
+  /// The reference is the lowest-id contribution's prior. Nothing arrived: status kOk, nothing
+  /// fused, arrived() false.
+  template <typename SlotAt>
+  RoundFusion fuse(PeerTracker<Model>& tracker, SlotAt slot_at) {
+    increments_.clear();
+    round_weights_.clear();
+    contributors_.clear();
+    const GaussianState<kDim>* reference = nullptr;
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+      const PeerSlot<kDim> slot = slot_at(i);
+      if (slot.increment == nullptr) continue;
+      if (reference == nullptr) reference = slot.prior;
+      increments_.push_back(slot.increment);
+      round_weights_.push_back(weights_[i]);
+      contributors_.push_back(ids_[i]);
+    }
+    if (reference == nullptr) return {};
+    return tracker.fuse_round(*reference, IndirectView<InformationIncrement<kDim>>(increments_),
+                              round_weights_);
+  }
+
+  /// Whether anything arrived in the last fuse().
+  bool arrived() const { return !contributors_.empty(); }
+  /// The stations fused in the last fuse(), ascending.
+  std::span<const int> contributors() const { return contributors_; }
+
+ private:
+  std::vector<int> ids_;
+  std::vector<double> weights_;
+  std::vector<const InformationIncrement<kDim>*> increments_;
+  std::vector<double> round_weights_;
+  std::vector<int> contributors_;
+};
+
+/// The center's side of a round for a tracker over `Model` with stations of `Sensor`. Holds its
+/// buffers: no allocation per round.
+template <typename Model, typename Sensor>
+class CentralRound {
+ public:
+  using Observation = StationObservation<Sensor>;
+
+  explicit CentralRound(std::size_t participants) {
+    stacked_.reserve(participants);
+    contributors_.reserve(participants);
+  }
+
+  /// Screens every observation that arrived (observation_at(i): the i-th participant's in
+  /// ascending id, or null) against the tracker's prior, stacks those that pass in that order
+  /// and updates; on_refused(station_id, kind) hears of each screened out. An empty round
+  /// updates nothing and reports kOk with NIS 0.
+  template <typename ObservationAt, typename OnRefused>
+  UpdateReport update(CentralTracker<Model, Sensor>& tracker, std::size_t participants,
+                      ObservationAt observation_at, const NisGate& gate, OnRefused on_refused) {
+    stacked_.clear();
+    contributors_.clear();
+    for (std::size_t i = 0; i < participants; ++i) {
+      const Observation* observation = observation_at(i);
+      if (observation == nullptr) continue;
+      if (const auto why = screen_observation(tracker.estimate(), *observation, gate)) {
+        on_refused(observation->station_id, *why);
+        continue;
+      }
+      stacked_.push_back(observation);
+      contributors_.push_back(observation->station_id);
+    }
+    if (stacked_.empty()) return {NumericalStatus::kOk, 0.0};
+    return tracker.update(IndirectView<Observation>(stacked_));
+  }
+
+  /// The stations stacked in the last update(), ascending.
+  std::span<const int> contributors() const { return contributors_; }
+
+ private:
+  std::vector<const Observation*> stacked_;
+  std::vector<int> contributors_;
+};
+
+}  // namespace skyfuse
