@@ -171,6 +171,11 @@ class Center {
     // writer really speaks for that station.
     const transport::WireObservation observation = transport::from_wire(sample);
     if (const auto why = check_observation(observation)) return why;
+    // A participant's measurement must come from where the scenario puts it; an unknown id is
+    // left to admit(), which says so.
+    if (const StationConfig* station = plan_.participant(sample.station_id())) {
+      if (const auto why = check_site(observation.sensor, *station)) return why;
+    }
     return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
                             observation);
   }

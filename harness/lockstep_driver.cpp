@@ -49,12 +49,24 @@ std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
   return std::nullopt;
 }
 
-// The same for a measurement: another run, or an observation the center would refuse.
+// The same for a measurement: another run, or an observation the center would refuse (its
+// content, or a participant's id at another site).
 std::optional<DropKind> measurement_content_refusal(const wire::Measurement& m,
                                                     const transport::WireObservation& observation,
-                                                    std::uint64_t run_id) {
+                                                    std::uint64_t run_id,
+                                                    const std::map<int, StationConfig>& stations) {
   if (m.run_id() != run_id) return DropKind::kWrongRun;
-  return check_observation(observation);
+  if (const auto why = check_observation(observation)) return why;
+  if (const auto station = stations.find(m.station_id()); station != stations.end()) {
+    return check_site(observation.sensor, station->second);
+  }
+  return std::nullopt;
+}
+
+std::vector<int> ids_of(std::span<const StationConfig> participants) {
+  std::vector<int> ids;
+  for (const StationConfig& s : participants) ids.push_back(s.id);
+  return ids;
 }
 
 }  // namespace
@@ -75,10 +87,10 @@ double default_discovery_timeout_s(int nodes) {
 }
 
 struct LockstepDriver::Impl {
-  Impl(const transport::NodeConfig& config, std::uint64_t run, std::vector<int> ids,
-       std::function<void()> check_fn)
+  Impl(const transport::NodeConfig& config, std::uint64_t run,
+       std::span<const StationConfig> participants, std::function<void()> check_fn)
       : run_id(run),
-        station_ids(std::move(ids)),
+        station_ids(ids_of(participants)),
         check(std::move(check_fn)),
         node(config),
         ticks(node.make_writer<wire::Tick>()),
@@ -88,6 +100,7 @@ struct LockstepDriver::Impl {
         track_collector(with_center(station_ids)),
         measurement_collector(station_ids) {
     std::sort(station_ids.begin(), station_ids.end());
+    for (const StationConfig& s : participants) stations.emplace(s.id, s);
     wait_set.attach(tracks);
     wait_set.attach(measurements);
     wait_set.attach(statuses);
@@ -144,13 +157,16 @@ struct LockstepDriver::Impl {
   std::optional<DropKind> measurement_refusal(const wire::Measurement& m,
                                               const transport::WriterId& writer) {
     const transport::WireObservation observation = transport::from_wire(m);
-    if (const auto why = measurement_content_refusal(m, observation, run_id)) return why;
+    if (const auto why = measurement_content_refusal(m, observation, run_id, stations)) {
+      return why;
+    }
     return transport::admit(measurement_collector, measurement_sources, m.step(), m.station_id(),
                             writer, Vector3(observation.z));
   }
 
   std::uint64_t run_id;
   std::vector<int> station_ids;
+  std::map<int, StationConfig> stations;  // by id: where each measurement must come from
   std::function<void()> check;
   transport::DdsNode node;
   transport::Writer<wire::Tick> ticks;
@@ -185,8 +201,9 @@ struct LockstepDriver::Impl {
 };
 
 LockstepDriver::LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
-                               std::vector<int> station_ids, std::function<void()> check)
-    : impl_(std::make_unique<Impl>(config, run_id, std::move(station_ids), std::move(check))) {}
+                               std::span<const StationConfig> participants,
+                               std::function<void()> check)
+    : impl_(std::make_unique<Impl>(config, run_id, participants, std::move(check))) {}
 
 LockstepDriver::~LockstepDriver() = default;
 
@@ -350,7 +367,7 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     wire::Measurement z;
     while (d.measurements.take(z, &writer)) {
       const transport::WireObservation observation = transport::from_wire(z);
-      auto why = measurement_content_refusal(z, observation, d.run_id);
+      auto why = measurement_content_refusal(z, observation, d.run_id, d.stations);
       if (!why) why = rounds.check_measurement(z.station_id(), z.step());
       if (!why && !d.measurement_sources.accept(z.station_id(), writer)) {
         why = DropKind::kDuplicate;

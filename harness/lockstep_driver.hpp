@@ -11,11 +11,13 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "round_record.hpp"
+#include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/transport/node_config.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
@@ -53,7 +55,7 @@ class LockstepDriver {
  public:
   /// `check` is called at least every 50 ms while waiting; it throws RunAborted to end the run.
   LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
-                 std::vector<int> station_ids, std::function<void()> check);
+                 std::span<const StationConfig> participants, std::function<void()> check);
   ~LockstepDriver();
 
   /// Waits until every station and the center have announced READY and the harness's own

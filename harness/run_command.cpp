@@ -261,7 +261,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
   if (o.secure_dir) {
     config.security = transport::SecurityConfig{*o.secure_dir, transport::kHarnessIdentity};
   }
-  LockstepDriver driver(config, run_id, ids, check);
+  LockstepDriver driver(config, run_id, plan.participants(), check);
 
   try {
     const std::vector<std::string> common = node_arguments(o, plan, run_id, scenario_file);

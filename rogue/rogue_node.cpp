@@ -9,7 +9,9 @@
 //   non_finite    a NaN in dQ / in z
 //   not_positive  dQ with a negative direction / R with a zero variance
 //   out_of_range  a negative range (measurements only)
-// It prints how many samples of each kind it sent, one line per topic and kind.
+//   wrong_site    the victim's id from another station position (measurements only)
+// Every other measurement claims the victim's own site (from the scenario, --scenario), so that
+// it is refused for its one fault. It prints how many samples of each kind it sent, one line per topic and kind.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
@@ -20,7 +22,9 @@
 
 #include "secure_probe.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/node_options.hpp"
+#include "skyfuse/transport/scenario_option.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
@@ -47,7 +51,13 @@ std::vector<Attack> attacks_at(std::uint64_t run, std::uint32_t k, int victim) {
           {DropKind::kUnknownStation, run, k, 999},
           {DropKind::kNonFinite, run, k, victim},
           {DropKind::kNotPositive, run, k, victim},
-          {DropKind::kOutOfRange, run, k, victim}};
+          {DropKind::kOutOfRange, run, k, victim},
+          {DropKind::kWrongSite, run, k, victim}};
+}
+
+// Kinds that only a measurement can carry.
+bool measurement_only(DropKind kind) {
+  return kind == DropKind::kOutOfRange || kind == DropKind::kWrongSite;
 }
 
 wire::InformationIncrement increment_for(const Attack& a) {
@@ -63,14 +73,15 @@ wire::InformationIncrement increment_for(const Attack& a) {
   return s;
 }
 
-wire::Measurement measurement_for(const Attack& a) {
+wire::Measurement measurement_for(const Attack& a, const Vector3& victim_site) {
   wire::Measurement s;
   s.run_id(a.run_id);
   s.step(a.step);
   s.station_id(a.station);
   s.z() = {1500.0, 0.5, 0.3};
   s.noise() = {1.0, 0.0, 0.0, 1e-4, 0.0, 1e-4};  // upper triangle of diag(1, 1e-4, 1e-4)
-  s.station_position() = {0.0, 0.0, 0.0};
+  s.station_position() = {victim_site.x(), victim_site.y(), victim_site.z()};
+  if (a.kind == DropKind::kWrongSite) s.station_position()[0] += 10.0;
   if (a.kind == DropKind::kNonFinite) s.z()[1] = std::numeric_limits<double>::infinity();
   if (a.kind == DropKind::kNotPositive) s.noise()[5] = 0.0;
   if (a.kind == DropKind::kOutOfRange) s.z()[0] = -5.0;
@@ -95,6 +106,8 @@ int main(int argc, char** argv) {
   app.add_option("--victim", victim, "A real station id to impersonate");
   app.add_option("--at-steps", steps, "Steps (>= 1) at which to attack")->capture_default_str();
   app.add_option("--timeout", timeout_s, "Seconds to wait for the run's ticks");
+  std::string scenario_path;
+  transport::add_scenario_option(app, scenario_path);
   rogue::ProbeOptions probe;
   rogue::add_probe_options(app, probe);
   CLI11_PARSE(app, argc, argv);
@@ -107,6 +120,10 @@ int main(int argc, char** argv) {
 
   try {
     if (probe.probe) return rogue::run_probe(probe, {domain, run_id, victim, timeout_s});
+    Vector3 victim_site = Vector3::Zero();  // an id that is no station's stands nowhere
+    for (const StationConfig& s : load_scenario_or_default(scenario_path).stations) {
+      if (s.id == victim) victim_site = s.position_m;
+    }
     transport::NodeConfig config;
     config.domain_id = domain;
     config.name = "skyfuse-rogue";
@@ -147,11 +164,11 @@ int main(int argc, char** argv) {
         }
         for (const Attack& a : attacks_at(run_id, *newest, victim)) {
           const auto kind = static_cast<std::size_t>(a.kind);
-          if (a.kind != DropKind::kOutOfRange) {
+          if (!measurement_only(a.kind)) {
             increments.write(increment_for(a));
             ++sent_increments[kind];
           }
-          measurements.write(measurement_for(a));
+          measurements.write(measurement_for(a, victim_site));
           ++sent_measurements[kind];
         }
       }

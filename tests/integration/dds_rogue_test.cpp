@@ -41,6 +41,7 @@ TEST(DdsRogue, NothingMalformedIsFusedAndEveryKindIsCounted) {
   // The rogue reached every reader at every attack step.
   EXPECT_THAT(rogue.output, HasSubstr("sent increment non_finite 3"));
   EXPECT_THAT(rogue.output, HasSubstr("sent measurement out_of_range 3"));
+  EXPECT_THAT(rogue.output, HasSubstr("sent measurement wrong_site 3"));
 
   for (const char* file : {"tracks.csv", "steps.csv", "measurements.csv"}) {
     EXPECT_EQ(read_file(dir / "attacked" / file), read_file(dir / "clean" / file)) << file;
@@ -59,6 +60,9 @@ TEST(DdsRogue, NothingMalformedIsFusedAndEveryKindIsCounted) {
     EXPECT_EQ(by_kind[kind].get<int>(), on_both_topics) << kind;
   }
   EXPECT_EQ(by_kind["out_of_range"].get<int>(), kAttackSteps * 2);  // measurements only
+  // The victim's id from 10 m beside its site: the center and the recorder know where it stands.
+  EXPECT_EQ(summary["dropped_by_node"]["center"]["wrong_site"].get<int>(), kAttackSteps);
+  EXPECT_EQ(summary["dropped_by_node"]["harness"]["wrong_site"].get<int>(), kAttackSteps);
   EXPECT_EQ(by_kind["nis_gate"].get<int>(), 0);
   // The impersonation (a real station's sample for step k + 1 from the rogue's writer) is a
   // duplicate while step k + 1 is open at the receiver; if the rogue woke two rounds late on a

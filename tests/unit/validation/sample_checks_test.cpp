@@ -182,6 +182,17 @@ TEST(SampleChecks, RefusesMeasurementsTheSensorCannotReport) {
             DropKind::kNonFinite);
 }
 
+TEST(SampleChecks, AMeasurementMustComeFromWhereTheScenarioPutsItsStation) {
+  StationConfig station;
+  station.id = 2;
+  station.position_m = Vector3(-450.0, -450.0, 20.0);
+  EXPECT_FALSE(check_site(RangeAzimuthElevation<9>(station.position_m), station));
+  EXPECT_EQ(
+      check_site(RangeAzimuthElevation<9>(station.position_m + Vector3(0.0, 0.0, 1e-3)), station),
+      DropKind::kWrongSite);
+  EXPECT_EQ(check_site(RangeAzimuthElevation<9>(Vector3::Zero()), station), DropKind::kWrongSite);
+}
+
 TEST(DropKind, NamesAreDistinctSnakeCase) {
   for (std::size_t i = 0; i < kDropKinds; ++i) {
     const std::string_view name = to_string(static_cast<DropKind>(i));
@@ -189,6 +200,7 @@ TEST(DropKind, NamesAreDistinctSnakeCase) {
     for (std::size_t j = 0; j < i; ++j) EXPECT_NE(name, to_string(static_cast<DropKind>(j)));
   }
   EXPECT_EQ(to_string(DropKind::kNisGate), "nis_gate");
+  EXPECT_EQ(to_string(DropKind::kWrongSite), "wrong_site");
 }
 
 }  // namespace

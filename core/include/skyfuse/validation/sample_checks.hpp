@@ -11,6 +11,7 @@
 
 #include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/fusion/information_increment.hpp"
+#include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
 #include "skyfuse/tracking/peer_contribution.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
@@ -111,6 +112,15 @@ std::optional<DropKind> check_observation(const StationObservation<Sensor>& obse
   if (!observation.z.allFinite()) return DropKind::kNonFinite;
   if (const auto why = check_observation_source(observation.sensor, observation.noise)) return why;
   return Sensor::check_reported(observation.z);
+}
+
+/// kWrongSite unless the sensor stands where the scenario puts `station` (bit for bit: the
+/// station and every receiver read the same scenario). A measurement that claims another site
+/// is not that station's, whatever it says; a sensor without a site reports the origin.
+template <typename Sensor>
+std::optional<DropKind> check_site(const Sensor& sensor, const StationConfig& station) {
+  if (sensor.site() != station.position_m) return DropKind::kWrongSite;
+  return std::nullopt;
 }
 
 }  // namespace skyfuse
