@@ -20,6 +20,7 @@
 #include "skyfuse/transport/scenario_option.hpp"
 #include "skyfuse/transport/security_folder.hpp"
 #include "skyfuse/transport/shutdown.hpp"
+#include "skyfuse/transport/wire_configuration.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -33,7 +34,10 @@ std::string scenario_text(const std::string& path) {
 
 RunPlan plan_from(const std::string& text, const std::string& source,
                   const RunOverrides& overrides) {
-  return make_run_plan(parse_scenario(text, source), overrides);
+  RunPlan plan = make_run_plan(parse_scenario(text, source), overrides);
+  // Refused here, before any process starts, rather than by each node.
+  transport::require_wire_configuration(plan.scenario, plan.stations);
+  return plan;
 }
 
 // The arguments every node gets, so that it builds the same plan as the harness.

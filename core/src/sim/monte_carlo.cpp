@@ -27,9 +27,11 @@ template <typename Model, template <int> class SensorOf>
 class RunStepper {
  public:
   static constexpr int kDim = Model::kDim;
+  // One sensor type, or a SensorPack when the stations' sensors differ.
   using Sensor = SensorOf<kDim>;
-  using Measurement = Vector<Sensor::kMeasDim>;
-  using Observation = StationObservation<Sensor>;
+  using Observation = ObservationFor<Sensor>;
+  /// Room for any station's measurement; a station's own is its first entries.
+  using Measurement = Vector<max_measurement_dim<Sensor>()>;
   using Increment = InformationIncrement<kDim>;
 
   RunStepper(const Scenario& scenario, const TruthTrajectory& truth, int stations,
@@ -47,12 +49,12 @@ class RunStepper {
     increments_.resize(order_.size());
     for (std::size_t j = 0; j < order_.size(); ++j) {
       const StationConfig& station = scenario.stations[order_[j]];
-      observations_[j].station_id = station.id;
-      observations_[j].sensor = make_sensor<Sensor>(station);
-      observations_[j].noise = station_noise_covariance<Sensor::kMeasDim>(scenario, station, run);
+      observations_[j] = make_observation<Sensor>(scenario, station, run);
       // The round rule screens each value; the source, fixed for the run, is checked once.
-      if (const auto why =
-              check_observation_source(observations_[j].sensor, observations_[j].noise)) {
+      const auto why = with_observation(observations_[j], [](const auto& o) {
+        return check_observation_source(o.sensor, o.noise);
+      });
+      if (why) {
         throw NumericalError(fmt::format("station {}: its noise or site is unusable: {}",
                                          station.id, to_string(*why)));
       }
@@ -69,14 +71,16 @@ class RunStepper {
   void step(std::size_t k, const Vector<9>& x, std::span<const Measurement> z,
             const StepObserver& observer) {
     for (std::size_t j = 0; j < order_.size(); ++j) {
-      Observation& obs = observations_[j];
-      obs.z = z[order_[j]];
-      const OwnContribution own = contribute(peers_.estimate(), obs, gate_, increments_[j]);
-      if (own.status != NumericalStatus::kOk) {
-        throw NumericalError(fmt::format("p2p: step {}, station {}: increment failed: {}", k,
-                                         obs.station_id, to_string(own.status)));
-      }
-      if (own.refused) ++trace_.refused_p2p;
+      with_observation(observations_[j], [&](auto& obs) {
+        constexpr int kMeasDim = std::decay_t<decltype(obs.z)>::RowsAtCompileTime;
+        obs.z = z[order_[j]].template head<kMeasDim>();
+        const OwnContribution own = contribute(peers_.estimate(), obs, gate_, increments_[j]);
+        if (own.status != NumericalStatus::kOk) {
+          throw NumericalError(fmt::format("p2p: step {}, station {}: increment failed: {}", k,
+                                           obs.station_id, to_string(own.status)));
+        }
+        if (own.refused) ++trace_.refused_p2p;
+      });
     }
     const UpdateReport central_report = central_round_.update(
         central_, observations_.size(), [&](std::size_t j) { return &observations_[j]; }, gate_,
@@ -156,27 +160,27 @@ std::vector<RunTrace> simulate_runs(const Scenario& scenario, const TruthTraject
   using Stepper = RunStepper<Model, SensorOf>;
   // The sensors as they see the truth: the target's kinematics, whatever the filter's model.
   using TruthSensor = SensorOf<9>;
-  constexpr int kMeasDim = TruthSensor::kMeasDim;
   std::vector<Stepper> steppers;
   steppers.reserve(station_counts.size());
   for (int m : station_counts) steppers.emplace_back(scenario, truth, m, run, gate);
   // Every station of the largest count is simulated, indexed like scenario.stations.
   const auto simulated =
       static_cast<std::size_t>(*std::max_element(station_counts.begin(), station_counts.end()));
-  std::vector<TruthSensor> truth_sensors;
-  std::vector<Covariance<kMeasDim>> noises;
+  std::vector<ObservationFor<TruthSensor>> truth_sensors;  // sensor and noise per station
   for (std::size_t i = 0; i < simulated; ++i) {
-    truth_sensors.push_back(make_sensor<TruthSensor>(scenario.stations[i]));
-    noises.push_back(station_noise_covariance<kMeasDim>(scenario, scenario.stations[i], run));
+    truth_sensors.push_back(make_observation<TruthSensor>(scenario, scenario.stations[i], run));
   }
-  std::vector<typename Stepper::Measurement> z(simulated);
+  std::vector<typename Stepper::Measurement> z(simulated, Stepper::Measurement::Zero());
 
   const auto steps = static_cast<std::size_t>(scenario.steps);
   for (std::size_t k = 0; k < steps; ++k) {
     const Vector<9>& x = truth.states[k];
     for (std::size_t i = 0; i < z.size(); ++i) {
-      z[i] = simulate_measurement(truth_sensors[i], x, noises[i], scenario.seed, run,
-                                  scenario.stations[i].id, k);
+      with_observation(truth_sensors[i], [&](const auto& o) {
+        constexpr int kMeasDim = std::decay_t<decltype(o.z)>::RowsAtCompileTime;
+        z[i].template head<kMeasDim>() = simulate_measurement(o.sensor, x, o.noise, scenario.seed,
+                                                              run, scenario.stations[i].id, k);
+      });
     }
     for (Stepper& stepper : steppers) stepper.step(k, x, z, observer);
   }
@@ -203,14 +207,19 @@ std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
   return traces;
 }
 
-// Degrees of freedom of the NEES (the state) and of one station's NIS (its sensor).
+// Degrees of freedom of the NEES (the state) and of the stacked NIS (the first M stations'
+// measured components together).
 struct Dof {
   int state = 0;
   int measurement = 0;
 };
-Dof dof_of(const Scenario& scenario) {
-  return {find_motion_model(scenario.filter.motion_model.kind)->state_dim,
-          find_sensor(scenario.stations.front().sensor.kind)->measurement_dim};
+Dof dof_of(const Scenario& scenario, int stations) {
+  Dof dof{find_motion_model(scenario.filter.motion_model.kind)->state_dim, 0};
+  for (int i = 0; i < stations; ++i) {
+    dof.measurement +=
+        find_sensor(scenario.stations[static_cast<std::size_t>(i)].sensor.kind)->measurement_dim;
+  }
+  return dof;
 }
 
 void check_station_count(const Scenario& scenario, int stations) {
@@ -296,7 +305,7 @@ MonteCarloSummary summarise(const std::vector<RunTrace>& traces, int stations, d
   s.rmse_p2p_m = std::sqrt(sum_sq_p2p / samples);
   s.anees = sum_anees / static_cast<double>(steps);
   s.anees_steps_in_band = in_band / static_cast<double>(steps);
-  s.anis_per_dof = sum_nis / samples / static_cast<double>(dof.measurement * stations);
+  s.anis_per_dof = sum_nis / samples / static_cast<double>(dof.measurement);
   return s;
 }
 
@@ -330,7 +339,7 @@ std::vector<MonteCarloSummary> run_monte_carlo(const Scenario& scenario,
   std::vector<MonteCarloSummary> summaries;
   for (std::size_t c = 0; c < by_count.size(); ++c) {
     summaries.push_back(summarise(by_count[c], settings.stations[c], settings.speed_mps,
-                                  scenario.steps, dof_of(scenario)));
+                                  scenario.steps, dof_of(scenario, settings.stations[c])));
   }
   return summaries;
 }

@@ -90,5 +90,25 @@ TEST(MonteCarlo, RefusesMoreStationsThanTheScenarioHas) {
   EXPECT_THROW(run_monte_carlo(scenario, {{0}, 10.0, 1, 1}), std::invalid_argument);
 }
 
+// Paper 000's radars and the aircraft's own GPS report in one network: the stacked update over
+// mixed sensors and the fused increments agree, and the GPS adds what one radar lacks.
+TEST(MonteCarlo, ARadarAndTheAircraftsGpsRunCentralAndPeerToPeerAlike) {
+  std::string yaml(default_scenario_yaml());
+  const std::string first_radar_end = "noise_std: [0.1, 0.01, 0.01]}\n";
+  const auto at = yaml.find(first_radar_end);
+  ASSERT_NE(at, std::string::npos);
+  yaml.insert(at + first_radar_end.size(),
+              "  - {id: 11, sensor: {kind: position_velocity, noise_std: [3, 3, 3, 2, 2, 2]}}\n");
+  Scenario scenario = parse_scenario(yaml, "gps.yaml");
+  scenario.steps = 500;
+  ASSERT_EQ(scenario.stations[1].sensor.kind, "position_velocity");
+  const double speed = scenario.target.speeds_mps[0];
+  const MonteCarloSummary radar_alone = run_monte_carlo(scenario, {{1}, speed, 4, 2}).front();
+  const MonteCarloSummary with_gps = run_monte_carlo(scenario, {{2}, speed, 4, 2}).front();
+  EXPECT_LT(with_gps.max_abs_diff_m, 1e-6);
+  EXPECT_LT(with_gps.rmse_p2p_m, 0.8 * radar_alone.rmse_p2p_m);
+  EXPECT_GT(with_gps.anis_per_dof, 0.0);
+}
+
 }  // namespace
 }  // namespace skyfuse

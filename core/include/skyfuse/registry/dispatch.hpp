@@ -3,6 +3,7 @@
 /// From a scenario's names to code compiled for its types: the motion model it names and the
 /// sensor kind of its stations.
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -12,27 +13,31 @@
 
 namespace skyfuse {
 
-/// The sensor kind shared by the first `stations` stations; std::invalid_argument naming the
-/// kinds when they differ.
-std::string common_sensor_kind(const Scenario& scenario, int stations);
+/// The sensor kind shared by the first `stations` stations; nothing when they differ.
+std::optional<std::string> common_sensor_kind(const Scenario& scenario, int stations);
 
 /// Calls f(std::type_identity<Model>{}, SensorTemplate<Sensor>{}) for the scenario's motion
-/// model and the sensor kind of its first `stations` stations, which must all have the same
-/// kind. The loader has checked every name, so an unknown one here is a programming error and
-/// throws std::logic_error.
+/// model and the sensor of its first `stations` stations: their common sensor, or AnySensor
+/// when they differ. The loader has checked every name, so an unknown one here is a programming
+/// error and throws std::logic_error.
 template <typename F>
 void dispatch_configuration(const Scenario& scenario, int stations, F&& f) {
-  const std::string sensor_kind = common_sensor_kind(scenario, stations);
+  const std::optional<std::string> sensor_kind = common_sensor_kind(scenario, stations);
   bool sensor_found = false;
   const bool model_found = visit_model_kind<MotionModels>(
       scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model> model) {
+        if (!sensor_kind) {
+          f(model, SensorTemplate<AnySensor>{});
+          sensor_found = true;
+          return;
+        }
         sensor_found = visit_sensor_kind<Sensors, Model::kDim>(
-            sensor_kind, [&](auto sensor) { f(model, sensor); });
+            *sensor_kind, [&](auto sensor) { f(model, sensor); });
       });
   if (!model_found || !sensor_found) {
     throw std::logic_error("no registered configuration for motion model '" +
-                           scenario.filter.motion_model.kind + "' with sensor '" + sensor_kind +
-                           "'");
+                           scenario.filter.motion_model.kind + "' with sensor '" +
+                           sensor_kind.value_or("(mixed)") + "'");
   }
 }
 

@@ -17,10 +17,15 @@
 #include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/registry/part_lists.hpp"
+#include "skyfuse/registry/sensor_pack.hpp"
 
 namespace skyfuse {
 
 using MotionModels = ModelList<ConstantAcceleration3D, ConstantVelocity3D>;
 using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity>;
+
+/// Stations with different sensors in one run: any registered sensor, for an N-entry state.
+template <int N>
+using AnySensor = typename PackOfList<N, Sensors>::type;
 
 }  // namespace skyfuse

@@ -5,17 +5,27 @@
 
 #include <span>
 
+#include <type_traits>
+
+#include "skyfuse/fusion/mixed_stacked_ekf.hpp"
 #include "skyfuse/fusion/stacked_ekf.hpp"
+#include "skyfuse/registry/sensor_pack.hpp"
 
 namespace skyfuse {
 
-/// The center's tracker over the motion model `Model`, for stations with sensors `Sensor`.
+/// The stacked update for stations of one sensor type (fixed blocks), or of a pack (any mix).
+template <int N, typename Sensor>
+using StackedFor = std::conditional_t<IsSensorPack<Sensor>::value, MixedStackedEkf<N, Sensor>,
+                                      StackedEkf<N, Sensor>>;
+
+/// The center's tracker over the motion model `Model`, for stations with sensors `Sensor` (one
+/// sensor type, or a SensorPack when they differ).
 template <typename Model, typename Sensor>
 class CentralTracker {
  public:
   static constexpr int kDim = Model::kDim;
   using State = GaussianState<kDim>;
-  using Observation = StationObservation<Sensor>;
+  using Observation = ObservationFor<Sensor>;
 
   CentralTracker(const Model& motion, const State& initial) : motion_(motion), estimate_(initial) {}
 
@@ -31,7 +41,7 @@ class CentralTracker {
  private:
   Model motion_;
   State estimate_;
-  StackedEkf<kDim, Sensor> stacked_;
+  StackedFor<kDim, Sensor> stacked_;
 };
 
 }  // namespace skyfuse

@@ -127,7 +127,7 @@ class PeerRound {
 template <typename Model, typename Sensor>
 class CentralRound {
  public:
-  using Observation = StationObservation<Sensor>;
+  using Observation = ObservationFor<Sensor>;
 
   explicit CentralRound(std::size_t participants) {
     stacked_.reserve(participants);
@@ -146,12 +146,15 @@ class CentralRound {
     for (std::size_t i = 0; i < participants; ++i) {
       const Observation* observation = observation_at(i);
       if (observation == nullptr) continue;
-      if (const auto why = screen_observation(tracker.estimate(), *observation, gate)) {
-        on_refused(observation->station_id, *why);
+      const auto [station_id, why] = with_observation(*observation, [&](const auto& o) {
+        return std::pair{o.station_id, screen_observation(tracker.estimate(), o, gate)};
+      });
+      if (why) {
+        on_refused(station_id, *why);
         continue;
       }
       stacked_.push_back(observation);
-      contributors_.push_back(observation->station_id);
+      contributors_.push_back(station_id);
     }
     if (stacked_.empty()) return {NumericalStatus::kOk, 0.0};
     return tracker.update(IndirectView<Observation>(stacked_));
