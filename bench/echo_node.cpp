@@ -10,8 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <optional>
 
+#include "skyfuse/options/node_options.hpp"
 #include "skyfuse/transport/dds_node.hpp"
-#include "skyfuse/transport/node_options.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
   spdlog::set_pattern(fmt::format("[echo {}] %^%l%$: %v", id));
   transport::install_shutdown_handlers();
 
-  return transport::run_node([&]() -> int {
+  return options::run_node([&]() -> int {
     transport::NodeConfig config;
     config.domain_id = domain;
     config.name = fmt::format("skyfuse-echo-{}", id);
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
       wire::Tick tick;
       while (ticks.take(tick)) {
         if (tick.run_id() != run_id) continue;
-        if (tick.stop()) return transport::kExitOk;
+        if (tick.stop()) return options::kExitOk;
         last_tick = std::chrono::steady_clock::now();
         tick_wait_s = timeout_s;
         if (all_to_all == 0) {
@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
       if (std::chrono::steady_clock::now() - last_tick >
           std::chrono::duration<double>(tick_wait_s)) {
         spdlog::error("no tick for {} s", tick_wait_s);
-        return transport::kExitIdleTimeout;
+        return options::kExitIdleTimeout;
       }
       wait_set.wait(std::chrono::milliseconds(50));
     }

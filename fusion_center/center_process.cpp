@@ -14,6 +14,7 @@
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/node_presence.hpp"
+#include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/source_binding.hpp"
@@ -29,10 +30,10 @@ constexpr auto kPollSlice = 50ms;
 
 class Center {
  public:
-  Center(const transport::NodeOptions& options, const RunPlan& plan)
+  Center(const options::NodeOptions& options, const RunPlan& plan)
       : options_(options),
         plan_(plan),
-        node_(options.node_config("skyfuse-center")),
+        node_(transport::node_config(options, "skyfuse-center")),
         presence_(node_, options.run_id, kCenterSourceId),
         ticks_(node_.make_reader<wire::Tick>()),
         measurements_(node_.make_reader<wire::Measurement>()),
@@ -71,7 +72,8 @@ class Center {
       const UpdateReport report = round_.update(
           tracker_, collector_.station_ids().size(),
           [&](std::size_t j) { return collector_.filled(j) ? &collector_.payloads()[j] : nullptr; },
-          options_.nis_gate(), [&](int station_id, DropKind why) {
+          options_.nis_gate(),
+          [&](int station_id, DropKind why) {
             transport::count_drop(drops_, why, "measurement", station_id, k);
           });
       if (report.status != NumericalStatus::kOk) {
@@ -80,7 +82,7 @@ class Center {
         spdlog::error("{}", detail);
         presence_.set_drops(drops_.counts());  // a failure report says what was refused too
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
-        return transport::kExitNumerical;
+        return options::kExitNumerical;
       }
       tracks_.write(transport::to_wire(tracker_.estimate(), options_.run_id,
                                        static_cast<std::uint32_t>(k), kCenterSourceId,
@@ -93,7 +95,7 @@ class Center {
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
     transport::finish_when_released(ticks_, options_.run_id, presence_, tracks_, 5s);
     spdlog::info("finished {} steps", steps);
-    return transport::kExitOk;
+    return options::kExitOk;
   }
 
  private:
@@ -119,7 +121,7 @@ class Center {
         if (tick.epoch_ns() != 0) epoch_ns_ = tick.epoch_ns();
         if (tick.stop()) {
           spdlog::info("stopped by the harness at step {}", k);
-          return transport::kExitOk;
+          return options::kExitOk;
         }
         if (!realtime && tick.step() == k && !close) {
           close = std::chrono::system_clock::now() + options_.round_deadline();
@@ -150,7 +152,7 @@ class Center {
         spdlog::error("{}", detail);
         presence_.set_drops(drops_.counts());  // a failure report says what was refused too
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
-        return transport::kExitIdleTimeout;
+        return options::kExitIdleTimeout;
       }
       auto slice = std::chrono::duration_cast<std::chrono::microseconds>(kPollSlice);
       if (close) {  // never sleep past the deadline
@@ -180,7 +182,7 @@ class Center {
                             observation);
   }
 
-  const transport::NodeOptions& options_;
+  const options::NodeOptions& options_;
   const RunPlan& plan_;
   transport::DdsNode node_;
   transport::NodePresence presence_;
@@ -199,8 +201,8 @@ class Center {
 
 }  // namespace
 
-int run_center(const transport::NodeOptions& options) {
-  const RunPlan plan = options.load_plan();
+int run_center(const options::NodeOptions& options) {
+  const RunPlan plan = transport::load_plan(options);
   Center center(options, plan);
   return center.run();
 }

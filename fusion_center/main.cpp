@@ -9,12 +9,12 @@
 int main(int argc, char** argv) {
   using namespace skyfuse;
   CLI::App app{"skyfuse-center: the fusion center; one stacked EKF over all measurements"};
-  transport::NodeOptions options;
-  transport::add_node_options(app, options);
+  options::NodeOptions options;
+  options::add_node_options(app, options);
   CLI11_PARSE(app, argc, argv);
 
   spdlog::set_level(spdlog::level::from_str(options.log_level));
   spdlog::set_pattern("[center] %^%l%$: %v");
   transport::install_shutdown_handlers();
-  return transport::run_node([&] { return center::run_center(options); });
+  return options::run_node([&] { return center::run_center(options); });
 }

@@ -110,13 +110,13 @@ RunSummary run_for_bench(const BenchOptions& o, const Scenario& scenario,
                          const std::string& scenario_path, int m,
                          const std::filesystem::path& out) {
   RunOptions run;
-  run.scenario_path = scenario_path;
-  run.overrides.stations = m;
-  run.overrides.steps = o.rounds;
-  run.domain = o.domain;
+  run.node.scenario_path = scenario_path;
+  run.node.overrides.stations = m;
+  run.node.overrides.steps = o.rounds;
+  run.node.domain = o.domain;
   run.out_dir = (out / fmt::format("run-M{}", m)).string();
   run.round_timeout_s = 30.0;
-  return execute_run(run, make_run_plan(scenario, run.overrides));
+  return execute_run(run, make_run_plan(scenario, run.node.overrides));
 }
 
 // The floor runs on a domain of its own: whatever the floor's processes leave behind on

@@ -47,11 +47,11 @@ int run_demo(const DemoOptions& d) {
   std::vector<std::string> step_files;
   for (double speed : scenario.target.speeds_mps) {
     RunOptions o;
-    o.domain = d.domain;
-    o.overrides.stations = d.stations;
-    o.overrides.speed_kmh = speed * 3.6;
+    o.node.domain = d.domain;
+    o.node.overrides.stations = d.stations;
+    o.node.overrides.speed_kmh = speed * 3.6;
     o.out_dir = fmt::format("{}/{:.0f}kmh", out_dir, speed * 3.6);
-    const RunPlan plan = make_run_plan(scenario, o.overrides);
+    const RunPlan plan = make_run_plan(scenario, o.node.overrides);
     const RunSummary dds = execute_run(o, plan);
 
     // The same run in-process: same core code, same seed, same Monte-Carlo index.

@@ -13,11 +13,11 @@
 #include "output_files.hpp"
 #include "progress.hpp"
 #include "secure_start.hpp"
+#include "skyfuse/options/node_options.hpp"
+#include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/dds_node.hpp"
-#include "skyfuse/transport/node_options.hpp"
 #include "skyfuse/transport/qos.hpp"
-#include "skyfuse/transport/scenario_option.hpp"
 #include "skyfuse/transport/security_folder.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/wire_configuration.hpp"
@@ -40,49 +40,20 @@ RunPlan plan_from(const std::string& text, const std::string& source,
   return plan;
 }
 
-// The arguments every node gets, so that it builds the same plan as the harness.
+// The arguments every node gets, so that it builds the same plan as the harness: the run's
+// node options with what the harness decides for this run filled in.
 std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan,
                                         std::uint64_t run_id,
                                         const std::filesystem::path& scenario_file) {
-  std::vector<std::string> args = {"--scenario",
-                                   scenario_file.string(),
-                                   "--domain",
-                                   std::to_string(o.domain),
-                                   "--run-id",
-                                   std::to_string(run_id),
-                                   "--stations",
-                                   std::to_string(plan.stations),
-                                   "--steps",
-                                   std::to_string(plan.scenario.steps),
-                                   "--speed-kmh",
-                                   fmt::format("{:.17g}", plan.speed_mps * 3.6),
-                                   "--mc-run",
-                                   std::to_string(plan.mc_run),
-                                   "--discovery-timeout",
-                                   fmt::format("{}", discovery_timeout_s(o, plan.stations)),
-                                   "--idle-timeout",
-                                   fmt::format("{}", std::max(30.0, 3.0 * o.round_timeout_s)),
-                                   "--log-level",
-                                   o.verbose ? "info" : "warn",
-                                   "--realtime-deadline-ms",
-                                   fmt::format("{}", o.realtime_deadline_ms),
-                                   "--round-deadline-ms",
-                                   fmt::format("{}", o.round_deadline_ms)};
-  for (std::string& a : transport::loss_arguments(o.loss, o.best_effort)) {
-    args.push_back(std::move(a));
-  }
-  if (o.gate.enabled()) {
-    args.push_back("--nis-gate");
-    args.push_back(fmt::format("{:.17g}", o.gate.probability()));
-  }
-  if (o.qos_file) {
-    args.push_back("--qos");
-    args.push_back(*o.qos_file);
-  }
-  if (o.secure_dir) {
-    args.insert(args.end(), {"--secure", std::filesystem::absolute(*o.secure_dir).string()});
-  }
-  return args;
+  options::NodeOptions child = o.node;
+  child.scenario_path = scenario_file.string();
+  child.run_id = run_id;
+  child.overrides = {plan.stations, plan.scenario.steps, plan.speed_mps * 3.6, plan.mc_run};
+  child.discovery_timeout_s = discovery_timeout_s(o, plan.stations);
+  child.idle_timeout_s = std::max(30.0, 3.0 * o.round_timeout_s);
+  child.log_level = o.verbose ? "info" : "warn";
+  if (child.secure_dir) child.secure_dir = std::filesystem::absolute(*child.secure_dir).string();
+  return options::to_arguments(child);
 }
 
 std::chrono::milliseconds seconds_to_ms(double s) {
@@ -110,7 +81,7 @@ std::optional<std::string> missing_from(const RoundRecord& r, std::size_t statio
 
 // "ID@STEP" -> {ID, STEP}.
 StationEvent parse_station_event(const std::string& option, const std::string& text) {
-  const auto pair = transport::parse_number_pair(text, '@');
+  const auto pair = options::parse_number_pair(text, '@');
   if (!pair || pair->first > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
     throw CLI::ValidationError(option, "expected ID@STEP, e.g. 2@100, got " + text);
   }
@@ -135,7 +106,7 @@ void check_station_events(const RunOptions& o, const RunPlan& plan) {
       }
     }
   }
-  if ((!o.kills.empty()) && (o.external || o.realtime_deadline_ms > 0.0)) {
+  if ((!o.kills.empty()) && (o.external || o.node.realtime_deadline_ms > 0.0)) {
     throw std::invalid_argument("--kill/--restart: lock-step runs with started processes only");
   }
   for (int id : plan.participant_ids()) {
@@ -165,17 +136,17 @@ void check_station_events(const RunOptions& o, const RunPlan& plan) {
 void add_run_command(CLI::App& app, RunOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "run", "Run the stations and the fusion center as processes over DDS, in lock-step");
-  transport::add_scenario_option(*cmd, o.scenario_path);
-  transport::add_plan_options(*cmd, o.overrides);
+  options::add_scenario_option(*cmd, o.node.scenario_path);
+  options::add_plan_options(*cmd, o.node.overrides);
   cmd->add_option("--out", o.out_dir, "Folder for the per-step CSVs and summary.json")
       ->capture_default_str();
-  cmd->add_option("--domain", o.domain, "DDS domain id")
+  cmd->add_option("--domain", o.node.domain, "DDS domain id")
       ->check(CLI::Range(0, transport::kMaxDomainId))
       ->capture_default_str();
   cmd->add_option("--run-id", o.run_id, "Run id (default: random)");
-  cmd->add_option("--qos", o.qos_file, "Fast DDS XML profiles overriding the built-in QoS")
+  cmd->add_option("--qos", o.node.qos_file, "Fast DDS XML profiles overriding the built-in QoS")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--secure", o.secure_dir,
+  cmd->add_option("--secure", o.node.secure_dir,
                   "DDS-Security: authenticate, authorise and encrypt with the identities in DIR "
                   "(made by `skyfuse certs DIR`)")
       ->check(CLI::ExistingDirectory);
@@ -187,12 +158,12 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Seconds a running node may deliver no track before the run is abandoned")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--round-deadline-ms", o.round_deadline_ms,
+  cmd->add_option("--round-deadline-ms", o.node.round_deadline_ms,
                   "A lock-step round closes this many ms after its tick with what has arrived")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  transport::add_loss_options(*cmd, o.loss, o.best_effort);
-  transport::add_nis_gate_option(*cmd, o.gate);
+  options::add_loss_options(*cmd, o.node.loss, o.node.best_effort);
+  options::add_nis_gate_option(*cmd, o.node.gate);
   cmd->add_option_function<std::vector<std::string>>(
          "--kill",
          [&o](const std::vector<std::string>& all) {
@@ -214,7 +185,7 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Stations replay their measurements from this CSV (a measurements.csv of an "
                   "earlier run) instead of simulating them")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--realtime-deadline-ms", o.realtime_deadline_ms,
+  cmd->add_option("--realtime-deadline-ms", o.node.realtime_deadline_ms,
                   "Real-time mode: nodes step on the wall clock at the scenario's dt and each "
                   "round closes this many ms after it starts, with what has arrived")
       ->check(CLI::NonNegativeNumber);
@@ -237,15 +208,15 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
   // Refusals first: a refused command leaves an earlier run's folder as it was.
   check_station_events(o, plan);
   const std::vector<int> ids = plan.participant_ids();
-  if (o.secure_dir) {  // every node's identity checked here: one message instead of M + 1
-    transport::SecurityFolder{*o.secure_dir}.check(transport::run_identities(ids));
+  if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
+    transport::SecurityFolder{*o.node.secure_dir}.check(transport::run_identities(ids));
   }
 
   const std::filesystem::path out(o.out_dir);
   std::filesystem::create_directories(out);
   // The processes read the very file saved with the results: what ran is what is on disk.
   const std::filesystem::path scenario_file = std::filesystem::absolute(out / "scenario.yaml");
-  write_file_atomically(scenario_file, scenario_text(o.scenario_path));
+  write_file_atomically(scenario_file, scenario_text(o.node.scenario_path));
   const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
 
   ChildProcesses children;
@@ -258,12 +229,12 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
     }
   };
   transport::NodeConfig config;
-  config.domain_id = o.domain;
+  config.domain_id = o.node.domain;
   config.name = "skyfuse-harness";
-  if (o.qos_file) config.qos_file = *o.qos_file;
-  config.best_effort_data = o.best_effort;
-  if (o.secure_dir) {
-    config.security = transport::SecurityConfig{*o.secure_dir, transport::kHarnessIdentity};
+  if (o.node.qos_file) config.qos_file = *o.node.qos_file;
+  config.best_effort_data = o.node.best_effort;
+  if (o.node.secure_dir) {
+    config.security = transport::SecurityConfig{*o.node.secure_dir, transport::kHarnessIdentity};
   }
   LockstepDriver driver(config, run_id, plan.participants(), check);
 
@@ -297,7 +268,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
                       plan.scenario.steps);
     const auto round_timeout = seconds_to_ms(o.round_timeout_s);
     const auto start = Clock::now();
-    if (o.realtime_deadline_ms > 0.0) {
+    if (o.node.realtime_deadline_ms > 0.0) {
       // A little head start so that the start tick reaches every node before step 0 begins.
       const auto epoch = std::chrono::system_clock::now() + std::chrono::milliseconds(300);
       for (RoundRecord& r : driver.run_realtime(plan.scenario.steps, plan.scenario.time_step_s,
@@ -307,7 +278,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
       progress.advance(plan.scenario.steps);
     } else {
       const auto close_after =
-          std::chrono::milliseconds(std::llround(2.0 * o.round_deadline_ms + 250.0));
+          std::chrono::milliseconds(std::llround(2.0 * o.node.round_deadline_ms + 250.0));
       for (int k = 0; k < plan.scenario.steps; ++k) {
         const auto step = static_cast<std::uint64_t>(k);
         for (const StationEvent& e : o.kills) {
@@ -328,7 +299,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
         // Without loss, round 0 is complete in a connected network; if it is not, some pair of
         // processes never matched (seen with secure discovery), and every round would wait
         // for its deadline. Better to say so at once.
-        if (k == 0 && !o.loss.enabled()) {
+        if (k == 0 && !o.node.loss.enabled()) {
           if (const auto missing = missing_from(round, ids.size())) {
             throw RunAborted("round 0 incomplete, the network is not fully connected: " + *missing);
           }
@@ -361,11 +332,11 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
 
     RunSummary summary =
         recorder.summarise(std::chrono::duration<double>(discovery).count(), elapsed);
-    summary.realtime_deadline_ms = o.realtime_deadline_ms;
+    summary.realtime_deadline_ms = o.node.realtime_deadline_ms;
     summary.node_counts = driver.finished_counts();
-    summary.round_deadline_ms = o.round_deadline_ms;
-    summary.loss = o.loss;
-    summary.best_effort = o.best_effort;
+    summary.round_deadline_ms = o.node.round_deadline_ms;
+    summary.loss = o.node.loss;
+    summary.best_effort = o.node.best_effort;
     recorder.write(out, summary, run_id);
     return summary;
   } catch (...) {
@@ -376,11 +347,12 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
 }
 
 int run_run(const RunOptions& o) {
-  const RunPlan plan = plan_from(
-      scenario_text(o.scenario_path),
-      o.scenario_path.empty() ? "<embedded paper000.yaml>" : o.scenario_path, o.overrides);
+  const RunPlan plan =
+      plan_from(scenario_text(o.node.scenario_path),
+                o.node.scenario_path.empty() ? "<embedded paper000.yaml>" : o.node.scenario_path,
+                o.node.overrides);
   warn_if_receive_buffers_too_small(plan.stations);
-  const RunSummary summary = o.secure_dir ? execute_secure_run(o, plan) : execute_run(o, plan);
+  const RunSummary summary = o.node.secure_dir ? execute_secure_run(o, plan) : execute_run(o, plan);
   print_run_table(summary, stdout);
   fmt::print("results in {}\n", o.out_dir);
   return 0;

@@ -9,35 +9,25 @@
 #include <vector>
 
 #include "run_report.hpp"
-#include "skyfuse/random/link_loss.hpp"
+#include "skyfuse/options/node_options.hpp"
 #include "skyfuse/sim/run_plan.hpp"
-#include "skyfuse/validation/nis_gate.hpp"
 
 namespace skyfuse::harness {
 
 struct RunOptions {
-  std::string scenario_path;  ///< empty: the embedded paper000 scenario
-  RunOverrides overrides;
+  /// What every node of the run is given (scenario, plan, domain, QoS, security, deadlines,
+  /// loss, NIS gate): one contract with the nodes, passed on by options::to_arguments. The
+  /// harness fills in per run what only it knows: the run id, the timeouts, the log level.
+  /// round_deadline_ms also sets when the harness records a round (twice it plus 250 ms).
+  options::NodeOptions node;
   std::string out_dir = "results/run";
-  int domain = 0;
-  std::optional<std::uint64_t> run_id;  ///< default: random
-  std::optional<std::string> qos_file;
-  std::optional<std::string> secure_dir;      ///< DDS-Security: a folder made by `skyfuse certs`
+  std::optional<std::uint64_t> run_id;        ///< default: random
   std::optional<double> discovery_timeout_s;  ///< default: discovery_timeout_s() below
   double round_timeout_s = 10.0;              ///< a running node silent this long ends the run
-  /// A lock-step round closes this long after its tick with what has arrived (nodes), and the
-  /// harness records it at twice this plus 250 ms.
-  double round_deadline_ms = 1000.0;
-  LinkLoss loss;
-  bool best_effort = false;
-  NisGate gate;                        ///< the nodes' chi^2 gate on measurements (default: none)
-  std::vector<StationEvent> kills;     ///< SIGKILL a station before a step's round
+  std::vector<StationEvent> kills;            ///< SIGKILL a station before a step's round
   std::vector<StationEvent> restarts;  ///< start a killed station again before a step's round
   std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating
   bool external = false;    ///< stations and center are started elsewhere (by hand, compose)
-  /// Real-time mode when > 0: nodes step on the wall clock at the scenario's dt, rounds close
-  /// this many ms after they start.
-  double realtime_deadline_ms = 0.0;
   bool verbose = false;
 };
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string_view>
 
-#include "skyfuse/transport/node_options.hpp"
+#include "skyfuse/options/node_options.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
@@ -17,7 +17,7 @@ bool is_stalled_start(const RunAborted& aborted) {
   // The harness's timeout and a node's FAILED status both say so; a node that timed out first
   // may also be seen only by its exit code.
   const std::string node_exit =
-      fmt::format("exited with status {}", static_cast<int>(transport::kExitDiscoveryTimeout));
+      fmt::format("exited with status {}", static_cast<int>(options::kExitDiscoveryTimeout));
   return what.find("discovery timed out") != std::string_view::npos ||
          what.find(node_exit) != std::string_view::npos || what.starts_with("round 0 incomplete");
 }

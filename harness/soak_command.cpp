@@ -4,16 +4,16 @@
 
 #include <chrono>
 
+#include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/soak.hpp"
-#include "skyfuse/transport/scenario_option.hpp"
 
 namespace skyfuse::harness {
 
 void add_soak_command(CLI::App& app, SoakOptions& options) {
   CLI::App* cmd =
       app.add_subcommand("soak", "Long in-process run: no NaN, every covariance positive definite");
-  transport::add_scenario_option(*cmd, options.scenario_path);
+  options::add_scenario_option(*cmd, options.scenario_path);
   // The truth of every step is held (~100 bytes a step with the error traces): 5e7 steps
   // take ~5 GB.
   cmd->add_option("--steps", options.steps,

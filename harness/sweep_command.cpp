@@ -6,9 +6,9 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
-#include "skyfuse/transport/scenario_option.hpp"
 #include "sweep_report.hpp"
 #include "sweep_runner.hpp"
 
@@ -17,7 +17,7 @@ namespace skyfuse::harness {
 void add_sweep_command(CLI::App& app, SweepOptions& options) {
   CLI::App* cmd = app.add_subcommand(
       "sweep", "Monte-Carlo comparison of central and peer-to-peer fusion, in-process");
-  transport::add_scenario_option(*cmd, options.scenario_path);
+  options::add_scenario_option(*cmd, options.scenario_path);
   cmd->add_option("--runs", options.runs, "Monte-Carlo runs per (M, speed)")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();

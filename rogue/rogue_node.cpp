@@ -11,7 +11,8 @@
 //   out_of_range  a negative range (measurements only)
 //   wrong_site    the victim's id from another station position (measurements only)
 // Every other measurement claims the victim's own site (from the scenario, --scenario), so that
-// it is refused for its one fault. It prints how many samples of each kind it sent, one line per topic and kind.
+// it is refused for its one fault. It prints how many samples of each kind it sent, one line per
+// topic and kind.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
@@ -21,10 +22,10 @@
 #include <set>
 
 #include "secure_probe.hpp"
-#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/options/node_options.hpp"
+#include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
-#include "skyfuse/transport/node_options.hpp"
-#include "skyfuse/transport/scenario_option.hpp"
+#include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
@@ -107,7 +108,7 @@ int main(int argc, char** argv) {
   app.add_option("--at-steps", steps, "Steps (>= 1) at which to attack")->capture_default_str();
   app.add_option("--timeout", timeout_s, "Seconds to wait for the run's ticks");
   std::string scenario_path;
-  transport::add_scenario_option(app, scenario_path);
+  options::add_scenario_option(app, scenario_path);
   rogue::ProbeOptions probe;
   rogue::add_probe_options(app, probe);
   CLI11_PARSE(app, argc, argv);
@@ -115,7 +116,7 @@ int main(int argc, char** argv) {
   transport::install_shutdown_handlers();
   if (steps.count(0) != 0) {
     spdlog::error("--at-steps: step 0 has no stale step before it");
-    return transport::kExitUsage;
+    return options::kExitUsage;
   }
 
   try {
@@ -144,7 +145,7 @@ int main(int argc, char** argv) {
       if (std::chrono::steady_clock::now() > give_up) {
         spdlog::error("no tick of run {} for steps {} within {} s", run_id, fmt::join(left, ", "),
                       timeout_s);
-        return transport::kExitIdleTimeout;
+        return options::kExitIdleTimeout;
       }
       // Attack at the newest tick: on a loaded machine this process may wake several rounds
       // late, and samples timed against an old tick would land outside the receivers' window.
@@ -183,9 +184,9 @@ int main(int argc, char** argv) {
         fmt::print("sent measurement {} {}\n", kind, sent_measurements[i]);
       }
     }
-    return transport::kExitOk;
+    return options::kExitOk;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
-    return transport::kExitError;
+    return options::kExitError;
   }
 }

@@ -9,8 +9,8 @@
 #include <optional>
 #include <stdexcept>
 
+#include "skyfuse/options/node_options.hpp"
 #include "skyfuse/transport/dds_node.hpp"
-#include "skyfuse/transport/node_options.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 
@@ -177,7 +177,7 @@ int run_probe(const ProbeOptions& options, const ProbeTarget& target) {
   transport::DdsNode node(config);
   try {
     probe(node, options, target);
-    return transport::kExitOk;
+    return options::kExitOk;
   } catch (const PublishRefused& e) {
     spdlog::error("{}", e.what());
     return kExitPublishRefused;

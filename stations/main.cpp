@@ -17,11 +17,11 @@ int main(int argc, char** argv) {
   app.add_option("--rejoin-at-step", options.rejoin_step,
                  "This process replaces a station that died: start at this step, take the "
                  "peers' track from their first increments, contribute from the next step");
-  transport::add_node_options(app, options.node);
+  options::add_node_options(app, options.node);
   CLI11_PARSE(app, argc, argv);
 
   spdlog::set_level(spdlog::level::from_str(options.node.log_level));
   spdlog::set_pattern(fmt::format("[station {}] %^%l%$: %v", options.id));
   transport::install_shutdown_handlers();
-  return transport::run_node([&] { return station::run_station(options); });
+  return options::run_node([&] { return station::run_station(options); });
 }

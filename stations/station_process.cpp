@@ -14,6 +14,7 @@
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/node_presence.hpp"
+#include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/source_binding.hpp"
@@ -24,7 +25,7 @@ namespace skyfuse::station {
 namespace {
 
 using namespace std::chrono_literals;
-using transport::ExitCode;
+using options::ExitCode;
 
 constexpr auto kPollSlice = 50ms;
 
@@ -62,7 +63,7 @@ class Station {
         plan_(plan),
         me_(me),
         source_(std::move(source)),
-        node_(options.node.node_config(fmt::format("skyfuse-station-{}", me.id))),
+        node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", me.id))),
         presence_(node_, options.node.run_id, me.id),
         io_(node_),
         tracker_(plan.motion_model<transport::WireModel>(),
@@ -139,7 +140,7 @@ class Station {
     transport::finish_when_released(io_.ticks, options_.node.run_id, presence_, io_.tracks, 5s);
     spdlog::info("finished {} steps ({} rounds resynchronised, {} samples lost to --loss)",
                  steps - first, resyncs_, lost_);
-    return transport::kExitOk;
+    return options::kExitOk;
   }
 
  private:
@@ -157,7 +158,7 @@ class Station {
       }
       if (tick.stop()) {
         spdlog::info("stopped by the harness at step {}", k);
-        return transport::kExitOk;
+        return options::kExitOk;
       }
       if (tick.epoch_ns() != 0) epoch_ns_ = tick.epoch_ns();
       if (tick.step() == k) got_tick = true;
@@ -205,7 +206,7 @@ class Station {
         spdlog::error("{}", detail);
         presence_.set_drops(drops_.counts());  // a failure report says what was refused too
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
-        return transport::kExitIdleTimeout;
+        return options::kExitIdleTimeout;
       }
       io_.wait_set.wait(kPollSlice);
     }
@@ -278,7 +279,7 @@ class Station {
       spdlog::error("{}", detail);
       presence_.set_drops(drops_.counts());  // a failure report says what was refused too
       presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
-      return transport::kExitNumerical;
+      return options::kExitNumerical;
     }
     if (fused.resynced) {
       ++resyncs_;
@@ -316,7 +317,7 @@ class Station {
 }  // namespace
 
 int run_station(const StationOptions& options) {
-  const RunPlan plan = options.node.load_plan();
+  const RunPlan plan = transport::load_plan(options.node);
   const StationConfig* me = plan.participant(options.id);
   if (me == nullptr) {
     throw std::invalid_argument(fmt::format(

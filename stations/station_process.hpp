@@ -14,19 +14,19 @@
 #include <optional>
 
 #include "sensor_source.hpp"
-#include "skyfuse/transport/node_options.hpp"
+#include "skyfuse/options/node_options.hpp"
 
 namespace skyfuse::station {
 
 struct StationOptions {
-  transport::NodeOptions node;
+  options::NodeOptions node;
   int id = 0;
   std::string replay_path;  ///< empty: simulate
   /// Set when the process replaces a station that died: the step it rejoins at.
   std::optional<std::uint64_t> rejoin_step;
 };
 
-/// Runs the station to the end of the run; returns a transport::ExitCode.
+/// Runs the station to the end of the run; returns a options::ExitCode.
 int run_station(const StationOptions& options);
 
 }  // namespace skyfuse::station

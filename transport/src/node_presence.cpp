@@ -9,7 +9,7 @@
 #include <random>
 #include <thread>
 
-#include "skyfuse/transport/node_options.hpp"
+#include "skyfuse/options/node_options.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::transport {
@@ -109,15 +109,15 @@ std::optional<int> exit_code_unless_joined(const JoinResult& result, NodePresenc
     case JoinOutcome::kDuplicate:
       spdlog::error("{} is already running in run {} ({}); refusing to start a second", who, run_id,
                     result.detail);
-      return kExitDuplicateId;
+      return options::kExitDuplicateId;
     case JoinOutcome::kTimedOut:
       spdlog::error("discovery timed out after {} s: {}", timeout_s, result.detail);
       presence.announce(wire::FAILED, 0, "discovery timed out: " + result.detail);
-      return kExitDiscoveryTimeout;
+      return options::kExitDiscoveryTimeout;
     case JoinOutcome::kShutdown:
       return 128 + shutdown_signal();
   }
-  return kExitError;
+  return options::kExitError;
 }
 
 }  // namespace skyfuse::transport

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "skyfuse/options/node_options.hpp"
+
 namespace skyfuse::transport {
 
 struct SecurityConfig {
@@ -35,7 +37,7 @@ struct NodeConfig {
 };
 
 /// Domain ids above 232 make Fast DDS 2.9 exit the process during participant creation.
-inline constexpr int kMaxDomainId = 232;
+inline constexpr int kMaxDomainId = options::kMaxDomainId;
 
 /// Which writer a sample came from: its DDS instance handle (the writer's GUID), as bytes.
 using WriterId = std::array<std::uint8_t, 16>;

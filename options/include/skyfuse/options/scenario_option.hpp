@@ -7,10 +7,10 @@
 #include <CLI/App.hpp>
 #include <string>
 
-namespace skyfuse::transport {
+namespace skyfuse::options {
 
 /// `--scenario FILE` into `path`; left empty, it means the embedded paper000 scenario
 /// (load_scenario_or_default reads it either way).
 void add_scenario_option(CLI::App& app, std::string& path);
 
-}  // namespace skyfuse::transport
+}  // namespace skyfuse::options

@@ -14,14 +14,16 @@
 
 #include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/sim/run_plan.hpp"
-#include "skyfuse/transport/node_config.hpp"
 #include "skyfuse/validation/nis_gate.hpp"
 
 namespace CLI {
 class App;
 }
 
-namespace skyfuse::transport {
+namespace skyfuse::options {
+
+/// Domain ids above 232 make Fast DDS 2.9 exit the process during participant creation.
+inline constexpr int kMaxDomainId = 232;
 
 struct NodeOptions {
   std::string scenario_path;  ///< empty: the embedded paper000 scenario
@@ -45,12 +47,10 @@ struct NodeOptions {
   NisGate gate;
   std::string log_level = "info";
 
-  NodeConfig node_config(const std::string& name) const;
   std::chrono::microseconds round_deadline() const;
   /// Real time: how long after its scheduled start a step closes (zero in lock-step).
   std::chrono::microseconds realtime_deadline() const;
   const NisGate& nis_gate() const { return gate; }
-  RunPlan load_plan() const;
   std::chrono::milliseconds discovery_timeout() const;
   std::chrono::milliseconds idle_timeout() const;
   /// The wait for the first tick after joining. The harness ticks once every node has joined,
@@ -61,6 +61,11 @@ struct NodeOptions {
 };
 
 void add_node_options(CLI::App& app, NodeOptions& options);
+
+/// The command line that gives a node exactly `options`: add_node_options parses it back to
+/// the same values, bit for bit (a unit test shows it). The one place where options become a
+/// child process's arguments.
+std::vector<std::string> to_arguments(const NodeOptions& options);
 
 /// `--stations M`, `--steps K`, `--speed-kmh V` and `--mc-run N` into `overrides`: what makes a
 /// RunPlan of the scenario, shared by the nodes and `skyfuse run`, which passes them on.
@@ -90,12 +95,12 @@ enum ExitCode : int {
   kExitNumerical = 6,
 };
 
-}  // namespace skyfuse::transport
+}  // namespace skyfuse::options
 
-namespace skyfuse::transport {
+namespace skyfuse::options {
 
 /// Runs a node's body and turns what escapes it into one logged line and an exit code: bad
 /// options or scenario -> kExitUsage, anything else -> kExitError.
 int run_node(const std::function<int()>& body);
 
-}  // namespace skyfuse::transport
+}  // namespace skyfuse::options

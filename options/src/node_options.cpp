@@ -1,4 +1,4 @@
-#include "skyfuse/transport/node_options.hpp"
+#include "skyfuse/options/node_options.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -10,34 +10,16 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
-#include "skyfuse/transport/scenario_option.hpp"
-#include "skyfuse/transport/security_folder.hpp"
-#include "skyfuse/transport/wire_configuration.hpp"
 
-namespace skyfuse::transport {
-
-NodeConfig NodeOptions::node_config(const std::string& name) const {
-  NodeConfig config;
-  config.domain_id = domain;
-  config.name = name;
-  if (qos_file) config.qos_file = *qos_file;
-  config.best_effort_data = best_effort;
-  if (secure_dir) config.security = SecurityConfig{*secure_dir, identity_for_participant(name)};
-  return config;
-}
+namespace skyfuse::options {
 
 std::chrono::microseconds NodeOptions::realtime_deadline() const {
   return std::chrono::microseconds(std::llround(realtime_deadline_ms * 1000.0));
 }
 std::chrono::microseconds NodeOptions::round_deadline() const {
   return std::chrono::microseconds(std::llround(round_deadline_ms * 1000.0));
-}
-
-RunPlan NodeOptions::load_plan() const {
-  RunPlan plan = make_run_plan(load_scenario_or_default(scenario_path), overrides);
-  require_wire_configuration(plan.scenario, plan.stations);
-  return plan;
 }
 
 std::chrono::milliseconds NodeOptions::discovery_timeout() const {
@@ -100,6 +82,32 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
       ->capture_default_str();
 }
 
+std::vector<std::string> to_arguments(const NodeOptions& o) {
+  // "{}" writes a double's shortest representation that reads back to the same bits.
+  std::vector<std::string> args;
+  const auto add = [&](const char* flag, std::string value) {
+    args.emplace_back(flag);
+    args.push_back(std::move(value));
+  };
+  if (!o.scenario_path.empty()) add("--scenario", o.scenario_path);
+  add("--domain", std::to_string(o.domain));
+  add("--run-id", std::to_string(o.run_id));
+  if (o.overrides.stations) add("--stations", std::to_string(*o.overrides.stations));
+  if (o.overrides.steps) add("--steps", std::to_string(*o.overrides.steps));
+  if (o.overrides.speed_kmh) add("--speed-kmh", fmt::format("{}", *o.overrides.speed_kmh));
+  add("--mc-run", std::to_string(o.overrides.mc_run));
+  if (o.qos_file) add("--qos", *o.qos_file);
+  if (o.secure_dir) add("--secure", *o.secure_dir);
+  add("--discovery-timeout", fmt::format("{}", o.discovery_timeout_s));
+  add("--idle-timeout", fmt::format("{}", o.idle_timeout_s));
+  add("--realtime-deadline-ms", fmt::format("{}", o.realtime_deadline_ms));
+  add("--round-deadline-ms", fmt::format("{}", o.round_deadline_ms));
+  for (std::string& a : loss_arguments(o.loss, o.best_effort)) args.push_back(std::move(a));
+  if (o.gate.enabled()) add("--nis-gate", fmt::format("{}", o.gate.probability()));
+  add("--log-level", o.log_level);
+  return args;
+}
+
 void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort) {
   app.add_option("--loss", loss.probability,
                  "Drop each received increment and measurement with this probability (per link, "
@@ -152,15 +160,15 @@ void add_nis_gate_option(CLI::App& app, NisGate& gate) {
            }
            gate = NisGate::at_probability(probability);
          },
-         "Refuse a measurement whose NIS exceeds the chi^2(3) quantile at this probability, "
-         "e.g. 0.9999 (default: no gate)")
+         "Refuse a measurement whose NIS exceeds the chi^2 quantile at this probability (as "
+         "many degrees of freedom as its sensor measures), e.g. 0.9999 (default: no gate)")
       ->type_name("P");
 }
 
 std::vector<std::string> loss_arguments(const LinkLoss& loss, bool best_effort) {
   std::vector<std::string> args;
   if (loss.probability > 0.0) {
-    args = {"--loss", fmt::format("{:.17g}", loss.probability), "--loss-seed",
+    args = {"--loss", fmt::format("{}", loss.probability), "--loss-seed",
             std::to_string(loss.seed)};
     if (loss.first_step != 0 || loss.end_step != LinkLoss{}.end_step) {
       args.push_back("--loss-steps");
@@ -171,9 +179,9 @@ std::vector<std::string> loss_arguments(const LinkLoss& loss, bool best_effort) 
   return args;
 }
 
-}  // namespace skyfuse::transport
+}  // namespace skyfuse::options
 
-namespace skyfuse::transport {
+namespace skyfuse::options {
 
 int run_node(const std::function<int()>& body) {
   try {
@@ -190,4 +198,4 @@ int run_node(const std::function<int()>& body) {
   }
 }
 
-}  // namespace skyfuse::transport
+}  // namespace skyfuse::options

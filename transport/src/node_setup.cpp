@@ -1,0 +1,27 @@
+#include "skyfuse/transport/node_setup.hpp"
+
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/security_folder.hpp"
+#include "skyfuse/transport/wire_configuration.hpp"
+
+namespace skyfuse::transport {
+
+NodeConfig node_config(const options::NodeOptions& options, const std::string& name) {
+  NodeConfig config;
+  config.domain_id = options.domain;
+  config.name = name;
+  if (options.qos_file) config.qos_file = *options.qos_file;
+  config.best_effort_data = options.best_effort;
+  if (options.secure_dir) {
+    config.security = SecurityConfig{*options.secure_dir, identity_for_participant(name)};
+  }
+  return config;
+}
+
+RunPlan load_plan(const options::NodeOptions& options) {
+  RunPlan plan = make_run_plan(load_scenario_or_default(options.scenario_path), options.overrides);
+  require_wire_configuration(plan.scenario, plan.stations);
+  return plan;
+}
+
+}  // namespace skyfuse::transport
