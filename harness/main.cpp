@@ -4,16 +4,16 @@
 #include <exception>
 #include <stdexcept>
 
-#include "bench_command.hpp"
-#include "certs_command.hpp"
-#include "demo_command.hpp"
-#include "lockstep_driver.hpp"
-#include "reproduce_command.hpp"
-#include "run_command.hpp"
+#include "commands/bench_command.hpp"
+#include "commands/certs_command.hpp"
+#include "commands/demo_command.hpp"
+#include "commands/reproduce_command.hpp"
+#include "commands/run_command.hpp"
+#include "commands/soak_command.hpp"
+#include "commands/sweep_command.hpp"
+#include "run/lockstep_driver.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/shutdown.hpp"
-#include "soak_command.hpp"
-#include "sweep_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace skyfuse::harness;

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "output_files.hpp"
+#include "report/output_files.hpp"
 
 namespace skyfuse::harness {
 namespace {

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <limits>
 
+#include "report/sweep_report.hpp"
+#include "report/sweep_runner.hpp"
 #include "reproduce/papers.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
-#include "sweep_report.hpp"
-#include "sweep_runner.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -35,7 +35,8 @@ Reproduction reproduce_paper000(const ReproduceSettings& settings) {
   print_sweep_table(report, stdout);
   write_sweep_csv(report, settings.out_dir / "sweep.csv");
   write_sweep_json(report, settings.out_dir / "sweep.json");
-  if (settings.plot && !plot_sweep(settings.out_dir / "sweep.csv", settings.out_dir / "sweep.png")) {
+  if (settings.plot &&
+      !plot_sweep(settings.out_dir / "sweep.csv", settings.out_dir / "sweep.png")) {
     fmt::print(stderr, "skyfuse: warning: plot not written (needs python3-matplotlib)\n");
   }
 
@@ -43,7 +44,8 @@ Reproduction reproduce_paper000(const ReproduceSettings& settings) {
   double best_below = std::numeric_limits<double>::infinity();
   for (const MonteCarloSummary& r : rows) {
     largest_difference = std::max(largest_difference, r.max_abs_diff_m);
-    if (r.stations < kMinStations) best_below = std::min({best_below, r.rmse_central_m, r.rmse_p2p_m});
+    if (r.stations < kMinStations)
+      best_below = std::min({best_below, r.rmse_central_m, r.rmse_p2p_m});
   }
   const double worst_from_three = worst_rmse(rows, kMinStations);
 
@@ -58,12 +60,14 @@ Reproduction reproduce_paper000(const ReproduceSettings& settings) {
                         worst_from_three, "m", worst_from_three < kRmseBoundM});
   out.claims.push_back({"fewer_stations_miss_0_3_m", "M < 3 stations do not reach 0.3 m (Fig. 1)",
                         std::string("> 0.3 m"), best_below, "m", best_below > kRmseBoundM});
-  out.claims.push_back({"identical_with_unit_weights",
-                        "central == peer-to-peer when w_i = 1 (largest gap)",
-                        std::string("identical"), largest_difference, "m",
-                        largest_difference < kIdenticalWithinM});
-  out.details = {{"scenario", scenario.name}, {"seed", scenario.seed}, {"runs", runs},
-                 {"steps", scenario.steps}, {"files", {"sweep.csv", "sweep.json", "sweep.png"}}};
+  out.claims.push_back(
+      {"identical_with_unit_weights", "central == peer-to-peer when w_i = 1 (largest gap)",
+       std::string("identical"), largest_difference, "m", largest_difference < kIdenticalWithinM});
+  out.details = {{"scenario", scenario.name},
+                 {"seed", scenario.seed},
+                 {"runs", runs},
+                 {"steps", scenario.steps},
+                 {"files", {"sweep.csv", "sweep.json", "sweep.png"}}};
   return out;
 }
 

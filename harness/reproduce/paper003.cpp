@@ -1,15 +1,16 @@
 // Paper 003: a 6-state constant-velocity Kalman filter on GPS position and velocity. Its Fig. 2
 // (position MSE "constant after 4 s, below 10 m^2") against this run, with the Riccati steady
 // state beside the Monte-Carlo figure and the reading of the paper's MSE that its claim matches.
+#include "skyfuse/experiments/paper003.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "output_files.hpp"
+#include "report/output_files.hpp"
 #include "reproduce/papers.hpp"
-#include "skyfuse/experiments/paper003.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -82,15 +83,16 @@ void print_table(const Paper003Result& r, const Paper003Setup& setup) {
       "diag({}^2 I3, {}^2 I3); x0 = [0, 0, 100, 10, 5, 1], x0_hat = 0, P0 = I6\n",
       setup.time_step_s, setup.steps, setup.runs, setup.seed, setup.process_position_std_m,
       setup.process_velocity_std_mps, setup.gps_position_std_m, setup.gps_velocity_std_mps);
-  fmt::print("{:>6} {:>13} {:>8} {:>8} {:>8} {:>15} {:>8} {:>8} {:>8}\n", "t s", "pos MSE m^2",
-             "x", "y", "z", "vel MSE m2/s2", "x", "y", "z");
+  fmt::print("{:>6} {:>13} {:>8} {:>8} {:>8} {:>15} {:>8} {:>8} {:>8}\n", "t s", "pos MSE m^2", "x",
+             "y", "z", "vel MSE m2/s2", "x", "y", "z");
   for (double t : kPrintTimesS) {
     for (std::size_t k = 0; k < r.time_s.size(); ++k) {
       if (std::abs(r.time_s[k] - t) > 1e-9) continue;
       const Vector3& p = r.mse_position[k];
       const Vector3& v = r.mse_velocity[k];
-      fmt::print("{:>6.1f} {:>13.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>15.3f} {:>8.3f} {:>8.3f} {:>8.3f}\n",
-                 t, p.sum(), p.x(), p.y(), p.z(), v.sum(), v.x(), v.y(), v.z());
+      fmt::print(
+          "{:>6.1f} {:>13.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>15.3f} {:>8.3f} {:>8.3f} {:>8.3f}\n", t,
+          p.sum(), p.x(), p.y(), p.z(), v.sum(), v.x(), v.y(), v.z());
     }
   }
 }
@@ -135,11 +137,11 @@ Reproduction reproduce_paper003(const ReproduceSettings& settings) {
 
   write_csvs(r, settings.out_dir);
   if (settings.plot &&
-      !run_plot_script("plot_paper003.py", {(settings.out_dir / "mse.csv").string(),
-                                            (settings.out_dir / "track.csv").string(),
-                                            (settings.out_dir / "paper003.png").string(),
-                                            fmt::format("{}", steady_position.sum()),
-                                            fmt::format("{}", steady_position.mean())})) {
+      !run_plot_script(
+          "plot_paper003.py",
+          {(settings.out_dir / "mse.csv").string(), (settings.out_dir / "track.csv").string(),
+           (settings.out_dir / "paper003.png").string(), fmt::format("{}", steady_position.sum()),
+           fmt::format("{}", steady_position.mean())})) {
     fmt::print(stderr, "skyfuse: warning: plot not written (needs python3-matplotlib)\n");
   }
 

@@ -10,10 +10,10 @@
 namespace skyfuse::harness {
 
 struct ReproduceSettings {
-  std::optional<int> runs;             ///< default: the paper's
-  std::optional<std::uint64_t> seed;   ///< default: the scenario's or the experiment's
-  std::filesystem::path out_dir;       ///< CSV, PNG and reproduce.json go here
-  int threads = 0;                     ///< 0: one per core
+  std::optional<int> runs;            ///< default: the paper's
+  std::optional<std::uint64_t> seed;  ///< default: the scenario's or the experiment's
+  std::filesystem::path out_dir;      ///< CSV, PNG and reproduce.json go here
+  int threads = 0;                    ///< 0: one per core
   bool plot = true;
 };
 

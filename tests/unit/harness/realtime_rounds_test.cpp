@@ -1,4 +1,4 @@
-#include "realtime_rounds.hpp"
+#include "run/realtime_rounds.hpp"
 
 #include <gtest/gtest.h>
 

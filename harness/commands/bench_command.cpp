@@ -1,0 +1,228 @@
+#include "commands/bench_command.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "floors/echo_floor.hpp"
+#include "report/output_files.hpp"
+#include "run/execute_run.hpp"
+#include "run/lockstep_driver.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/qos.hpp"
+#include "skyfuse/transport/shutdown.hpp"
+
+namespace skyfuse::harness {
+namespace {
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  }
+  return "unknown";
+}
+
+// Runs the Google Benchmark binary beside this one and returns median real times in ns by
+// benchmark name ("StationStep", "FuseIncrements/4", ...).
+std::map<std::string, double> micro_benchmark_medians(const std::filesystem::path& out) {
+  const auto json_path = out / "micro.json";
+  const std::string command = fmt::format(
+      "'{}' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true "
+      "--benchmark_out='{}' --benchmark_out_format=json > /dev/null 2>&1",
+      (executable_dir() / "skyfuse_core_bench").string(), json_path.string());
+  if (std::system(command.c_str()) != 0) {
+    throw std::runtime_error("micro-benchmarks failed: " + command);
+  }
+  std::ifstream in(json_path);
+  const auto doc = nlohmann::json::parse(in);
+  std::map<std::string, double> medians;
+  for (const auto& b : doc.at("benchmarks")) {
+    if (b.value("aggregate_name", "") != "median") continue;
+    double ns = b.at("real_time").get<double>();
+    const std::string unit = b.value("time_unit", "ns");
+    if (unit == "us") ns *= 1e3;
+    if (unit == "ms") ns *= 1e6;
+    medians[b.at("run_name").get<std::string>()] = ns;
+  }
+  return medians;
+}
+
+// Runs the micro-benchmarks, prints their table and returns bench.json's "micro_ns".
+nlohmann::json micro_benchmark_section(const std::filesystem::path& out) {
+  fmt::print("\nmicro-benchmarks (median of 5, ns)...\n");
+  const auto m = micro_benchmark_medians(out);
+  nlohmann::json fuse;
+  nlohmann::json stacked;
+  fmt::print("{:>5} {:>14} {:>14} {:>10}\n", "M", "fuse M incr.", "stacked EKF", "ratio");
+  for (int k = 1; k <= 128; k *= 2) {
+    const std::string key = std::to_string(k);
+    const double f = m.at("FuseIncrements/" + key);
+    const double s = m.at("StackedEkfUpdate/" + key);
+    fuse[key] = f;
+    stacked[key] = s;
+    fmt::print("{:>5} {:>14.0f} {:>14.0f} {:>9.1f}x\n", k, f, s, s / f);
+  }
+  fmt::print("station step (predict + measurement model + increment): {:.0f} ns\n",
+             m.at("StationStep"));
+  return {{"station_step", m.at("StationStep")},
+          {"predict", m.at("Predict")},
+          {"fuse_increments", fuse},
+          {"stacked_ekf_update", stacked}};
+}
+
+// Prints one station count's line of the DDS table and returns its row of bench.json.
+nlohmann::json report_row(int m, int rounds, const RunSummary& s, const FloorResult& floor,
+                          const FloorResult& all_to_all) {
+  const double ratio = s.rounds_per_s / floor.rounds_per_s;
+  const double ratio_all_to_all = s.rounds_per_s / all_to_all.rounds_per_s;
+  fmt::print("{:>4} {:>9.0f} {:>9.0f} {:>5.0f}% {:>12.0f} {:>5.0f}% {:>23} {:>17} {:>8.2f} s\n", m,
+             s.rounds_per_s, floor.rounds_per_s, 100.0 * ratio, all_to_all.rounds_per_s,
+             100.0 * ratio_all_to_all,
+             fmt::format("{:.0f}/{:.0f}/{:.0f}", s.round_latency_us_p50, s.round_latency_us_p99,
+                         s.round_latency_us_max),
+             fmt::format("{:.0f}/{:.0f}", floor.latency_us_p50, floor.latency_us_p99),
+             s.discovery_s);
+  return {{"stations", m},
+          {"rounds", rounds},
+          {"rounds_per_s", s.rounds_per_s},
+          {"floor_rounds_per_s", floor.rounds_per_s},
+          {"ratio_to_floor", ratio},
+          {"all_to_all_floor_rounds_per_s", all_to_all.rounds_per_s},
+          {"ratio_to_all_to_all_floor", ratio_all_to_all},
+          {"all_to_all_floor_latency_us_p50", all_to_all.latency_us_p50},
+          {"all_to_all_floor_latency_us_p99", all_to_all.latency_us_p99},
+          {"round_latency_us_p50", s.round_latency_us_p50},
+          {"round_latency_us_p99", s.round_latency_us_p99},
+          {"round_latency_us_max", s.round_latency_us_max},
+          {"floor_latency_us_p50", floor.latency_us_p50},
+          {"floor_latency_us_p99", floor.latency_us_p99},
+          {"discovery_s", s.discovery_s},
+          {"floor_discovery_s", floor.discovery_s}};
+}
+
+RunSummary run_for_bench(const BenchOptions& o, const Scenario& scenario,
+                         const std::string& scenario_path, int m,
+                         const std::filesystem::path& out) {
+  RunOptions run;
+  run.node.scenario_path = scenario_path;
+  run.node.overrides.stations = m;
+  run.node.overrides.steps = o.rounds;
+  run.node.domain = o.domain;
+  run.out_dir = (out / fmt::format("run-M{}", m)).string();
+  run.round_timeout_s = 30.0;
+  return execute_run(run, make_run_plan(scenario, run.node.overrides));
+}
+
+// The floor runs on a domain of its own: whatever the floor's processes leave behind on
+// leaving (late announcements, a killed echo's lease), the run's discovery never sees it.
+int floor_domain(int domain) {
+  return domain < transport::kMaxDomainId ? domain + 1 : domain - 1;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, BenchOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "bench", "Micro-benchmarks and the DDS round rate against the bare Fast DDS floor");
+  cmd->add_option("--out", o.out_dir, "Folder for bench.json")->capture_default_str();
+  cmd->add_option("--scenario", o.scenario_path,
+                  "Scenario with enough stations (default: scenarios/ring64.yaml beside skyfuse)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--stations", o.stations, "Station counts to measure")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--rounds", o.rounds, "Lock-step rounds per measurement")
+      ->check(CLI::Range(10, 1000000))
+      ->capture_default_str();
+  cmd->add_option("--domain", o.domain,
+                  fmt::format("DDS domain id of the runs (the floors use the next id; {} when "
+                              "this is {})",
+                              transport::kMaxDomainId - 1, transport::kMaxDomainId))
+      ->check(CLI::Range(0, transport::kMaxDomainId))
+      ->capture_default_str();
+  cmd->add_flag("!--no-micro", o.micro, "Skip the micro-benchmarks");
+}
+
+int run_bench(const BenchOptions& o) {
+  const std::string scenario_path = o.scenario_path.empty()
+                                        ? (executable_dir() / "scenarios" / "ring64.yaml").string()
+                                        : o.scenario_path;
+  const Scenario scenario = load_scenario_file(scenario_path);
+  // Refused before anything runs: a bad count found midway would lose the rows measured so far.
+  for (int m : o.stations) {
+    if (m > static_cast<int>(scenario.stations.size())) {
+      throw std::invalid_argument(fmt::format("--stations: {} exceeds the {} stations of {}", m,
+                                              scenario.stations.size(), scenario_path));
+    }
+  }
+  const std::filesystem::path out(o.out_dir);
+  std::filesystem::create_directories(out);
+
+  nlohmann::json doc;
+  doc["machine"] = {{"cores", std::thread::hardware_concurrency()},
+                    {"cpu_model", cpu_model()},
+                    {"rmem_max", transport::receive_buffer_cap().value_or(0)}};
+  fmt::print("skyfuse bench on {} ({} cores)\n", cpu_model(), std::thread::hardware_concurrency());
+
+  if (o.micro) doc["micro_ns"] = micro_benchmark_section(out);
+
+  const int largest =
+      o.stations.empty() ? 0 : *std::max_element(o.stations.begin(), o.stations.end());
+  warn_if_receive_buffers_too_small(largest);
+  fmt::print(
+      "\nlock-step rounds over DDS ({} rounds each; floor = commander + M echo processes; "
+      "all-to-all = the same, each echo also exchanging a sample with the others)\n",
+      o.rounds);
+  fmt::print("{:>4} {:>9} {:>9} {:>6} {:>11} {:>6} {:>23} {:>17} {:>10}\n", "M", "rounds/s",
+             "floor/s", "ratio", "all-to-all/s", "ratio", "latency p50/p99/max us",
+             "floor p50/p99 us", "discovery");
+  nlohmann::json rows = nlohmann::json::array();
+  // Rewritten after every station count: a bench of hours keeps what it measured if stopped.
+  const auto save_rows = [&] {
+    doc["dds"] = rows;
+    write_file_atomically(out / "bench.json", doc.dump(2) + "\n");
+  };
+  transport::NodeConfig floor_config;
+  floor_config.domain_id = floor_domain(o.domain);
+  floor_config.name = "skyfuse-bench";
+  const auto floor_timeout = std::chrono::milliseconds(120'000);
+  for (int m : o.stations) {
+    FloorResult floor;
+    FloorResult all_to_all;
+    RunSummary s;
+    try {
+      floor = measure_floor(floor_config, m, o.rounds, floor_timeout, FloorKind::kEcho);
+      all_to_all = measure_floor(floor_config, m, o.rounds, floor_timeout, FloorKind::kAllToAll);
+      s = run_for_bench(o, scenario, scenario_path, m, out);
+    } catch (const RunAborted& e) {
+      // An interrupt ends the bench with the rows measured so far on disk; one station count
+      // failing (say, a machine too small for it) must not lose the others.
+      if (transport::shutdown_requested()) {
+        save_rows();
+        fmt::print(
+            "\n{} keeps what was measured before the interrupt ({} of {} station "
+            "counts)\n",
+            (out / "bench.json").string(), rows.size(), o.stations.size());
+        throw;
+      }
+      fmt::print("{:>4} failed: {}\n", m, e.what());
+      rows.push_back({{"stations", m}, {"rounds", o.rounds}, {"error", e.what()}});
+      save_rows();
+      continue;
+    }
+
+    rows.push_back(report_row(m, o.rounds, s, floor, all_to_all));
+    save_rows();
+  }
+  save_rows();
+  fmt::print("\nwrote {}\n", (out / "bench.json").string());
+  return 0;
+}
+
+}  // namespace skyfuse::harness

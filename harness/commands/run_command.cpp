@@ -1,0 +1,95 @@
+#include "commands/run_command.hpp"
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <limits>
+
+#include "skyfuse/options/node_options.hpp"
+#include "skyfuse/options/scenario_option.hpp"
+#include "skyfuse/transport/node_config.hpp"
+
+namespace skyfuse::harness {
+namespace {
+// "ID@STEP" -> {ID, STEP}.
+StationEvent parse_station_event(const std::string& option, const std::string& text) {
+  const auto pair = options::parse_number_pair(text, '@');
+  if (!pair || pair->first > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
+    throw CLI::ValidationError(option, "expected ID@STEP, e.g. 2@100, got " + text);
+  }
+  return {static_cast<int>(pair->first), pair->second};
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, RunOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "run", "Run the stations and the fusion center as processes over DDS, in lock-step");
+  options::add_scenario_option(*cmd, o.node.scenario_path);
+  options::add_plan_options(*cmd, o.node.overrides);
+  cmd->add_option("--out", o.out_dir, "Folder for the per-step CSVs and summary.json")
+      ->capture_default_str();
+  cmd->add_option("--domain", o.node.domain, "DDS domain id")
+      ->check(CLI::Range(0, transport::kMaxDomainId))
+      ->capture_default_str();
+  cmd->add_option("--run-id", o.run_id, "Run id (default: random)");
+  cmd->add_option("--qos", o.node.qos_file, "Fast DDS XML profiles overriding the built-in QoS")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--secure", o.node.secure_dir,
+                  "DDS-Security: authenticate, authorise and encrypt with the identities in DIR "
+                  "(made by `skyfuse certs DIR`)")
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--discovery-timeout", o.discovery_timeout_s,
+                  "Seconds to wait until every process has joined (default: 30, or 2 per station "
+                  "from 16 stations up)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--round-timeout", o.round_timeout_s,
+                  "Seconds a running node may deliver no track before the run is abandoned")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--round-deadline-ms", o.node.round_deadline_ms,
+                  "A lock-step round closes this many ms after its tick with what has arrived")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  options::add_loss_options(*cmd, o.node.loss, o.node.best_effort);
+  options::add_nis_gate_option(*cmd, o.node.gate);
+  cmd->add_option_function<std::vector<std::string>>(
+         "--kill",
+         [&o](const std::vector<std::string>& all) {
+           for (const std::string& text : all)
+             o.kills.push_back(parse_station_event("--kill", text));
+         },
+         "Kill station ID with SIGKILL before the round of STEP, as ID@STEP (repeatable)")
+      ->type_name("ID@STEP");
+  cmd->add_option_function<std::vector<std::string>>(
+         "--restart",
+         [&o](const std::vector<std::string>& all) {
+           for (const std::string& text : all) {
+             o.restarts.push_back(parse_station_event("--restart", text));
+           }
+         },
+         "Start killed station ID again as a new process before the round of STEP, as ID@STEP")
+      ->type_name("ID@STEP");
+  cmd->add_option("--replay", o.replay_path,
+                  "Stations replay their measurements from this CSV (a measurements.csv of an "
+                  "earlier run) instead of simulating them")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--realtime-deadline-ms", o.node.realtime_deadline_ms,
+                  "Real-time mode: nodes step on the wall clock at the scenario's dt and each "
+                  "round closes this many ms after it starts, with what has arrived")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--external", o.external,
+                "Do not start processes: drive stations and a center started elsewhere");
+  cmd->add_flag("-v,--verbose", o.verbose, "Let the node processes log at info level");
+}
+
+int run_run(const RunOptions& o) {
+  const RunPlan plan = load_run_plan(o);
+  warn_if_receive_buffers_too_small(plan.stations);
+  const RunSummary summary = execute_run(o, plan);
+  print_run_table(summary, stdout);
+  fmt::print("results in {}\n", o.out_dir);
+  return 0;
+}
+
+}  // namespace skyfuse::harness

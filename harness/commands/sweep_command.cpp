@@ -1,0 +1,72 @@
+#include "commands/sweep_command.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+#include "report/sweep_report.hpp"
+#include "report/sweep_runner.hpp"
+#include "skyfuse/options/scenario_option.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/monte_carlo.hpp"
+
+namespace skyfuse::harness {
+
+void add_sweep_command(CLI::App& app, SweepOptions& options) {
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "Monte-Carlo comparison of central and peer-to-peer fusion, in-process");
+  options::add_scenario_option(*cmd, options.scenario_path);
+  cmd->add_option("--runs", options.runs, "Monte-Carlo runs per (M, speed)")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  cmd->add_option("--max-stations", options.max_stations,
+                  "Largest M; runs M = 1..M_max using the first M stations (default: all)")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--out", options.out_dir, "Folder for sweep.csv, sweep.json and sweep.png")
+      ->capture_default_str();
+  cmd->add_option("--seed", options.seed, "Override the scenario's seed");
+  cmd->add_option("--steps", options.steps, "Override the scenario's number of steps")
+      ->check(CLI::Range(1, 100000000));
+  cmd->add_option("--threads", options.threads, "Worker threads (default: one per core)")
+      ->check(CLI::Range(0, 1024));
+  cmd->add_flag("!--no-plot", options.plot, "Skip the PNG plot");
+}
+
+int run_sweep(const SweepOptions& options) {
+  Scenario scenario = load_scenario_or_default(options.scenario_path);
+  if (options.seed) scenario.seed = *options.seed;
+  if (options.steps) {
+    scenario.steps = *options.steps;
+    validate_scenario(scenario, "--steps");
+  }
+  const int available = static_cast<int>(scenario.stations.size());
+  const int max_stations = options.max_stations == 0 ? available : options.max_stations;
+  if (max_stations > available) {
+    throw std::invalid_argument(
+        fmt::format("--max-stations: {} exceeds the {} stations of scenario '{}'", max_stations,
+                    available, scenario.name));
+  }
+  const std::filesystem::path out_dir(options.out_dir);
+  std::filesystem::create_directories(out_dir);
+  const std::vector<MonteCarloSummary> rows =
+      run_sweep_rows(scenario, options.runs, max_stations, options.threads);
+
+  const SweepReport report{scenario, rows};
+  print_sweep_table(report, stdout);
+  write_sweep_csv(report, out_dir / "sweep.csv");
+  write_sweep_json(report, out_dir / "sweep.json");
+  fmt::print("wrote {}/sweep.csv and sweep.json\n", out_dir.string());
+  if (options.plot) {
+    const std::filesystem::path png = out_dir / "sweep.png";
+    if (plot_sweep(out_dir / "sweep.csv", png)) {
+      fmt::print("wrote {}\n", png.string());
+    } else {
+      fmt::print(stderr, "skyfuse: warning: plot not written (needs python3-matplotlib)\n");
+    }
+  }
+  return 0;
+}
+
+}  // namespace skyfuse::harness

@@ -1,0 +1,309 @@
+#include "run/execute_run.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "report/output_files.hpp"
+#include "report/progress.hpp"
+#include "run/child_processes.hpp"
+#include "run/lockstep_driver.hpp"
+#include "run/secure_start.hpp"
+#include "skyfuse/options/node_options.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/qos.hpp"
+#include "skyfuse/transport/security_folder.hpp"
+#include "skyfuse/transport/shutdown.hpp"
+#include "skyfuse/transport/wire_configuration.hpp"
+
+namespace skyfuse::harness {
+
+double discovery_timeout_s(const RunOptions& o, int stations) {
+  return o.discovery_timeout_s.value_or(default_discovery_timeout_s(stations));
+}
+
+void warn_if_receive_buffers_too_small(int stations) {
+  if (const auto warning = transport::receive_buffer_warning(stations)) {
+    fmt::print(stderr, "skyfuse: warning: {}\n", *warning);
+  }
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The embedded default, or the file: the nodes read exactly this text from the results folder.
+std::string scenario_text(const std::string& path) {
+  return path.empty() ? std::string(default_scenario_yaml()) : read_scenario_text(path);
+}
+
+RunPlan plan_from(const std::string& text, const std::string& source,
+                  const RunOverrides& overrides) {
+  RunPlan plan = make_run_plan(parse_scenario(text, source), overrides);
+  // Refused here, before any process starts, rather than by each node.
+  transport::require_wire_configuration(plan.scenario, plan.stations);
+  return plan;
+}
+
+// The arguments every node gets, so that it builds the same plan as the harness: the run's
+// node options with what the harness decides for this run filled in.
+std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan,
+                                        std::uint64_t run_id,
+                                        const std::filesystem::path& scenario_file) {
+  options::NodeOptions child = o.node;
+  child.scenario_path = scenario_file.string();
+  child.run_id = run_id;
+  child.overrides = {plan.stations, plan.scenario.steps, plan.speed_mps * 3.6, plan.mc_run};
+  child.discovery_timeout_s = discovery_timeout_s(o, plan.stations);
+  child.idle_timeout_s = std::max(30.0, 3.0 * o.round_timeout_s);
+  child.log_level = o.verbose ? "info" : "warn";
+  if (child.secure_dir) child.secure_dir = std::filesystem::absolute(*child.secure_dir).string();
+  return options::to_arguments(child);
+}
+
+std::chrono::milliseconds seconds_to_ms(double s) {
+  return std::chrono::milliseconds(static_cast<long>(std::llround(s * 1000.0)));
+}
+
+// What is missing from a round in which every node should have delivered and every peer fused
+// every station: nothing, or a description.
+std::optional<std::string> missing_from(const RoundRecord& r, std::size_t stations) {
+  std::vector<std::string> short_of;
+  const auto check = [&](const std::optional<ReceivedTrack>& t, const std::string& who) {
+    if (!t) {
+      short_of.push_back(who + ": no track");
+    } else if (t->contributors.size() != stations) {
+      short_of.push_back(
+          fmt::format("{}: {} of {} stations", who, t->contributors.size(), stations));
+    }
+  };
+  if (!r.central) short_of.push_back("center: no track");  // its stack may leave out gated ones
+  for (std::size_t i = 0; i < r.peers.size(); ++i)
+    check(r.peers[i], fmt::format("peer #{}", i + 1));
+  if (short_of.empty()) return std::nullopt;
+  return fmt::format("{}", fmt::join(short_of, ", "));
+}
+
+// Kills and restarts must name participants, fit in the run, and alternate per station:
+// kill, restart later, kill again later, ...
+void check_station_events(const RunOptions& o, const RunPlan& plan) {
+  const auto steps = static_cast<std::uint64_t>(plan.scenario.steps);
+  for (const auto* list : {&o.kills, &o.restarts}) {
+    for (const StationEvent& e : *list) {
+      const char* option = list == &o.kills ? "--kill" : "--restart";
+      if (plan.participant(e.station_id) == nullptr) {
+        throw std::invalid_argument(
+            fmt::format("{} {}@{}: station {} does not take part in the run", option, e.station_id,
+                        e.step, e.station_id));
+      }
+      if (e.step == 0 || e.step >= steps) {
+        throw std::invalid_argument(fmt::format("{} {}@{}: the step must be in [1, {}]", option,
+                                                e.station_id, e.step, steps - 1));
+      }
+    }
+  }
+  if ((!o.kills.empty()) && (o.external || o.node.realtime_deadline_ms > 0.0)) {
+    throw std::invalid_argument("--kill/--restart: lock-step runs with started processes only");
+  }
+  for (int id : plan.participant_ids()) {
+    std::vector<std::pair<std::uint64_t, bool>> events;  // step, is_kill
+    for (const StationEvent& e : o.kills) {
+      if (e.station_id == id) events.emplace_back(e.step, true);
+    }
+    for (const StationEvent& e : o.restarts) {
+      if (e.station_id == id) events.emplace_back(e.step, false);
+    }
+    std::sort(events.begin(), events.end());
+    bool up = true;
+    for (const auto& [step, is_kill] : events) {
+      if (is_kill != up) {
+        throw std::invalid_argument(fmt::format(
+            "--kill/--restart: station {} at step {}: {} (kill and restart must alternate, a "
+            "restart later than its kill)",
+            id, step, is_kill ? "is already down" : "is not down"));
+      }
+      up = !is_kill;
+    }
+  }
+}
+
+RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
+  // Refusals first: a refused command leaves an earlier run's folder as it was.
+  check_station_events(o, plan);
+  const std::vector<int> ids = plan.participant_ids();
+  if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
+    transport::SecurityFolder{*o.node.secure_dir}.check(transport::run_identities(ids));
+  }
+
+  const std::filesystem::path out(o.out_dir);
+  std::filesystem::create_directories(out);
+  // The processes read the very file saved with the results: what ran is what is on disk.
+  const std::filesystem::path scenario_file = std::filesystem::absolute(out / "scenario.yaml");
+  write_file_atomically(scenario_file, scenario_text(o.node.scenario_path));
+  const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
+
+  ChildProcesses children;
+  const auto check = [&] {
+    if (transport::shutdown_requested()) {
+      throw RunAborted(fmt::format("interrupted by signal {}", transport::shutdown_signal()));
+    }
+    for (const ChildExit& e : children.poll()) {
+      if (!e.success()) throw RunAborted(e.describe());
+    }
+  };
+  transport::NodeConfig config;
+  config.domain_id = o.node.domain;
+  config.name = "skyfuse-harness";
+  if (o.node.qos_file) config.qos_file = *o.node.qos_file;
+  config.best_effort_data = o.node.best_effort;
+  if (o.node.secure_dir) {
+    config.security = transport::SecurityConfig{*o.node.secure_dir, transport::kHarnessIdentity};
+  }
+  LockstepDriver driver(config, run_id, plan.participants(), check);
+
+  try {
+    const std::vector<std::string> common = node_arguments(o, plan, run_id, scenario_file);
+    const auto spawn_station = [&](int id, std::optional<std::uint64_t> rejoin_step) {
+      std::vector<std::string> station{(executable_dir() / "skyfuse-station").string(), "--id",
+                                       std::to_string(id)};
+      station.insert(station.end(), common.begin(), common.end());
+      if (!o.replay_path.empty()) {
+        station.push_back("--replay");
+        station.push_back(std::filesystem::absolute(o.replay_path).string());
+      }
+      if (rejoin_step) {
+        station.push_back("--rejoin-at-step");
+        station.push_back(std::to_string(*rejoin_step));
+      }
+      children.spawn(node_name(id), station);
+    };
+    if (!o.external) {
+      std::vector<std::string> center{(executable_dir() / "skyfuse-center").string()};
+      center.insert(center.end(), common.begin(), common.end());
+      children.spawn(node_name(kCenterNodeId), center);
+      for (int id : ids) spawn_station(id, std::nullopt);
+    }
+    const auto discovery =
+        driver.wait_until_joined(seconds_to_ms(discovery_timeout_s(o, plan.stations)));
+
+    RunRecorder recorder(plan, ids, o.restarts);
+    Progress progress(fmt::format("run M={} {:.0f} km/h", plan.stations, plan.speed_mps * 3.6),
+                      plan.scenario.steps);
+    const auto round_timeout = seconds_to_ms(o.round_timeout_s);
+    const auto start = Clock::now();
+    if (o.node.realtime_deadline_ms > 0.0) {
+      // A little head start so that the start tick reaches every node before step 0 begins.
+      const auto epoch = std::chrono::system_clock::now() + std::chrono::milliseconds(300);
+      for (RoundRecord& r : driver.run_realtime(plan.scenario.steps, plan.scenario.time_step_s,
+                                                epoch, round_timeout)) {
+        recorder.add(std::move(r));
+      }
+      progress.advance(plan.scenario.steps);
+    } else {
+      const auto close_after =
+          std::chrono::milliseconds(std::llround(2.0 * o.node.round_deadline_ms + 250.0));
+      for (int k = 0; k < plan.scenario.steps; ++k) {
+        const auto step = static_cast<std::uint64_t>(k);
+        for (const StationEvent& e : o.kills) {
+          if (e.step != step) continue;
+          children.kill_now(node_name(e.station_id));
+          driver.set_down(e.station_id, true);
+          spdlog::info("killed station {} before step {}", e.station_id, step);
+        }
+        for (const StationEvent& e : o.restarts) {
+          if (e.step != step) continue;
+          spawn_station(e.station_id, step);
+          driver.wait_until_ready(e.station_id,
+                                  seconds_to_ms(discovery_timeout_s(o, plan.stations)));
+          driver.set_down(e.station_id, false);
+          spdlog::info("restarted station {} before step {}", e.station_id, step);
+        }
+        RoundRecord round = driver.run_round(step, close_after, round_timeout);
+        // Without loss, round 0 is complete in a connected network; if it is not, some pair of
+        // processes never matched (seen with secure discovery), and every round would wait
+        // for its deadline. Better to say so at once.
+        if (k == 0 && !o.node.loss.enabled()) {
+          if (const auto missing = missing_from(round, ids.size())) {
+            throw RunAborted("round 0 incomplete, the network is not fully connected: " + *missing);
+          }
+        }
+        recorder.add(std::move(round));
+        progress.advance();
+      }
+    }
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    progress.finish();
+
+    // Nodes announce FINISHED after their last track and wait to be released; anything else
+    // is worth a word.
+    if (!driver.wait_until_finished(std::chrono::seconds(5))) {
+      spdlog::warn("not every node announced FINISHED within 5 s of the last step");
+    }
+    driver.stop();
+    if (!children.wait_all(std::chrono::seconds(5))) {
+      spdlog::warn("{} node process(es) still running after the last step; terminating",
+                   children.alive());
+    }
+    children.terminate_all(std::chrono::seconds(2));
+    // A node that fails during the run ends it (check() above), so these exits came after
+    // every round was recorded: at M = 64, Fast DDS sometimes aborts a station while 64
+    // participants leave at once (README, "Lock-step rounds over DDS").
+    for (const ChildExit& e : children.exited()) {
+      if (!e.success())
+        spdlog::warn("{} after the last round; every round is recorded", e.describe());
+    }
+
+    RunSummary summary =
+        recorder.summarise(std::chrono::duration<double>(discovery).count(), elapsed);
+    summary.realtime_deadline_ms = o.node.realtime_deadline_ms;
+    summary.node_counts = driver.finished_counts();
+    summary.round_deadline_ms = o.node.round_deadline_ms;
+    summary.loss = o.node.loss;
+    summary.best_effort = o.node.best_effort;
+    recorder.write(out, summary, run_id);
+    return summary;
+  } catch (...) {
+    driver.stop();
+    children.terminate_all(std::chrono::seconds(2));
+    throw;
+  }
+}
+
+}  // namespace
+
+RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
+  // A secure start on Fast DDS 2.9 sometimes stalls (secure_start.hpp): spend
+  // --discovery-timeout in attempts, each starting every process again. Processes started
+  // elsewhere cannot be started again from here.
+  if (!o.node.secure_dir || o.external) return run_once(o, plan);
+  RunOptions attempt = o;
+  const double total_s = discovery_timeout_s(o, plan.stations);
+  const double attempt_s = std::min(total_s, kSecureAttemptS);
+  attempt.discovery_timeout_s = attempt_s;
+  const int attempts = std::max(1, static_cast<int>(total_s / attempt_s));
+  for (int i = 1;; ++i) {
+    try {
+      return run_once(attempt, plan);
+    } catch (const RunAborted& e) {
+      if (i >= attempts || transport::shutdown_requested() || !is_stalled_start(e)) throw;
+      spdlog::warn(
+          "secure discovery did not complete ({}); starting every process again "
+          "(attempt {} of {})",
+          e.what(), i + 1, attempts);
+    }
+  }
+}
+
+RunPlan load_run_plan(const RunOptions& o) {
+  return plan_from(scenario_text(o.node.scenario_path),
+                   o.node.scenario_path.empty() ? "<embedded paper000.yaml>" : o.node.scenario_path,
+                   o.node.overrides);
+}
+
+}  // namespace skyfuse::harness

@@ -1,0 +1,29 @@
+#pragma once
+// One DDS run of the system: M station processes and the fusion center started (or, with
+// `external`, found), driven in lock-step or real time, recorded and reported. `skyfuse run`,
+// `skyfuse demo` and `skyfuse bench` all run the system through this.
+
+#include "run/run_options.hpp"
+#include "run/run_report.hpp"
+#include "skyfuse/sim/run_plan.hpp"
+
+namespace skyfuse::harness {
+
+/// Seconds to wait until every process has joined: the option if given, else
+/// default_discovery_timeout_s(stations).
+double discovery_timeout_s(const RunOptions& options, int stations);
+
+/// Tells the user on stderr when `stations` stations need larger socket buffers than the
+/// kernel grants (transport::receive_buffer_warning); says nothing otherwise.
+void warn_if_receive_buffers_too_small(int stations);
+
+/// The run's plan from the options' scenario (or the embedded one) and overrides; refuses a
+/// configuration the wire cannot carry yet, before any process starts.
+RunPlan load_run_plan(const RunOptions& options);
+
+/// One DDS run of `plan` with results written to options.out_dir; throws RunAborted on
+/// failure. A secure run is started again after a stalled start while --discovery-timeout
+/// lasts (secure_start.hpp).
+RunSummary execute_run(const RunOptions& options, const RunPlan& plan);
+
+}  // namespace skyfuse::harness

@@ -1,0 +1,426 @@
+#include "run/lockstep_driver.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <random>
+#include <set>
+
+#include "run/realtime_rounds.hpp"
+#include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/drop_log.hpp"
+#include "skyfuse/transport/realtime_schedule.hpp"
+#include "skyfuse/transport/source_binding.hpp"
+#include "skyfuse/transport/wire_conversion.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
+
+namespace skyfuse::harness {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr auto kPollSlice = std::chrono::milliseconds(50);
+// A round still open after this repeats its tick: a station restarted just before the round
+// may have matched the tick writer a moment after the first copy went out. Nodes take a tick
+// once, so a repeat changes nothing for the others.
+constexpr auto kTickRepeat = std::chrono::milliseconds(50);
+
+std::vector<int> with_center(std::vector<int> ids) {
+  ids.push_back(kCenterNodeId);
+  return ids;
+}
+
+// What is wrong with a track whatever its step and source's place in the run: another run, a
+// mode that does not match its source, numbers that are not finite. The harness records what
+// the nodes fused, so it refuses what they refuse; lock-step and real time alike.
+std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
+                                              const transport::WireEstimate& estimate,
+                                              std::uint64_t run_id) {
+  if (t.run_id() != run_id) return DropKind::kWrongRun;
+  if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterNodeId)) {
+    return DropKind::kUnknownStation;
+  }
+  if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) {
+    return DropKind::kNonFinite;
+  }
+  return std::nullopt;
+}
+
+// The same for a measurement: another run, or an observation the center would refuse (its
+// content, or a participant's id at another site).
+std::optional<DropKind> measurement_content_refusal(const wire::Measurement& m,
+                                                    const transport::WireObservation& observation,
+                                                    std::uint64_t run_id,
+                                                    const std::map<int, StationConfig>& stations) {
+  if (m.run_id() != run_id) return DropKind::kWrongRun;
+  if (const auto why = check_observation(observation)) return why;
+  if (const auto station = stations.find(m.station_id()); station != stations.end()) {
+    return check_site(observation.sensor, station->second);
+  }
+  return std::nullopt;
+}
+
+std::vector<int> ids_of(std::span<const StationConfig> participants) {
+  std::vector<int> ids;
+  for (const StationConfig& s : participants) ids.push_back(s.id);
+  return ids;
+}
+
+}  // namespace
+
+std::string node_name(int id) {
+  return id == kCenterNodeId ? "center" : fmt::format("station {}", id);
+}
+
+std::uint64_t fresh_run_id() {
+  std::random_device device;
+  return (static_cast<std::uint64_t>(device()) << 32) ^ device();
+}
+
+double default_discovery_timeout_s(int nodes) {
+  constexpr double kFloorS = 30.0;
+  constexpr double kPerNodeS = 2.0;
+  return std::max(kFloorS, kPerNodeS * nodes);
+}
+
+struct LockstepDriver::Impl {
+  Impl(const transport::NodeConfig& config, std::uint64_t run,
+       std::span<const StationConfig> participants, std::function<void()> check_fn)
+      : run_id(run),
+        station_ids(ids_of(participants)),
+        check(std::move(check_fn)),
+        node(config),
+        ticks(node.make_writer<wire::Tick>()),
+        tracks(node.make_reader<wire::TrackEstimate>()),
+        measurements(node.make_reader<wire::Measurement>()),
+        statuses(node.make_reader<wire::StationStatus>()),
+        track_collector(with_center(station_ids)),
+        measurement_collector(station_ids) {
+    std::sort(station_ids.begin(), station_ids.end());
+    for (const StationConfig& s : participants) stations.emplace(s.id, s);
+    wait_set.attach(tracks);
+    wait_set.attach(measurements);
+    wait_set.attach(statuses);
+  }
+
+  // Reads statuses; a node that failed ends the run with its own words.
+  void read_statuses() {
+    wire::StationStatus s;
+    while (statuses.take(s)) {
+      if (s.run_id() != run_id) continue;
+      if (s.state() == wire::FAILED) {
+        throw RunAborted(fmt::format("{} failed at step {}: {}", node_name(s.station_id()),
+                                     s.step(), s.detail()));
+      }
+      // A killed process's own READY must not count for its replacement.
+      const auto killed = killed_instance.find(s.station_id());
+      if (s.state() == wire::READY &&
+          (killed == killed_instance.end() || killed->second != s.instance())) {
+        ready[s.station_id()] = s.instance();
+      }
+      if (s.state() == wire::FINISHED) {
+        NodeCounts& counts = finished[s.station_id()];
+        std::copy(s.dropped().begin(), s.dropped().end(), counts.dropped.begin());
+        counts.lost = s.lost();
+        counts.resyncs = s.resyncs();
+      }
+    }
+  }
+
+  void drain_samples() {
+    wire::TrackEstimate t;
+    transport::WriterId writer;
+    while (tracks.take(t, &writer)) {
+      if (const auto why = track_refusal(t, writer)) {
+        transport::count_drop(own_drops, *why, "track", t.source_id(), t.step());
+      }
+    }
+    wire::Measurement m;
+    while (measurements.take(m, &writer)) {
+      if (const auto why = measurement_refusal(m, writer)) {
+        transport::count_drop(own_drops, *why, "measurement", m.station_id(), m.step());
+      }
+    }
+  }
+
+  // The content checks, then the step window, the source and duplicates (admit).
+  std::optional<DropKind> track_refusal(const wire::TrackEstimate& t,
+                                        const transport::WriterId& writer) {
+    ReceivedTrack track{transport::from_wire(t),
+                        {t.contributors().begin(), t.contributors().end()}};
+    if (const auto why = track_content_refusal(t, track.estimate, run_id)) return why;
+    return transport::admit(track_collector, track_sources, t.step(), t.source_id(), writer, track);
+  }
+  std::optional<DropKind> measurement_refusal(const wire::Measurement& m,
+                                              const transport::WriterId& writer) {
+    const transport::WireObservation observation = transport::from_wire(m);
+    if (const auto why = measurement_content_refusal(m, observation, run_id, stations)) {
+      return why;
+    }
+    return transport::admit(measurement_collector, measurement_sources, m.step(), m.station_id(),
+                            writer, Vector3(observation.z));
+  }
+
+  std::uint64_t run_id;
+  std::vector<int> station_ids;
+  std::map<int, StationConfig> stations;  // by id: where each measurement must come from
+  std::function<void()> check;
+  transport::DdsNode node;
+  transport::Writer<wire::Tick> ticks;
+  transport::Reader<wire::TrackEstimate> tracks;
+  transport::Reader<wire::Measurement> measurements;
+  transport::Reader<wire::StationStatus> statuses;
+  transport::ReaderWaitSet wait_set;
+  // Whether every node that is up has delivered its track (and every station its measurement)
+  // for the current step.
+  bool all_in() const {
+    const auto track_ids = track_collector.station_ids();  // ascending: the center (0) first
+    for (std::size_t i = 0; i < track_ids.size(); ++i) {
+      if (!down.contains(track_ids[i]) && !track_collector.filled(i)) return false;
+    }
+    const auto ids = measurement_collector.station_ids();
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (!down.contains(ids[i]) && !measurement_collector.filled(i)) return false;
+    }
+    return true;
+  }
+
+  StepCollector<ReceivedTrack> track_collector;
+  StepCollector<Vector3> measurement_collector;
+  std::map<int, std::uint64_t> ready;  // node id -> the instance that announced READY
+  std::map<int, std::uint64_t> killed_instance;
+  std::set<int> down;                           // stations the harness killed and has not restarted
+  std::map<int, Clock::time_point> last_heard;  // per node: when its last track arrived
+  std::map<int, NodeCounts> finished;           // from FINISHED statuses
+  transport::SourceBinding track_sources;
+  transport::SourceBinding measurement_sources;
+  DropTally own_drops;
+};
+
+LockstepDriver::LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
+                               std::span<const StationConfig> participants,
+                               std::function<void()> check)
+    : impl_(std::make_unique<Impl>(config, run_id, participants, std::move(check))) {}
+
+LockstepDriver::~LockstepDriver() = default;
+
+std::chrono::nanoseconds LockstepDriver::wait_until_joined(std::chrono::milliseconds timeout) {
+  Impl& d = *impl_;
+  const int m = static_cast<int>(d.station_ids.size());
+  const auto start = Clock::now();
+  const auto all_ready = [&] {
+    if (!d.ready.contains(kCenterNodeId)) return false;
+    return std::all_of(d.station_ids.begin(), d.station_ids.end(),
+                       [&](int id) { return d.ready.contains(id); });
+  };
+  while (true) {
+    d.check();
+    d.read_statuses();
+    const bool matched =
+        d.ticks.matched() >= m + 1 && d.tracks.matched() >= m + 1 && d.measurements.matched() >= m;
+    if (matched && all_ready()) {
+      for (int id : with_center(d.station_ids)) d.last_heard[id] = Clock::now();
+      return Clock::now() - start;
+    }
+    if (Clock::now() - start >= timeout) {
+      std::vector<std::string> missing;
+      for (int id : with_center(d.station_ids)) {
+        if (!d.ready.contains(id)) missing.push_back(node_name(id));
+      }
+      throw RunAborted(fmt::format(
+          "discovery timed out after {:.1f} s; not ready: {}; tick readers {}/{}, track "
+          "writers {}/{}, measurement writers {}/{}",
+          std::chrono::duration<double>(timeout).count(),
+          missing.empty() ? "none" : fmt::format("{}", fmt::join(missing, ", ")), d.ticks.matched(),
+          m + 1, d.tracks.matched(), m + 1, d.measurements.matched(), m));
+    }
+    d.wait_set.wait(std::chrono::milliseconds(10));
+  }
+}
+
+RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds close_after,
+                                      std::chrono::milliseconds silence_limit) {
+  Impl& d = *impl_;
+  wire::Tick tick;
+  tick.run_id(d.run_id);
+  tick.step(static_cast<std::uint32_t>(k));
+  tick.stop(false);
+  const auto sent = Clock::now();
+  d.ticks.write(tick);
+  auto last_sent = sent;
+
+  while (true) {
+    d.drain_samples();
+    if (d.all_in()) break;
+    d.check();
+    d.read_statuses();
+    const auto now = Clock::now();
+    if (now - sent >= close_after) break;  // close with what has arrived
+    if (now - last_sent >= kTickRepeat) {
+      d.ticks.write(tick);
+      last_sent = now;
+    }
+    d.wait_set.wait(kPollSlice);
+  }
+
+  RoundRecord record;
+  record.step = k;
+  record.latency = Clock::now() - sent;
+  const auto track_ids = d.track_collector.station_ids();
+  const auto tracks = d.track_collector.payloads();
+  for (std::size_t i = 0; i < track_ids.size(); ++i) {
+    const int id = track_ids[i];
+    std::optional<ReceivedTrack> track;
+    if (d.track_collector.filled(i)) {
+      track = tracks[i];
+      d.last_heard[id] = Clock::now();
+    } else if (!d.down.contains(id) && Clock::now() - d.last_heard[id] > silence_limit) {
+      throw RunAborted(fmt::format("{} is running but sent no track for {:.1f} s (step {})",
+                                   node_name(id),
+                                   std::chrono::duration<double>(silence_limit).count(), k));
+    }
+    if (id == kCenterNodeId) {
+      record.central = std::move(track);
+    } else {
+      record.peers.push_back(std::move(track));
+    }
+  }
+  const auto z = d.measurement_collector.payloads();
+  for (std::size_t i = 0; i < z.size(); ++i) {
+    record.measurements.push_back(d.measurement_collector.filled(i) ? std::optional(z[i])
+                                                                    : std::nullopt);
+  }
+  d.track_collector.advance();
+  d.measurement_collector.advance();
+  return record;
+}
+
+void LockstepDriver::set_down(int id, bool down) {
+  if (down) {
+    impl_->down.insert(id);
+    if (const auto it = impl_->ready.find(id); it != impl_->ready.end()) {
+      impl_->killed_instance[id] = it->second;
+      impl_->ready.erase(it);
+    }
+  } else {
+    impl_->down.erase(id);
+    impl_->last_heard[id] = Clock::now();
+  }
+}
+
+void LockstepDriver::wait_until_ready(int id, std::chrono::milliseconds timeout) {
+  Impl& d = *impl_;
+  const auto start = Clock::now();
+  while (!d.ready.contains(id)) {
+    d.check();
+    d.read_statuses();
+    d.drain_samples();  // keep the readers' queues short meanwhile
+    if (Clock::now() - start >= timeout) {
+      throw RunAborted(fmt::format("restarted {} not ready after {:.1f} s", node_name(id),
+                                   std::chrono::duration<double>(timeout).count()));
+    }
+    d.wait_set.wait(std::chrono::milliseconds(10));
+  }
+}
+
+std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_step_s,
+                                                      std::chrono::system_clock::time_point epoch,
+                                                      std::chrono::milliseconds timeout) {
+  Impl& d = *impl_;
+  const auto epoch_ns = static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(epoch.time_since_epoch()).count());
+  wire::Tick tick;
+  tick.run_id(d.run_id);
+  tick.step(0);
+  tick.stop(false);
+  tick.epoch_ns(epoch_ns);
+  d.ticks.write(tick);
+
+  RealtimeRounds rounds(d.station_ids, static_cast<std::uint64_t>(steps));
+  std::vector<RoundRecord> done;
+  const auto give_up = Clock::now() + timeout +
+                       std::chrono::milliseconds(static_cast<long>(steps * time_step_s * 1000.0));
+  while (done.size() < static_cast<std::size_t>(steps)) {
+    // The same refusals as in lock-step, by kind: content, then where the sample belongs,
+    // then whether its writer speaks for its node, then duplicates.
+    wire::TrackEstimate t;
+    transport::WriterId writer;
+    while (d.tracks.take(t, &writer)) {
+      const transport::WireEstimate estimate = transport::from_wire(t);
+      auto why = track_content_refusal(t, estimate, d.run_id);
+      if (!why) why = rounds.check_track(t.source_id(), t.step());
+      if (!why && !d.track_sources.accept(t.source_id(), writer)) why = DropKind::kDuplicate;
+      if (!why) {
+        const auto scheduled = transport::step_start(epoch_ns, t.step(), time_step_s);
+        const double age_us =
+            std::chrono::duration<double, std::micro>(std::chrono::system_clock::now() - scheduled)
+                .count();
+        why = rounds.offer_track(
+            t.source_id(), t.step(),
+            ReceivedTrack{estimate, {t.contributors().begin(), t.contributors().end()}}, age_us);
+      }
+      if (why) transport::count_drop(d.own_drops, *why, "track", t.source_id(), t.step());
+    }
+    wire::Measurement z;
+    while (d.measurements.take(z, &writer)) {
+      const transport::WireObservation observation = transport::from_wire(z);
+      auto why = measurement_content_refusal(z, observation, d.run_id, d.stations);
+      if (!why) why = rounds.check_measurement(z.station_id(), z.step());
+      if (!why && !d.measurement_sources.accept(z.station_id(), writer)) {
+        why = DropKind::kDuplicate;
+      }
+      if (!why) why = rounds.offer_measurement(z.station_id(), z.step(), Vector3(observation.z));
+      if (why) transport::count_drop(d.own_drops, *why, "measurement", z.station_id(), z.step());
+    }
+    rounds.hand_over(done);
+    if (done.size() == static_cast<std::size_t>(steps)) break;
+    d.check();
+    d.read_statuses();
+    if (Clock::now() > give_up) {
+      throw RunAborted(fmt::format("real-time run: only {} of {} steps complete at the time limit",
+                                   done.size(), steps));
+    }
+    d.wait_set.wait(kPollSlice);
+  }
+  return done;
+}
+
+std::map<int, NodeCounts> LockstepDriver::finished_counts() {
+  impl_->read_statuses();
+  std::map<int, NodeCounts> all = impl_->finished;
+  all[kHarnessNodeId].dropped = impl_->own_drops.counts();
+  return all;
+}
+
+bool LockstepDriver::wait_until_finished(std::chrono::milliseconds timeout) {
+  Impl& d = *impl_;
+  const auto give_up = Clock::now() + timeout;
+  while (true) {
+    d.read_statuses();
+    d.drain_samples();
+    const bool all = std::all_of(d.station_ids.begin(), d.station_ids.end(), [&](int id) {
+      return d.down.contains(id) || d.finished.contains(id);
+    });
+    if (all && d.finished.contains(kCenterNodeId)) return true;
+    if (Clock::now() >= give_up) return false;
+    d.wait_set.wait(std::chrono::milliseconds(10));
+  }
+}
+
+void LockstepDriver::stop() {
+  wire::Tick tick;
+  tick.run_id(impl_->run_id);
+  tick.step(0);
+  tick.stop(true);
+  try {
+    impl_->ticks.write(tick);
+    impl_->ticks.wait_acknowledged(std::chrono::milliseconds(500));
+  } catch (const transport::DdsError&) {
+    // Best effort: the children are terminated by signal right after.
+  }
+}
+
+}  // namespace skyfuse::harness

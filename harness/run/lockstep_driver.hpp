@@ -1,0 +1,99 @@
+#pragma once
+// The harness's side of a lock-step run over DDS: waits until every station and the center
+// have joined, then for each step publishes Tick{run, k} and waits for every live process's
+// track of step k (and every live station's measurement, which the harness records). Rounds
+// close at a deadline like the nodes' own, so a node that is down or late is recorded as
+// missing instead of stalling the run. The harness adds no estimation; it only observes.
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "run/round_record.hpp"
+#include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/transport/node_config.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
+
+namespace skyfuse::harness {
+
+/// A run was abandoned: a child died, a node reported failure, time ran out, or the user
+/// interrupted. The message says which.
+class RunAborted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// How messages name node `id`: "center" (id 0) or "station <id>"; also the name its process
+/// is started under, so that a message about either points at the same node.
+std::string node_name(int id);
+
+/// A random run id: samples of another run on the same domain carry another id and are dropped.
+std::uint64_t fresh_run_id();
+
+/// How long `nodes` processes on one host may take to discover each other: 30 s, and 2 s per
+/// node from 16 nodes up - at 64 stations on 2 cores discovery took 12-44 s.
+double default_discovery_timeout_s(int nodes);
+
+/// The harness's key among node ids in drop counts.
+inline constexpr int kHarnessNodeId = -1;
+
+/// What a node reported when it finished.
+struct NodeCounts {
+  DropCounts dropped{};
+  std::uint64_t lost = 0;     ///< received samples removed by the simulated loss
+  std::uint32_t resyncs = 0;  ///< rounds fused onto another station's prior
+};
+
+class LockstepDriver {
+ public:
+  /// `check` is called at least every 50 ms while waiting; it throws RunAborted to end the run.
+  LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
+                 std::span<const StationConfig> participants, std::function<void()> check);
+  ~LockstepDriver();
+
+  /// Waits until every station and the center have announced READY and the harness's own
+  /// endpoints match them. Returns the time it took.
+  std::chrono::nanoseconds wait_until_joined(std::chrono::milliseconds timeout);
+
+  /// Runs step k: publishes its tick and returns what the processes published for it, once
+  /// every live one has or `close_after` has passed. A live node silent for `silence_limit`
+  /// (over consecutive rounds) ends the run.
+  RoundRecord run_round(std::uint64_t k, std::chrono::milliseconds close_after,
+                        std::chrono::milliseconds silence_limit);
+
+  /// The harness killed station `id` (true) or started it again (false): a station that is
+  /// down is not waited for.
+  void set_down(int id, bool down);
+  /// Waits until a restarted station `id` has announced READY again.
+  void wait_until_ready(int id, std::chrono::milliseconds timeout);
+
+  /// Real-time mode: publishes the start tick (step 0 begins at `epoch`) and gathers every
+  /// node's track of every step as the nodes publish them on their own clocks.
+  std::vector<RoundRecord> run_realtime(int steps, double time_step_s,
+                                        std::chrono::system_clock::time_point epoch,
+                                        std::chrono::milliseconds timeout);
+
+  /// What every node that has announced FINISHED so far reported, by node id (0: center),
+  /// and the harness's own drops under kHarnessNodeId.
+  std::map<int, NodeCounts> finished_counts();
+
+  /// Waits until every node that is up has announced FINISHED; false if `timeout` passed first.
+  bool wait_until_finished(std::chrono::milliseconds timeout);
+
+  /// Tells every process to stop (a Tick with stop = true); after the last round, this
+  /// releases the nodes waiting to exit.
+  void stop();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace skyfuse::harness

@@ -1,0 +1,32 @@
+#pragma once
+// What one DDS run of the system is asked to do: the nodes' options (one contract with them)
+// and what only the harness decides.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "run/run_report.hpp"
+#include "skyfuse/options/node_options.hpp"
+
+namespace skyfuse::harness {
+
+struct RunOptions {
+  /// What every node of the run is given (scenario, plan, domain, QoS, security, deadlines,
+  /// loss, NIS gate): one contract with the nodes, passed on by options::to_arguments. The
+  /// harness fills in per run what only it knows: the run id, the timeouts, the log level.
+  /// round_deadline_ms also sets when the harness records a round (twice it plus 250 ms).
+  options::NodeOptions node;
+  std::string out_dir = "results/run";
+  std::optional<std::uint64_t> run_id;        ///< default: random
+  std::optional<double> discovery_timeout_s;  ///< default: discovery_timeout_s() below
+  double round_timeout_s = 10.0;              ///< a running node silent this long ends the run
+  std::vector<StationEvent> kills;            ///< SIGKILL a station before a step's round
+  std::vector<StationEvent> restarts;  ///< start a killed station again before a step's round
+  std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating
+  bool external = false;    ///< stations and center are started elsewhere (by hand, compose)
+  bool verbose = false;
+};
+
+}  // namespace skyfuse::harness

@@ -1,0 +1,296 @@
+#include "run/run_report.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "report/output_files.hpp"
+#include "report/statistics.hpp"
+
+namespace skyfuse::harness {
+namespace {
+
+double max_abs_entry_difference(const GaussianState<9>& a, const GaussianState<9>& b) {
+  return std::max((a.mean - b.mean).cwiseAbs().maxCoeff(),
+                  (a.covariance - b.covariance).cwiseAbs().maxCoeff());
+}
+
+// The peer-to-peer estimate of a round: the lowest-id peer that delivered one.
+const ReceivedTrack* first_peer(const RoundRecord& r) {
+  for (const auto& peer : r.peers) {
+    if (peer) return &*peer;
+  }
+  return nullptr;
+}
+
+// Largest difference between any delivered peer track and the first one.
+double peer_spread(const RoundRecord& r) {
+  const ReceivedTrack* first = first_peer(r);
+  double spread = 0.0;
+  for (const auto& peer : r.peers) {
+    if (peer) spread = std::max(spread, max_abs_entry_difference(peer->estimate, first->estimate));
+  }
+  return spread;
+}
+
+// Whether any peer's track of the round contains station `id`.
+bool fused_by_a_peer(const RoundRecord& r, int id) {
+  return std::any_of(r.peers.begin(), r.peers.end(), [&](const auto& peer) {
+    return peer && std::binary_search(peer->contributors.begin(), peer->contributors.end(), id);
+  });
+}
+
+std::string node_key(int node) {
+  return node == kCenterNodeId    ? std::string("center")
+         : node == kHarnessNodeId ? std::string("harness")
+                                  : std::to_string(node);
+}
+
+}  // namespace
+
+RunRecorder::RunRecorder(const RunPlan& plan, std::vector<int> station_ids,
+                         std::vector<StationEvent> restarts)
+    : plan_(plan),
+      station_ids_(std::move(station_ids)),
+      restarts_(std::move(restarts)),
+      truth_(plan.truth()) {
+  std::sort(station_ids_.begin(), station_ids_.end());
+  rounds_.reserve(static_cast<std::size_t>(plan.scenario.steps));
+}
+
+void RunRecorder::add(RoundRecord round) {
+  rounds_.push_back(std::move(round));
+}
+
+RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) const {
+  RunSummary s;
+  s.stations = plan_.stations;
+  s.steps = static_cast<int>(rounds_.size());
+  s.speed_kmh = plan_.speed_mps * 3.6;
+  s.discovery_s = discovery_s;
+  double sq_central = 0.0;
+  double sq_p2p = 0.0;
+  int n_central = 0;
+  int n_p2p = 0;
+  std::vector<double> latencies_us;
+  for (int id : station_ids_) s.rounds_missing_by_station[id] = 0;
+  for (const RoundRecord& r : rounds_) {
+    const Vector3 p = truth_.position(r.step);
+    const ReceivedTrack* peer = first_peer(r);
+    if (r.central) {
+      sq_central += (p - r.central->estimate.mean.head<3>()).squaredNorm();
+      ++n_central;
+    }
+    if (peer) {
+      sq_p2p += (p - peer->estimate.mean.head<3>()).squaredNorm();
+      ++n_p2p;
+      s.max_abs_diff_between_peers = std::max(s.max_abs_diff_between_peers, peer_spread(r));
+    }
+    if (r.central && peer) {
+      s.max_abs_diff_central_vs_p2p =
+          std::max(s.max_abs_diff_central_vs_p2p,
+                   (r.central->estimate.mean.head<3>() - peer->estimate.mean.head<3>()).norm());
+    }
+    for (int id : station_ids_) {
+      if (!fused_by_a_peer(r, id)) ++s.rounds_missing_by_station[id];
+    }
+    if (!r.central || std::any_of(r.peers.begin(), r.peers.end(), [](auto& t) { return !t; })) {
+      ++s.rounds_closed_incomplete;
+    }
+    latencies_us.push_back(std::chrono::duration<double, std::micro>(r.latency).count());
+  }
+  if (!rounds_.empty() && first_peer(rounds_.back()))
+    s.peer_spread_end = peer_spread(rounds_.back());
+  for (const StationEvent& restart : restarts_) {
+    for (const RoundRecord& r : rounds_) {
+      if (r.step >= restart.step && fused_by_a_peer(r, restart.station_id)) {
+        s.rejoin_step_by_station[restart.station_id] = r.step;
+        break;
+      }
+    }
+  }
+  std::vector<double> ages_ms;
+  int in_time = 0;
+  for (const RoundRecord& r : rounds_) {
+    for (double age : r.track_age_us) ages_ms.push_back(age / 1000.0);
+    if (r.all_inputs_in_time) ++in_time;
+  }
+  if (!ages_ms.empty()) {
+    s.track_age_ms_p50 = percentile(ages_ms, 0.50);
+    s.track_age_ms_p99 = percentile(ages_ms, 0.99);
+    s.track_age_ms_max = *std::max_element(ages_ms.begin(), ages_ms.end());
+  }
+  const double n = std::max<double>(1.0, static_cast<double>(rounds_.size()));
+  s.rounds_all_inputs_in_time = in_time / n;
+  s.rmse_central_m = std::sqrt(sq_central / std::max(1, n_central));
+  s.rmse_p2p_m = std::sqrt(sq_p2p / std::max(1, n_p2p));
+  s.rounds_per_s =
+      rounds_elapsed_s > 0.0 ? static_cast<double>(rounds_.size()) / rounds_elapsed_s : 0.0;
+  s.round_latency_us_p50 = percentile(latencies_us, 0.50);
+  s.round_latency_us_p99 = percentile(latencies_us, 0.99);
+  s.round_latency_us_max =
+      latencies_us.empty() ? 0.0 : *std::max_element(latencies_us.begin(), latencies_us.end());
+  return s;
+}
+
+void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summary,
+                        std::uint64_t run_id) const {
+  std::string steps =
+      "step,time_s,truth_x,truth_y,truth_z,central_x,central_y,central_z,p2p_x,p2p_y,p2p_z,"
+      "error_central_m,error_p2p_m,central_minus_p2p_m,peer_spread\n";
+  std::string tracks = "step,source,x0,x1,x2,x3,x4,x5,x6,x7,x8\n";
+  std::string measurements = "step,station_id,range_m,azimuth_rad,elevation_rad\n";
+  std::string rounds = "step,latency_us\n";
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const RoundRecord& r : rounds_) {
+    // A node that delivered nothing leaves NaN in steps.csv and no row in the other files.
+    const Vector3 p = truth_.position(r.step);
+    const ReceivedTrack* peer = first_peer(r);
+    const Vector3 c =
+        r.central ? Vector3(r.central->estimate.mean.head<3>()) : Vector3::Constant(nan);
+    const Vector3 d = peer ? Vector3(peer->estimate.mean.head<3>()) : Vector3::Constant(nan);
+    steps += fmt::format(
+        "{},{:.3f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6e},{:.6e},{:."
+        "3e},{:.3e}\n",
+        r.step, static_cast<double>(r.step) * plan_.scenario.time_step_s, p.x(), p.y(), p.z(),
+        c.x(), c.y(), c.z(), d.x(), d.y(), d.z(), (p - c).norm(), (p - d).norm(), (c - d).norm(),
+        peer ? peer_spread(r) : nan);
+    const auto add_track = [&](int source, const std::optional<ReceivedTrack>& track) {
+      if (!track) return;
+      // %.17g round-trips a double exactly: the value read back is the value computed.
+      tracks += fmt::format("{},{}", r.step, source);
+      for (int i = 0; i < 9; ++i) tracks += fmt::format(",{:.17g}", track->estimate.mean(i));
+      tracks += '\n';
+    };
+    add_track(0, r.central);
+    for (std::size_t i = 0; i < r.peers.size(); ++i) add_track(station_ids_[i], r.peers[i]);
+    for (std::size_t i = 0; i < r.measurements.size(); ++i) {
+      if (!r.measurements[i]) continue;
+      const Vector3& z = *r.measurements[i];
+      measurements +=
+          fmt::format("{},{},{:.17g},{:.17g},{:.17g}\n", r.step, station_ids_[i], z(0), z(1), z(2));
+    }
+    rounds += fmt::format("{},{:.1f}\n", r.step,
+                          std::chrono::duration<double, std::micro>(r.latency).count());
+  }
+  write_file_atomically(dir / "steps.csv", steps);
+  write_file_atomically(dir / "tracks.csv", tracks);
+  write_file_atomically(dir / "measurements.csv", measurements);
+  write_file_atomically(dir / "rounds.csv", rounds);
+
+  const nlohmann::json json = {{"scenario", plan_.scenario.name},
+                               {"seed", plan_.scenario.seed},
+                               {"mc_run", plan_.mc_run},
+                               {"run_id", run_id},
+                               {"stations", summary.stations},
+                               {"steps", summary.steps},
+                               {"speed_kmh", summary.speed_kmh},
+                               {"rmse_central_m", summary.rmse_central_m},
+                               {"rmse_p2p_m", summary.rmse_p2p_m},
+                               {"max_abs_diff_central_vs_p2p", summary.max_abs_diff_central_vs_p2p},
+                               {"max_abs_diff_between_peers", summary.max_abs_diff_between_peers},
+                               {"peer_spread_end", summary.peer_spread_end},
+                               {"rounds_closed_incomplete", summary.rounds_closed_incomplete},
+                               {"round_deadline_ms", summary.round_deadline_ms},
+                               {"rounds_per_s", summary.rounds_per_s},
+                               {"round_latency_us_p50", summary.round_latency_us_p50},
+                               {"round_latency_us_p99", summary.round_latency_us_p99},
+                               {"round_latency_us_max", summary.round_latency_us_max},
+                               {"discovery_s", summary.discovery_s}};
+  nlohmann::json full = json;
+  if (summary.realtime_deadline_ms > 0.0) {
+    full["realtime"] = {{"deadline_ms", summary.realtime_deadline_ms},
+                        {"rounds_all_inputs_in_time", summary.rounds_all_inputs_in_time},
+                        {"track_age_ms_p50", summary.track_age_ms_p50},
+                        {"track_age_ms_p99", summary.track_age_ms_p99},
+                        {"track_age_ms_max", summary.track_age_ms_max}};
+  }
+  // Every kind appears, zeros included, so that a reader can tell "none" from "not counted".
+  nlohmann::json by_kind = nlohmann::json::object();
+  nlohmann::json by_node = nlohmann::json::object();
+  nlohmann::json lost = nlohmann::json::object();
+  nlohmann::json resyncs = nlohmann::json::object();
+  for (std::size_t i = 0; i < kDropKinds; ++i) {
+    std::uint64_t total = 0;
+    for (const auto& [node, counts] : summary.node_counts) total += counts.dropped[i];
+    by_kind[std::string(to_string(static_cast<DropKind>(i)))] = total;
+  }
+  for (const auto& [node, counts] : summary.node_counts) {
+    nlohmann::json kinds = nlohmann::json::object();
+    for (std::size_t i = 0; i < kDropKinds; ++i) {
+      if (counts.dropped[i] != 0) {
+        kinds[std::string(to_string(static_cast<DropKind>(i)))] = counts.dropped[i];
+      }
+    }
+    by_node[node_key(node)] = kinds;
+    if (node != kHarnessNodeId) lost[node_key(node)] = counts.lost;
+    if (node > 0) resyncs[node_key(node)] = counts.resyncs;
+  }
+  nlohmann::json missing = nlohmann::json::object();
+  for (const auto& [id, count] : summary.rounds_missing_by_station) missing[node_key(id)] = count;
+  nlohmann::json rejoin = nlohmann::json::object();
+  for (const auto& [id, step] : summary.rejoin_step_by_station) rejoin[node_key(id)] = step;
+  full["rounds_missing_by_station"] = missing;
+  full["rejoin_step_by_station"] = rejoin;
+  full["lost_by_node"] = lost;
+  full["resyncs_by_station"] = resyncs;
+  if (summary.loss.probability > 0.0 || summary.best_effort) {
+    full["loss"] = {
+        {"probability", summary.loss.probability},
+        {"first_step", summary.loss.first_step},
+        {"end_step", std::min<std::uint64_t>(summary.loss.end_step,
+                                             static_cast<std::uint64_t>(plan_.scenario.steps))},
+        {"seed", summary.loss.seed},
+        {"best_effort", summary.best_effort}};
+  }
+  full["dropped_by_kind"] = by_kind;
+  full["dropped_by_node"] = by_node;
+  write_file_atomically(dir / "summary.json", full.dump(2) + "\n");
+}
+
+void print_run_table(const RunSummary& s, std::FILE* out) {
+  fmt::print(out, "\n{} stations + center, {} steps at {:.0f} km/h\n", s.stations, s.steps,
+             s.speed_kmh);
+  fmt::print(out, "  RMSE central             {:.4f} m\n", s.rmse_central_m);
+  fmt::print(out, "  RMSE peer-to-peer        {:.4f} m\n", s.rmse_p2p_m);
+  fmt::print(out, "  max |central - p2p|      {:.2e} m\n", s.max_abs_diff_central_vs_p2p);
+  fmt::print(out, "  max |peer - peer|        {:.2e}{}\n", s.max_abs_diff_between_peers,
+             s.max_abs_diff_between_peers == 0.0 ? "  (every peer bit-identical)" : "");
+  if (s.max_abs_diff_between_peers != 0.0) {
+    fmt::print(out, "  |peer - peer| at the end {:.2e}\n", s.peer_spread_end);
+  }
+  fmt::print(out, "  rounds per second        {:.0f}\n", s.rounds_per_s);
+  fmt::print(out, "  round latency p50/p99/max {:.0f} / {:.0f} / {:.0f} us\n",
+             s.round_latency_us_p50, s.round_latency_us_p99, s.round_latency_us_max);
+  fmt::print(out, "  discovery                {:.2f} s\n", s.discovery_s);
+  std::uint64_t dropped = 0;
+  std::uint64_t lost = 0;
+  for (const auto& [node, counts] : s.node_counts) {
+    for (std::uint64_t c : counts.dropped) dropped += c;
+    lost += counts.lost;
+  }
+  fmt::print(out, "  samples refused          {}{}\n", dropped,
+             dropped == 0 ? "" : "  (by kind in summary.json)");
+  if (lost != 0) fmt::print(out, "  samples lost (--loss)    {}\n", lost);
+  if (s.rounds_closed_incomplete != 0) {
+    fmt::print(out, "  rounds closed at the deadline with a track missing: {}\n",
+               s.rounds_closed_incomplete);
+  }
+  for (const auto& [id, rounds] : s.rounds_missing_by_station) {
+    if (rounds != 0) fmt::print(out, "  station {} missing from {} rounds\n", id, rounds);
+  }
+  for (const auto& [id, step] : s.rejoin_step_by_station) {
+    fmt::print(out, "  station {} contributed again from step {}\n", id, step);
+  }
+  if (s.realtime_deadline_ms > 0.0) {
+    fmt::print(out, "  real time: deadline {} ms; rounds with every input in time {:.2f} %\n",
+               s.realtime_deadline_ms, 100.0 * s.rounds_all_inputs_in_time);
+    fmt::print(out, "  track age on arrival p50/p99/max {:.2f} / {:.2f} / {:.2f} ms\n",
+               s.track_age_ms_p50, s.track_age_ms_p99, s.track_age_ms_max);
+  }
+}
+
+}  // namespace skyfuse::harness

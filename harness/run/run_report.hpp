@@ -1,0 +1,92 @@
+#pragma once
+
+// What a DDS run leaves behind, and the numbers that summarise it.
+//   steps.csv         per step: truth, central and peer-to-peer position, their errors, and the
+//                     spread between the peers' tracks
+//   tracks.csv        per step and source: the full state, printed to round-trip exactly
+//   measurements.csv  every station's measurement, in the format `skyfuse-station --replay` reads
+//   rounds.csv        per step: round latency (timing: the only file that differs run to run)
+//   summary.json      the figures below
+// In a lock-step run, everything but rounds.csv and the timing fields and run id of
+// summary.json is a pure function of the scenario, the seed and the options: two runs give
+// the same bytes. (A real-time run fuses what arrived by each deadline: not reproducible.)
+
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <vector>
+
+#include "run/lockstep_driver.hpp"
+#include "skyfuse/random/link_loss.hpp"
+#include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
+
+namespace skyfuse::harness {
+
+struct RunSummary {
+  int stations = 0;
+  int steps = 0;
+  double speed_kmh = 0.0;
+  double rmse_central_m = 0.0;
+  double rmse_p2p_m = 0.0;
+  double max_abs_diff_central_vs_p2p = 0.0;  ///< m, position
+  double max_abs_diff_between_peers = 0.0;   ///< over every state and covariance entry
+  double peer_spread_end = 0.0;              ///< the same, at the last step only
+  /// Per station: rounds in which no peer's track contained it (it was down, restarting, or
+  /// every peer lost its increment).
+  std::map<int, int> rounds_missing_by_station;
+  /// Per restarted station: the first step at which a peer's track contained it again.
+  std::map<int, std::uint64_t> rejoin_step_by_station;
+  /// Rounds in which some node's track was missing, for whatever reason (a station the run
+  /// killed on purpose included).
+  int rounds_closed_incomplete = 0;
+  double rounds_per_s = 0.0;
+  double round_latency_us_p50 = 0.0;
+  double round_latency_us_p99 = 0.0;
+  double round_latency_us_max = 0.0;
+  double discovery_s = 0.0;
+  /// Real-time mode (deadline > 0): the share of rounds in which every node fused all M inputs
+  /// by the deadline, and the age of the tracks on arrival at the harness (scheduled start of
+  /// the step -> received).
+  double realtime_deadline_ms = 0.0;
+  double rounds_all_inputs_in_time = 0.0;
+  double track_age_ms_p50 = 0.0;
+  double track_age_ms_p99 = 0.0;
+  double track_age_ms_max = 0.0;
+  /// What each node reported when it finished (0: the center): samples refused by kind,
+  /// samples lost to the simulated loss, rounds resynchronised.
+  std::map<int, NodeCounts> node_counts;
+  /// The settings that shape the rounds, echoed into summary.json.
+  double round_deadline_ms = 0.0;
+  LinkLoss loss;
+  bool best_effort = false;
+};
+
+/// A station the harness kills (SIGKILL) or starts again, before the round of `step`.
+struct StationEvent {
+  int station_id = 0;
+  std::uint64_t step = 0;
+};
+
+class RunRecorder {
+ public:
+  /// `restarts`: the stations started again during the run, for rejoin_step_by_station.
+  RunRecorder(const RunPlan& plan, std::vector<int> station_ids,
+              std::vector<StationEvent> restarts = {});
+  void add(RoundRecord round);
+
+  RunSummary summarise(double discovery_s, double rounds_elapsed_s) const;
+  void write(const std::filesystem::path& dir, const RunSummary& summary,
+             std::uint64_t run_id) const;
+
+ private:
+  const RunPlan& plan_;
+  std::vector<int> station_ids_;
+  std::vector<StationEvent> restarts_;
+  TruthTrajectory truth_;
+  std::vector<RoundRecord> rounds_;
+};
+
+void print_run_table(const RunSummary& s, std::FILE* out);
+
+}  // namespace skyfuse::harness
