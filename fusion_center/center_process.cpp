@@ -171,7 +171,9 @@ class Center {
     if (sample.run_id() != options_.run_id) return DropKind::kWrongRun;
     // Garbage is garbage whoever sent it; then who it claims to be and when; then whether the
     // writer really speaks for that station.
-    const transport::WireObservation observation = transport::from_wire(sample);
+    const auto received = transport::observation_from_wire<transport::WireSensor>(sample);
+    if (!received) return DropKind::kOutOfRange;  // another sensor kind, or other lengths
+    const transport::WireObservation& observation = *received;
     if (const auto why = check_observation(observation)) return why;
     // A participant's measurement must come from where the scenario puts it; an unknown id is
     // left to admit(), which says so.

@@ -184,10 +184,11 @@ class Station {
     if (sample.run_id() != options_.node.run_id) return DropKind::kWrongRun;
     // Garbage is garbage whoever sent it; then who it claims to be and when; then whether the
     // writer really speaks for that station.
-    const transport::WireContribution contribution = transport::from_wire(sample);
-    if (const auto why = check_contribution(contribution)) return why;
+    const auto contribution = transport::contribution_from_wire<transport::WireModel::kDim>(sample);
+    if (!contribution) return DropKind::kOutOfRange;  // not the run's state dimension
+    if (const auto why = check_contribution(*contribution)) return why;
     return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
-                            contribution);
+                            *contribution);
   }
 
   // Waits until `done()` or for `limit` at most; returns an exit code to end the run, or -1.

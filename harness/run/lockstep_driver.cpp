@@ -36,14 +36,15 @@ std::vector<int> with_center(std::vector<int> ids) {
 // What is wrong with a track whatever its step and source's place in the run: another run, a
 // mode that does not match its source, numbers that are not finite. The harness records what
 // the nodes fused, so it refuses what they refuse; lock-step and real time alike.
-std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
-                                              const transport::WireEstimate& estimate,
-                                              std::uint64_t run_id) {
+std::optional<DropKind> track_content_refusal(
+    const wire::TrackEstimate& t, const std::optional<transport::WireEstimate>& estimate,
+    std::uint64_t run_id) {
   if (t.run_id() != run_id) return DropKind::kWrongRun;
   if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterNodeId)) {
     return DropKind::kUnknownStation;
   }
-  if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) {
+  if (!estimate) return DropKind::kOutOfRange;  // not the run's state dimension
+  if (!estimate->mean.allFinite() || !estimate->covariance.allFinite()) {
     return DropKind::kNonFinite;
   }
   return std::nullopt;
@@ -51,14 +52,14 @@ std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
 
 // The same for a measurement: another run, or an observation the center would refuse (its
 // content, or a participant's id at another site).
-std::optional<DropKind> measurement_content_refusal(const wire::Measurement& m,
-                                                    const transport::WireObservation& observation,
-                                                    std::uint64_t run_id,
-                                                    const std::map<int, StationConfig>& stations) {
+std::optional<DropKind> measurement_content_refusal(
+    const wire::Measurement& m, const std::optional<transport::WireObservation>& observation,
+    std::uint64_t run_id, const std::map<int, StationConfig>& stations) {
   if (m.run_id() != run_id) return DropKind::kWrongRun;
-  if (const auto why = check_observation(observation)) return why;
+  if (!observation) return DropKind::kOutOfRange;  // another sensor kind, or other lengths
+  if (const auto why = check_observation(*observation)) return why;
   if (const auto station = stations.find(m.station_id()); station != stations.end()) {
-    return check_site(observation.sensor, station->second);
+    return check_site(observation->sensor, station->second);
   }
   return std::nullopt;
 }
@@ -149,19 +150,19 @@ struct LockstepDriver::Impl {
   // The content checks, then the step window, the source and duplicates (admit).
   std::optional<DropKind> track_refusal(const wire::TrackEstimate& t,
                                         const transport::WriterId& writer) {
-    ReceivedTrack track{transport::from_wire(t),
-                        {t.contributors().begin(), t.contributors().end()}};
-    if (const auto why = track_content_refusal(t, track.estimate, run_id)) return why;
+    const auto estimate = transport::estimate_from_wire<transport::WireModel::kDim>(t);
+    if (const auto why = track_content_refusal(t, estimate, run_id)) return why;
+    const ReceivedTrack track{*estimate, {t.contributors().begin(), t.contributors().end()}};
     return transport::admit(track_collector, track_sources, t.step(), t.source_id(), writer, track);
   }
   std::optional<DropKind> measurement_refusal(const wire::Measurement& m,
                                               const transport::WriterId& writer) {
-    const transport::WireObservation observation = transport::from_wire(m);
+    const auto observation = transport::observation_from_wire<transport::WireSensor>(m);
     if (const auto why = measurement_content_refusal(m, observation, run_id, stations)) {
       return why;
     }
     return transport::admit(measurement_collector, measurement_sources, m.step(), m.station_id(),
-                            writer, Vector3(observation.z));
+                            writer, Vector3(observation->z));
   }
 
   std::uint64_t run_id;
@@ -349,7 +350,7 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     wire::TrackEstimate t;
     transport::WriterId writer;
     while (d.tracks.take(t, &writer)) {
-      const transport::WireEstimate estimate = transport::from_wire(t);
+      const auto estimate = transport::estimate_from_wire<transport::WireModel::kDim>(t);
       auto why = track_content_refusal(t, estimate, d.run_id);
       if (!why) why = rounds.check_track(t.source_id(), t.step());
       if (!why && !d.track_sources.accept(t.source_id(), writer)) why = DropKind::kDuplicate;
@@ -360,19 +361,19 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
                 .count();
         why = rounds.offer_track(
             t.source_id(), t.step(),
-            ReceivedTrack{estimate, {t.contributors().begin(), t.contributors().end()}}, age_us);
+            ReceivedTrack{*estimate, {t.contributors().begin(), t.contributors().end()}}, age_us);
       }
       if (why) transport::count_drop(d.own_drops, *why, "track", t.source_id(), t.step());
     }
     wire::Measurement z;
     while (d.measurements.take(z, &writer)) {
-      const transport::WireObservation observation = transport::from_wire(z);
+      const auto observation = transport::observation_from_wire<transport::WireSensor>(z);
       auto why = measurement_content_refusal(z, observation, d.run_id, d.stations);
       if (!why) why = rounds.check_measurement(z.station_id(), z.step());
       if (!why && !d.measurement_sources.accept(z.station_id(), writer)) {
         why = DropKind::kDuplicate;
       }
-      if (!why) why = rounds.offer_measurement(z.station_id(), z.step(), Vector3(observation.z));
+      if (!why) why = rounds.offer_measurement(z.station_id(), z.step(), Vector3(observation->z));
       if (why) transport::count_drop(d.own_drops, *why, "measurement", z.station_id(), z.step());
     }
     rounds.hand_over(done);

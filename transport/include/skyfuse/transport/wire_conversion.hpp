@@ -3,13 +3,21 @@
 /// Conversion between wire samples and core types, at the edge of every process. Doubles are
 /// copied bit for bit and symmetric matrices travel as their upper triangle, so a value that
 /// crosses the wire is the value that was sent: the DDS path adds no rounding.
+///
+/// The wire carries any sensor and any state dimension; a receiver asks for the types its run
+/// uses, and a sample whose sensor kind or lengths do not fit them converts to nothing (the
+/// receiver refuses it as out of range).
 
-#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/fusion/station_observation.hpp"
+#include "skyfuse/tracking/peer_contribution.hpp"
 #include "skyfuse/transport/topics.hpp"
 #include "skyfuse/transport/wire_configuration.hpp"
 
@@ -17,33 +25,118 @@ namespace skyfuse::transport {
 
 /// Row-major upper triangle of a symmetric N x N matrix, N (N + 1) / 2 values.
 template <int N>
-void pack_upper(const Covariance<N>& m, double* out) {
-  int k = 0;
+std::vector<double> pack_upper(const Covariance<N>& m) {
+  std::vector<double> out;
+  out.reserve(static_cast<std::size_t>(N * (N + 1) / 2));
   for (int r = 0; r < N; ++r) {
-    for (int c = r; c < N; ++c) out[k++] = m(r, c);
+    for (int c = r; c < N; ++c) out.push_back(m(r, c));
   }
+  return out;
 }
+/// The symmetric matrix of an upper triangle; nothing unless it has N (N + 1) / 2 values.
 template <int N>
-Covariance<N> unpack_upper(const double* in) {
+std::optional<Covariance<N>> unpack_upper(const std::vector<double>& in) {
+  if (in.size() != static_cast<std::size_t>(N * (N + 1) / 2)) return std::nullopt;
   Covariance<N> m;
-  int k = 0;
+  std::size_t k = 0;
   for (int r = 0; r < N; ++r) {
     for (int c = r; c < N; ++c) m(r, c) = m(c, r) = in[k++];
   }
   return m;
 }
+template <int N>
+std::vector<double> pack_vector(const Vector<N>& v) {
+  return std::vector<double>(v.data(), v.data() + N);
+}
+/// The vector of N values; nothing unless there are N.
+template <int N>
+std::optional<Vector<N>> unpack_vector(const std::vector<double>& in) {
+  if (in.size() != static_cast<std::size_t>(N)) return std::nullopt;
+  return Vector<N>(Eigen::Map<const Vector<N>>(in.data()));
+}
 
-wire::Measurement to_wire(const WireObservation& observation, std::uint64_t run_id,
-                          std::uint32_t step);
-WireObservation from_wire(const wire::Measurement& sample);
+template <typename Sensor>
+wire::Measurement to_wire(const StationObservation<Sensor>& observation, std::uint64_t run_id,
+                          std::uint32_t step) {
+  wire::Measurement sample;
+  sample.run_id(run_id);
+  sample.step(step);
+  sample.station_id(observation.station_id);
+  sample.sensor(std::string(Sensor::kKind));
+  sample.z(pack_vector<Sensor::kMeasDim>(observation.z));
+  sample.noise(pack_upper<Sensor::kMeasDim>(observation.noise));
+  const Vector3 site = observation.sensor.site();
+  sample.station_position({site.x(), site.y(), site.z()});
+  return sample;
+}
 
-wire::InformationIncrement to_wire(const WireContribution& contribution, std::uint64_t run_id,
-                                   std::uint32_t step);
-WireContribution from_wire(const wire::InformationIncrement& sample);
+/// The observation of a `Sensor` a measurement carries; nothing if it names another sensor kind
+/// or its lengths are not that sensor's.
+template <typename Sensor>
+std::optional<StationObservation<Sensor>> observation_from_wire(const wire::Measurement& sample) {
+  if (std::string_view(sample.sensor().c_str()) != Sensor::kKind) return std::nullopt;
+  const auto z = unpack_vector<Sensor::kMeasDim>(sample.z());
+  const auto noise = unpack_upper<Sensor::kMeasDim>(sample.noise());
+  if (!z || !noise) return std::nullopt;
+  const auto& p = sample.station_position();
+  return StationObservation<Sensor>{sample.station_id(), Sensor(Vector3(p[0], p[1], p[2])), *z,
+                                    *noise};
+}
 
-wire::TrackEstimate to_wire(const WireEstimate& estimate, std::uint64_t run_id, std::uint32_t step,
-                            int source_id, wire::TrackSource mode,
-                            std::span<const int> contributors);
-WireEstimate from_wire(const wire::TrackEstimate& sample);
+template <int N>
+wire::InformationIncrement to_wire(const PeerContribution<N>& contribution, std::uint64_t run_id,
+                                   std::uint32_t step) {
+  wire::InformationIncrement sample;
+  sample.run_id(run_id);
+  sample.step(step);
+  sample.station_id(contribution.increment.station_id);
+  sample.delta_information(pack_upper<N>(contribution.increment.delta_information));
+  sample.delta_vector(pack_vector<N>(contribution.increment.delta_vector));
+  sample.prior_x(pack_vector<N>(contribution.prior.mean));
+  sample.prior_covariance(pack_upper<N>(contribution.prior.covariance));
+  return sample;
+}
+
+/// The contribution an increment carries for an N-state; nothing if its lengths are not N's.
+template <int N>
+std::optional<PeerContribution<N>> contribution_from_wire(
+    const wire::InformationIncrement& sample) {
+  const auto dq = unpack_upper<N>(sample.delta_information());
+  const auto dy = unpack_vector<N>(sample.delta_vector());
+  const auto x = unpack_vector<N>(sample.prior_x());
+  const auto p = unpack_upper<N>(sample.prior_covariance());
+  if (!dq || !dy || !x || !p) return std::nullopt;
+  PeerContribution<N> contribution;
+  contribution.increment.station_id = sample.station_id();
+  contribution.increment.delta_information = *dq;
+  contribution.increment.delta_vector = *dy;
+  contribution.prior.mean = *x;
+  contribution.prior.covariance = *p;
+  return contribution;
+}
+
+template <int N>
+wire::TrackEstimate to_wire(const GaussianState<N>& estimate, std::uint64_t run_id,
+                            std::uint32_t step, int source_id, wire::TrackSource mode,
+                            std::span<const int> contributors) {
+  wire::TrackEstimate sample;
+  sample.run_id(run_id);
+  sample.step(step);
+  sample.source_id(source_id);
+  sample.mode(mode);
+  sample.x(pack_vector<N>(estimate.mean));
+  sample.covariance(pack_upper<N>(estimate.covariance));
+  sample.contributors().assign(contributors.begin(), contributors.end());
+  return sample;
+}
+
+/// The estimate a track carries for an N-state; nothing if its lengths are not N's.
+template <int N>
+std::optional<GaussianState<N>> estimate_from_wire(const wire::TrackEstimate& sample) {
+  const auto x = unpack_vector<N>(sample.x());
+  const auto p = unpack_upper<N>(sample.covariance());
+  if (!x || !p) return std::nullopt;
+  return GaussianState<N>{*x, *p};
+}
 
 }  // namespace skyfuse::transport

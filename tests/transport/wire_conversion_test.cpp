@@ -1,0 +1,108 @@
+// Every wire conversion, there and back: the values that arrive are the values that were sent,
+// bit for bit, for any sensor and state dimension; a sample of another kind or other lengths
+// converts to nothing.
+#include "skyfuse/transport/wire_conversion.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "skyfuse/models/position_velocity.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "support/random_problems.hpp"
+
+namespace skyfuse::transport {
+namespace {
+
+template <int N>
+GaussianState<N> random_state(std::mt19937& rng) {
+  GaussianState<N> s;
+  std::normal_distribution<double> n(0.0, 100.0);
+  for (int i = 0; i < N; ++i) s.mean(i) = n(rng);
+  s.covariance = test::random_spd<N>(rng, 0.01, 50.0);
+  return s;
+}
+
+TEST(WireConversion, ARangeAzimuthElevationMeasurementArrivesAsSent) {
+  std::mt19937 rng(1);
+  StationObservation<RangeAzimuthElevation<9>> sent{
+      7, RangeAzimuthElevation<9>(Vector3(-450.0, 12.5, 20.0)), Vector3(1523.25, -0.3, 0.2),
+      test::random_spd<3>(rng, 1e-5, 1.0)};
+  const wire::Measurement sample = to_wire(sent, 42, 9);
+  EXPECT_EQ(sample.run_id(), 42U);
+  EXPECT_EQ(sample.step(), 9U);
+  EXPECT_STREQ(sample.sensor().c_str(), "range_azimuth_elevation");
+  const auto back = observation_from_wire<RangeAzimuthElevation<9>>(sample);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->station_id, 7);
+  EXPECT_EQ(back->z, sent.z);
+  EXPECT_EQ(back->noise, sent.noise);
+  EXPECT_EQ(back->sensor.site(), sent.sensor.site());
+  // Read as another sensor: refused.
+  EXPECT_FALSE(observation_from_wire<PositionVelocity<9>>(sample).has_value());
+}
+
+TEST(WireConversion, AGpsMeasurementArrivesAsSentAndOtherLengthsAreRefused) {
+  std::mt19937 rng(2);
+  StationObservation<PositionVelocity<6>> sent;
+  sent.station_id = 11;
+  sent.z << 1.0, -2.0, 3.5, 10.0, 5.0, -1.0;
+  sent.noise = test::random_spd<6>(rng, 1.0, 9.0);
+  wire::Measurement sample = to_wire(sent, 1, 2);
+  const auto back = observation_from_wire<PositionVelocity<6>>(sample);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->z, sent.z);
+  EXPECT_EQ(back->noise, sent.noise);
+  EXPECT_EQ(back->sensor.site(), Vector3::Zero());
+  sample.z().pop_back();
+  EXPECT_FALSE(observation_from_wire<PositionVelocity<6>>(sample).has_value());
+  sample = to_wire(sent, 1, 2);
+  sample.noise().push_back(0.0);
+  EXPECT_FALSE(observation_from_wire<PositionVelocity<6>>(sample).has_value());
+}
+
+template <int N>
+void expect_increment_round_trip(std::mt19937& rng) {
+  PeerContribution<N> sent;
+  sent.increment.station_id = 3;
+  sent.increment.delta_information = test::random_spd<N>(rng, 0.0, 10.0);
+  sent.increment.delta_vector = random_state<N>(rng).mean;
+  sent.prior = random_state<N>(rng);
+  const wire::InformationIncrement sample = to_wire(sent, 5, 6);
+  const auto back = contribution_from_wire<N>(sample);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->increment.station_id, 3);
+  EXPECT_EQ(back->increment.delta_information, sent.increment.delta_information);
+  EXPECT_EQ(back->increment.delta_vector, sent.increment.delta_vector);
+  EXPECT_EQ(back->prior.mean, sent.prior.mean);
+  EXPECT_EQ(back->prior.covariance, sent.prior.covariance);
+}
+
+TEST(WireConversion, IncrementsOfAnyStateDimensionArriveAsSent) {
+  std::mt19937 rng(3);
+  expect_increment_round_trip<9>(rng);
+  expect_increment_round_trip<6>(rng);
+  // A 6-state increment is not a 9-state one.
+  PeerContribution<6> six;
+  EXPECT_FALSE(contribution_from_wire<9>(to_wire(six, 1, 1)).has_value());
+}
+
+TEST(WireConversion, TracksOfAnyStateDimensionArriveAsSent) {
+  std::mt19937 rng(4);
+  const int contributors[] = {1, 2, 11};
+  const GaussianState<9> nine = random_state<9>(rng);
+  const wire::TrackEstimate sample = to_wire(nine, 8, 3, 0, wire::CENTRAL, contributors);
+  const auto back = estimate_from_wire<9>(sample);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->mean, nine.mean);
+  EXPECT_EQ(back->covariance, nine.covariance);
+  EXPECT_EQ(sample.contributors(), std::vector<int32_t>({1, 2, 11}));
+  EXPECT_FALSE(estimate_from_wire<6>(sample).has_value());
+  const GaussianState<6> six = random_state<6>(rng);
+  const auto back6 = estimate_from_wire<6>(to_wire(six, 8, 3, 2, wire::PEER, contributors));
+  ASSERT_TRUE(back6.has_value());
+  EXPECT_EQ(back6->covariance, six.covariance);
+}
+
+}  // namespace
+}  // namespace skyfuse::transport
