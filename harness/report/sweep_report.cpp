@@ -35,9 +35,13 @@ void print_sweep_table(const SweepReport& report, std::FILE* out) {
         r.stations, r.speed_mps * kMpsToKmh, r.rmse_central_m, r.rmse_p2p_m, r.max_abs_diff_m,
         r.anees, r.anees_band.lower, r.anees_band.upper, 100.0 * r.anees_steps_in_band);
   }
+  // The paper's claim is about its own network: other scenarios (another sensor, another
+  // geometry) are not held to it.
+  const bool papers_network =
+      report.scenario.name == "paper000" || report.scenario.name == "ring64";
   const bool any_claimed = std::any_of(
       rows.begin(), rows.end(), [](const auto& r) { return r.stations >= kPaperMinStations; });
-  if (any_claimed) {
+  if (papers_network && any_claimed) {
     const double worst_claimed = worst_rmse({rows.begin(), rows.end()}, kPaperMinStations);
     fmt::print(out,
                "\npaper 000: RMSE < {} m for M >= {}, both schemes. Here: worst RMSE for M >= {} "
