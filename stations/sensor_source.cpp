@@ -1,36 +1,15 @@
 #include "sensor_source.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <charconv>
 #include <fstream>
 #include <stdexcept>
-#include <string>
-#include <vector>
-
-#include "skyfuse/validation/physical_bounds.hpp"
+#include <string_view>
 
 namespace skyfuse::station {
-
-SimulatedSensor::SimulatedSensor(const RunPlan& plan, const StationConfig& station)
-    : truth_(plan.truth()),
-      sensor_(station.position_m),
-      noise_(station_noise_covariance<3>(plan.scenario, station, plan.mc_run)),
-      seed_(plan.scenario.seed),
-      mc_run_(plan.mc_run),
-      station_id_(station.id) {}
-
-Vector3 SimulatedSensor::measurement(std::uint64_t step) {
-  if (step >= truth_.states.size()) {
-    throw std::out_of_range(fmt::format("no simulated measurement for step {}", step));
-  }
-  return simulate_measurement(sensor_, truth_.states[step], noise_, seed_, mc_run_, station_id_,
-                              step);
-}
-
 namespace {
-
-constexpr const char* kReplayHeader = "step,station_id,range_m,azimuth_rad,elevation_rad";
 
 std::vector<std::string_view> split(std::string_view line) {
   std::vector<std::string_view> fields;
@@ -51,47 +30,54 @@ bool parse(std::string_view text, T& value) {
 
 }  // namespace
 
-ReplayedSensor::ReplayedSensor(const std::filesystem::path& csv, int station_id) : path_(csv) {
+void throw_no_simulated_step(std::uint64_t step) {
+  throw std::out_of_range(fmt::format("no simulated measurement for step {}", step));
+}
+
+void throw_no_replayed_step(const std::filesystem::path& csv, std::uint64_t step) {
+  throw std::runtime_error(
+      fmt::format("{}: no measurement for step {} of this station", csv.string(), step));
+}
+
+std::map<std::uint64_t, std::vector<double>> read_replay_rows(
+    const std::filesystem::path& csv, int station_id, const std::vector<std::string>& components,
+    bool (*reportable)(const std::vector<double>& values)) {
   std::ifstream in(csv);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot open replay file", csv.string()));
+  const std::string header = fmt::format("step,station_id,{}", fmt::join(components, ","));
   std::string line;
-  if (!std::getline(in, line) || line != kReplayHeader) {
+  if (!std::getline(in, line) || line != header) {
     throw std::runtime_error(
-        fmt::format("{}: line 1: expected the header '{}'", csv.string(), kReplayHeader));
+        fmt::format("{}: line 1: expected the header '{}'", csv.string(), header));
   }
+  std::map<std::uint64_t, std::vector<double>> rows;
   for (int number = 2; std::getline(in, line); ++number) {
     if (line.empty()) continue;
     const auto f = split(line);
     std::uint64_t step = 0;
     int id = 0;
-    Vector3 z;
-    const bool ok = f.size() == 5 && parse(f[0], step) && parse(f[1], id) && parse(f[2], z(0)) &&
-                    parse(f[3], z(1)) && parse(f[4], z(2));
-    if (!ok || !z.allFinite()) {
+    std::vector<double> values(components.size());
+    bool ok = f.size() == components.size() + 2 && parse(f[0], step) && parse(f[1], id);
+    for (std::size_t i = 0; ok && i < values.size(); ++i) {
+      ok = parse(f[i + 2], values[i]) && std::isfinite(values[i]);
+    }
+    if (!ok) {
       throw std::runtime_error(fmt::format("{}: line {}: expected {} with finite numbers, got '{}'",
-                                           csv.string(), number, kReplayHeader, line));
+                                           csv.string(), number, header, line));
     }
     if (id != station_id) continue;
-    if (transport::WireSensor::check_reported(z)) {
+    if (!reportable(values)) {
       throw std::runtime_error(fmt::format(
-          "{}: line {}: station {} step {}: range must be in (0, {}] m, azimuth in [-pi, pi] and "
-          "elevation in [-pi/2, pi/2] rad, got {}, {}, {}",
-          csv.string(), number, id, step, kMaxRangeM, z(0), z(1), z(2)));
+          "{}: line {}: station {} step {}: not a value the sensor can report ({}), "
+          "got {}",
+          csv.string(), number, id, step, fmt::join(components, ", "), fmt::join(values, ", ")));
     }
-    if (!rows_.emplace(step, z).second) {
+    if (!rows.emplace(step, std::move(values)).second) {
       throw std::runtime_error(fmt::format("{}: line {}: second row for station {} at step {}",
                                            csv.string(), number, id, step));
     }
   }
-}
-
-Vector3 ReplayedSensor::measurement(std::uint64_t step) {
-  const auto it = rows_.find(step);
-  if (it == rows_.end()) {
-    throw std::runtime_error(
-        fmt::format("{}: no measurement for step {} of this station", path_.string(), step));
-  }
-  return it->second;
+  return rows;
 }
 
 }  // namespace skyfuse::station

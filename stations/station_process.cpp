@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "skyfuse/registry/registry.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -55,10 +56,16 @@ std::vector<double> weights_in_id_order(const RunPlan& plan, std::span<const int
   return weights;
 }
 
+// A station with a `Sensor` of the wire's motion model's state (a radar, the aircraft's GPS).
+template <typename Sensor>
 class Station {
  public:
+  using Model = transport::WireModel;
+  static constexpr int kDim = Model::kDim;
+  using Contribution = PeerContribution<kDim>;
+
   Station(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
-          std::unique_ptr<SensorSource> source)
+          std::unique_ptr<SensorSource<Sensor>> source)
       : options_(options),
         plan_(plan),
         me_(me),
@@ -66,11 +73,10 @@ class Station {
         node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", me.id))),
         presence_(node_, options.node.run_id, me.id),
         io_(node_),
-        tracker_(plan.motion_model<transport::WireModel>(),
-                 plan.initial_estimate<transport::WireModel>()),
+        tracker_(plan.motion_model<Model>(), plan.initial_estimate<Model>()),
         collector_(plan.participant_ids()),
-        sensor_(me.position_m),
-        noise_(station_noise_covariance<3>(plan.scenario, me, plan.mc_run)),
+        sensor_(make_sensor<Sensor>(me)),
+        noise_(station_noise_covariance<Sensor::kMeasDim>(plan.scenario, me, plan.mc_run)),
         round_(collector_.station_ids(), weights_in_id_order(plan, collector_.station_ids())),
         syncing_(options.rejoin_step.has_value()) {
     sources_.bind(me_.id, io_.increments_out.id());
@@ -241,14 +247,14 @@ class Station {
 
   void publish_own_sample(std::uint64_t k) {
     const auto step = static_cast<std::uint32_t>(k);
-    transport::WireObservation observation{me_.id, sensor_, source_->measurement(k), noise_};
+    const StationObservation<Sensor> observation{me_.id, sensor_, source_->measurement(k), noise_};
     io_.measurements.write(transport::to_wire(observation, options_.node.run_id, step));
     if (syncing_) return;  // no prior yet: nothing to compute an increment against
 
     // The round rule screens it as the center does, so both architectures fuse the same
     // measurements; screened out, it still yields a zero increment that tells the peers not to
     // wait for one.
-    transport::WireContribution own;
+    Contribution own;
     own.prior = tracker_.estimate();
     const OwnContribution result =
         contribute(own.prior, observation, options_.node.nis_gate(), own.increment);
@@ -266,9 +272,9 @@ class Station {
     // What arrived (everything, in a healthy lock-step round), by the round rule; the track
     // names exactly these stations.
     const RoundFusion fused = round_.fuse(tracker_, [&](std::size_t i) {
-      if (!collector_.filled(i)) return PeerSlot<transport::WireModel::kDim>{};
-      const transport::WireContribution& c = collector_.payloads()[i];
-      return PeerSlot<transport::WireModel::kDim>{&c.increment, &c.prior};
+      if (!collector_.filled(i)) return PeerSlot<kDim>{};
+      const Contribution& c = collector_.payloads()[i];
+      return PeerSlot<kDim>{&c.increment, &c.prior};
     });
     if (!round_.arrived()) {  // only while resynchronising: no peer's prior arrived this round
       spdlog::warn("step {}: no peer increment arrived; still without a prior", k);
@@ -298,15 +304,15 @@ class Station {
   const StationOptions& options_;
   const RunPlan& plan_;
   const StationConfig& me_;
-  std::unique_ptr<SensorSource> source_;
+  std::unique_ptr<SensorSource<Sensor>> source_;
   transport::DdsNode node_;
   transport::NodePresence presence_;
   StationEndpoints io_;
-  PeerTracker<transport::WireModel> tracker_;
-  StepCollector<transport::WireContribution> collector_;
-  transport::WireSensor sensor_;
-  Covariance<3> noise_;
-  PeerRound<transport::WireModel> round_;
+  PeerTracker<Model> tracker_;
+  StepCollector<Contribution> collector_;
+  Sensor sensor_;
+  Covariance<Sensor::kMeasDim> noise_;
+  PeerRound<Model> round_;
   std::uint64_t epoch_ns_ = 0;  // real time: the system-clock start of step 0
   bool syncing_;                // restarted, and no peer's prior taken yet
   std::uint64_t lost_ = 0;      // increments removed by the simulated loss
@@ -314,6 +320,27 @@ class Station {
   transport::SourceBinding sources_;
   DropTally drops_;
 };
+
+// Runs station `me` with its sensor of type Sensor.
+template <typename Sensor>
+int run_with_sensor(const StationOptions& options, const RunPlan& plan, const StationConfig& me) {
+  std::unique_ptr<SensorSource<Sensor>> source;
+  if (options.replay_path.empty()) {
+    source = std::make_unique<SimulatedSensor<Sensor>>(plan, me);
+  } else {
+    source = std::make_unique<ReplayedSensor<Sensor>>(options.replay_path, me.id);
+  }
+  // The round rule screens every value this station reports; its noise and site, fixed for the
+  // run, are checked here once.
+  if (const auto why = check_observation_source(
+          make_sensor<Sensor>(me),
+          station_noise_covariance<Sensor::kMeasDim>(plan.scenario, me, plan.mc_run))) {
+    throw std::invalid_argument(
+        fmt::format("station {}: its noise or site is unusable: {}", me.id, to_string(*why)));
+  }
+  Station<Sensor> station(options, plan, me, std::move(source));
+  return station.run();
+}
 
 }  // namespace
 
@@ -325,12 +352,6 @@ int run_station(const StationOptions& options) {
         "--id: station {} is not one of the {} participating stations of scenario '{}' (ids {})",
         options.id, plan.stations, plan.scenario.name, fmt::join(plan.participant_ids(), ", ")));
   }
-  std::unique_ptr<SensorSource> source;
-  if (options.replay_path.empty()) {
-    source = std::make_unique<SimulatedSensor>(plan, *me);
-  } else {
-    source = std::make_unique<ReplayedSensor>(options.replay_path, me->id);
-  }
   if (options.rejoin_step) {
     if (*options.rejoin_step >= static_cast<std::uint64_t>(plan.scenario.steps)) {
       throw std::invalid_argument(fmt::format("--rejoin-at-step: {} is past the run's last step {}",
@@ -340,16 +361,13 @@ int run_station(const StationOptions& options) {
       throw std::invalid_argument("--rejoin-at-step: lock-step runs only, not real time");
     }
   }
-  // The round rule screens every value this station reports; its noise and site, fixed for the
-  // run, are checked here once.
-  if (const auto why =
-          check_observation_source(transport::WireSensor(me->position_m),
-                                   station_noise_covariance<3>(plan.scenario, *me, plan.mc_run))) {
-    throw std::invalid_argument(
-        fmt::format("station {}: its noise or site is unusable: {}", me->id, to_string(*why)));
-  }
-  Station station(options, plan, *me, std::move(source));
-  return station.run();
+  int code = options::kExitError;
+  const bool found = visit_sensor_kind<Sensors, transport::WireModel::kDim>(
+      me->sensor.kind, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
+        code = run_with_sensor<SensorOf<transport::WireModel::kDim>>(options, plan, *me);
+      });
+  if (!found) throw std::logic_error("unregistered sensor kind " + me->sensor.kind);
+  return code;
 }
 
 }  // namespace skyfuse::station
