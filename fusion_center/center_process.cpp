@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -28,8 +29,13 @@ using namespace std::chrono_literals;
 
 constexpr auto kPollSlice = 50ms;
 
+// The center for stations of `Sensor`: one sensor type, or a SensorPack when they differ.
+template <typename Sensor>
 class Center {
  public:
+  using Model = transport::WireModel;
+  using Observation = ObservationFor<Sensor>;
+
   Center(const options::NodeOptions& options, const RunPlan& plan)
       : options_(options),
         plan_(plan),
@@ -38,8 +44,7 @@ class Center {
         ticks_(node_.make_reader<wire::Tick>()),
         measurements_(node_.make_reader<wire::Measurement>()),
         tracks_(node_.make_writer<wire::TrackEstimate>()),
-        tracker_(plan.motion_model<transport::WireModel>(),
-                 plan.initial_estimate<transport::WireModel>()),
+        tracker_(plan.motion_model<Model>(), plan.initial_estimate<Model>()),
         collector_(plan.participant_ids()),
         round_(static_cast<std::size_t>(plan.stations)) {
     wait_set_.attach(ticks_);
@@ -171,15 +176,21 @@ class Center {
     if (sample.run_id() != options_.run_id) return DropKind::kWrongRun;
     // Garbage is garbage whoever sent it; then who it claims to be and when; then whether the
     // writer really speaks for that station.
-    const auto received = transport::observation_from_wire<transport::WireSensor>(sample);
+    const auto received = transport::observation_for<Sensor>(sample);
     if (!received) return DropKind::kOutOfRange;  // another sensor kind, or other lengths
-    const transport::WireObservation& observation = *received;
-    if (const auto why = check_observation(observation)) return why;
-    // A participant's measurement must come from where the scenario puts it; an unknown id is
-    // left to admit(), which says so.
-    if (const StationConfig* station = plan_.participant(sample.station_id())) {
-      if (const auto why = check_site(observation.sensor, *station)) return why;
-    }
+    const Observation& observation = *received;
+    const StationConfig* station = plan_.participant(sample.station_id());
+    const auto why = with_observation(observation, [&](const auto& o) -> std::optional<DropKind> {
+      if (const auto bad = check_observation(o)) return bad;
+      // A participant's measurement must come from where the scenario puts it, with the sensor
+      // it names; an unknown id is left to admit(), which says so.
+      if (station == nullptr) return std::nullopt;
+      if (std::decay_t<decltype(o.sensor)>::kKind != station->sensor.kind) {
+        return DropKind::kOutOfRange;
+      }
+      return check_site(o.sensor, *station);
+    });
+    if (why) return why;
     return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
                             observation);
   }
@@ -192,9 +203,9 @@ class Center {
   transport::Reader<wire::Measurement> measurements_;
   transport::Writer<wire::TrackEstimate> tracks_;
   transport::ReaderWaitSet wait_set_;
-  CentralTracker<transport::WireModel, transport::WireSensor> tracker_;
-  StepCollector<transport::WireObservation> collector_;
-  CentralRound<transport::WireModel, transport::WireSensor> round_;
+  CentralTracker<Model, Sensor> tracker_;
+  StepCollector<Observation> collector_;
+  CentralRound<Model, Sensor> round_;
   std::uint64_t epoch_ns_ = 0;  // real time: system-clock start of step 0
   transport::SourceBinding sources_;
   DropTally drops_;
@@ -205,8 +216,17 @@ class Center {
 
 int run_center(const options::NodeOptions& options) {
   const RunPlan plan = transport::load_plan(options);
-  Center center(options, plan);
-  return center.run();
+  int code = options::kExitError;
+  dispatch_configuration(plan.scenario, plan.stations,
+                         [&]<typename Model, template <int> class SensorOf>(
+                             std::type_identity<Model>, SensorTemplate<SensorOf>) {
+                           // The processes run the wire's model (load_plan refused another).
+                           if constexpr (std::is_same_v<Model, transport::WireModel>) {
+                             Center<SensorOf<Model::kDim>> center(options, plan);
+                             code = center.run();
+                           }
+                         });
+  return code;
 }
 
 }  // namespace skyfuse::center

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "run/realtime_rounds.hpp"
+#include "skyfuse/registry/registry.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
@@ -52,16 +53,28 @@ std::optional<DropKind> track_content_refusal(
 
 // The same for a measurement: another run, or an observation the center would refuse (its
 // content, or a participant's id at another site).
-std::optional<DropKind> measurement_content_refusal(
-    const wire::Measurement& m, const std::optional<transport::WireObservation>& observation,
-    std::uint64_t run_id, const std::map<int, StationConfig>& stations) {
+// Any registered sensor's measurement of the wire's model's state.
+using AnyWireSensor = AnySensor<transport::WireModel::kDim>;
+
+// The same for a measurement: another run, or an observation the center would refuse (its
+// content, a participant's id with another sensor or at another site). Its values go to `z`.
+std::optional<DropKind> measurement_content_refusal(const wire::Measurement& m,
+                                                    std::uint64_t run_id,
+                                                    const std::map<int, StationConfig>& stations,
+                                                    Eigen::VectorXd& z) {
   if (m.run_id() != run_id) return DropKind::kWrongRun;
-  if (!observation) return DropKind::kOutOfRange;  // another sensor kind, or other lengths
-  if (const auto why = check_observation(*observation)) return why;
-  if (const auto station = stations.find(m.station_id()); station != stations.end()) {
-    return check_site(observation->sensor, station->second);
-  }
-  return std::nullopt;
+  const auto observation = transport::observation_for<AnyWireSensor>(m);
+  if (!observation) return DropKind::kOutOfRange;  // no registered sensor, or other lengths
+  const auto station = stations.find(m.station_id());
+  return with_observation(*observation, [&](const auto& o) -> std::optional<DropKind> {
+    if (const auto why = check_observation(o)) return why;
+    z = o.z;
+    if (station == stations.end()) return std::nullopt;  // admit() says it is unknown
+    if (std::decay_t<decltype(o.sensor)>::kKind != station->second.sensor.kind) {
+      return DropKind::kOutOfRange;
+    }
+    return check_site(o.sensor, station->second);
+  });
 }
 
 std::vector<int> ids_of(std::span<const StationConfig> participants) {
@@ -157,12 +170,10 @@ struct LockstepDriver::Impl {
   }
   std::optional<DropKind> measurement_refusal(const wire::Measurement& m,
                                               const transport::WriterId& writer) {
-    const auto observation = transport::observation_from_wire<transport::WireSensor>(m);
-    if (const auto why = measurement_content_refusal(m, observation, run_id, stations)) {
-      return why;
-    }
+    Eigen::VectorXd z;
+    if (const auto why = measurement_content_refusal(m, run_id, stations, z)) return why;
     return transport::admit(measurement_collector, measurement_sources, m.step(), m.station_id(),
-                            writer, Vector3(observation->z));
+                            writer, z);
   }
 
   std::uint64_t run_id;
@@ -190,7 +201,7 @@ struct LockstepDriver::Impl {
   }
 
   StepCollector<ReceivedTrack> track_collector;
-  StepCollector<Vector3> measurement_collector;
+  StepCollector<Eigen::VectorXd> measurement_collector;
   std::map<int, std::uint64_t> ready;  // node id -> the instance that announced READY
   std::map<int, std::uint64_t> killed_instance;
   std::set<int> down;                           // stations the harness killed and has not restarted
@@ -367,13 +378,13 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     }
     wire::Measurement z;
     while (d.measurements.take(z, &writer)) {
-      const auto observation = transport::observation_from_wire<transport::WireSensor>(z);
-      auto why = measurement_content_refusal(z, observation, d.run_id, d.stations);
+      Eigen::VectorXd values;
+      auto why = measurement_content_refusal(z, d.run_id, d.stations, values);
       if (!why) why = rounds.check_measurement(z.station_id(), z.step());
       if (!why && !d.measurement_sources.accept(z.station_id(), writer)) {
         why = DropKind::kDuplicate;
       }
-      if (!why) why = rounds.offer_measurement(z.station_id(), z.step(), Vector3(observation->z));
+      if (!why) why = rounds.offer_measurement(z.station_id(), z.step(), values);
       if (why) transport::count_drop(d.own_drops, *why, "measurement", z.station_id(), z.step());
     }
     rounds.hand_over(done);

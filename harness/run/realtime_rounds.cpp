@@ -62,10 +62,10 @@ std::optional<DropKind> RealtimeRounds::check_measurement(int station, std::uint
 }
 
 std::optional<DropKind> RealtimeRounds::offer_measurement(int station, std::uint64_t step,
-                                                          const Vector3& z) {
+                                                          const Eigen::VectorXd& z) {
   if (const auto why = check_measurement(station, step)) return why;
   Pending& p = pending_step(step);
-  std::optional<Vector3>& kept = p.record.measurements[*slot(station) - 1];
+  std::optional<Eigen::VectorXd>& kept = p.record.measurements[*slot(station) - 1];
   if (kept) return DropKind::kDuplicate;
   kept = z;
   ++p.measurements;

@@ -31,7 +31,8 @@ class RealtimeRounds {
 
   /// The same for a station's measurement (the center has none).
   std::optional<DropKind> check_measurement(int station, std::uint64_t step) const;
-  std::optional<DropKind> offer_measurement(int station, std::uint64_t step, const Vector3& z);
+  std::optional<DropKind> offer_measurement(int station, std::uint64_t step,
+                                            const Eigen::VectorXd& z);
 
   /// Appends to `done` every complete step next in order, its latency the age of its oldest
   /// track; returns how many steps have been handed over in all.

@@ -24,9 +24,10 @@ struct RoundRecord {
   std::uint64_t step = 0;
   /// Each empty when the node delivered nothing for the step (down, or past the deadline).
   std::optional<ReceivedTrack> central;
-  std::vector<std::optional<ReceivedTrack>> peers;   ///< ascending station id
-  std::vector<std::optional<Vector3>> measurements;  ///< ascending station id
-  std::chrono::nanoseconds latency{0};               ///< tick published -> last track received
+  std::vector<std::optional<ReceivedTrack>> peers;  ///< ascending station id
+  /// Each station's measurement, in its sensor's components; ascending station id.
+  std::vector<std::optional<Eigen::VectorXd>> measurements;
+  std::chrono::nanoseconds latency{0};  ///< tick published -> last track received
   /// Real time only: age of each track on arrival (scheduled step start -> received), the center
   /// first then the stations in ascending id; and whether every node fused all M inputs.
   std::vector<double> track_age_us;

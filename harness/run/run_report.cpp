@@ -1,6 +1,7 @@
 #include "run/run_report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,7 @@
 
 #include "report/output_files.hpp"
 #include "report/statistics.hpp"
+#include "skyfuse/registry/part_info.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -136,13 +138,39 @@ RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) c
   return s;
 }
 
+bool RunRecorder::one_sensor_kind() const {
+  for (const StationConfig& station : plan_.participants()) {
+    if (station.sensor.kind != plan_.participants().front().sensor.kind) return false;
+  }
+  return true;
+}
+
+std::string RunRecorder::sensor_kind_of(int station_id) const {
+  const StationConfig* station = plan_.participant(station_id);
+  return station != nullptr ? station->sensor.kind : std::string();
+}
+
+std::string RunRecorder::measurements_header() const {
+  if (!one_sensor_kind()) {
+    int widest = 0;
+    for (const StationConfig& station : plan_.participants()) {
+      widest = std::max(widest, static_cast<int>(station.sensor.noise_std.size()));
+    }
+    std::string header = "step,station_id,sensor";
+    for (int i = 0; i < widest; ++i) header += fmt::format(",z{}", i);
+    return header + "\n";
+  }
+  const std::optional<SensorInfo> sensor = find_sensor(plan_.participants().front().sensor.kind);
+  return fmt::format("step,station_id,{}\n", fmt::join(sensor->components, ","));
+}
+
 void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summary,
                         std::uint64_t run_id) const {
   std::string steps =
       "step,time_s,truth_x,truth_y,truth_z,central_x,central_y,central_z,p2p_x,p2p_y,p2p_z,"
       "error_central_m,error_p2p_m,central_minus_p2p_m,peer_spread\n";
   std::string tracks = "step,source,x0,x1,x2,x3,x4,x5,x6,x7,x8\n";
-  std::string measurements = "step,station_id,range_m,azimuth_rad,elevation_rad\n";
+  std::string measurements = measurements_header();
   std::string rounds = "step,latency_us\n";
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const RoundRecord& r : rounds_) {
@@ -169,9 +197,10 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
     for (std::size_t i = 0; i < r.peers.size(); ++i) add_track(station_ids_[i], r.peers[i]);
     for (std::size_t i = 0; i < r.measurements.size(); ++i) {
       if (!r.measurements[i]) continue;
-      const Vector3& z = *r.measurements[i];
-      measurements +=
-          fmt::format("{},{},{:.17g},{:.17g},{:.17g}\n", r.step, station_ids_[i], z(0), z(1), z(2));
+      measurements += fmt::format("{},{}", r.step, station_ids_[i]);
+      if (!one_sensor_kind()) measurements += fmt::format(",{}", sensor_kind_of(station_ids_[i]));
+      for (double v : *r.measurements[i]) measurements += fmt::format(",{:.17g}", v);
+      measurements += '\n';
     }
     rounds += fmt::format("{},{:.1f}\n", r.step,
                           std::chrono::duration<double, std::micro>(r.latency).count());

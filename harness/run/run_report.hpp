@@ -85,6 +85,12 @@ class RunRecorder {
   std::vector<StationEvent> restarts_;
   TruthTrajectory truth_;
   std::vector<RoundRecord> rounds_;
+
+  // measurements.csv: `step,station_id,` and the sensor's components when every participant
+  // has the same sensor (what --replay reads), else `step,station_id,sensor,z0,z1,...`.
+  bool one_sensor_kind() const;
+  std::string sensor_kind_of(int station_id) const;
+  std::string measurements_header() const;
 };
 
 void print_run_table(const RunSummary& s, std::FILE* out);

@@ -17,6 +17,7 @@
 
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
+#include "skyfuse/registry/sensor_pack.hpp"
 #include "skyfuse/tracking/peer_contribution.hpp"
 #include "skyfuse/transport/topics.hpp"
 #include "skyfuse/transport/wire_configuration.hpp"
@@ -81,6 +82,26 @@ std::optional<StationObservation<Sensor>> observation_from_wire(const wire::Meas
   const auto& p = sample.station_position();
   return StationObservation<Sensor>{sample.station_id(), Sensor(Vector3(p[0], p[1], p[2])), *z,
                                     *noise};
+}
+
+/// The observation a measurement carries for stations of `Sensor`: one sensor type, or a
+/// SensorPack (then the alternative of the kind the sample names); nothing if it fits none.
+template <typename Sensor>
+std::optional<ObservationFor<Sensor>> observation_for(const wire::Measurement& sample) {
+  if constexpr (IsSensorPack<Sensor>::value) {
+    return [&]<int N, template <int> class... S>(std::type_identity<SensorPack<N, S...>>) {
+      std::optional<ObservationFor<Sensor>> out;
+      ((!out ? [&] {
+         if (auto o = observation_from_wire<S<N>>(sample)) out = std::move(*o);
+       }()
+             : void()),
+       ...);
+      return out;
+    }
+    (std::type_identity<Sensor>{});
+  } else {
+    return observation_from_wire<Sensor>(sample);
+  }
 }
 
 template <int N>
