@@ -112,6 +112,49 @@ INSTANTIATE_TEST_SUITE_P(Stations, DdsRun, ::testing::Values(1, 3, 8), [](const 
   return name;
 });
 
+// Paper 000's radars with the aircraft's own GPS report as a fifth participant: station
+// processes of two sensor kinds, the center stacking both. Every peer holds the same bits,
+// central equals peer-to-peer, and the run equals the in-process one bit for bit.
+TEST(DdsRunMixed, RadarsAndTheAircraftsGpsEqualTheInProcessRunBitForBit) {
+  const auto dir = test_dir();
+  const std::string scenario = bin("scenarios/paper000-gps.yaml");
+  const Completed run = skyfuse_run(5, 179, dir / "out", {"--scenario", scenario});
+  ASSERT_TRUE(run.status.exited && run.status.code == 0) << run.output;
+
+  const RunPlan plan = make_run_plan(load_scenario_file(scenario), {5, kSteps, {}, 0});
+  ASSERT_EQ(plan.participants()[4].sensor.kind, "position_velocity");
+  std::vector<std::pair<Vector<9>, Vector<9>>> reference;  // (central, p2p) per step
+  simulate_run(plan.scenario, plan.truth(), 5, plan.mc_run, [&](const StepRecord& r) {
+    reference.emplace_back(r.central.mean, r.decentralised.mean);
+  });
+
+  const auto tracks = read_tracks(dir / "out" / "tracks.csv");
+  ASSERT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * 6));
+  for (int k = 0; k < kSteps; ++k) {
+    const StateRow& central = tracks.at({k, 0});
+    for (const StationConfig& s : plan.participants()) {
+      const StateRow& peer = tracks.at({k, s.id});
+      for (int i = 0; i < 9; ++i) {
+        ASSERT_TRUE(same_bits(peer[i], reference[k].second(i)))
+            << "step " << k << ": station " << s.id << " x" << i;
+      }
+    }
+    for (int i = 0; i < 9; ++i) {
+      ASSERT_TRUE(same_bits(central[i], reference[k].first(i)))
+          << "step " << k << ": central x" << i;
+    }
+  }
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_EQ(summary.at("max_abs_diff_between_peers"), 0.0);
+  EXPECT_LT(summary.at("max_abs_diff_central_vs_p2p").get<double>(), 1e-6);
+  for (const auto& [kind, count] : summary.at("dropped_by_kind").items()) {
+    EXPECT_EQ(count.get<int>(), 0) << kind;
+  }
+  // The GPS's rows name their sensor in measurements.csv.
+  EXPECT_NE(read_file(dir / "out" / "measurements.csv").find(",11,position_velocity,"),
+            std::string::npos);
+}
+
 TEST(DdsRunDeterminism, SameSeedGivesTheSameBytesEvenWithTheOtherCoreBusy) {
   const auto dir = test_dir();
   const Completed quiet = skyfuse_run(3, 110, dir / "quiet");

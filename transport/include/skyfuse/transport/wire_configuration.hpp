@@ -11,17 +11,18 @@
 
 namespace skyfuse::transport {
 
-/// The configuration today's wire types carry: the 9-state constant-acceleration model with
-/// range/azimuth/elevation stations (paper 000). The processes run it; other configurations
-/// run in-process (require_wire_configuration says so before anything starts).
+/// The motion model the station and center processes are compiled for: the 9-state
+/// constant-acceleration model, with any registered sensors, mixed or not. Other models run
+/// in-process (require_wire_configuration says so before anything starts). WireSensor is
+/// paper 000's station, what the rogue test tool impersonates.
 using WireModel = ConstantAcceleration3D;
 using WireSensor = RangeAzimuthElevation<WireModel::kDim>;
 using WireObservation = StationObservation<WireSensor>;
 using WireContribution = PeerContribution<WireModel::kDim>;
 using WireEstimate = GaussianState<WireModel::kDim>;
 
-/// Refuses, with std::invalid_argument naming the parts, a scenario whose first `stations`
-/// stations or motion model the wire cannot carry yet.
+/// Refuses, with std::invalid_argument naming it, a scenario whose motion model the station
+/// and center processes are not compiled for. Any registered sensor runs, mixed or not.
 void require_wire_configuration(const Scenario& scenario, int stations);
 
 }  // namespace skyfuse::transport
