@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -84,10 +83,6 @@ TEST(DdsNisGate, AnOutlierIsRefusedByItsStationAndTheCenterAndCounted) {
   EXPECT_LT(summary["rmse_p2p_m"].get<double>(), 0.3);
 }
 
-bool same_bits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
-}
-
 // A gate at probability 0.5 screens out a large share of ordinary measurements. Stations, center
 // and the in-process twin apply one round rule, so they screen the same ones, count them the
 // same, and hold the same bits.
@@ -103,32 +98,13 @@ TEST(DdsNisGate, AGatedRunEqualsItsInProcessTwinBitForBit) {
   ASSERT_EQ(run.status.code, 0) << run.output;
 
   const RunPlan plan = make_run_plan(load_default_scenario(), {kStations, kSteps, {}, 0});
-  std::vector<std::pair<Vector<9>, Vector<9>>> twin;  // (central, p2p) per step
-  const RunTrace trace = simulate_run(
-      plan.scenario, plan.truth(), kStations, plan.mc_run,
-      [&](const StepRecord& r) { twin.emplace_back(r.central.mean, r.decentralised.mean); },
-      NisGate::at_probability(0.5));
+  RunTrace trace;
+  const TwinTracks twin = in_process_twin(plan, NisGate::at_probability(0.5), &trace);
   ASSERT_EQ(twin.size(), static_cast<std::size_t>(kSteps));
   EXPECT_GT(trace.refused_p2p, kSteps * kStations / 10) << "the gate must screen a good share";
   EXPECT_GT(trace.refused_central, kSteps * kStations / 10);
-
-  const auto tracks = read_tracks(dir / "out" / "tracks.csv");
-  for (int k = 0; k < kSteps; ++k) {
-    const StateRow& central = tracks.at({k, 0});
-    for (const StationConfig& s : plan.participants()) {
-      const StateRow& peer = tracks.at({k, s.id});
-      for (int i = 0; i < 9; ++i) {
-        ASSERT_TRUE(same_bits(peer[i], twin[k].second(i)))
-            << "step " << k << ": station " << s.id << " x" << i << " DDS " << peer[i]
-            << " in-process " << twin[k].second(i);
-      }
-    }
-    for (int i = 0; i < 9; ++i) {
-      ASSERT_TRUE(same_bits(central[i], twin[k].first(i)))
-          << "step " << k << ": central x" << i << " DDS " << central[i] << " in-process "
-          << twin[k].first(i);
-    }
-  }
+  EXPECT_EQ(difference_from_twin(read_tracks(dir / "out" / "tracks.csv"), plan, twin),
+            std::nullopt);
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   int stations_refused = 0;
   for (const StationConfig& s : plan.participants()) {

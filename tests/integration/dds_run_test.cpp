@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstring>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -41,10 +40,6 @@ Completed skyfuse_run(int stations, int domain, const std::filesystem::path& out
   return run_to_completion(args, out.string() + ".log", 120s);
 }
 
-bool same_bits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
-}
-
 class DdsRun : public ::testing::TestWithParam<int> {};
 
 TEST_P(DdsRun, EveryPeerAgreesAndTheRunEqualsTheInProcessOneBitForBit) {
@@ -58,34 +53,16 @@ TEST_P(DdsRun, EveryPeerAgreesAndTheRunEqualsTheInProcessOneBitForBit) {
 
   // The same run in-process: the same core code on the same seed.
   const RunPlan plan = make_run_plan(load_default_scenario(), {m, kSteps, {}, 0});
-  std::vector<std::pair<Vector<9>, Vector<9>>> reference;  // (central, p2p) per step
-  simulate_run(plan.scenario, plan.truth(), m, plan.mc_run, [&](const StepRecord& r) {
-    reference.emplace_back(r.central.mean, r.decentralised.mean);
-  });
-  ASSERT_EQ(reference.size(), static_cast<std::size_t>(kSteps));
-
+  const TwinTracks twin = in_process_twin(plan);
+  ASSERT_EQ(twin.size(), static_cast<std::size_t>(kSteps));
+  EXPECT_EQ(difference_from_twin(tracks, plan, twin), std::nullopt);
   for (int k = 0; k < kSteps; ++k) {
     const StateRow& central = tracks.at({k, 0});
     const StateRow& first_peer = tracks.at({k, plan.participants().front().id});
-    for (const StationConfig& s : plan.participants()) {
-      const StateRow& peer = tracks.at({k, s.id});
-      for (int i = 0; i < 9; ++i) {
-        ASSERT_TRUE(same_bits(peer[i], first_peer[i]))
-            << "step " << k << ": station " << s.id << " differs from its peers in x" << i;
-      }
-    }
     double distance_sq = 0.0;
     for (int i = 0; i < 3; ++i)
       distance_sq += (central[i] - first_peer[i]) * (central[i] - first_peer[i]);
     ASSERT_LT(std::sqrt(distance_sq), 1e-6) << "step " << k;
-    for (int i = 0; i < 9; ++i) {
-      ASSERT_TRUE(same_bits(central[i], reference[k].first(i)))
-          << "step " << k << ": central x" << i << " DDS " << central[i] << " in-process "
-          << reference[k].first(i);
-      ASSERT_TRUE(same_bits(first_peer[i], reference[k].second(i)))
-          << "step " << k << ": p2p x" << i << " DDS " << first_peer[i] << " in-process "
-          << reference[k].second(i);
-    }
   }
 
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
@@ -123,27 +100,9 @@ TEST(DdsRunMixed, RadarsAndTheAircraftsGpsEqualTheInProcessRunBitForBit) {
 
   const RunPlan plan = make_run_plan(load_scenario_file(scenario), {5, kSteps, {}, 0});
   ASSERT_EQ(plan.participants()[4].sensor.kind, "position_velocity");
-  std::vector<std::pair<Vector<9>, Vector<9>>> reference;  // (central, p2p) per step
-  simulate_run(plan.scenario, plan.truth(), 5, plan.mc_run, [&](const StepRecord& r) {
-    reference.emplace_back(r.central.mean, r.decentralised.mean);
-  });
-
   const auto tracks = read_tracks(dir / "out" / "tracks.csv");
   ASSERT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * 6));
-  for (int k = 0; k < kSteps; ++k) {
-    const StateRow& central = tracks.at({k, 0});
-    for (const StationConfig& s : plan.participants()) {
-      const StateRow& peer = tracks.at({k, s.id});
-      for (int i = 0; i < 9; ++i) {
-        ASSERT_TRUE(same_bits(peer[i], reference[k].second(i)))
-            << "step " << k << ": station " << s.id << " x" << i;
-      }
-    }
-    for (int i = 0; i < 9; ++i) {
-      ASSERT_TRUE(same_bits(central[i], reference[k].first(i)))
-          << "step " << k << ": central x" << i;
-    }
-  }
+  EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   EXPECT_EQ(summary.at("max_abs_diff_between_peers"), 0.0);
   EXPECT_LT(summary.at("max_abs_diff_central_vs_p2p").get<double>(), 1e-6);

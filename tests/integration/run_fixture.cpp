@@ -1,13 +1,14 @@
 #include "integration/run_fixture.hpp"
 
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
 namespace skyfuse::test {
 
-std::map<std::pair<int, int>, StateRow> read_tracks(const std::filesystem::path& csv) {
-  std::map<std::pair<int, int>, StateRow> tracks;
+TrackRows read_tracks(const std::filesystem::path& csv) {
+  TrackRows tracks;
   std::ifstream in(csv);
   std::string line;
   std::getline(in, line);  // header
@@ -26,6 +27,45 @@ std::map<std::pair<int, int>, StateRow> read_tracks(const std::filesystem::path&
     tracks[{step, source}] = row;
   }
   return tracks;
+}
+
+TwinTracks in_process_twin(const RunPlan& plan, const NisGate& gate, RunTrace* trace) {
+  TwinTracks twin;
+  RunTrace t = simulate_run(
+      plan.scenario, plan.truth(), plan.stations, plan.mc_run,
+      [&](const StepRecord& r) { twin.emplace_back(r.central.mean, r.decentralised.mean); }, gate);
+  if (trace != nullptr) *trace = std::move(t);
+  return twin;
+}
+
+std::optional<std::string> difference_from_twin(const TrackRows& tracks, const RunPlan& plan,
+                                                const TwinTracks& twin) {
+  const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  for (std::size_t k = 0; k < twin.size(); ++k) {
+    const int step = static_cast<int>(k);
+    const auto central = tracks.find({step, 0});
+    if (central == tracks.end()) return "step " + std::to_string(k) + ": no central track";
+    for (int i = 0; i < 9; ++i) {
+      if (!same_bits(central->second[static_cast<std::size_t>(i)], twin[k].first(i))) {
+        return "step " + std::to_string(k) + ": central x" + std::to_string(i) + " DDS " +
+               std::to_string(central->second[static_cast<std::size_t>(i)]) + " in-process " +
+               std::to_string(twin[k].first(i));
+      }
+    }
+    for (const StationConfig& s : plan.participants()) {
+      const auto peer = tracks.find({step, s.id});
+      if (peer == tracks.end()) {
+        return "step " + std::to_string(k) + ": no track of station " + std::to_string(s.id);
+      }
+      for (int i = 0; i < 9; ++i) {
+        if (!same_bits(peer->second[static_cast<std::size_t>(i)], twin[k].second(i))) {
+          return "step " + std::to_string(k) + ": station " + std::to_string(s.id) + " x" +
+                 std::to_string(i) + " differs from the in-process run";
+        }
+      }
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace skyfuse::test

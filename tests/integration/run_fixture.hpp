@@ -7,9 +7,13 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "skyfuse/sim/monte_carlo.hpp"
+#include "skyfuse/sim/run_plan.hpp"
 #include "support/process.hpp"
 
 namespace skyfuse::test {
@@ -32,7 +36,19 @@ inline std::filesystem::path test_dir() {
 }
 
 using StateRow = std::array<double, 9>;
+using TrackRows = std::map<std::pair<int, int>, StateRow>;
 /// tracks.csv as (step, source) -> state; %.17g in the file makes the values exact.
-std::map<std::pair<int, int>, StateRow> read_tracks(const std::filesystem::path& csv);
+TrackRows read_tracks(const std::filesystem::path& csv);
+
+/// The in-process twin of a DDS run: its (central, peer-to-peer) means per step, as
+/// simulate_run computes them (with `gate`); its trace into `trace` if given.
+using TwinTracks = std::vector<std::pair<Vector<9>, Vector<9>>>;
+TwinTracks in_process_twin(const RunPlan& plan, const NisGate& gate = {},
+                           RunTrace* trace = nullptr);
+
+/// Nothing if, at every step of the twin, the center's and every participant's state in
+/// tracks.csv equal the twin's bit for bit; else the first difference, in words.
+std::optional<std::string> difference_from_twin(const TrackRows& tracks, const RunPlan& plan,
+                                                const TwinTracks& twin);
 
 }  // namespace skyfuse::test
