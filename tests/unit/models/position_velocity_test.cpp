@@ -12,6 +12,7 @@
 #include "skyfuse/fusion/information_increment.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
+#include "support/numerical_jacobian.hpp"
 #include "support/random_problems.hpp"
 
 namespace skyfuse {
@@ -36,16 +37,8 @@ TEST(PositionVelocity, JacobianMatchesCentralDifferences) {
     Vector<9> x;
     x << test::random_vector3(rng, -3000.0, 3000.0), test::random_vector3(rng, -80.0, 80.0),
         test::random_vector3(rng, -5.0, 5.0);
-    Jacobian<6, 9> numeric;
-    for (int i = 0; i < 9; ++i) {
-      const double step = 1e-4 * std::max(1.0, std::abs(x(i)));
-      Vector<9> plus = x;
-      Vector<9> minus = x;
-      plus(i) += step;
-      minus(i) -= step;
-      numeric.col(i) = Sensor::residual(sensor.predict(plus), sensor.predict(minus)) / (2 * step);
-    }
-    EXPECT_LE((sensor.jacobian(x) - numeric).cwiseAbs().maxCoeff(), 1e-9);
+    EXPECT_LE((sensor.jacobian(x) - test::numerical_jacobian(sensor, x)).cwiseAbs().maxCoeff(),
+              1e-9);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "support/numerical_jacobian.hpp"
 #include "support/random_problems.hpp"
 
 namespace skyfuse {
@@ -12,24 +13,9 @@ namespace {
 
 using Sensor = RangeAzimuthElevation<9>;
 
-// Central differences of h, using the sensor's own residual so that a step across the
-// azimuth cut is measured the short way round, as the filter sees it.
-Jacobian<3, 9> numerical_jacobian(const Sensor& sensor, const Vector<9>& x) {
-  Jacobian<3, 9> j;
-  for (int i = 0; i < 9; ++i) {
-    const double step = 1e-4 * std::max(1.0, std::abs(x(i)));
-    Vector<9> plus = x;
-    Vector<9> minus = x;
-    plus(i) += step;
-    minus(i) -= step;
-    j.col(i) = Sensor::residual(sensor.predict(plus), sensor.predict(minus)) / (2.0 * step);
-  }
-  return j;
-}
-
 void expect_jacobian_matches(const Sensor& sensor, const Vector<9>& x) {
   const Jacobian<3, 9> analytic = sensor.jacobian(x);
-  const Jacobian<3, 9> numeric = numerical_jacobian(sensor, x);
+  const Jacobian<3, 9> numeric = test::numerical_jacobian(sensor, x);
   for (int row = 0; row < 3; ++row) {
     EXPECT_LE(test::relative_error(analytic.row(row), numeric.row(row)), 1e-6)
         << "row " << row << " at x = " << x.transpose() << "\nanalytic " << analytic.row(row)
