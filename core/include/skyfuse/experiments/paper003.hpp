@@ -22,11 +22,11 @@ struct Paper003Setup {
   int runs = 100;            ///< N
   std::uint64_t seed = 3;
   Vector<6> true_start = (Vector<6>() << 0.0, 0.0, 100.0, 10.0, 5.0, 1.0).finished();
-  double process_position_std_m = 5.0;    ///< Q = diag(5^2 I3, 3^2 I3)
+  double process_position_std_m = 5.0;  ///< Q = diag(5^2 I3, 3^2 I3)
   double process_velocity_std_mps = 3.0;
-  double gps_position_std_m = 3.0;        ///< R = diag(3^2 I3, 2^2 I3)
+  double gps_position_std_m = 3.0;  ///< R = diag(3^2 I3, 2^2 I3)
   double gps_velocity_std_mps = 2.0;
-  double initial_variance = 1.0;          ///< P0 = I6; x0_hat = 0
+  double initial_variance = 1.0;  ///< P0 = I6; x0_hat = 0
 };
 
 struct Paper003Result {

@@ -28,8 +28,8 @@ class MixedStackedEkf {
   UpdateReport update(GaussianState<N>& state, const Observations& observations) {
     Eigen::Index rows = 0;
     for (std::size_t i = 0; i < observations.size(); ++i) {
-      rows += with_observation(observations[i],
-                               [](const auto& o) { return Eigen::Index{o.z.size()}; });
+      rows +=
+          with_observation(observations[i], [](const auto& o) { return Eigen::Index{o.z.size()}; });
     }
     h_.resize(rows, N);
     innovation_.resize(rows);

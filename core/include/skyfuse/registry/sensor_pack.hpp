@@ -93,13 +93,14 @@ ObservationFor<Sensor> make_observation(const Scenario& scenario, const StationC
   if constexpr (IsSensorPack<Sensor>::value) {
     return [&]<int N, template <int> class... S>(std::type_identity<SensorPack<N, S...>>) {
       ObservationFor<Sensor> out;
-      const bool found = ((S<N>::kKind == station.sensor.kind
-                               ? (out = of(std::type_identity<S<N>>{}), true)
-                               : false) ||
-                          ...);
+      const bool found =
+          ((S<N>::kKind == station.sensor.kind ? (out = of(std::type_identity<S<N>>{}), true)
+                                               : false) ||
+           ...);
       if (!found) throw std::logic_error("unregistered sensor kind " + station.sensor.kind);
       return out;
-    }(std::type_identity<Sensor>{});
+    }
+    (std::type_identity<Sensor>{});
   } else {
     return of(std::type_identity<Sensor>{});
   }

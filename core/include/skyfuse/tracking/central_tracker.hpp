@@ -4,7 +4,6 @@
 /// station's raw measurement, then a prediction to the next step.
 
 #include <span>
-
 #include <type_traits>
 
 #include "skyfuse/fusion/mixed_stacked_ekf.hpp"

@@ -11,8 +11,8 @@
 
 #include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/fusion/information_increment.hpp"
-#include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
+#include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/tracking/peer_contribution.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 #include "skyfuse/validation/physical_bounds.hpp"
