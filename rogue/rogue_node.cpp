@@ -22,6 +22,7 @@
 #include <set>
 
 #include "secure_probe.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -79,7 +80,7 @@ wire::Measurement measurement_for(const Attack& a, const Vector3& victim_site) {
   s.run_id(a.run_id);
   s.step(a.step);
   s.station_id(a.station);
-  s.sensor(std::string(transport::WireSensor::kKind));
+  s.sensor(std::string(RangeAzimuthElevation<9>::kKind));
   s.z() = {1500.0, 0.5, 0.3};
   s.noise() = {1.0, 0.0, 0.0, 1e-4, 0.0, 1e-4};  // upper triangle of diag(1, 1e-4, 1e-4)
   s.station_position() = {victim_site.x(), victim_site.y(), victim_site.z()};

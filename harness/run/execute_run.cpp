@@ -47,7 +47,7 @@ RunPlan plan_from(const std::string& text, const std::string& source,
                   const RunOverrides& overrides) {
   RunPlan plan = make_run_plan(parse_scenario(text, source), overrides);
   // Refused here, before any process starts, rather than by each node.
-  transport::require_wire_configuration(plan.scenario, plan.stations);
+  transport::require_wire_configuration(plan.scenario);
   return plan;
 }
 

@@ -6,7 +6,7 @@
 
 namespace skyfuse::transport {
 
-void require_wire_configuration(const Scenario& scenario, int /*stations*/) {
+void require_wire_configuration(const Scenario& scenario) {
   // Every registered sensor runs, mixed or not; the processes are compiled for one model.
   if (scenario.filter.motion_model.kind != WireModel::kKind) {
     throw std::invalid_argument(fmt::format(
