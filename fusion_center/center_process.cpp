@@ -179,18 +179,12 @@ class Center {
     const auto received = transport::observation_for<Sensor>(sample);
     if (!received) return DropKind::kOutOfRange;  // another sensor kind, or other lengths
     const Observation& observation = *received;
+    // An unknown id is left to admit(), which says so.
     const StationConfig* station = plan_.participant(sample.station_id());
-    const auto why = with_observation(observation, [&](const auto& o) -> std::optional<DropKind> {
-      if (const auto bad = check_observation(o)) return bad;
-      // A participant's measurement must come from where the scenario puts it, with the sensor
-      // it names; an unknown id is left to admit(), which says so.
-      if (station == nullptr) return std::nullopt;
-      if (std::decay_t<decltype(o.sensor)>::kKind != station->sensor.kind) {
-        return DropKind::kOutOfRange;
-      }
-      return check_site(o.sensor, *station);
-    });
-    if (why) return why;
+    if (const auto why = with_observation(
+            observation, [&](const auto& o) { return check_station_measurement(o, station); })) {
+      return why;
+    }
     return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
                             observation);
   }

@@ -64,16 +64,12 @@ std::optional<DropKind> measurement_content_refusal(const wire::Measurement& m,
                                                     Eigen::VectorXd& z) {
   if (m.run_id() != run_id) return DropKind::kWrongRun;
   const auto observation = transport::observation_for<AnyWireSensor>(m);
-  if (!observation) return DropKind::kOutOfRange;  // no registered sensor, or other lengths
-  const auto station = stations.find(m.station_id());
-  return with_observation(*observation, [&](const auto& o) -> std::optional<DropKind> {
-    if (const auto why = check_observation(o)) return why;
+  if (!observation) return DropKind::kOutOfRange;    // no registered sensor, or other lengths
+  const auto found = stations.find(m.station_id());  // an unknown id: admit() says so
+  const StationConfig* station = found == stations.end() ? nullptr : &found->second;
+  return with_observation(*observation, [&](const auto& o) {
     z = o.z;
-    if (station == stations.end()) return std::nullopt;  // admit() says it is unknown
-    if (std::decay_t<decltype(o.sensor)>::kKind != station->second.sensor.kind) {
-      return DropKind::kOutOfRange;
-    }
-    return check_site(o.sensor, station->second);
+    return check_station_measurement(o, station);
   });
 }
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 
+#include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 
 namespace skyfuse {
@@ -191,6 +192,27 @@ TEST(SampleChecks, AMeasurementMustComeFromWhereTheScenarioPutsItsStation) {
       check_site(RangeAzimuthElevation<9>(station.position_m + Vector3(0.0, 0.0, 1e-3)), station),
       DropKind::kWrongSite);
   EXPECT_EQ(check_site(RangeAzimuthElevation<9>(Vector3::Zero()), station), DropKind::kWrongSite);
+}
+
+TEST(SampleChecks, AParticipantsMeasurementMustHaveItsSensorAtItsSite) {
+  StationConfig station;
+  station.id = 2;
+  station.position_m = Vector3(-450.0, -450.0, 20.0);
+  station.sensor.kind = "range_azimuth_elevation";
+  StationObservation<RangeAzimuthElevation<9>> radar{
+      2, RangeAzimuthElevation<9>(station.position_m), Vector3(1500.0, 0.5, 0.3),
+      Vector3(1.0, 1e-4, 1e-4).asDiagonal()};
+  EXPECT_FALSE(check_station_measurement(radar, &station));
+  EXPECT_FALSE(check_station_measurement(radar, nullptr)) << "no participant: content only";
+  radar.z(0) = -1.0;
+  EXPECT_EQ(check_station_measurement(radar, &station), DropKind::kOutOfRange);
+  // The same id reporting as a GPS receiver: not the sensor the scenario gives it.
+  StationObservation<PositionVelocity<9>> gps;
+  gps.station_id = 2;
+  gps.z.setZero();
+  gps.noise.setIdentity();
+  EXPECT_FALSE(check_observation(gps));
+  EXPECT_EQ(check_station_measurement(gps, &station), DropKind::kOutOfRange);
 }
 
 TEST(DropKind, NamesAreDistinctSnakeCase) {

@@ -123,4 +123,17 @@ std::optional<DropKind> check_site(const Sensor& sensor, const StationConfig& st
   return std::nullopt;
 }
 
+/// A measurement that claims to be `station`'s, as the center and the recorder check it: its
+/// content (check_observation), then the sensor the scenario gives that station (kOutOfRange
+/// for another kind), then its site (check_site). `station` null: an id that is no
+/// participant's, which the step collector refuses; only the content is checked.
+template <typename Sensor>
+std::optional<DropKind> check_station_measurement(const StationObservation<Sensor>& observation,
+                                                  const StationConfig* station) {
+  if (const auto why = check_observation(observation)) return why;
+  if (station == nullptr) return std::nullopt;
+  if (Sensor::kKind != station->sensor.kind) return DropKind::kOutOfRange;
+  return check_site(observation.sensor, *station);
+}
+
 }  // namespace skyfuse
