@@ -2,35 +2,16 @@
 
 #include <fmt/format.h>
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
 
-#include "skyfuse/core/llt_success.hpp"
 #include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
-#include "skyfuse/validation/drop_kind.hpp"
-#include "skyfuse/validation/physical_bounds.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse {
-namespace {
-
-// check_estimate()'s rules for a posterior of any dimension: finite, within
-// kMaxStateMagnitude, covariance positive definite.
-std::optional<DropKind> check_posterior(const EstimateView& estimate) {
-  if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) return DropKind::kNonFinite;
-  if (estimate.mean.cwiseAbs().maxCoeff() > kMaxStateMagnitude ||
-      estimate.covariance.cwiseAbs().maxCoeff() > kMaxStateMagnitude) {
-    return DropKind::kOutOfRange;
-  }
-  const Eigen::LLT<Eigen::MatrixXd> factor(estimate.covariance);
-  if (!llt_succeeded(factor)) return DropKind::kNotPositive;
-  return std::nullopt;
-}
-
-}  // namespace
 
 SoakReport soak(const Scenario& base, int stations, std::int64_t steps) {
   if (steps < 1) throw std::invalid_argument("soak: steps must be >= 1");
@@ -50,7 +31,7 @@ SoakReport soak(const Scenario& base, int stations, std::int64_t steps) {
       bool bad = false;
       for (const auto& [name, state] :
            {std::pair{"central", &r.central}, std::pair{"peer-to-peer", &r.decentralised}}) {
-        if (const auto problem = check_posterior(*state)) {
+        if (const auto problem = check_estimate(state->mean, state->covariance)) {
           bad = true;
           if (!report.first_problem) {
             report.first_problem =

@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <type_traits>
 
+#include "skyfuse/core/llt_success.hpp"
 #include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/fusion/information_increment.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
@@ -71,17 +73,34 @@ std::optional<DropKind> check_increment(const InformationIncrement<N>& increment
 }
 
 /// Mean and covariance finite and within kMaxStateMagnitude; covariance positive definite (a
-/// prior or a track a peer may adopt).
-template <int N>
-std::optional<DropKind> check_estimate(const GaussianState<N>& estimate) {
-  if (!estimate.mean.allFinite() || !estimate.covariance.allFinite()) return DropKind::kNonFinite;
-  if (estimate.mean.cwiseAbs().maxCoeff() > kMaxStateMagnitude ||
-      estimate.covariance.cwiseAbs().maxCoeff() > kMaxStateMagnitude) {
+/// prior or a track a peer may adopt, a posterior the soak checks). Fixed sizes factorise with
+/// SmallCholesky, run-time sizes with Eigen's LLT.
+template <typename Mean, typename Cov>
+std::optional<DropKind> check_estimate(const Eigen::MatrixBase<Mean>& mean,
+                                       const Eigen::MatrixBase<Cov>& covariance) {
+  if (!mean.allFinite() || !covariance.allFinite()) return DropKind::kNonFinite;
+  if (mean.cwiseAbs().maxCoeff() > kMaxStateMagnitude ||
+      covariance.cwiseAbs().maxCoeff() > kMaxStateMagnitude) {
     return DropKind::kOutOfRange;
   }
-  SmallCholesky<N> factor;
-  if (!factor.compute(estimate.covariance)) return DropKind::kNotPositive;
+  constexpr int N = Cov::RowsAtCompileTime;
+  if constexpr (N == Eigen::Dynamic) {
+    const Eigen::LLT<Eigen::MatrixXd> factor(covariance);
+    if (!llt_succeeded(factor)) return DropKind::kNotPositive;
+  } else {
+    SmallCholesky<N> factor;
+    if constexpr (std::is_same_v<Cov, Covariance<N>>) {
+      if (!factor.compute(covariance.derived())) return DropKind::kNotPositive;
+    } else {
+      if (!factor.compute(Covariance<N>(covariance))) return DropKind::kNotPositive;
+    }
+  }
   return std::nullopt;
+}
+
+template <int N>
+std::optional<DropKind> check_estimate(const GaussianState<N>& estimate) {
+  return check_estimate(estimate.mean, estimate.covariance);
 }
 
 /// The increment as check_increment(), then the prior it travels with as check_estimate().
