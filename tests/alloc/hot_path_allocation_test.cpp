@@ -12,10 +12,12 @@
 #include <vector>
 
 #include "skyfuse/fusion/increment_fusion.hpp"
+#include "skyfuse/fusion/mixed_stacked_ekf.hpp"
 #include "skyfuse/fusion/stacked_ekf.hpp"
 #include "skyfuse/models/constant_acceleration.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/registry/make_parts.hpp"
+#include "skyfuse/registry/registry.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/truth.hpp"
@@ -130,6 +132,47 @@ TEST(HotPathAllocations, StationStepFusionAndStackedUpdateAllocateNothing) {
     Eigen::internal::set_is_malloc_allowed(true);
     EXPECT_EQ(after - before, 0) << "heap allocations in 499 steps with M = " << m;
   }
+}
+
+// The center's update over mixed sensors (three radars and the aircraft's GPS): its stacked H,
+// nu, R and every product keep their buffers from step to step.
+TEST(HotPathAllocations, TheMixedStackedUpdateAllocatesNothingAfterItsFirstStep) {
+  const Problem p;
+  const auto motion = make_motion_model<ConstantAcceleration3D>(p.scenario);
+  GaussianState<9> central =
+      initial_estimate<ConstantAcceleration3D>(p.scenario, p.truth.states[0], 0);
+  using Pack = AnySensor<9>;
+  std::vector<Pack::Observation> observations;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const StationConfig& s = p.scenario.stations[i];
+    observations.emplace_back(StationObservation<RangeAzimuthElevation<9>>{
+        s.id, RangeAzimuthElevation<9>(s.position_m), Vector3::Zero(),
+        station_noise_covariance<3>(p.scenario, s, 0)});
+  }
+  StationObservation<PositionVelocity<9>> gps;
+  gps.station_id = 11;
+  gps.z.setZero();
+  gps.noise = Vector<6>(9.0, 9.0, 9.0, 4.0, 4.0, 4.0).asDiagonal();
+  observations.emplace_back(gps);
+  MixedStackedEkf<9, Pack> stacked;
+
+  auto step = [&](std::size_t k) {
+    for (auto& observation : observations) {
+      with_observation(observation, [&](auto& o) {
+        o.z = simulate_measurement(o.sensor, p.truth.states[k], o.noise, 1, 0, o.station_id, k);
+      });
+    }
+    ASSERT_EQ(stacked.update(central, observations).status, NumericalStatus::kOk);
+    predict(central, motion);
+  };
+
+  step(0);  // the buffers take their size here, once
+  Eigen::internal::set_is_malloc_allowed(false);
+  const long before = g_allocations.load();
+  for (std::size_t k = 1; k < 500; ++k) step(k);
+  const long after = g_allocations.load();
+  Eigen::internal::set_is_malloc_allowed(true);
+  EXPECT_EQ(after - before, 0) << "heap allocations in 499 mixed stacked updates";
 }
 
 TEST(HotPathAllocations, TheCounterSeesAnAllocation) {

@@ -6,7 +6,8 @@
 ///   S = H P H^T + R,  K = P H^T S^-1,  x += K nu,  P = (I - K H) P (I - K H)^T + K R K^T,
 ///
 /// with a Cholesky solve for S (never an inverse). Dynamic sizes: buffers keep their size from
-/// one step to the next, so a run with a fixed set of stations allocates once. A run of one
+/// one step to the next, so a run with a fixed set of stations allocates in its first step
+/// only (tests/alloc shows it). A run of one
 /// sensor kind uses StackedEkf, which exploits the fixed block size.
 
 #include <Eigen/Cholesky>
@@ -44,25 +45,42 @@ class MixedStackedEkf {
         row += m;
       });
     }
-    const Eigen::MatrixXd ph = state.covariance * h_.transpose();  // P H^T
-    s_ = h_ * ph + noise_;
+    // Every product writes into a buffer sized above (lazy products: no temporaries), so a run
+    // with a fixed set of stations allocates nothing after its first step.
+    ph_.resize(N, rows);
+    ph_.noalias() = state.covariance.lazyProduct(h_.transpose());  // P H^T
+    s_.resize(rows, rows);
+    s_.noalias() = h_.lazyProduct(ph_);
+    s_ += noise_;
     factor_.compute(s_);
     if (!llt_succeeded(factor_)) return {NumericalStatus::kNotPositiveDefinite};
-    // K = P H^T S^-1 = (S^-1 H P)^T, S symmetric.
-    const Eigen::MatrixXd gain = factor_.solve(ph.transpose()).transpose();
-    state.mean += gain * innovation_;
-    const Covariance<N> a = Covariance<N>::Identity() - gain * h_;
-    Covariance<N> p = a * state.covariance * a.transpose() + gain * noise_ * gain.transpose();
+    // K^T = S^-1 H P (S symmetric); the gain itself is never formed.
+    gain_t_ = ph_.transpose();
+    factor_.solveInPlace(gain_t_);
+    state.mean.noalias() += gain_t_.transpose().lazyProduct(innovation_);
+    const Covariance<N> a =
+        Covariance<N>::Identity() - Covariance<N>(gain_t_.transpose().lazyProduct(h_));
+    kr_.resize(N, rows);
+    kr_.noalias() = gain_t_.transpose().lazyProduct(noise_);  // K R
+    Covariance<N> p = a * state.covariance * a.transpose();
+    p.noalias() += kr_.lazyProduct(gain_t_);  // K R K^T
     symmetrize(p);
     state.covariance = p;
-    return {NumericalStatus::kOk, innovation_.dot(factor_.solve(innovation_))};
+    // NIS = nu^T S^-1 nu = |L^-1 nu|^2: the forward half of a solve.
+    whitened_ = innovation_;
+    factor_.matrixL().solveInPlace(whitened_);
+    return {NumericalStatus::kOk, whitened_.squaredNorm()};
   }
 
  private:
   Eigen::Matrix<double, Eigen::Dynamic, N> h_;
   Eigen::VectorXd innovation_;
+  Eigen::VectorXd whitened_;
   Eigen::MatrixXd noise_;
-  Eigen::MatrixXd s_;
+  Eigen::Matrix<double, N, Eigen::Dynamic> ph_;      // P H^T
+  Eigen::MatrixXd s_;                                // H P H^T + R
+  Eigen::Matrix<double, Eigen::Dynamic, N> gain_t_;  // K^T = S^-1 H P
+  Eigen::Matrix<double, N, Eigen::Dynamic> kr_;      // K R
   Eigen::LLT<Eigen::MatrixXd> factor_;
 };
 
