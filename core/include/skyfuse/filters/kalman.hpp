@@ -24,7 +24,28 @@ struct UpdateReport {
   /// Normalised innovation squared nu^T S^-1 nu; chi^2 with kMeasDim degrees of freedom for a
   /// consistent filter. NaN when the update failed.
   double nis = std::numeric_limits<double>::quiet_NaN();
+  /// log det S, the innovation covariance's; only update_with_likelihood fills it (its
+  /// logarithms would cost more than the rest of a small update).
+  double log_det_innovation = std::numeric_limits<double>::quiet_NaN();
+
+  /// log N(nu; 0, S) = -(nis + log det S + m log 2 pi) / 2: the likelihood of the measurement,
+  /// by which an IMM weighs its modes.
+  double log_likelihood(int measurement_dim) const {
+    constexpr double kLogTwoPi = 1.8378770664093454836;
+    return -0.5 * (nis + log_det_innovation + measurement_dim * kLogTwoPi);
+  }
 };
+
+/// Q, evaluated at the prior mean for a model whose noise depends on the state (one driven
+/// along its heading, say).
+template <int N, typename TransitionModel>
+decltype(auto) process_noise_at(const TransitionModel& model, const Vector<N>& prior_mean) {
+  if constexpr (requires { model.process_noise(prior_mean); }) {
+    return model.process_noise(prior_mean);
+  } else {
+    return model.process_noise();
+  }
+}
 
 /// Time update: x <- f(x), P <- F P F^T + Q with F evaluated at the prior mean. A model that
 /// knows the structure of F may supply propagate_covariance(P) = F P F^T + Q itself.
@@ -35,7 +56,7 @@ void predict(GaussianState<N>& state, const TransitionModel& model) {
   } else {
     const Covariance<N> f = model.jacobian(state.mean);
     const Covariance<N> fp = f.lazyProduct(state.covariance);
-    state.covariance = fp.lazyProduct(f.transpose()) + model.process_noise();
+    state.covariance = fp.lazyProduct(f.transpose()) + process_noise_at<N>(model, state.mean);
   }
   state.mean = model.propagate(state.mean);
   symmetrize(state.covariance);
@@ -63,11 +84,9 @@ Covariance<N> joseph_covariance(const Covariance<N>& p, const Matrix<N, C>& kh,
   return out;
 }
 
-/// Measurement update with the gain from a Cholesky solve of the innovation covariance (never
-/// an explicit inverse) and the covariance in Joseph form, (I-KH) P (I-KH)^T + K R K^T, which
-/// stays symmetric positive semi-definite even when the gain is not exactly optimal.
-/// On failure the state is left unchanged.
-template <int N, typename Sensor>
+namespace detail {
+
+template <bool kWithLogDet, int N, typename Sensor>
 UpdateReport update(GaussianState<N>& state, const Sensor& sensor,
                     const Vector<Sensor::kMeasDim>& z, const Covariance<Sensor::kMeasDim>& noise) {
   static_assert(Sensor::kStateDim == N, "sensor and state dimensions differ");
@@ -88,7 +107,32 @@ UpdateReport update(GaussianState<N>& state, const Sensor& sensor,
   state.covariance = joseph_covariance<N, C, M>(state.covariance, gain.lazyProduct(h), gain, noise);
   symmetrize(state.covariance);
 
-  return {NumericalStatus::kOk, innovation.dot(s_factor.solve(innovation))};
+  UpdateReport report{NumericalStatus::kOk, innovation.dot(s_factor.solve(innovation))};
+  if constexpr (kWithLogDet) {
+    report.log_det_innovation = 2.0 * s_factor.matrixLLT().diagonal().array().log().sum();
+  }
+  return report;
+}
+
+}  // namespace detail
+
+/// Measurement update with the gain from a Cholesky solve of the innovation covariance (never
+/// an explicit inverse) and the covariance in Joseph form, (I-KH) P (I-KH)^T + K R K^T, which
+/// stays symmetric positive semi-definite even when the gain is not exactly optimal.
+/// On failure the state is left unchanged.
+template <int N, typename Sensor>
+UpdateReport update(GaussianState<N>& state, const Sensor& sensor,
+                    const Vector<Sensor::kMeasDim>& z, const Covariance<Sensor::kMeasDim>& noise) {
+  return detail::update<false>(state, sensor, z, noise);
+}
+
+/// The same update, bit for bit, that also reports log det S, so that the report's
+/// log_likelihood() is defined.
+template <int N, typename Sensor>
+UpdateReport update_with_likelihood(GaussianState<N>& state, const Sensor& sensor,
+                                    const Vector<Sensor::kMeasDim>& z,
+                                    const Covariance<Sensor::kMeasDim>& noise) {
+  return detail::update<true>(state, sensor, z, noise);
 }
 
 }  // namespace skyfuse
