@@ -31,6 +31,12 @@
 
 namespace skyfuse {
 
+/// What one mode's measurement update reports to the IMM.
+struct ModeUpdate {
+  NumericalStatus status = NumericalStatus::kOk;
+  double log_likelihood = 0.0;  ///< log N(nu; 0, S) of the measurement(s) under this mode
+};
+
 template <typename Common, typename... Modes>
 class Imm {
  public:
@@ -54,6 +60,13 @@ class Imm {
   /// kNotPositiveDefinite, with nothing changed, if any mode's innovation covariance is not.
   template <template <typename> class Sensor, int M>
   NumericalStatus update(const Vector<M>& z, const Covariance<M>& noise);
+
+  /// The same with each mode's update done by `mode_update(std::integral_constant<int, I>,
+  /// GaussianState<dim of mode I>&)`, which updates the state and returns a ModeUpdate: the
+  /// stacked or fused updates of a station network come in here. Nothing changes unless every
+  /// mode's update succeeds.
+  template <typename ModeUpdateFn>
+  NumericalStatus update_with(ModeUpdateFn&& mode_update);
 
   /// The moment-matched mixture of the modes.
   CommonState estimate() const;
@@ -164,21 +177,30 @@ void Imm<Common, Modes...>::predict() {
 template <typename Common, typename... Modes>
 template <template <typename> class Sensor, int M>
 NumericalStatus Imm<Common, Modes...>::update(const Vector<M>& z, const Covariance<M>& noise) {
+  return update_with([&](auto mode, auto& state) {
+    using Mode = std::tuple_element_t<decltype(mode)::value, std::tuple<Modes...>>;
+    const UpdateReport report = update_with_likelihood(state, Sensor<Mode>{}, z, noise);
+    return ModeUpdate{report.status, report.log_likelihood(M)};
+  });
+}
+
+template <typename Common, typename... Modes>
+template <typename ModeUpdateFn>
+NumericalStatus Imm<Common, Modes...>::update_with(ModeUpdateFn&& mode_update) {
   ModeStates updated = states_;
   Probabilities log_weights;
   bool ok = true;
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
+  [&]<int... I>(std::integer_sequence<int, I...>) {
     (
         [&] {
-          using Mode = std::tuple_element_t<I, std::tuple<Modes...>>;
-          const UpdateReport report =
-              update_with_likelihood(std::get<I>(updated), Sensor<Mode>{}, z, noise);
+          const ModeUpdate report =
+              mode_update(std::integral_constant<int, I>{}, std::get<I>(updated));
           ok = ok && report.status == NumericalStatus::kOk;
-          log_weights(I) = std::log(probabilities_(I)) + report.log_likelihood(M);
+          log_weights(I) = std::log(probabilities_(I)) + report.log_likelihood;
         }(),
         ...);
   }
-  (std::index_sequence_for<Modes...>{});
+  (std::make_integer_sequence<int, kModes>{});
   if (!ok) return NumericalStatus::kNotPositiveDefinite;
 
   // mu_j = c_j Lambda_j / sum, by log-sum-exp so that no likelihood underflows to 0/0.

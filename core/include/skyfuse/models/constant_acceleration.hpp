@@ -32,6 +32,9 @@ class ConstantAcceleration3D {
                                                                    "acceleration_mps2"};
   using NoiseStd = std::array<double, kNoiseFields.size()>;
 
+  /// Where each component lives in the common state an IMM mixes in (kinematic_state.hpp).
+  static constexpr std::array<int, kDim> kCommonIndex = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+
   ConstantAcceleration3D(double time_step_s, const NoiseStd& noise_std);
 
   /// The model's state of a target with kinematics [p; v; a] (world frame): all of them.

@@ -29,6 +29,9 @@ class ConstantVelocity3D {
   static constexpr std::array<std::string_view, 2> kNoiseFields = {"position_m", "velocity_mps"};
   using NoiseStd = std::array<double, kNoiseFields.size()>;
 
+  /// Where each component lives in the common state an IMM mixes in (kinematic_state.hpp).
+  static constexpr std::array<int, kDim> kCommonIndex = {0, 1, 2, 3, 4, 5};
+
   ConstantVelocity3D(double time_step_s, const NoiseStd& noise_std) {
     const auto [position, velocity] = noise_std;
     const Matrix3 eye = Matrix3::Identity();
