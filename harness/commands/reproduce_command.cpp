@@ -15,7 +15,9 @@ struct Paper {
   const char* name;
   Reproduction (*run)(const ReproduceSettings&);
 };
-constexpr Paper kPapers[] = {{"paper000", reproduce_paper000}, {"paper003", reproduce_paper003}};
+constexpr Paper kPapers[] = {{"paper000", reproduce_paper000},
+                             {"paper000-imm", reproduce_paper000_imm},
+                             {"paper003", reproduce_paper003}};
 
 }  // namespace
 
@@ -26,13 +28,17 @@ void add_reproduce_command(CLI::App& app, ReproduceOptions& options) {
   std::string names;
   for (const Paper& p : kPapers) names += (names.empty() ? "" : ", ") + std::string(p.name);
   cmd->add_option("paper", options.paper, "Which paper: " + names)->required();
-  cmd->add_option("--runs", options.runs, "Monte-Carlo runs (default: the paper's)")
+  cmd->add_option("--runs", options.runs,
+                  "Monte-Carlo runs, test paths for paper001 (default: the paper's)")
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--seed", options.seed, "Override the seed");
   cmd->add_option("--out", options.out_dir, "Output folder (default: results/reproduce/PAPER)");
   cmd->add_option("--threads", options.threads, "Worker threads (default: one per core)")
       ->check(CLI::Range(0, 1024));
   cmd->add_flag("!--no-plot", options.plot, "Skip the PNG plots");
+  cmd->add_option("--data", options.data_dir,
+                  "Shipped data, e.g. paper001/ec.lstm (default: the source tree's data/)")
+      ->check(CLI::ExistingDirectory);
 }
 
 int run_reproduce(const ReproduceOptions& options) {
@@ -46,6 +52,8 @@ int run_reproduce(const ReproduceOptions& options) {
                            : std::filesystem::path(options.out_dir);
     settings.threads = options.threads;
     settings.plot = options.plot;
+    settings.data_dir = options.data_dir.empty() ? std::filesystem::path(SKYFUSE_DATA_DIR)
+                                                 : std::filesystem::path(options.data_dir);
     std::filesystem::create_directories(settings.out_dir);
     const Reproduction reproduction = p.run(settings);
     print_claims(reproduction, stdout);

@@ -16,6 +16,7 @@ struct ReproduceOptions {
   std::string out_dir;  ///< default: results/reproduce/PAPER
   int threads = 0;
   bool plot = true;
+  std::string data_dir;  ///< default: the source tree's data/ (SKYFUSE_DATA_DIR)
 };
 
 void add_reproduce_command(CLI::App& app, ReproduceOptions& options);
