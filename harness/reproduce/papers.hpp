@@ -23,6 +23,8 @@ struct ReproduceSettings {
 Reproduction reproduce_paper000(const ReproduceSettings& settings);
 /// Paper 000's scenario with the station network's IMM against the paper's CA filter.
 Reproduction reproduce_paper000_imm(const ReproduceSettings& settings);
+/// Paper 001: manoeuvring-target filters and the LSTM networks on 1 000 test paths.
+Reproduction reproduce_paper001(const ReproduceSettings& settings);
 /// Paper 003: the GPS Kalman filter's MSE against time.
 Reproduction reproduce_paper003(const ReproduceSettings& settings);
 

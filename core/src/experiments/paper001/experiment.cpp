@@ -1,0 +1,175 @@
+#include "skyfuse/experiments/paper001/experiment.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <memory>
+
+#include "skyfuse/learning/lstm_network.hpp"
+#include "skyfuse/learning/lstm_weights.hpp"
+
+namespace skyfuse::paper001 {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct NamedFilter {
+  std::string name;
+  std::function<PositionTrack(const TrackedPath&)> track;
+};
+
+// Runs every filter over every path: per-path RMSE and the time per step each filter took.
+std::vector<FilterScore> score(const std::vector<NamedFilter>& filters,
+                               const std::vector<TrackedPath>& paths) {
+  std::vector<FilterScore> out;
+  for (const NamedFilter& filter : filters) {
+    FilterScore s{filter.name, {}, {}, 0.0};
+    std::size_t steps = 0;
+    Clock::duration spent{};
+    for (const TrackedPath& path : paths) {
+      const auto start = Clock::now();
+      const PositionTrack track = filter.track(path);
+      spent += Clock::now() - start;
+      steps += track.size() - 1;
+      s.rmse.push_back(path_rmse(path, track));
+    }
+    s.spread = spread_of(s.rmse);
+    s.seconds_per_step = std::chrono::duration<double>(spent).count() / static_cast<double>(steps);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+double farthest(const TrackedPath& path) {
+  double out = 0.0;
+  for (const Vector<5>& x : path.path.truth) out = std::max(out, x.head<2>().cwiseAbs().maxCoeff());
+  return out;
+}
+
+}  // namespace
+
+Spread spread_of(const std::vector<double>& values) {
+  if (values.empty()) return {};
+  double mean = 0.0;
+  for (const double v : values) mean += v;
+  mean /= static_cast<double>(values.size());
+  double squares = 0.0;
+  for (const double v : values) squares += (v - mean) * (v - mean);
+  const double n = static_cast<double>(values.size());
+  return {mean, values.size() > 1 ? std::sqrt(squares / (n - 1.0)) : 0.0};
+}
+
+TargetSpread target_spread(const Windows& windows) {
+  TargetSpread out;
+  const std::size_t n = windows.count();
+  if (n == 0) return out;
+  for (std::size_t i = 0; i < n; ++i) {
+    out.mean += Vector<2>(windows.targets[2 * i], windows.targets[2 * i + 1]);
+  }
+  out.mean /= static_cast<double>(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vector<2> d = Vector<2>(windows.targets[2 * i], windows.targets[2 * i + 1]) - out.mean;
+    out.std += d.cwiseProduct(d);
+  }
+  out.std = (out.std / static_cast<double>(n > 1 ? n - 1 : 1)).cwiseSqrt();
+  return out;
+}
+
+ExperimentResult run_experiment(const ExperimentSetup& setup) {
+  ExperimentResult result;
+  const DataSetup& data = setup.data;
+
+  // Table 1: what the networks were trained to output.
+  result.ec_targets = target_spread(
+      make_windows(data, Split::kTrain, Network::kErrorCompensation, setup.table1_stride));
+  result.se_targets = target_spread(
+      make_windows(data, Split::kTrain, Network::kStateEstimation, setup.table1_stride));
+  for (const int index : paths_in(data, Split::kTrain)) {
+    result.training_range_m = std::max(result.training_range_m, farthest(track_path(data, index)));
+  }
+
+  std::vector<NamedFilter> filters = {
+      {"CVKF", [](const TrackedPath& p) { return cvkf_track(p); }},
+      {"EKF",
+       [&](const TrackedPath& p) {
+         return ekf_track(data, p, TurnRateNoise::kPositiveSemidefinite);
+       }},
+      {"EKF (printed Q)",
+       [&](const TrackedPath& p) { return ekf_track(data, p, TurnRateNoise::kPrinted); }},
+      {"IMM", [&](const TrackedPath& p) { return imm_track(data, p); }},
+  };
+  std::unique_ptr<learning::LstmNetwork> se;
+  std::unique_ptr<learning::LstmNetwork> ec;
+  if (setup.se_weights && setup.ec_weights) {
+    se = std::make_unique<learning::LstmNetwork>(learning::read_lstm_weights(*setup.se_weights));
+    ec = std::make_unique<learning::LstmNetwork>(learning::read_lstm_weights(*setup.ec_weights));
+    filters.push_back({"SE", [&](const TrackedPath& p) {
+                         return network_track(p, *se, Network::kStateEstimation);
+                       }});
+    filters.push_back({"EC", [&](const TrackedPath& p) {
+                         return network_track(p, *ec, Network::kErrorCompensation);
+                       }});
+    result.networks = true;
+    result.se_record = se->record();
+    result.ec_record = ec->record();
+  }
+
+  // Table 3 over the test split.
+  std::vector<int> test = paths_in(data, Split::kTest);
+  if (setup.test_paths > 0 && setup.test_paths < static_cast<int>(test.size())) {
+    test.resize(static_cast<std::size_t>(setup.test_paths));
+  }
+  std::vector<TrackedPath> paths;
+  paths.reserve(test.size());
+  for (const int index : test) paths.push_back(track_path(data, index));
+  result.test_paths = static_cast<int>(paths.size());
+  result.table3 = score(filters, paths);
+
+  // Table 4: the test paths that never leave +-in_range_m.
+  std::vector<TrackedPath> in_range;
+  for (const TrackedPath& p : paths) {
+    if (static_cast<int>(in_range.size()) == setup.in_range_paths) break;
+    if (farthest(p) <= setup.in_range_m) in_range.push_back(p);
+  }
+  if (result.networks) {
+    result.table4 = score({filters.end() - 2, filters.end()}, in_range);
+  }
+
+  // Long paths from another seed: the same kinematics, flown far past the training range.
+  DataSetup far = data;
+  far.seed = data.seed + 1;
+  far.path.steps = data.path.steps * setup.beyond_range_length;
+  far.paths = setup.beyond_range_paths;
+  std::vector<TrackedPath> beyond;
+  for (int i = 0; i < setup.beyond_range_paths; ++i) {
+    beyond.push_back(track_path(far, i));
+    result.beyond_range_max_m = std::max(result.beyond_range_max_m, farthest(beyond.back()));
+  }
+  result.beyond = score(filters, beyond);
+
+  // The example: the test path on which the filters' RMSEs spread most, as in the paper's Fig 8
+  // (a path whose manoeuvres separate the filters).
+  std::size_t example = 0;
+  double widest = -1.0;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    double low = result.table3.front().rmse[i];
+    double high = low;
+    for (const FilterScore& s : result.table3) {
+      low = std::min(low, s.rmse[i]);
+      high = std::max(high, s.rmse[i]);
+    }
+    if (high - low > widest) {
+      widest = high - low;
+      example = i;
+    }
+  }
+  result.example_path = test[example];
+  for (const Vector<5>& x : paths[example].path.truth)
+    result.example_truth.emplace_back(x.head<2>());
+  for (const NamedFilter& f : filters)
+    result.example_tracks.emplace_back(f.name, f.track(paths[example]));
+  return result;
+}
+
+}  // namespace skyfuse::paper001
