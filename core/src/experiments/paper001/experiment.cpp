@@ -148,22 +148,15 @@ ExperimentResult run_experiment(const ExperimentSetup& setup) {
   }
   result.beyond = score(filters, beyond);
 
-  // The example: the test path on which the filters' RMSEs spread most, as in the paper's Fig 8
-  // (a path whose manoeuvres separate the filters).
-  std::size_t example = 0;
-  double widest = -1.0;
-  for (std::size_t i = 0; i < paths.size(); ++i) {
-    double low = result.table3.front().rmse[i];
-    double high = low;
-    for (const FilterScore& s : result.table3) {
-      low = std::min(low, s.rmse[i]);
-      high = std::max(high, s.rmse[i]);
-    }
-    if (high - low > widest) {
-      widest = high - low;
-      example = i;
-    }
-  }
+  // The example, like the paper's Fig 8: a typical path, the one whose IMM RMSE is the test
+  // set's median.
+  const FilterScore& imm = result.table3[3];
+  std::vector<double> sorted = imm.rmse;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  const std::size_t example = static_cast<std::size_t>(
+      std::find(imm.rmse.begin(), imm.rmse.end(), median) - imm.rmse.begin());
   result.example_path = test[example];
   for (const Vector<5>& x : paths[example].path.truth)
     result.example_truth.emplace_back(x.head<2>());

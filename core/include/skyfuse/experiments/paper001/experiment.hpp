@@ -63,7 +63,8 @@ struct ExperimentResult {
   bool networks = false;
   /// How each network was trained (its weights file's record), when they ran.
   std::optional<learning::LstmTrainingRecord> ec_record, se_record;
-  /// One test path and every filter's track over it, for the picture (the paper's Fig 8).
+  /// One typical test path (the IMM's median RMSE) and every filter's track over it, for the
+  /// picture (the paper's Fig 8).
   int example_path = 0;
   std::vector<Vector<2>> example_truth;
   std::vector<std::pair<std::string, PositionTrack>> example_tracks;
