@@ -1,5 +1,7 @@
 #include "skyfuse/experiments/paper001/filter_tracks.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -13,6 +15,14 @@
 
 namespace skyfuse::paper001 {
 namespace {
+
+// A filter that fails a step has no estimate to report: the run stops, naming the step.
+void require_ok(NumericalStatus status, const char* filter, std::size_t step) {
+  if (status != NumericalStatus::kOk) {
+    throw std::runtime_error(
+        fmt::format("paper 001: the {} failed at step {}: {}", filter, step, to_string(status)));
+  }
+}
 
 Covariance<2> measurement_noise(const DataSetup& setup) {
   return setup.path.measurement_std_m * setup.path.measurement_std_m * Covariance<2>::Identity();
@@ -35,7 +45,9 @@ PositionTrack ekf_track(const DataSetup& setup, const TrackedPath& tracked, Turn
   PositionTrack out{state.mean.head<2>()};
   for (std::size_t k = 1; k < tracked.path.truth.size(); ++k) {
     predict(state, model);
-    update(state, Position2D<TurnRateVelocity2D>{}, tracked.path.measurements[k], r);
+    require_ok(
+        update(state, Position2D<TurnRateVelocity2D>{}, tracked.path.measurements[k], r).status,
+        "EKF", k);
     out.emplace_back(state.mean.head<2>());
   }
   return out;
@@ -62,7 +74,7 @@ PositionTrack imm_track(const DataSetup& setup, const TrackedPath& tracked) {
   PositionTrack out{Vector<2>(start(0), start(1))};
   for (std::size_t k = 1; k < tracked.path.truth.size(); ++k) {
     imm.predict();
-    imm.update<Position2D>(tracked.path.measurements[k], r);
+    require_ok(imm.update<Position2D>(tracked.path.measurements[k], r), "IMM", k);
     const PlanarImm::CommonState estimate = imm.estimate();
     out.emplace_back(estimate.mean(PlanarState::kX), estimate.mean(PlanarState::kY));
   }
