@@ -21,7 +21,9 @@
 /// An IMM of a single mode runs exactly that mode's filter: every mixing weight is exactly 1 and
 /// every spread exactly 0, so its estimate equals the plain filter's bit for bit.
 
+#include <array>
 #include <cmath>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 

@@ -15,6 +15,7 @@
 #include <array>
 #include <span>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "skyfuse/filters/imm.hpp"
