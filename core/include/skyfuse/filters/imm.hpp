@@ -87,8 +87,11 @@ class Imm {
   static CommonState to_common(const GaussianState<Mode::kDim>& state);
   template <typename Mode>
   static GaussianState<Mode::kDim> from_common(const CommonState& state);
+  using CommonStates = std::array<CommonState, kModes>;
+  /// Every mode's state in the common state.
+  CommonStates in_common() const;
   /// sum_i w_i N(x_i, P_i) moment-matched in the common state.
-  CommonState mixture(const Probabilities& weights) const;
+  static CommonState mixture(const CommonStates& commons, const Probabilities& weights);
 
   std::tuple<Modes...> models_;
   Switching switching_;
@@ -140,12 +143,14 @@ auto Imm<Common, Modes...>::from_common(const CommonState& state) -> GaussianSta
 }
 
 template <typename Common, typename... Modes>
-auto Imm<Common, Modes...>::mixture(const Probabilities& weights) const -> CommonState {
-  const auto commons = std::apply(
-      [](const auto&... state) {
-        return std::array<CommonState, kModes>{to_common<Modes>(state)...};
-      },
-      states_);
+auto Imm<Common, Modes...>::in_common() const -> CommonStates {
+  return std::apply([](const auto&... state) { return CommonStates{to_common<Modes>(state)...}; },
+                    states_);
+}
+
+template <typename Common, typename... Modes>
+auto Imm<Common, Modes...>::mixture(const CommonStates& commons, const Probabilities& weights)
+    -> CommonState {
   CommonState out{Vector<kCommonDim>::Zero(), Covariance<kCommonDim>::Zero()};
   for (int i = 0; i < kModes; ++i) out.mean += weights(i) * commons[i].mean;
   for (int i = 0; i < kModes; ++i) {
@@ -165,7 +170,8 @@ void Imm<Common, Modes...>::predict() {
     }
   }
   std::array<CommonState, kModes> mixed;
-  for (int j = 0; j < kModes; ++j) mixed[j] = mixture(mixing.col(j));
+  const CommonStates commons = in_common();
+  for (int j = 0; j < kModes; ++j) mixed[j] = mixture(commons, mixing.col(j));
 
   int j = 0;
   std::apply([&](auto&... state) { ((state = from_common<Modes>(mixed[j++])), ...); }, states_);
@@ -215,7 +221,7 @@ NumericalStatus Imm<Common, Modes...>::update_with(ModeUpdateFn&& mode_update) {
 
 template <typename Common, typename... Modes>
 auto Imm<Common, Modes...>::estimate() const -> CommonState {
-  return mixture(probabilities_);
+  return mixture(in_common(), probabilities_);
 }
 
 }  // namespace skyfuse
