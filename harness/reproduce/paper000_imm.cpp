@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "report/output_files.hpp"
 #include "reproduce/papers.hpp"

@@ -5,8 +5,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <map>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "report/output_files.hpp"
 #include "reproduce/papers.hpp"

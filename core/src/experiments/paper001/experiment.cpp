@@ -5,6 +5,8 @@
 #include <cmath>
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "skyfuse/learning/lstm_network.hpp"
 #include "skyfuse/learning/lstm_weights.hpp"
