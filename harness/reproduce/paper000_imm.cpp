@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 
@@ -32,6 +33,8 @@ constexpr Phase kPhases[] = {{"straight", 2.0, 10.0},
                              {"straight", 18.0, 30.0},
                              {"climb", 30.0, 34.0},
                              {"straight", 34.0, 40.0}};
+constexpr std::size_t kBeforeTurn = 0;  // indices into kPhases
+constexpr std::size_t kTurn = 1;
 // The CA filter's ANEES "spikes" in the turn: its largest value there is at least this many
 // times its mean on the straight before it.
 constexpr double kSpikeFactor = 1.5;
@@ -94,12 +97,13 @@ Reproduction reproduce_paper000_imm(const ReproduceSettings& settings) {
       kStations, runs);
   fmt::print("{:<10} {:>9} {:>14} {:>12} {:>12} {:>16} {:>18}\n", "phase", "from s",
              "RMSE CA/IMM m", "ANEES CA", "ANEES IMM", "max ANEES CA/IMM", "mu CV/CA/CT");
-  PhaseFigures before_turn;
-  PhaseFigures turn;
-  for (const Phase& phase : kPhases) {
-    const PhaseFigures f = figures(t, phase);
-    if (phase.from_s == 2.0) before_turn = f;
-    if (phase.from_s == 10.0) turn = f;
+  std::array<PhaseFigures, std::size(kPhases)> per_phase;
+  for (std::size_t i = 0; i < per_phase.size(); ++i) per_phase[i] = figures(t, kPhases[i]);
+  const PhaseFigures& before_turn = per_phase[kBeforeTurn];
+  const PhaseFigures& turn = per_phase[kTurn];
+  for (std::size_t i = 0; i < per_phase.size(); ++i) {
+    const Phase& phase = kPhases[i];
+    const PhaseFigures& f = per_phase[i];
     fmt::print(
         "{:<10} {:>4.0f}-{:<4.0f} {:>6.3f}/{:<7.3f} {:>12.2f} {:>12.2f} {:>7.1f}/{:<8.1f} "
         "{:>5.2f}/{:.2f}/{:.2f}\n",
@@ -146,8 +150,9 @@ Reproduction reproduce_paper000_imm(const ReproduceSettings& settings) {
                         std::string("below CA"), turn.anees_imm, "",
                         turn.anees_imm < turn.anees_ca});
   nlohmann::json phases = nlohmann::json::array();
-  for (const Phase& phase : kPhases) {
-    const PhaseFigures f = figures(t, phase);
+  for (std::size_t i = 0; i < per_phase.size(); ++i) {
+    const Phase& phase = kPhases[i];
+    const PhaseFigures& f = per_phase[i];
     phases.push_back(
         {{"phase", phase.name},
          {"from_s", phase.from_s},

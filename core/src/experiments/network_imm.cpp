@@ -1,11 +1,12 @@
 #include "skyfuse/experiments/network_imm.hpp"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include "skyfuse/metrics/nees.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/registry/sensor_pack.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
@@ -50,8 +51,7 @@ struct Network {
     }
     for (int i = 0; i < stations; ++i) {
       const StationConfig& s = scenario.stations[static_cast<std::size_t>(i)];
-      observations.push_back({s.id, Radar(s.position_m), Vector3::Zero(),
-                              station_noise_covariance<3>(scenario, s, run)});
+      observations.push_back(make_observation<Radar>(scenario, s, run));
     }
     std::sort(observations.begin(), observations.end(),
               [](const auto& a, const auto& b) { return a.station_id < b.station_id; });
@@ -86,11 +86,11 @@ void fuse_round(std::vector<PeerFilter>& peers, const Network& network) {
   }
 }
 
+// NEES of [p; v], the components the CA filter and the IMM's mixture both estimate.
 double position_velocity_nees(const Vector<9>& truth, const Vector<10>& mean,
                               const Covariance<10>& covariance) {
-  const Vector<6> e = mean.head<6>() - truth.head<6>();
-  const Eigen::LLT<Covariance<6>> factor(covariance.topLeftCorner<6, 6>());
-  return e.dot(factor.solve(e));
+  return nees<6>(truth.head<6>(),
+                 GaussianState<6>{mean.head<6>(), covariance.topLeftCorner<6, 6>()});
 }
 
 template <typename Filter>

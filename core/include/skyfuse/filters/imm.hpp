@@ -77,10 +77,6 @@ class Imm {
   const auto& mode_state() const {
     return std::get<I>(states_);
   }
-  template <int I>
-  const auto& mode_model() const {
-    return std::get<I>(models_);
-  }
 
  private:
   template <typename Mode>
