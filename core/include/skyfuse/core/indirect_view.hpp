@@ -21,4 +21,20 @@ class IndirectView {
   std::span<const T* const> items_;
 };
 
+/// The same, each object seen through `project` (one part of a larger sample, say): the IMM's
+/// peers fuse mode I's increments where they lie inside each station's contribution.
+template <typename T, typename Project>
+class ProjectedView {
+ public:
+  ProjectedView(std::span<const T* const> items, Project project)
+      : items_(items), project_(project) {}
+  std::size_t size() const { return items_.size(); }
+  bool empty() const { return items_.empty(); }
+  decltype(auto) operator[](std::size_t i) const { return project_(*items_[i]); }
+
+ private:
+  std::span<const T* const> items_;
+  Project project_;
+};
+
 }  // namespace skyfuse

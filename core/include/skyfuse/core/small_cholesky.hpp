@@ -67,6 +67,13 @@ class SmallCholesky {
     return x;
   }
 
+  /// log det A = 2 sum_k log L_kk.
+  double log_determinant() const {
+    double sum = 0.0;
+    for (int k = 0; k < N; ++k) sum += std::log(l_(k, k));
+    return 2.0 * sum;
+  }
+
   /// A^-1 = L^-T L^-1, with L^-1 column by column (each a forward substitution whose inner
   /// loop runs down a column of L) and the product on the upper triangle, mirrored.
   Covariance<N> inverse() const {

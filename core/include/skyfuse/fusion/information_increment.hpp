@@ -23,13 +23,23 @@ struct InformationIncrement {
   Vector<N> delta_vector = Vector<N>::Zero();               ///< dy_i
 };
 
+/// What a station sends beside its increment so that its peers can form the likelihood of the
+/// stacked measurement (fused_likelihood.hpp); all zero for a station whose measurement was
+/// screened out (it adds nothing, like its zero increment).
+struct LikelihoodTerms {
+  double weighted_innovation = 0.0;  ///< nu_i^T R_i^-1 nu_i
+  double log_det_noise = 0.0;        ///< log det R_i
+  int measurement_dim = 0;           ///< m_i
+};
+
 /// Writes station `station_id`'s increment for measurement z (noise R) against `prior` into
-/// `out`. Fails only if R is not positive definite.
+/// `out`, and, if `terms` is given, the likelihood terms of the same measurement from the same
+/// factor of R and the same innovation. Fails only if R is not positive definite.
 template <int N, typename Sensor>
 NumericalStatus compute_increment(int station_id, const GaussianState<N>& prior,
                                   const Sensor& sensor, const Vector<Sensor::kMeasDim>& z,
                                   const Covariance<Sensor::kMeasDim>& noise,
-                                  InformationIncrement<N>& out) {
+                                  InformationIncrement<N>& out, LikelihoodTerms* terms = nullptr) {
   static_assert(Sensor::kStateDim == N, "sensor and state dimensions differ");
   constexpr int M = Sensor::kMeasDim;
   // dh/dx is zero beyond the first C columns, so is dQ outside its top-left C x C block.
@@ -51,6 +61,11 @@ NumericalStatus compute_increment(int station_id, const GaussianState<N>& prior,
   out.delta_vector.setZero();
   out.delta_vector.template head<C>() =
       r_inv_h.transpose() * (innovation + h * prior.mean.template head<C>());
+  if (terms != nullptr) {
+    terms->weighted_innovation = innovation.dot(r_factor.solve(innovation));
+    terms->log_det_noise = r_factor.log_determinant();
+    terms->measurement_dim = M;
+  }
   return NumericalStatus::kOk;
 }
 

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "skyfuse/core/indirect_view.hpp"
 #include "skyfuse/filters/imm.hpp"
 #include "skyfuse/fusion/fused_likelihood.hpp"
 #include "skyfuse/fusion/information_increment.hpp"
@@ -68,10 +69,10 @@ class PeerImm {
       (
           [&] {
             constexpr int kDim = std::tuple_element_t<I, std::tuple<Modes...>>::kDim;
-            const NumericalStatus s = compute_increment_with_likelihood(
-                observation.station_id, imm_.template mode_state<I>(),
-                sensor_for_dimension<kDim>(observation.sensor), observation.z, observation.noise,
-                std::get<I>(out.increments), out.terms[I]);
+            const NumericalStatus s =
+                compute_increment(observation.station_id, imm_.template mode_state<I>(),
+                                  sensor_for_dimension<kDim>(observation.sensor), observation.z,
+                                  observation.noise, std::get<I>(out.increments), &out.terms[I]);
             if (s != NumericalStatus::kOk) status = s;
           }(),
           ...);
@@ -85,18 +86,16 @@ class PeerImm {
                        std::span<const double> weights) {
     return imm_.update_with([&](auto mode, auto& state) {
       constexpr int I = decltype(mode)::value;
-      using Increment = std::tuple_element_t<I, std::tuple<InformationIncrement<Modes::kDim>...>>;
-      std::vector<Increment> increments;
-      std::vector<LikelihoodTerms> terms;
-      increments.reserve(contributions.size());
-      terms.reserve(contributions.size());
-      for (const Contribution* c : contributions) {
-        increments.push_back(std::get<I>(c->increments));
-        terms.push_back(c->terms[I]);
-      }
+      // Mode I's increments and terms where they lie in the contributions: nothing is copied.
+      const ProjectedView increments(
+          contributions,
+          [](const Contribution& c) -> const auto& { return std::get<I>(c.increments); });
+      const ProjectedView terms(contributions, [](const Contribution& c) -> const LikelihoodTerms& {
+        return c.terms[I];
+      });
       int measurement_dim = 0;
-      const UpdateReport report = fuse_increments_with_likelihood(
-          state, std::span<const Increment>(increments), terms, weights, state, measurement_dim);
+      const UpdateReport report = fuse_increments_with_likelihood(state, increments, terms, weights,
+                                                                  state, measurement_dim);
       return ModeUpdate{report.status, report.log_likelihood(measurement_dim)};
     });
   }
