@@ -43,6 +43,28 @@ std::vector<FilterScore> score(const std::vector<NamedFilter>& filters,
   return out;
 }
 
+// Mean and sample standard deviation, per axis, of the targets added.
+class TargetAccumulator {
+ public:
+  void add(const Vector<2>& target) {
+    ++count_;
+    sum_ += target;
+    squares_ += target.cwiseProduct(target);
+  }
+  TargetSpread spread() const {
+    if (count_ == 0) return {};
+    const double n = static_cast<double>(count_);
+    const Vector<2> mean = sum_ / n;
+    const Vector<2> variance = (squares_ - n * mean.cwiseProduct(mean)) / std::max(n - 1.0, 1.0);
+    return {mean, variance.cwiseSqrt()};
+  }
+
+ private:
+  std::size_t count_ = 0;
+  Vector<2> sum_ = Vector<2>::Zero();
+  Vector<2> squares_ = Vector<2>::Zero();
+};
+
 double farthest(const TrackedPath& path) {
   double out = 0.0;
   for (const Vector<5>& x : path.path.truth) out = std::max(out, x.head<2>().cwiseAbs().maxCoeff());
@@ -62,34 +84,25 @@ Spread spread_of(const std::vector<double>& values) {
   return {mean, values.size() > 1 ? std::sqrt(squares / (n - 1.0)) : 0.0};
 }
 
-TargetSpread target_spread(const Windows& windows) {
-  TargetSpread out;
-  const std::size_t n = windows.count();
-  if (n == 0) return out;
-  for (std::size_t i = 0; i < n; ++i) {
-    out.mean += Vector<2>(windows.targets[2 * i], windows.targets[2 * i + 1]);
-  }
-  out.mean /= static_cast<double>(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vector<2> d = Vector<2>(windows.targets[2 * i], windows.targets[2 * i + 1]) - out.mean;
-    out.std += d.cwiseProduct(d);
-  }
-  out.std = (out.std / static_cast<double>(n > 1 ? n - 1 : 1)).cwiseSqrt();
-  return out;
-}
-
 ExperimentResult run_experiment(const ExperimentSetup& setup) {
   ExperimentResult result;
   const DataSetup& data = setup.data;
 
-  // Table 1: what the networks were trained to output.
-  result.ec_targets = target_spread(
-      make_windows(data, Split::kTrain, Network::kErrorCompensation, setup.table1_stride));
-  result.se_targets = target_spread(
-      make_windows(data, Split::kTrain, Network::kStateEstimation, setup.table1_stride));
+  // Table 1, what the networks were trained to output, and how far the training paths went:
+  // one pass over the training paths, each tracked once, reading only the windows' targets.
+  TargetAccumulator ec_targets;
+  TargetAccumulator se_targets;
   for (const int index : paths_in(data, Split::kTrain)) {
-    result.training_range_m = std::max(result.training_range_m, farthest(track_path(data, index)));
+    const TrackedPath path = track_path(data, index);
+    result.training_range_m = std::max(result.training_range_m, farthest(path));
+    const int steps = static_cast<int>(path.cvkf.size());
+    for (int last = kWindowSteps - 1; last < steps; last += setup.table1_stride) {
+      ec_targets.add(window_target(path, last, Network::kErrorCompensation));
+      se_targets.add(window_target(path, last, Network::kStateEstimation));
+    }
   }
+  result.ec_targets = ec_targets.spread();
+  result.se_targets = se_targets.spread();
 
   std::vector<NamedFilter> filters = {
       {"CVKF", [](const TrackedPath& p) { return cvkf_track(p); }},

@@ -73,7 +73,4 @@ struct ExperimentResult {
 /// Throws std::runtime_error when weights are named but cannot be read.
 ExperimentResult run_experiment(const ExperimentSetup& setup);
 
-/// Mean and standard deviation, per axis, of a window set's targets.
-TargetSpread target_spread(const Windows& windows);
-
 }  // namespace skyfuse::paper001
