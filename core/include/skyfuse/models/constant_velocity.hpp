@@ -3,7 +3,7 @@
 /// Nearly-constant-velocity motion in 3-D (paper 003, eq. 1-2).
 ///
 /// State x = [p; v] in R^6, each block (x, y, z):
-///   F = [[I3, dt I3], [0, I3]],   Q = blkdiag(sigma_p^2 I3, sigma_v^2 I3),
+///   F = [[I3, dt I3], [0, I3]] (p + dt v, v),   Q = blkdiag(sigma_p^2 I3, sigma_v^2 I3),
 /// the per-step process noise exactly as the paper states it (not a continuous-time white-noise
 /// acceleration model).
 
@@ -11,16 +11,14 @@
 #include <string_view>
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/models/linear_transition.hpp"
 
 namespace skyfuse {
 
-class ConstantVelocity3D {
+class ConstantVelocity3D : public LinearTransition<6> {
  public:
   /// The name a scenario gives this model.
   static constexpr std::string_view kKind = "constant_velocity_3d";
-  static constexpr int kDim = 6;
-  using State = Vector<kDim>;
-
   static constexpr int kPosition = 0;
   static constexpr int kVelocity = 3;
 
@@ -35,25 +33,13 @@ class ConstantVelocity3D {
   ConstantVelocity3D(double time_step_s, const NoiseStd& noise_std) {
     const auto [position, velocity] = noise_std;
     const Matrix3 eye = Matrix3::Identity();
-    transition_.setIdentity();
     transition_.block<3, 3>(kPosition, kVelocity) = time_step_s * eye;
-    process_noise_.setZero();
     process_noise_.block<3, 3>(kPosition, kPosition) = position * position * eye;
     process_noise_.block<3, 3>(kVelocity, kVelocity) = velocity * velocity * eye;
   }
 
   /// The model's state of a target with kinematics [p; v; a]: its position and velocity.
   static State from_kinematics(const Vector<9>& kinematics) { return kinematics.head<kDim>(); }
-
-  /// x_{k+1} = F x_k: p + dt v, v.
-  State propagate(const State& x) const { return transition_ * x; }
-  /// dF/dx; the model is linear, so this is F wherever it is evaluated.
-  const Covariance<kDim>& jacobian(const State& /*x*/) const { return transition_; }
-  const Covariance<kDim>& process_noise() const { return process_noise_; }
-
- private:
-  Covariance<kDim> transition_;
-  Covariance<kDim> process_noise_;
 };
 
 }  // namespace skyfuse

@@ -8,15 +8,13 @@
 ///   C = [[dt^5/20, dt^4/8, dt^3/6], [dt^4/8, dt^3/3, dt^2/2], [dt^3/6, dt^2/2, dt]].
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/models/linear_transition.hpp"
 #include "skyfuse/models/planar/planar_state.hpp"
 
 namespace skyfuse {
 
-class ConstantAcceleration2D {
+class ConstantAcceleration2D : public LinearTransition<6> {
  public:
-  static constexpr int kDim = 6;
-  using State = Vector<kDim>;
-
   static constexpr int kX = 0;
   static constexpr int kVx = 1;
   static constexpr int kAx = 2;
@@ -37,21 +35,11 @@ class ConstantAcceleration2D {
     c << dt3 * dt2 / 20.0, dt2 * dt2 / 8.0, dt3 / 6.0,  //
         dt2 * dt2 / 8.0, dt3 / 3.0, dt2 / 2.0,          //
         dt3 / 6.0, dt2 / 2.0, dt;
-    transition_.setZero();
-    process_noise_.setZero();
     for (const int axis : {kX, kY}) {
       transition_.block<3, 3>(axis, axis) = phi;
       process_noise_.block<3, 3>(axis, axis) = jerk_density * c;
     }
   }
-
-  State propagate(const State& x) const { return transition_ * x; }
-  const Covariance<kDim>& jacobian(const State& /*x*/) const { return transition_; }
-  const Covariance<kDim>& process_noise() const { return process_noise_; }
-
- private:
-  Covariance<kDim> transition_;
-  Covariance<kDim> process_noise_;
 };
 
 }  // namespace skyfuse

@@ -7,15 +7,13 @@
 ///   Q = sigma_Q^2 blkdiag(B, B),   B = [[dt^4/4, dt^3/2], [dt^3/2, dt^2]].
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/models/linear_transition.hpp"
 #include "skyfuse/models/planar/planar_state.hpp"
 
 namespace skyfuse {
 
-class ConstantVelocity2D {
+class ConstantVelocity2D : public LinearTransition<4> {
  public:
-  static constexpr int kDim = 4;
-  using State = Vector<kDim>;
-
   static constexpr int kX = 0;
   static constexpr int kVx = 1;
   static constexpr int kY = 2;
@@ -26,24 +24,13 @@ class ConstantVelocity2D {
 
   ConstantVelocity2D(double time_step_s, double acceleration_variance) {
     const double dt = time_step_s;
-    transition_.setIdentity();
     transition_(kX, kVx) = dt;
     transition_(kY, kVy) = dt;
     Matrix<2, 2> b;
     b << dt * dt * dt * dt / 4.0, dt * dt * dt / 2.0, dt * dt * dt / 2.0, dt * dt;
-    process_noise_.setZero();
     process_noise_.block<2, 2>(kX, kX) = acceleration_variance * b;
     process_noise_.block<2, 2>(kY, kY) = acceleration_variance * b;
   }
-
-  State propagate(const State& x) const { return transition_ * x; }
-  /// The model is linear: dF/dx is F wherever it is evaluated.
-  const Covariance<kDim>& jacobian(const State& /*x*/) const { return transition_; }
-  const Covariance<kDim>& process_noise() const { return process_noise_; }
-
- private:
-  Covariance<kDim> transition_;
-  Covariance<kDim> process_noise_;
 };
 
 }  // namespace skyfuse
