@@ -38,7 +38,7 @@ TrackedPath track_path(const DataSetup& setup, int path_index) {
 
   const Vector<5>& start = tracked.path.truth.front();
   GaussianState<4> state;
-  state.mean << start(0), start(3) * std::cos(start(2)), start(1), start(3) * std::sin(start(2));
+  state.mean = cartesian_position_velocity(start);
   state.covariance = setup.initial_variance * Covariance<4>::Identity();
   tracked.cvkf.reserve(tracked.path.truth.size());
   tracked.cvkf.push_back(state.mean);

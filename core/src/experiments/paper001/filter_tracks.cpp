@@ -63,8 +63,7 @@ PositionTrack imm_track(const DataSetup& setup, const TrackedPath& tracked) {
 
   const Vector<5>& start = tracked.path.truth.front();
   PlanarImm::CommonState initial;
-  initial.mean << start(0), start(3) * std::cos(start(2)), start(1), start(3) * std::sin(start(2)),
-      0.0, 0.0, start(4);
+  initial.mean << cartesian_position_velocity(start), 0.0, 0.0, start(4);
   initial.covariance = setup.initial_variance * Covariance<PlanarState::kDim>::Identity();
   PlanarImm imm(
       {ConstantVelocity2D(dt, q), ConstantAcceleration2D(dt, q), CoordinatedTurn2D(dt, q)},

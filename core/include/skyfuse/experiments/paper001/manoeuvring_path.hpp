@@ -11,6 +11,7 @@
 /// U(0.5,1) s and then flown with a = +-U(2,3.5) m/s^2. Speed stays in [0, 40] m/s.
 /// The sensor reports x and y, each with N(0, 3^2) noise (eq 11).
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -43,6 +44,11 @@ struct ManoeuvringPath {
   std::vector<Vector<2>> measurements;
   bool has_sudden_deceleration = false;
 };
+
+/// A truth [x, y, theta, v, omega] as the Cartesian [x, vx, y, vy] the planar models start from.
+inline Vector<4> cartesian_position_velocity(const Vector<5>& truth) {
+  return {truth(0), truth(3) * std::cos(truth(2)), truth(1), truth(3) * std::sin(truth(2))};
+}
 
 /// Path `index` of the set drawn with `seed`: a pure function of (setup, seed, index).
 ManoeuvringPath generate_path(const PathSetup& setup, std::uint64_t seed, std::uint64_t index);
