@@ -31,7 +31,7 @@ TEST(FusedLikelihood, EqualsTheStackedLikelihoodOfTheSameMeasurements) {
     const Vector3 z = radar.predict(prior.mean) + Vector3(1.5 - i, 0.02, -0.01 * i);
     const Covariance<3> r = Vector3(0.1 * (i + 1), 1e-4, 2e-4).asDiagonal();
     observations.push_back({i + 1, radar, z, r});
-    ASSERT_EQ(compute_increment(i + 1, prior, radar, z, r, increments[i], &terms[i]),
+    ASSERT_EQ(compute_increment(i + 1, prior, radar, z, r, increments[i], terms[i]),
               NumericalStatus::kOk);
   }
   GaussianState<9> stacked = prior;

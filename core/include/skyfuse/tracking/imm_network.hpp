@@ -72,7 +72,7 @@ class PeerImm {
             const NumericalStatus s =
                 compute_increment(observation.station_id, imm_.template mode_state<I>(),
                                   sensor_for_dimension<kDim>(observation.sensor), observation.z,
-                                  observation.noise, std::get<I>(out.increments), &out.terms[I]);
+                                  observation.noise, std::get<I>(out.increments), out.terms[I]);
             if (s != NumericalStatus::kOk) status = s;
           }(),
           ...);
