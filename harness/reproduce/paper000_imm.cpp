@@ -87,10 +87,10 @@ Reproduction reproduce_paper000_imm(const ReproduceSettings& settings) {
   Scenario scenario = load_default_scenario();
   if (settings.seed) scenario.seed = *settings.seed;
   const int runs = settings.runs.value_or(kDefaultRuns);
-  const ImmModes modes;
+  const ImmConfig& modes = scenario.filter.imm;
   const CentralPeerComparison equal =
-      compare_central_and_peers(scenario, modes, kSpeedMps, kStations, 0, scenario.steps);
-  const TurnComparison t = imm_against_ca(scenario, modes, kSpeedMps, kStations, runs);
+      compare_central_and_peers(scenario, kSpeedMps, kStations, 0, scenario.steps);
+  const TurnComparison t = imm_against_ca(scenario, kSpeedMps, kStations, runs);
 
   fmt::print(
       "\nIMM of CV, CA and CT (fused by {} peers) vs the paper's CA filter, 300 km/h, {} runs\n",

@@ -72,15 +72,15 @@ void fuse_round(std::vector<PeerFilter>& peers, const Network& network) {
   std::vector<typename PeerFilter::Contribution> contributions(network.observations.size());
   for (std::size_t i = 0; i < network.observations.size(); ++i) {
     // Station i computes its own; it holds the same prior as every other peer.
-    const NumericalStatus s =
-        peers[i % peers.size()].contribute(network.observations[i], contributions[i]);
-    if (s != NumericalStatus::kOk) throw NumericalError("network IMM: increment failed");
+    const OwnContribution own =
+        peers[i % peers.size()].contribute(network.observations[i], NisGate{}, contributions[i]);
+    if (own.status != NumericalStatus::kOk) throw NumericalError("network IMM: increment failed");
   }
   std::vector<const typename PeerFilter::Contribution*> pointers;
   for (const auto& c : contributions) pointers.push_back(&c);
   const std::vector<double> weights(contributions.size(), 1.0);
   for (PeerFilter& peer : peers) {
-    if (peer.fuse(pointers, weights) != NumericalStatus::kOk) {
+    if (peer.fuse_round(pointers, weights).status != NumericalStatus::kOk) {
       throw NumericalError("network IMM: fusion failed");
     }
   }
@@ -107,8 +107,8 @@ bool same_bits(const Filter& a, const Filter& b) {
 
 }  // namespace
 
-NetworkImmFilter make_network_imm(const Scenario& scenario, const ImmModes& modes,
-                                  const GaussianState<9>& initial) {
+NetworkImmFilter make_network_imm(const Scenario& scenario, const GaussianState<9>& initial) {
+  const ImmConfig& modes = scenario.filter.imm;
   const double dt = scenario.time_step_s;
   const double switch_probability = (1.0 - modes.stay_probability) / 2.0;
   Matrix<3, 3> switching = Matrix<3, 3>::Constant(switch_probability);
@@ -119,16 +119,15 @@ NetworkImmFilter make_network_imm(const Scenario& scenario, const ImmModes& mode
                           common_start(initial, modes.initial_turn_rate_variance));
 }
 
-CentralPeerComparison compare_central_and_peers(const Scenario& scenario, const ImmModes& modes,
-                                                double speed_mps, int stations, std::uint64_t run,
-                                                int steps) {
+CentralPeerComparison compare_central_and_peers(const Scenario& scenario, double speed_mps,
+                                                int stations, std::uint64_t run, int steps) {
   const TruthTrajectory truth =
       generate_truth(scenario.target, speed_mps, scenario.time_step_s, steps);
   const GaussianState<9> start =
       initial_estimate<ConstantAcceleration3D>(scenario, truth.states[0], run);
-  Central central(make_network_imm(scenario, modes, start));
+  Central central(make_network_imm(scenario, start));
   std::vector<Peers> peers(static_cast<std::size_t>(stations),
-                           Peers(make_network_imm(scenario, modes, start)));
+                           Peers(make_network_imm(scenario, start)));
   Network network(scenario, stations, run);
 
   CentralPeerComparison out;
@@ -159,8 +158,7 @@ CentralPeerComparison compare_central_and_peers(const Scenario& scenario, const 
   return out;
 }
 
-TurnComparison imm_against_ca(const Scenario& scenario, const ImmModes& modes, double speed_mps,
-                              int stations, int runs) {
+TurnComparison imm_against_ca(const Scenario& scenario, double speed_mps, int stations, int runs) {
   const TruthTrajectory truth =
       generate_truth(scenario.target, speed_mps, scenario.time_step_s, scenario.steps);
   const auto steps = static_cast<std::size_t>(scenario.steps);
@@ -177,7 +175,7 @@ TurnComparison imm_against_ca(const Scenario& scenario, const ImmModes& modes, d
     const auto run = static_cast<std::uint64_t>(r);
     const GaussianState<9> start =
         initial_estimate<ConstantAcceleration3D>(scenario, truth.states[0], run);
-    std::vector<Peers> imm{Peers(make_network_imm(scenario, modes, start))};
+    std::vector<Peers> imm{Peers(make_network_imm(scenario, start))};
     std::vector<CaOnly> ca{
         CaOnly(CaOnly::Filter({scenario_model(scenario)}, Matrix<1, 1>::Identity(),
                               Vector<1>::Ones(), common_start(start, 1.0)))};

@@ -238,11 +238,44 @@ Eigen::VectorXd read_diagonal(const YamlField& field, int n) {
   return out;
 }
 
+// Noise standard deviations {name: value, ...} of a mode outside the registry (the IMM's).
+template <std::size_t N>
+std::array<double, N> read_mode_noise(const YamlField& field, std::string_view mode,
+                                      const std::array<std::string_view, N>& names) {
+  const MotionModelInfo info{mode, 0, std::vector<std::string_view>(names.begin(), names.end())};
+  const Eigen::VectorXd noise = read_process_noise(field, info);
+  std::array<double, N> out{};
+  for (std::size_t i = 0; i < N; ++i) out[i] = noise(static_cast<Eigen::Index>(i));
+  return out;
+}
+
+ImmConfig read_imm(const YamlField& field) {
+  field.allow_only(
+      {"constant_velocity", "coordinated_turn", "stay_probability", "initial_turn_rate_variance"});
+  ImmConfig imm;
+  if (const auto cv = field.optional("constant_velocity")) {
+    imm.constant_velocity =
+        read_mode_noise<2>(*cv, "constant_velocity", {"position_m", "velocity_mps"});
+  }
+  if (const auto ct = field.optional("coordinated_turn")) {
+    imm.coordinated_turn = read_mode_noise<3>(*ct, "coordinated_turn",
+                                              {"position_m", "velocity_mps", "turn_rate_radps"});
+  }
+  if (const auto stay = field.optional("stay_probability")) {
+    imm.stay_probability = stay->positive_number();
+    if (imm.stay_probability > 1.0) stay->fail(fmt::format("must be <= 1, got {}", stay->text()));
+  }
+  if (const auto variance = field.optional("initial_turn_rate_variance")) {
+    imm.initial_turn_rate_variance = variance->positive_number();
+  }
+  return imm;
+}
+
 FilterConfig read_filter(const YamlField& field) {
   // `process_noise_std` directly under the filter is paper 000's shorthand for the
   // constant-acceleration model.
   field.allow_only({"kind", "motion_model", "process_noise_std", "initial_covariance_diag",
-                    "initial_state_error"});
+                    "initial_state_error", "imm"});
   FilterConfig filter;
   if (const auto kind = field.optional("kind")) {
     filter.kind = kind->string();
@@ -267,6 +300,18 @@ FilterConfig read_filter(const YamlField& field) {
     field.fail(
         "missing field 'motion_model' (e.g. {kind: constant_acceleration_3d, "
         "process_noise_std: {...}})");
+  }
+  const auto imm = field.optional("imm");
+  if (filter.kind == "imm") {
+    // The CA mode is the scenario's model; the other modes are 3-D, like it.
+    if (filter.motion_model.kind != "constant_acceleration_3d") {
+      (model ? model->required("kind") : field)
+          .fail(fmt::format("filter 'imm' takes constant_acceleration_3d as its CA mode, not '{}'",
+                            filter.motion_model.kind));
+    }
+    if (imm) filter.imm = read_imm(*imm);
+  } else if (imm) {
+    imm->fail(fmt::format("only a filter of kind 'imm' has modes; this one is '{}'", filter.kind));
   }
   const int dim = find_motion_model(filter.motion_model.kind)->state_dim;
   filter.initial_covariance_diag = read_diagonal(field.required("initial_covariance_diag"), dim);
@@ -324,6 +369,14 @@ Scenario read_scenario(const YamlField& root) {
   s.filter = read_filter(filter);
   const MotionModelInfo model = *find_motion_model(s.filter.motion_model.kind);
   for (std::size_t i = 0; i < s.stations.size(); ++i) {
+    // The IMM's modes each take the stations' sensor at their own dimension: one kind.
+    if (s.filter.kind == "imm" && s.stations[i].sensor.kind != s.stations[0].sensor.kind) {
+      station_items[i].fail(fmt::format(
+          "filter 'imm' needs every station to have the same sensor kind; station {} has {}, "
+          "station {} has {}",
+          s.stations[0].id, s.stations[0].sensor.kind, s.stations[i].id,
+          s.stations[i].sensor.kind));
+    }
     const SensorInfo sensor = *find_sensor(s.stations[i].sensor.kind);
     if (sensor.state_entries > model.state_dim) {
       station_items[i].fail(

@@ -10,6 +10,8 @@
 #include <span>
 #include <thread>
 
+#include "sim/imm_run_stepper.hpp"
+#include "sim/run_setup.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/registry/part_info.hpp"
@@ -40,30 +42,14 @@ class RunStepper {
         central_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
         peers_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
         gate_(gate),
-        order_(ascending_ids(scenario, stations)),
-        peer_round_(ids_of(scenario, order_), weights_of(scenario, order_)),
-        central_round_(order_.size()) {
+        order_(run_setup::ascending(scenario, stations)),
+        observations_(run_setup::checked_observations<Sensor>(scenario, order_, run)),
+        peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_)),
+        central_round_(order_.size()),
+        trace_(run_setup::sized_trace(scenario.steps)) {
     // Everything sized once per run: the step loop allocates nothing. Slots are in ascending
     // station id, the order of every round.
-    observations_.resize(order_.size());
     increments_.resize(order_.size());
-    for (std::size_t j = 0; j < order_.size(); ++j) {
-      const StationConfig& station = scenario.stations[order_[j]];
-      observations_[j] = make_observation<Sensor>(scenario, station, run);
-      // The round rule screens each value; the source, fixed for the run, is checked once.
-      const auto why = with_observation(observations_[j], [](const auto& o) {
-        return check_observation_source(o.sensor, o.noise);
-      });
-      if (why) {
-        throw NumericalError(fmt::format("station {}: its noise or site is unusable: {}",
-                                         station.id, to_string(*why)));
-      }
-    }
-    const auto steps = static_cast<std::size_t>(scenario.steps);
-    trace_.sq_error_central.resize(steps);
-    trace_.sq_error_p2p.resize(steps);
-    trace_.nees_p2p.resize(steps);
-    trace_.nis_central.resize(steps);
   }
 
   // Updates both trackers with step k's measurements (z[i] belongs to scenario.stations[i]) by
@@ -118,27 +104,6 @@ class RunStepper {
   RunTrace take_trace() { return std::move(trace_); }
 
  private:
-  // Scenario indices of the first `stations` stations, in ascending station id.
-  static std::vector<std::size_t> ascending_ids(const Scenario& scenario, int stations) {
-    std::vector<std::size_t> order(static_cast<std::size_t>(stations));
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return scenario.stations[a].id < scenario.stations[b].id;
-    });
-    return order;
-  }
-  static std::vector<int> ids_of(const Scenario& scenario, const std::vector<std::size_t>& order) {
-    std::vector<int> ids;
-    for (std::size_t i : order) ids.push_back(scenario.stations[i].id);
-    return ids;
-  }
-  static std::vector<double> weights_of(const Scenario& scenario,
-                                        const std::vector<std::size_t>& order) {
-    std::vector<double> weights;
-    for (std::size_t i : order) weights.push_back(scenario.stations[i].weight);
-    return weights;
-  }
-
   Model motion_;
   CentralTracker<Model, Sensor> central_;
   PeerTracker<Model> peers_;
@@ -152,12 +117,11 @@ class RunStepper {
 };
 
 // One run for each of `station_counts`, all fed from one simulation of the measurements of the
-// largest count's stations.
-template <typename Model, template <int> class SensorOf>
+// largest count's stations; a RunStepper or an ImmRunStepper steps each.
+template <typename Stepper, template <int> class SensorOf>
 std::vector<RunTrace> simulate_runs(const Scenario& scenario, const TruthTrajectory& truth,
                                     std::span<const int> station_counts, std::uint64_t run,
                                     const NisGate& gate, const StepObserver& observer = {}) {
-  using Stepper = RunStepper<Model, SensorOf>;
   // The sensors as they see the truth: the target's kinematics, whatever the filter's model.
   using TruthSensor = SensorOf<9>;
   std::vector<Stepper> steppers;
@@ -198,12 +162,24 @@ std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
                                                const StepObserver& observer = {}) {
   std::vector<RunTrace> traces;
   const int most = *std::max_element(station_counts.begin(), station_counts.end());
-  dispatch_configuration(scenario, most,
-                         [&]<typename Model, template <int> class SensorOf>(
-                             std::type_identity<Model>, SensorTemplate<SensorOf>) {
-                           traces = simulate_runs<Model, SensorOf>(scenario, truth, station_counts,
-                                                                   run, gate, observer);
-                         });
+  dispatch_configuration(
+      scenario, most,
+      [&]<typename Model, template <int> class SensorOf>(std::type_identity<Model>,
+                                                         SensorTemplate<SensorOf>) {
+        if (scenario.filter.kind != "imm") {
+          traces = simulate_runs<RunStepper<Model, SensorOf>, SensorOf>(
+              scenario, truth, station_counts, run, gate, observer);
+          return;
+        }
+        // The loader allows an IMM only over CA and one sensor kind.
+        if constexpr (std::is_same_v<Model, ConstantAcceleration3D> &&
+                      !IsSensorPack<SensorOf<9>>::value) {
+          traces = simulate_runs<ImmRunStepper<SensorOf>, SensorOf>(scenario, truth, station_counts,
+                                                                    run, gate, observer);
+        } else {
+          throw std::logic_error("filter imm: needs constant_acceleration_3d and one sensor kind");
+        }
+      });
   return traces;
 }
 
@@ -214,7 +190,10 @@ struct Dof {
   int measurement = 0;
 };
 Dof dof_of(const Scenario& scenario, int stations) {
-  Dof dof{find_motion_model(scenario.filter.motion_model.kind)->state_dim, 0};
+  Dof dof{scenario.filter.kind == "imm"
+              ? kImmNeesDof
+              : find_motion_model(scenario.filter.motion_model.kind)->state_dim,
+          0};
   for (int i = 0; i < stations; ++i) {
     dof.measurement +=
         find_sensor(scenario.stations[static_cast<std::size_t>(i)].sensor.kind)->measurement_dim;

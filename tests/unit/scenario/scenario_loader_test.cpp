@@ -235,7 +235,7 @@ TEST(ScenarioLoader, RefusesAnUnknownPart) {
             0U)
       << model;
   EXPECT_EQ(rejection(default_with("kind: ekf", "kind: particle")),
-            "test.yaml: filter.kind: unknown filter 'particle' (registered: ekf) (line 57)");
+            "test.yaml: filter.kind: unknown filter 'particle' (registered: ekf, imm) (line 57)");
 }
 
 TEST(ScenarioLoader, RefusesFieldsThatDoNotFitThePart) {
@@ -253,6 +253,46 @@ TEST(ScenarioLoader, RefusesFieldsThatDoNotFitThePart) {
       rejection(default_with("initial_covariance_diag: 1.0", "initial_covariance_diag: [1, 2]")),
       "test.yaml: filter.initial_covariance_diag: expected 1 or 9 numbers, got '[1, 2]' "
       "(line 61)");
+}
+
+TEST(ScenarioLoader, ReadsTheImmsModesAndKeepsTheDefaultsItOmits) {
+  const Scenario s =
+      parse_scenario(default_with("  kind: ekf\n",
+                                  "  kind: imm\n"
+                                  "  imm:\n"
+                                  "    stay_probability: 0.95\n"
+                                  "    coordinated_turn: {position_m: 0.02, velocity_mps: 0.1, "
+                                  "turn_rate_radps: 0.003}\n"),
+                     "test.yaml");
+  EXPECT_EQ(s.filter.kind, "imm");
+  EXPECT_EQ(s.filter.imm.stay_probability, 0.95);
+  EXPECT_EQ(s.filter.imm.coordinated_turn, (std::array<double, 3>{0.02, 0.1, 0.003}));
+  EXPECT_EQ(s.filter.imm.constant_velocity, ImmConfig{}.constant_velocity);
+  EXPECT_EQ(s.filter.imm.initial_turn_rate_variance, ImmConfig{}.initial_turn_rate_variance);
+  EXPECT_EQ(s.filter.motion_model.kind, "constant_acceleration_3d");  // the CA mode
+}
+
+TEST(ScenarioLoader, RefusesImmSettingsThatCannotWork) {
+  EXPECT_EQ(rejection(default_with("  initial_covariance_diag: 1.0",
+                                   "  imm: {stay_probability: 0.9}\n"
+                                   "  initial_covariance_diag: 1.0")),
+            "test.yaml: filter.imm: only a filter of kind 'imm' has modes; this one is 'ekf' "
+            "(line 61)");
+  EXPECT_EQ(
+      rejection(default_with("  kind: ekf\n", "  kind: imm\n  imm: {stay_probability: 1.5}\n")),
+      "test.yaml: filter.imm.stay_probability: must be <= 1, got 1.5 (line 58)");
+  EXPECT_EQ(rejection(default_with("  kind: ekf\n",
+                                   "  kind: imm\n  imm: {constant_velocity: {position_m: 1}}\n")),
+            "test.yaml: filter.imm.constant_velocity: missing field 'velocity_mps' (line 58)");
+  // The modes read one sensor kind at their own dimensions: a mixed network is refused.
+  std::string mixed = default_with("  kind: ekf\n", "  kind: imm\n");
+  const std::string radar = "{id: 2, position_m: [-450.0, -450.0, 20.0], sensor: *radar}";
+  mixed.replace(mixed.find(radar), radar.size(),
+                "{id: 2, sensor: {kind: position_velocity, noise_std: [1, 1, 1, 1, 1, 1]}}");
+  EXPECT_EQ(rejection(mixed),
+            "test.yaml: stations[1]: filter 'imm' needs every station to have the same sensor "
+            "kind; station 1 has range_azimuth_elevation, station 2 has position_velocity "
+            "(line 39)");
 }
 
 }  // namespace

@@ -2,12 +2,11 @@
 /// \file
 /// The station network's IMM of 3-D CV, CA and CT modes on paper 000's scenario: the central
 /// stacked IMM against the peers' fused one on the same measurements, and the IMM against the
-/// paper's CA filter through the turn (RMSE and ANEES per step over Monte-Carlo runs).
+/// paper's CA filter through the turn (RMSE and ANEES per step over Monte-Carlo runs). The IMM's
+/// modes are the scenario's (FilterConfig::imm), whatever its filter kind.
 ///
 /// Each step k: every station measures the truth at k, the filters update, then predict. The
-/// CA filter is the paper's (the scenario's process noise); the IMM's modes share its position
-/// and velocity noise and add their own (ImmModes). Defaults are this project's choice: the
-/// paper has no IMM.
+/// CA filter is the paper's (the scenario's process noise), which is also the IMM's CA mode.
 
 #include <cstdint>
 #include <vector>
@@ -25,23 +24,9 @@ namespace skyfuse {
 using NetworkImmFilter =
     Imm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
 
-struct ImmModes {
-  /// Per-step standard deviations: CV of [position m, velocity m/s]; CT of [position m,
-  /// velocity m/s, turn rate rad/s]. The CA mode is the scenario's model. The CV and CT modes
-  /// are kept tight (the paper's 0.5 m per step of position noise would let every mode explain
-  /// every step equally well, and the mode probabilities would never move); 0.05 m/s per step
-  /// of velocity noise still covers the climb at 0.5 m/s^2 (0.01 m/s per step).
-  ConstantVelocity3D::NoiseStd constant_velocity{0.01, 0.05};
-  CoordinatedTurn3D::NoiseStd coordinated_turn{0.01, 0.05, 0.002};
-  /// p_ii; the rest of each row is shared equally.
-  double stay_probability = 0.99;
-  /// Variance of the initial turn-rate estimate (the scenario's P0 covers [p; v; a]).
-  double initial_turn_rate_variance = 1e-4;
-};
-
-/// The IMM for `scenario` starting from `initial` (its [p; v; a] estimate and P0).
-NetworkImmFilter make_network_imm(const Scenario& scenario, const ImmModes& modes,
-                                  const GaussianState<9>& initial);
+/// The IMM of `scenario` (its filter's CA model and ImmConfig) starting from `initial` (its
+/// [p; v; a] estimate and P0).
+NetworkImmFilter make_network_imm(const Scenario& scenario, const GaussianState<9>& initial);
 
 /// Central stacked IMM against `stations` peers, each computing its own contribution and fusing
 /// all of them, over one run.
@@ -52,9 +37,8 @@ struct CentralPeerComparison {
   bool peers_identical = true;  ///< every peer's mode states and probabilities, bit for bit
   Vector3 final_probabilities = Vector3::Zero();  ///< peer 0's, [CV, CA, CT]
 };
-CentralPeerComparison compare_central_and_peers(const Scenario& scenario, const ImmModes& modes,
-                                                double speed_mps, int stations, std::uint64_t run,
-                                                int steps);
+CentralPeerComparison compare_central_and_peers(const Scenario& scenario, double speed_mps,
+                                                int stations, std::uint64_t run, int steps);
 
 /// The IMM (fused by peers) against the CA filter, per step over `runs` runs.
 struct TurnComparison {
@@ -63,7 +47,6 @@ struct TurnComparison {
   std::vector<double> anees_ca, anees_imm;    ///< NEES of [p; v] (6 dof), mean over runs
   std::vector<Vector3> mean_probabilities;    ///< the IMM's [CV, CA, CT], mean over runs
 };
-TurnComparison imm_against_ca(const Scenario& scenario, const ImmModes& modes, double speed_mps,
-                              int stations, int runs);
+TurnComparison imm_against_ca(const Scenario& scenario, double speed_mps, int stations, int runs);
 
 }  // namespace skyfuse

@@ -70,6 +70,13 @@ class Imm {
   template <typename ModeUpdateFn>
   NumericalStatus update_with(ModeUpdateFn&& mode_update);
 
+  /// Takes the given mode states and probabilities as its own: a peer of a station network
+  /// taking another peer's prior (tracking/imm_network.hpp). `probabilities` must sum to 1.
+  void restore(const ModeStates& states, const Probabilities& probabilities) {
+    states_ = states;
+    probabilities_ = probabilities;
+  }
+
   /// The moment-matched mixture of the modes.
   CommonState estimate() const;
   const Probabilities& mode_probabilities() const { return probabilities_; }
@@ -77,6 +84,7 @@ class Imm {
   const auto& mode_state() const {
     return std::get<I>(states_);
   }
+  const ModeStates& mode_states() const { return states_; }
 
  private:
   template <typename Mode>

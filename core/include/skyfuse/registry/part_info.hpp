@@ -30,8 +30,9 @@ struct SensorInfo {
 };
 
 /// Filters a scenario can name. "ekf": the extended Kalman filter, which is the Kalman filter
-/// itself when the model and sensor are linear.
-inline constexpr std::string_view kFilterKinds[] = {"ekf"};
+/// itself when the model and sensor are linear. "imm": an IMM of 3-D CV, CA (the scenario's
+/// motion model) and CT modes (scenario.hpp, ImmConfig).
+inline constexpr std::string_view kFilterKinds[] = {"ekf", "imm"};
 
 std::vector<MotionModelInfo> motion_model_infos();
 std::vector<SensorInfo> sensor_infos();

@@ -3,6 +3,7 @@
 /// An experiment, as read from a scenario YAML file (see scenarios/paper000.yaml for every
 /// field with its unit). Plain data: loading and validation live in scenario_loader.hpp.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -68,10 +69,30 @@ struct MotionModelConfig {
   Eigen::VectorXd process_noise_std;
 };
 
+/// Filter kind "imm": the station network's IMM of 3-D modes, constant velocity (CV),
+/// the scenario's constant-acceleration model (CA) and a coordinated turn (CT), mixed in
+/// [p; v; a; omega] (models/kinematic_state.hpp). Defaults are this project's choice (docs/imm.md):
+/// the CV and CT modes are kept tight, since the paper's 0.5 m per step of position noise would
+/// let every mode explain every step equally well and the probabilities would never move.
+struct ImmConfig {
+  /// Per-step standard deviations: CV [position m, velocity m/s]; CT [position m, velocity m/s,
+  /// turn rate rad/s].
+  std::array<double, 2> constant_velocity{0.01, 0.05};
+  std::array<double, 3> coordinated_turn{0.01, 0.05, 0.002};
+  /// p_ii, the probability of staying in a mode for a step; the rest of each row is shared
+  /// equally among the other modes.
+  double stay_probability = 0.99;
+  /// Variance of the initial turn-rate estimate, (rad/s)^2 (P0 covers [p; v; a]).
+  double initial_turn_rate_variance = 1e-4;
+};
+
 struct FilterConfig {
   /// One of kFilterKinds (registry/part_info.hpp).
   std::string kind = "ekf";
+  /// The model of kind "ekf"; the CA mode of kind "imm".
   MotionModelConfig motion_model;
+  /// Kind "imm" only.
+  ImmConfig imm;
   /// Diagonal of P0, one entry per state component of the motion model.
   Eigen::VectorXd initial_covariance_diag;
   /// Error of the initial estimate: fixed if set, otherwise drawn from N(0, P0) per run.

@@ -49,7 +49,7 @@ using StepObserver = std::function<void(const StepRecord&)>;
 struct RunTrace {
   std::vector<double> sq_error_central;  ///< |p - p_hat|^2, stacked EKF
   std::vector<double> sq_error_p2p;      ///< |p - p_hat|^2, fused increments
-  std::vector<double> nees_p2p;          ///< NEES of the fused estimate (state-dimension dof)
+  std::vector<double> nees_p2p;          ///< NEES of the fused estimate (state dof; IMM: [p; v])
   std::vector<double> nis_central;       ///< NIS of the stacked update (sum of the sensors' dof)
   double max_abs_diff_m = 0.0;           ///< max over steps of |p_central - p_p2p|
   /// Measurements screened out (checks or NIS gate): by the stations' own screening against

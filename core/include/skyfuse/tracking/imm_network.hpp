@@ -11,8 +11,17 @@
 ///    weighing the modes by the stacked likelihood.
 ///
 /// In exact arithmetic the two are the same filter; tests hold them within 1e-9.
+///
+/// The round rule (round_rule.hpp) carries over: a measurement is screened against the prior
+/// it would update, here the mixture of the modes' priors, and a station whose own measurement
+/// is screened out still contributes zero increments and zero likelihood terms, which change
+/// neither a mode's state nor its probability. Each contribution carries the mode priors and
+/// probabilities it was computed against, and a round is fused onto the lowest-id
+/// contribution's, so that peers which lost different contributions hold the same bits again
+/// after the next complete round (peer_tracker.hpp says why).
 
 #include <array>
+#include <optional>
 #include <span>
 #include <tuple>
 #include <utility>
@@ -24,6 +33,10 @@
 #include "skyfuse/fusion/information_increment.hpp"
 #include "skyfuse/fusion/stacked_likelihood.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
+#include "skyfuse/tracking/peer_contribution.hpp"
+#include "skyfuse/tracking/peer_tracker.hpp"
+#include "skyfuse/tracking/round_rule.hpp"
+#include "skyfuse/validation/nis_gate.hpp"
 
 namespace skyfuse {
 
@@ -38,14 +51,29 @@ SensorT<M> sensor_for_dimension(const SensorT<N>& sensor) {
   }
 }
 
-/// One station's contribution to a round of a PeerImm: per mode, an increment and its
-/// likelihood terms.
+/// One station's contribution to a round of a PeerImm: per mode, an increment and the mode's
+/// prior it was computed against, and the likelihood terms; and the mode probabilities of that
+/// prior.
 template <typename... Modes>
 struct ImmContribution {
+  static constexpr int kModes = sizeof...(Modes);
   int station_id = 0;
-  std::tuple<InformationIncrement<Modes::kDim>...> increments;
-  std::array<LikelihoodTerms, sizeof...(Modes)> terms{};
+  std::tuple<PeerContribution<Modes::kDim>...> modes;
+  std::array<LikelihoodTerms, kModes> terms{};
+  Vector<kModes> prior_probabilities = Vector<kModes>::Zero();
 };
+
+/// Why `observation` may not update an IMM whose mixture prior is `mixture()`: a value the
+/// sensor cannot report, then the gate against the mixture (computed only with a gate).
+template <typename Common, template <int> class SensorT, int N, typename Mixture>
+std::optional<DropKind> screen_for_imm(const StationObservation<SensorT<N>>& observation,
+                                       const NisGate& gate, Mixture mixture) {
+  if (!gate.enabled()) return SensorT<N>::check_reported(observation.z);
+  const StationObservation<SensorT<Common::kDim>> in_common{
+      observation.station_id, sensor_for_dimension<Common::kDim>(observation.sensor), observation.z,
+      observation.noise};
+  return screen_observation(mixture(), in_common, gate);
+}
 
 template <typename Common, typename... Modes>
 class PeerImm {
@@ -59,37 +87,62 @@ class PeerImm {
   /// Mixing and every mode's time update.
   void predict() { imm_.predict(); }
 
-  /// This station's contribution for `observation` against the current (common) mode priors.
+  /// This station's contribution for `observation` against the current (common) mode priors,
+  /// screened as the round rule says (the file comment): screened out, its increments and terms
+  /// are zero.
   template <template <int> class SensorT, int N>
-  NumericalStatus contribute(const StationObservation<SensorT<N>>& observation,
+  OwnContribution contribute(const StationObservation<SensorT<N>>& observation, const NisGate& gate,
                              Contribution& out) const {
     out.station_id = observation.station_id;
-    NumericalStatus status = NumericalStatus::kOk;
-    [&]<int... I>(std::integer_sequence<int, I...>) {
-      (
-          [&] {
-            constexpr int kDim = std::tuple_element_t<I, std::tuple<Modes...>>::kDim;
-            const NumericalStatus s =
-                compute_increment(observation.station_id, imm_.template mode_state<I>(),
-                                  sensor_for_dimension<kDim>(observation.sensor), observation.z,
-                                  observation.noise, std::get<I>(out.increments), out.terms[I]);
-            if (s != NumericalStatus::kOk) status = s;
-          }(),
-          ...);
-    }
-    (std::make_integer_sequence<int, kModes>{});
-    return status;
+    out.prior_probabilities = imm_.mode_probabilities();
+    OwnContribution result;
+    result.refused = screen_for_imm<Common>(observation, gate, [&] { return imm_.estimate(); });
+    for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      constexpr int kDim = std::tuple_element_t<I, std::tuple<Modes...>>::kDim;
+      auto& mode = std::get<I>(out.modes);
+      mode.prior = imm_.template mode_state<I>();
+      if (result.refused) {
+        mode.increment.station_id = observation.station_id;
+        mode.increment.delta_information.setZero();
+        mode.increment.delta_vector.setZero();
+        out.terms[I] = {};
+        return;
+      }
+      const NumericalStatus s = compute_increment(
+          observation.station_id, mode.prior, sensor_for_dimension<kDim>(observation.sensor),
+          observation.z, observation.noise, mode.increment, out.terms[I]);
+      if (s != NumericalStatus::kOk) result.status = s;
+    });
+    return result;
   }
 
-  /// Fuses one round: `contributions` in ascending station id, weights[i] for the i-th.
-  NumericalStatus fuse(std::span<const Contribution* const> contributions,
-                       std::span<const double> weights) {
-    return imm_.update_with([&](auto mode, auto& state) {
+  /// Fuses one round, `contributions` in ascending station id (weights[i] for the i-th), onto
+  /// the mode priors and probabilities of the first, which this peer takes as its own if they
+  /// differ. On failure nothing changes and nothing counts as resynchronised. An empty round
+  /// fuses nothing.
+  RoundFusion fuse_round(std::span<const Contribution* const> contributions,
+                         std::span<const double> weights) {
+    if (contributions.empty()) return {};
+    const Contribution& reference = *contributions.front();
+    bool differs = reference.prior_probabilities != imm_.mode_probabilities();
+    typename Filter::ModeStates priors;
+    for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      const auto& prior = std::get<I>(reference.modes).prior;
+      const auto& own = imm_.template mode_state<I>();
+      differs = differs || prior.mean != own.mean || prior.covariance != own.covariance;
+      std::get<I>(priors) = prior;
+    });
+    std::optional<Filter> before;
+    if (differs) {
+      before = imm_;
+      imm_.restore(priors, reference.prior_probabilities);
+    }
+    const NumericalStatus status = imm_.update_with([&](auto mode, auto& state) {
       constexpr int I = decltype(mode)::value;
       // Mode I's increments and terms where they lie in the contributions: nothing is copied.
       const ProjectedView increments(
           contributions,
-          [](const Contribution& c) -> const auto& { return std::get<I>(c.increments); });
+          [](const Contribution& c) -> const auto& { return std::get<I>(c.modes).increment; });
       const ProjectedView terms(contributions, [](const Contribution& c) -> const LikelihoodTerms& {
         return c.terms[I];
       });
@@ -98,11 +151,21 @@ class PeerImm {
                                                                   state, measurement_dim);
       return ModeUpdate{report.status, report.log_likelihood(measurement_dim)};
     });
+    if (status != NumericalStatus::kOk && before) imm_ = *before;
+    return {status, differs && status == NumericalStatus::kOk};
   }
 
   const Filter& filter() const { return imm_; }
 
  private:
+  template <typename Fn>
+  static void for_each_mode(Fn&& fn) {
+    [&]<int... I>(std::integer_sequence<int, I...>) {
+      (fn(std::integral_constant<int, I>{}), ...);
+    }
+    (std::make_integer_sequence<int, kModes>{});
+  }
+
   Filter imm_;
 };
 
@@ -115,28 +178,61 @@ class CentralImm {
 
   void predict() { imm_.predict(); }
 
+  /// Screens each observation (`observation_at(i)`: the i-th of `count` in ascending station
+  /// id, or null if none arrived) against the mixture prior, as the peers screen their own, and
+  /// gives every mode the stacked update of those that pass; on_refused(station_id, why) hears
+  /// of the others, and `contributors` gets the ids stacked. When none passes nothing is
+  /// updated: the mode probabilities stay the predicted ones.
+  template <typename Observation, typename ObservationAt, typename OnRefused>
+  NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& gate,
+                         OnRefused on_refused, std::vector<int>& contributors) {
+    std::vector<Observation> stacked;
+    stacked.reserve(count);
+    contributors.clear();
+    std::optional<typename Filter::CommonState> mixture;
+    for (std::size_t i = 0; i < count; ++i) {
+      const Observation* o = observation_at(i);
+      if (o == nullptr) continue;
+      const auto why = screen_for_imm<Common>(*o, gate, [&] {
+        if (!mixture) mixture = imm_.estimate();
+        return *mixture;
+      });
+      if (why) {
+        on_refused(o->station_id, *why);
+        continue;
+      }
+      stacked.push_back(*o);
+      contributors.push_back(o->station_id);
+    }
+    if (stacked.empty()) return NumericalStatus::kOk;
+    return update(std::span<const Observation>(stacked));
+  }
+
   /// Every mode takes the stacked update of `observations` (ascending station id).
   template <template <int> class SensorT, int N>
   NumericalStatus update(std::span<const StationObservation<SensorT<N>>> observations) {
     return imm_.update_with([&](auto mode, auto& state) {
       constexpr int kDim = std::decay_t<decltype(state)>::kDim;
       using ModeObservation = StationObservation<SensorT<kDim>>;
-      static_cast<void>(mode);
       std::vector<ModeObservation> stacked;
       stacked.reserve(observations.size());
       for (const auto& o : observations) {
         stacked.push_back({o.station_id, sensor_for_dimension<kDim>(o.sensor), o.z, o.noise});
       }
       const UpdateReport report = stacked_update_with_likelihood(state, stacked);
+      mode_nis_(decltype(mode)::value) = report.nis;
       return ModeUpdate{report.status, report.log_likelihood(static_cast<int>(stacked.size()) *
                                                              SensorT<N>::kMeasDim)};
     });
   }
 
   const Filter& filter() const { return imm_; }
+  /// Each mode's NIS of the stacked measurement in the last update (against its own prior).
+  const Vector<Filter::kModes>& mode_nis() const { return mode_nis_; }
 
  private:
   Filter imm_;
+  Vector<Filter::kModes> mode_nis_ = Vector<Filter::kModes>::Zero();
 };
 
 }  // namespace skyfuse
