@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "central_fusion.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
@@ -29,11 +30,11 @@ using namespace std::chrono_literals;
 
 constexpr auto kPollSlice = 50ms;
 
-// The center for stations of `Sensor`: one sensor type, or a SensorPack when they differ.
-template <typename Sensor>
+// The center for stations of `Sensor` (one sensor type, or a SensorPack when they differ),
+// whose rounds `Fusion` updates: SingleModelCenter or ImmCenter, by the run's filter kind.
+template <typename Sensor, typename Fusion>
 class Center {
  public:
-  using Model = transport::WireModel;
   using Observation = ObservationFor<Sensor>;
 
   Center(const options::NodeOptions& options, const RunPlan& plan)
@@ -44,9 +45,8 @@ class Center {
         ticks_(node_.make_reader<wire::Tick>()),
         measurements_(node_.make_reader<wire::Measurement>()),
         tracks_(node_.make_writer<wire::TrackEstimate>()),
-        tracker_(plan.motion_model<Model>(), plan.initial_estimate<Model>()),
-        collector_(plan.participant_ids()),
-        round_(static_cast<std::size_t>(plan.stations)) {
+        fusion_(plan),
+        collector_(plan.participant_ids()) {
     wait_set_.attach(ticks_);
     wait_set_.attach(measurements_);
   }
@@ -74,25 +74,23 @@ class Center {
       if (const int code = wait_for_measurements(k); code >= 0) return code;
       // The measurements that arrived by the deadline, screened and stacked by the round rule,
       // as the in-process twin does: both compute the same bits.
-      const UpdateReport report = round_.update(
-          tracker_, collector_.station_ids().size(),
+      const NumericalStatus status = fusion_.update(
+          collector_.station_ids().size(),
           [&](std::size_t j) { return collector_.filled(j) ? &collector_.payloads()[j] : nullptr; },
           options_.nis_gate(),
           [&](int station_id, DropKind why) {
             transport::count_drop(drops_, why, "measurement", station_id, k);
           });
-      if (report.status != NumericalStatus::kOk) {
+      if (status != NumericalStatus::kOk) {
         const std::string detail =
-            fmt::format("step {}: stacked update failed: {}", k, to_string(report.status));
+            fmt::format("step {}: stacked update failed: {}", k, to_string(status));
         spdlog::error("{}", detail);
         presence_.set_drops(drops_.counts());  // a failure report says what was refused too
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
         return options::kExitNumerical;
       }
-      tracks_.write(transport::to_wire(tracker_.estimate(), options_.run_id,
-                                       static_cast<std::uint32_t>(k), kCenterSourceId,
-                                       wire::CENTRAL, round_.contributors()));
-      tracker_.predict();
+      tracks_.write(fusion_.track(options_.run_id, k, kCenterSourceId));
+      fusion_.predict();
       collector_.advance();
     }
     presence_.set_drops(drops_.counts());
@@ -197,9 +195,8 @@ class Center {
   transport::Reader<wire::Measurement> measurements_;
   transport::Writer<wire::TrackEstimate> tracks_;
   transport::ReaderWaitSet wait_set_;
-  CentralTracker<Model, Sensor> tracker_;
+  Fusion fusion_;
   StepCollector<Observation> collector_;
-  CentralRound<Model, Sensor> round_;
   std::uint64_t epoch_ns_ = 0;  // real time: system-clock start of step 0
   transport::SourceBinding sources_;
   DropTally drops_;
@@ -215,9 +212,20 @@ int run_center(const options::NodeOptions& options) {
                          [&]<typename Model, template <int> class SensorOf>(
                              std::type_identity<Model>, SensorTemplate<SensorOf>) {
                            // The processes run the wire's model (load_plan refused another).
+                           using Sensor = SensorOf<Model::kDim>;
                            if constexpr (std::is_same_v<Model, transport::WireModel>) {
-                             Center<SensorOf<Model::kDim>> center(options, plan);
-                             code = center.run();
+                             if (plan.scenario.filter.kind != "imm") {
+                               Center<Sensor, SingleModelCenter<Sensor>> center(options, plan);
+                               code = center.run();
+                               return;
+                             }
+                             // The loader gives an IMM run one sensor kind.
+                             if constexpr (!IsSensorPack<Sensor>::value) {
+                               Center<Sensor, ImmCenter<Sensor>> center(options, plan);
+                               code = center.run();
+                             } else {
+                               throw std::logic_error("filter imm with mixed sensor kinds");
+                             }
                            }
                          });
   return code;

@@ -1,6 +1,7 @@
 #pragma once
 // The fusion center as a process: collect every station's raw measurement of step k, run the
-// stacked-measurement EKF (the core's CentralTracker), publish the track, predict.
+// stacked-measurement filter of the run's filter kind (central_fusion.hpp: the stacked EKF, or
+// the IMM with every mode on the stacked measurement), publish the track, predict.
 
 #include "skyfuse/options/node_options.hpp"
 

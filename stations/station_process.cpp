@@ -9,6 +9,8 @@
 #include <thread>
 #include <vector>
 
+#include "imm_fusion.hpp"
+#include "single_model_fusion.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
@@ -49,21 +51,11 @@ struct StationEndpoints {
   transport::ReaderWaitSet wait_set;
 };
 
-// The participants' fusion weights in ascending station id.
-std::vector<double> weights_in_id_order(const RunPlan& plan, std::span<const int> ids) {
-  std::vector<double> weights;
-  for (int id : ids) weights.push_back(plan.participant(id)->weight);
-  return weights;
-}
-
-// A station with a `Sensor` of the wire's motion model's state (a radar, the aircraft's GPS).
-template <typename Sensor>
+// A station with a `Sensor` of the wire's motion model's state (a radar, the aircraft's GPS),
+// whose rounds `Fusion` fuses: SingleModelFusion or ImmFusion, by the run's filter kind.
+template <typename Sensor, typename Fusion>
 class Station {
  public:
-  using Model = transport::WireModel;
-  static constexpr int kDim = Model::kDim;
-  using Contribution = PeerContribution<kDim>;
-
   Station(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
           std::unique_ptr<SensorSource<Sensor>> source)
       : options_(options),
@@ -73,11 +65,9 @@ class Station {
         node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", me.id))),
         presence_(node_, options.node.run_id, me.id),
         io_(node_),
-        tracker_(plan.motion_model<Model>(), plan.initial_estimate<Model>()),
-        collector_(plan.participant_ids()),
+        fusion_(plan),
         sensor_(make_sensor<Sensor>(me)),
         noise_(station_noise_covariance<Sensor::kMeasDim>(plan.scenario, me, plan.mc_run)),
-        round_(collector_.station_ids(), weights_in_id_order(plan, collector_.station_ids())),
         syncing_(options.rejoin_step.has_value()) {
     sources_.bind(me_.id, io_.increments_out.id());
   }
@@ -110,7 +100,7 @@ class Station {
 
     const auto steps = static_cast<std::uint64_t>(plan_.scenario.steps);
     const std::uint64_t first = options_.rejoin_step.value_or(0);
-    collector_.start_at(first);
+    fusion_.start_at(first);
     const bool realtime = options_.node.realtime_deadline_ms > 0.0;
     if (realtime) {
       bool started = false;
@@ -138,7 +128,7 @@ class Station {
       publish_own_sample(k);
       if (const int code = wait_until_closed(k, close); code >= 0) return code;
       if (const int code = fuse_and_publish(k); code >= 0) return code;
-      collector_.advance();
+      fusion_.advance();
     }
     presence_.set_drops(drops_.counts());
     presence_.set_link_counts(lost_, resyncs_);
@@ -190,11 +180,7 @@ class Station {
     if (sample.run_id() != options_.node.run_id) return DropKind::kWrongRun;
     // Garbage is garbage whoever sent it; then who it claims to be and when; then whether the
     // writer really speaks for that station.
-    const auto contribution = transport::contribution_from_wire<transport::WireModel::kDim>(sample);
-    if (!contribution) return DropKind::kOutOfRange;  // not the run's state dimension
-    if (const auto why = check_contribution(*contribution)) return why;
-    return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
-                            *contribution);
+    return fusion_.admit(sample, writer, sources_);
   }
 
   // Waits until `done()` or for `limit` at most; returns an exit code to end the run, or -1.
@@ -232,11 +218,11 @@ class Station {
   // Collects increments until every expected one is in (all but this station's own while it
   // resynchronises) or `close` passes; either is fine.
   int wait_until_closed(std::uint64_t k, std::chrono::system_clock::time_point close) {
-    const std::size_t expected = collector_.station_ids().size() - (syncing_ ? 1 : 0);
+    const std::size_t expected = fusion_.station_ids().size() - (syncing_ ? 1 : 0);
     bool unused = false;
     while (true) {
       if (const int code = drain(k, unused); code >= 0) return code;
-      if (collector_.count() == expected) return -1;
+      if (fusion_.arrived_count() == expected) return -1;
       if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
       const auto left = close - std::chrono::system_clock::now();
       if (left <= std::chrono::system_clock::duration::zero()) return -1;
@@ -254,29 +240,22 @@ class Station {
     // The round rule screens it as the center does, so both architectures fuse the same
     // measurements; screened out, it still yields a zero increment that tells the peers not to
     // wait for one.
-    Contribution own;
-    own.prior = tracker_.estimate();
-    const OwnContribution result =
-        contribute(own.prior, observation, options_.node.nis_gate(), own.increment);
+    const OwnContribution result = fusion_.contribute(
+        k, observation, options_.node.nis_gate(), options_.node.run_id,
+        [&](const wire::InformationIncrement& s) { io_.increments_out.write(s); });
     if (result.refused) {
       transport::count_drop(drops_, *result.refused, "own measurement", me_.id, k);
     } else if (result.status != NumericalStatus::kOk) {
       throw std::runtime_error(
           fmt::format("step {}: increment failed: {}", k, to_string(result.status)));
     }
-    io_.increments_out.write(transport::to_wire(own, options_.node.run_id, step));
-    collector_.offer(k, me_.id, own);
   }
 
   int fuse_and_publish(std::uint64_t k) {
     // What arrived (everything, in a healthy lock-step round), by the round rule; the track
     // names exactly these stations.
-    const RoundFusion fused = round_.fuse(tracker_, [&](std::size_t i) {
-      if (!collector_.filled(i)) return PeerSlot<kDim>{};
-      const Contribution& c = collector_.payloads()[i];
-      return PeerSlot<kDim>{&c.increment, &c.prior};
-    });
-    if (!round_.arrived()) {  // only while resynchronising: no peer's prior arrived this round
+    const RoundFusion fused = fusion_.fuse();
+    if (!fusion_.arrived()) {  // only while resynchronising: no peer's prior arrived this round
       spdlog::warn("step {}: no peer increment arrived; still without a prior", k);
       return -1;
     }
@@ -294,10 +273,8 @@ class Station {
         spdlog::info("step {}: took the peers' prior; contributing from step {}", k, k + 1);
     }
     syncing_ = false;
-    io_.tracks.write(transport::to_wire(tracker_.estimate(), options_.node.run_id,
-                                        static_cast<std::uint32_t>(k), me_.id, wire::PEER,
-                                        round_.contributors()));
-    tracker_.predict();
+    io_.tracks.write(fusion_.track(options_.node.run_id, k, me_.id));
+    fusion_.predict();
     return -1;
   }
 
@@ -308,11 +285,9 @@ class Station {
   transport::DdsNode node_;
   transport::NodePresence presence_;
   StationEndpoints io_;
-  PeerTracker<Model> tracker_;
-  StepCollector<Contribution> collector_;
+  Fusion fusion_;
   Sensor sensor_;
   Covariance<Sensor::kMeasDim> noise_;
-  PeerRound<Model> round_;
   std::uint64_t epoch_ns_ = 0;  // real time: the system-clock start of step 0
   bool syncing_;                // restarted, and no peer's prior taken yet
   std::uint64_t lost_ = 0;      // increments removed by the simulated loss
@@ -338,7 +313,11 @@ int run_with_sensor(const StationOptions& options, const RunPlan& plan, const St
     throw std::invalid_argument(
         fmt::format("station {}: its noise or site is unusable: {}", me.id, to_string(*why)));
   }
-  Station<Sensor> station(options, plan, me, std::move(source));
+  if (plan.scenario.filter.kind == "imm") {
+    Station<Sensor, ImmFusion<Sensor>> station(options, plan, me, std::move(source));
+    return station.run();
+  }
+  Station<Sensor, SingleModelFusion<Sensor>> station(options, plan, me, std::move(source));
   return station.run();
 }
 

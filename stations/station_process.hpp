@@ -7,7 +7,9 @@
 //          -> publish TrackEstimate -> predict to k+1.
 // A restarted station (--rejoin-at-step) has no prior: in its first round it publishes only its
 // measurement, takes its peers' prior from their increments, and contributes from the next.
-// The estimation is the core's (PeerTracker); this file only moves samples.
+// The estimation is the core's, chosen by the run's filter kind: SingleModelFusion
+// (PeerTracker, single_model_fusion.hpp) or ImmFusion (PeerImm, imm_fusion.hpp), which sends
+// one increment per mode; this file only moves samples.
 
 #include <cstdint>
 #include <memory>

@@ -165,7 +165,8 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   if (o.node.secure_dir) {
     config.security = transport::SecurityConfig{*o.node.secure_dir, transport::kHarnessIdentity};
   }
-  LockstepDriver driver(config, run_id, plan.participants(), check);
+  const std::size_t modes = plan.scenario.filter.kind == "imm" ? ImmConfig::kModeNames.size() : 0;
+  LockstepDriver driver(config, run_id, plan.participants(), modes, check);
 
   try {
     const std::vector<std::string> common = node_arguments(o, plan, run_id, scenario_file);

@@ -35,11 +35,12 @@ std::vector<int> with_center(std::vector<int> ids) {
 }
 
 // What is wrong with a track whatever its step and source's place in the run: another run, a
-// mode that does not match its source, numbers that are not finite. The harness records what
-// the nodes fused, so it refuses what they refuse; lock-step and real time alike.
+// mode that does not match its source, numbers that are not finite, mode probabilities that are
+// not the run's. The harness records what the nodes fused, so it refuses what they refuse;
+// lock-step and real time alike.
 std::optional<DropKind> track_content_refusal(
     const wire::TrackEstimate& t, const std::optional<transport::WireEstimate>& estimate,
-    std::uint64_t run_id) {
+    std::uint64_t run_id, std::size_t modes) {
   if (t.run_id() != run_id) return DropKind::kWrongRun;
   if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterNodeId)) {
     return DropKind::kUnknownStation;
@@ -48,7 +49,21 @@ std::optional<DropKind> track_content_refusal(
   if (!estimate->mean.allFinite() || !estimate->covariance.allFinite()) {
     return DropKind::kNonFinite;
   }
+  if (t.mode_probabilities().size() != modes) return DropKind::kOutOfRange;
+  if (modes != 0) {
+    return check_mode_probabilities(Eigen::Map<const Eigen::VectorXd>(
+        t.mode_probabilities().data(), static_cast<Eigen::Index>(modes)));
+  }
   return std::nullopt;
+}
+
+ReceivedTrack received_track(const wire::TrackEstimate& t,
+                             const transport::WireEstimate& estimate) {
+  return {
+      estimate,
+      {t.contributors().begin(), t.contributors().end()},
+      Eigen::Map<const Eigen::VectorXd>(t.mode_probabilities().data(),
+                                        static_cast<Eigen::Index>(t.mode_probabilities().size()))};
 }
 
 // The same for a measurement: another run, or an observation the center would refuse (its
@@ -98,8 +113,10 @@ double default_discovery_timeout_s(int nodes) {
 
 struct LockstepDriver::Impl {
   Impl(const transport::NodeConfig& config, std::uint64_t run,
-       std::span<const StationConfig> participants, std::function<void()> check_fn)
+       std::span<const StationConfig> participants, std::size_t mode_count,
+       std::function<void()> check_fn)
       : run_id(run),
+        modes(mode_count),
         station_ids(ids_of(participants)),
         check(std::move(check_fn)),
         node(config),
@@ -160,8 +177,8 @@ struct LockstepDriver::Impl {
   std::optional<DropKind> track_refusal(const wire::TrackEstimate& t,
                                         const transport::WriterId& writer) {
     const auto estimate = transport::estimate_from_wire<transport::WireModel::kDim>(t);
-    if (const auto why = track_content_refusal(t, estimate, run_id)) return why;
-    const ReceivedTrack track{*estimate, {t.contributors().begin(), t.contributors().end()}};
+    if (const auto why = track_content_refusal(t, estimate, run_id, modes)) return why;
+    const ReceivedTrack track = received_track(t, *estimate);
     return transport::admit(track_collector, track_sources, t.step(), t.source_id(), writer, track);
   }
   std::optional<DropKind> measurement_refusal(const wire::Measurement& m,
@@ -173,6 +190,7 @@ struct LockstepDriver::Impl {
   }
 
   std::uint64_t run_id;
+  std::size_t modes;  // mode probabilities every track carries
   std::vector<int> station_ids;
   std::map<int, StationConfig> stations;  // by id: where each measurement must come from
   std::function<void()> check;
@@ -209,9 +227,9 @@ struct LockstepDriver::Impl {
 };
 
 LockstepDriver::LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
-                               std::span<const StationConfig> participants,
+                               std::span<const StationConfig> participants, std::size_t modes,
                                std::function<void()> check)
-    : impl_(std::make_unique<Impl>(config, run_id, participants, std::move(check))) {}
+    : impl_(std::make_unique<Impl>(config, run_id, participants, modes, std::move(check))) {}
 
 LockstepDriver::~LockstepDriver() = default;
 
@@ -358,7 +376,7 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     transport::WriterId writer;
     while (d.tracks.take(t, &writer)) {
       const auto estimate = transport::estimate_from_wire<transport::WireModel::kDim>(t);
-      auto why = track_content_refusal(t, estimate, d.run_id);
+      auto why = track_content_refusal(t, estimate, d.run_id, d.modes);
       if (!why) why = rounds.check_track(t.source_id(), t.step());
       if (!why && !d.track_sources.accept(t.source_id(), writer)) why = DropKind::kDuplicate;
       if (!why) {
@@ -366,9 +384,7 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
         const double age_us =
             std::chrono::duration<double, std::micro>(std::chrono::system_clock::now() - scheduled)
                 .count();
-        why = rounds.offer_track(
-            t.source_id(), t.step(),
-            ReceivedTrack{*estimate, {t.contributors().begin(), t.contributors().end()}}, age_us);
+        why = rounds.offer_track(t.source_id(), t.step(), received_track(t, *estimate), age_us);
       }
       if (why) transport::count_drop(d.own_drops, *why, "track", t.source_id(), t.step());
     }

@@ -54,8 +54,10 @@ struct NodeCounts {
 class LockstepDriver {
  public:
   /// `check` is called at least every 50 ms while waiting; it throws RunAborted to end the run.
+  /// Every track must carry `modes` mode probabilities (an IMM run's; 0 for one model).
   LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
-                 std::span<const StationConfig> participants, std::function<void()> check);
+                 std::span<const StationConfig> participants, std::size_t modes,
+                 std::function<void()> check);
   ~LockstepDriver();
 
   /// Waits until every station and the center have announced READY and the harness's own

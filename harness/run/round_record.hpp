@@ -18,6 +18,8 @@ inline constexpr int kCenterNodeId = 0;
 struct ReceivedTrack {
   GaussianState<9> estimate;
   std::vector<int> contributors;  ///< ascending station id
+  /// An IMM run's mode probabilities (ImmConfig::kModeNames order); empty otherwise.
+  Eigen::VectorXd mode_probabilities;
 };
 
 struct RoundRecord {

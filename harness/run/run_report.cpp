@@ -15,9 +15,16 @@
 namespace skyfuse::harness {
 namespace {
 
-double max_abs_entry_difference(const GaussianState<9>& a, const GaussianState<9>& b) {
-  return std::max((a.mean - b.mean).cwiseAbs().maxCoeff(),
-                  (a.covariance - b.covariance).cwiseAbs().maxCoeff());
+// The largest difference of any mode probability (0 for a single-model run's tracks).
+double mode_probability_difference(const ReceivedTrack& a, const ReceivedTrack& b) {
+  if (a.mode_probabilities.size() == 0) return 0.0;
+  return (a.mode_probabilities - b.mode_probabilities).cwiseAbs().maxCoeff();
+}
+
+double max_abs_entry_difference(const ReceivedTrack& a, const ReceivedTrack& b) {
+  return std::max({(a.estimate.mean - b.estimate.mean).cwiseAbs().maxCoeff(),
+                   (a.estimate.covariance - b.estimate.covariance).cwiseAbs().maxCoeff(),
+                   mode_probability_difference(a, b)});
 }
 
 // The peer-to-peer estimate of a round: the lowest-id peer that delivered one.
@@ -33,7 +40,7 @@ double peer_spread(const RoundRecord& r) {
   const ReceivedTrack* first = first_peer(r);
   double spread = 0.0;
   for (const auto& peer : r.peers) {
-    if (peer) spread = std::max(spread, max_abs_entry_difference(peer->estimate, first->estimate));
+    if (peer) spread = std::max(spread, max_abs_entry_difference(*peer, *first));
   }
   return spread;
 }
@@ -73,6 +80,7 @@ RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) c
   s.steps = static_cast<int>(rounds_.size());
   s.speed_kmh = plan_.speed_mps * 3.6;
   s.discovery_s = discovery_s;
+  s.imm = plan_.scenario.filter.kind == "imm";
   double sq_central = 0.0;
   double sq_p2p = 0.0;
   int n_central = 0;
@@ -95,6 +103,9 @@ RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) c
       s.max_abs_diff_central_vs_p2p =
           std::max(s.max_abs_diff_central_vs_p2p,
                    (r.central->estimate.mean.head<3>() - peer->estimate.mean.head<3>()).norm());
+      s.max_abs_diff_mode_probability_central_vs_p2p =
+          std::max(s.max_abs_diff_mode_probability_central_vs_p2p,
+                   mode_probability_difference(*r.central, *peer));
     }
     for (int id : station_ids_) {
       if (!fused_by_a_peer(r, id)) ++s.rounds_missing_by_station[id];
@@ -172,6 +183,8 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
   std::string tracks = "step,source,x0,x1,x2,x3,x4,x5,x6,x7,x8\n";
   std::string measurements = measurements_header();
   std::string rounds = "step,latency_us\n";
+  const bool imm = plan_.scenario.filter.kind == "imm";
+  std::string modes = fmt::format("step,source,{}\n", fmt::join(ImmConfig::kModeNames, ","));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const RoundRecord& r : rounds_) {
     // A node that delivered nothing leaves NaN in steps.csv and no row in the other files.
@@ -192,6 +205,11 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
       tracks += fmt::format("{},{}", r.step, source);
       for (int i = 0; i < 9; ++i) tracks += fmt::format(",{:.17g}", track->estimate.mean(i));
       tracks += '\n';
+      if (imm) {
+        modes += fmt::format("{},{}", r.step, source);
+        for (double p : track->mode_probabilities) modes += fmt::format(",{:.17g}", p);
+        modes += '\n';
+      }
     };
     add_track(0, r.central);
     for (std::size_t i = 0; i < r.peers.size(); ++i) add_track(station_ids_[i], r.peers[i]);
@@ -209,6 +227,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
   write_file_atomically(dir / "tracks.csv", tracks);
   write_file_atomically(dir / "measurements.csv", measurements);
   write_file_atomically(dir / "rounds.csv", rounds);
+  if (imm) write_file_atomically(dir / "modes.csv", modes);
 
   const nlohmann::json json = {{"scenario", plan_.scenario.name},
                                {"seed", plan_.scenario.seed},
@@ -230,6 +249,11 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
                                {"round_latency_us_max", summary.round_latency_us_max},
                                {"discovery_s", summary.discovery_s}};
   nlohmann::json full = json;
+  if (imm) {
+    full["filter"] = "imm";
+    full["max_abs_diff_mode_probability_central_vs_p2p"] =
+        summary.max_abs_diff_mode_probability_central_vs_p2p;
+  }
   if (summary.realtime_deadline_ms > 0.0) {
     full["realtime"] = {{"deadline_ms", summary.realtime_deadline_ms},
                         {"rounds_all_inputs_in_time", summary.rounds_all_inputs_in_time},
@@ -286,6 +310,10 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
   fmt::print(out, "  RMSE central             {:.4f} m\n", s.rmse_central_m);
   fmt::print(out, "  RMSE peer-to-peer        {:.4f} m\n", s.rmse_p2p_m);
   fmt::print(out, "  max |central - p2p|      {:.2e} m\n", s.max_abs_diff_central_vs_p2p);
+  if (s.imm) {
+    fmt::print(out, "  max |central - p2p| mode probability {:.2e}\n",
+               s.max_abs_diff_mode_probability_central_vs_p2p);
+  }
   fmt::print(out, "  max |peer - peer|        {:.2e}{}\n", s.max_abs_diff_between_peers,
              s.max_abs_diff_between_peers == 0.0 ? "  (every peer bit-identical)" : "");
   if (s.max_abs_diff_between_peers != 0.0) {

@@ -30,8 +30,13 @@ struct RunSummary {
   double rmse_central_m = 0.0;
   double rmse_p2p_m = 0.0;
   double max_abs_diff_central_vs_p2p = 0.0;  ///< m, position
-  double max_abs_diff_between_peers = 0.0;   ///< over every state and covariance entry
-  double peer_spread_end = 0.0;              ///< the same, at the last step only
+  /// Whether the run's filter is the IMM, and the largest difference of a mode probability,
+  /// central vs peer-to-peer.
+  bool imm = false;
+  double max_abs_diff_mode_probability_central_vs_p2p = 0.0;
+  /// Over every state and covariance entry, and an IMM run's mode probabilities.
+  double max_abs_diff_between_peers = 0.0;
+  double peer_spread_end = 0.0;  ///< the same, at the last step only
   /// Per station: rounds in which no peer's track contained it (it was down, restarting, or
   /// every peer lost its increment).
   std::map<int, int> rounds_missing_by_station;

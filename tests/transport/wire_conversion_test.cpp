@@ -7,8 +7,11 @@
 
 #include <random>
 
+#include "skyfuse/models/constant_acceleration.hpp"
+#include "skyfuse/models/constant_velocity.hpp"
 #include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/transport/imm_wire.hpp"
 #include "support/random_problems.hpp"
 
 namespace skyfuse::transport {
@@ -102,6 +105,47 @@ TEST(WireConversion, TracksOfAnyStateDimensionArriveAsSent) {
   const auto back6 = estimate_from_wire<6>(to_wire(six, 8, 3, 2, wire::PEER, contributors));
   ASSERT_TRUE(back6.has_value());
   EXPECT_EQ(back6->covariance, six.covariance);
+}
+
+TEST(WireConversion, AnImmContributionArrivesAsSentModeByMode) {
+  std::mt19937 rng(4);
+  ImmContribution<ConstantVelocity3D, ConstantAcceleration3D> sent;
+  sent.station_id = 5;
+  std::get<0>(sent.modes).increment = {5, test::random_spd<6>(rng, 0.1, 10.0),
+                                       random_state<6>(rng).mean};
+  std::get<0>(sent.modes).prior = random_state<6>(rng);
+  std::get<1>(sent.modes).increment = {5, test::random_spd<9>(rng, 0.1, 10.0),
+                                       random_state<9>(rng).mean};
+  std::get<1>(sent.modes).prior = random_state<9>(rng);
+  sent.terms = {LikelihoodTerms{2.25, -17.5, 3}, LikelihoodTerms{1.75, -17.5, 3}};
+  sent.prior_probabilities = Vector<2>(0.625, 0.375);
+
+  const wire::InformationIncrement first = mode_to_wire<0>(sent, 42, 9);
+  const wire::InformationIncrement second = mode_to_wire<1>(sent, 42, 9);
+  EXPECT_EQ(first.mode(), 0U);
+  EXPECT_EQ(second.mode(), 1U);
+  EXPECT_FALSE(is_single_model_sample(first));  // mode 0 of an IMM all the same
+  const auto cv = mode_from_wire<6, 2>(first);
+  const auto ca = mode_from_wire<9, 2>(second);
+  ASSERT_TRUE(cv && ca);
+  EXPECT_EQ(cv->contribution.increment.delta_information,
+            std::get<0>(sent.modes).increment.delta_information);
+  EXPECT_EQ(cv->contribution.prior.covariance, std::get<0>(sent.modes).prior.covariance);
+  EXPECT_EQ(ca->contribution.increment.delta_vector,
+            std::get<1>(sent.modes).increment.delta_vector);
+  EXPECT_EQ(ca->terms.weighted_innovation, 1.75);
+  EXPECT_EQ(ca->terms.log_det_noise, -17.5);
+  EXPECT_EQ(ca->terms.measurement_dim, 3);
+  EXPECT_EQ(ca->prior_probabilities, sent.prior_probabilities);
+
+  // The other mode's dimension, another number of modes, or an impossible dimension: nothing.
+  EXPECT_FALSE((mode_from_wire<9, 2>(first)));
+  EXPECT_FALSE((mode_from_wire<6, 3>(first)));
+  wire::InformationIncrement huge = first;
+  huge.measurement_dim(1000);
+  EXPECT_FALSE((mode_from_wire<6, 2>(huge)));
+  // A single-model run's sample carries none of it.
+  EXPECT_TRUE(is_single_model_sample(to_wire(std::get<1>(sent.modes), 42, 9)));
 }
 
 }  // namespace

@@ -14,12 +14,6 @@ void require_wire_configuration(const Scenario& scenario) {
         "other models run in-process",
         scenario.name, scenario.filter.motion_model.kind, WireModel::kKind));
   }
-  if (scenario.filter.kind != "ekf") {
-    throw std::invalid_argument(fmt::format(
-        "scenario '{}': filter {}: the station and center processes run the ekf only for now; "
-        "it runs in-process (skyfuse sweep)",
-        scenario.name, scenario.filter.kind));
-  }
 }
 
 }  // namespace skyfuse::transport

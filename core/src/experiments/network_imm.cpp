@@ -15,10 +15,8 @@ namespace skyfuse {
 namespace {
 
 using Radar = RangeAzimuthElevation<9>;
-using Peers =
-    PeerImm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
-using Central =
-    CentralImm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
+using Peers = NetworkPeerImm;
+using Central = NetworkCentralImm;
 using CaOnly = PeerImm<KinematicState, ConstantAcceleration3D>;
 
 ConstantAcceleration3D scenario_model(const Scenario& scenario) {

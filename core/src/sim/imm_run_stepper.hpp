@@ -30,10 +30,8 @@ inline constexpr int kImmNeesDof = 6;
 template <template <int> class SensorOf>
 class ImmRunStepper {
  public:
-  using Peers =
-      PeerImm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
-  using Central =
-      CentralImm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
+  using Peers = NetworkPeerImm;
+  using Central = NetworkCentralImm;
   /// The stations' sensor at the CA mode's dimension; each mode reads it at its own.
   using Sensor = SensorOf<ConstantAcceleration3D::kDim>;
   using Observation = StationObservation<Sensor>;

@@ -26,6 +26,12 @@ std::vector<int> RunPlan::participant_ids() const {
   return ids;
 }
 
+std::vector<double> RunPlan::weights_of(std::span<const int> ids) const {
+  std::vector<double> weights;
+  for (int id : ids) weights.push_back(participant(id)->weight);
+  return weights;
+}
+
 RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
   RunPlan plan;
   const int available = static_cast<int>(scenario.stations.size());

@@ -225,5 +225,29 @@ TEST(DropKind, NamesAreDistinctSnakeCase) {
   EXPECT_EQ(to_string(DropKind::kWrongSite), "wrong_site");
 }
 
+TEST(SampleChecks, ImmLikelihoodTermsMustBeARealMeasurementsOrAllZero) {
+  const InformationIncrement<9> increment = real_increment();
+  EXPECT_EQ(check_likelihood_terms({2.5, -18.4, 3}, increment), std::nullopt);
+  EXPECT_EQ(check_likelihood_terms({-0.1, -18.4, 3}, increment), DropKind::kOutOfRange);
+  EXPECT_EQ(check_likelihood_terms({2.5, -18.4, 17}, increment), DropKind::kOutOfRange);
+  EXPECT_EQ(check_likelihood_terms({2.5, 1e4, 3}, increment), DropKind::kOutOfRange);
+  EXPECT_EQ(check_likelihood_terms({std::nan(""), -18.4, 3}, increment), DropKind::kNonFinite);
+  // Screened out: zero terms go with a zero increment, and only with one.
+  InformationIncrement<9> zero = increment;
+  zero.delta_information.setZero();
+  zero.delta_vector.setZero();
+  EXPECT_EQ(check_likelihood_terms({}, zero), std::nullopt);
+  EXPECT_EQ(check_likelihood_terms({}, increment), DropKind::kOutOfRange);
+  EXPECT_EQ(check_likelihood_terms({0.0, -18.4, 0}, zero), DropKind::kOutOfRange);
+}
+
+TEST(SampleChecks, ModeProbabilitiesMustBeADistribution) {
+  EXPECT_EQ(check_mode_probabilities(Vector3(0.2, 0.3, 0.5)), std::nullopt);
+  EXPECT_EQ(check_mode_probabilities(Vector3(0.2, 0.3, 0.4)), DropKind::kOutOfRange);
+  EXPECT_EQ(check_mode_probabilities(Vector3(-0.2, 0.7, 0.5)), DropKind::kOutOfRange);
+  EXPECT_EQ(check_mode_probabilities(Vector3(1.5, -0.5, 0.0)), DropKind::kOutOfRange);
+  EXPECT_EQ(check_mode_probabilities(Vector3(std::nan(""), 0.5, 0.5)), DropKind::kNonFinite);
+}
+
 }  // namespace
 }  // namespace skyfuse

@@ -23,6 +23,11 @@ namespace skyfuse {
 
 using NetworkImmFilter =
     Imm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
+/// The network's IMM as each peer and as the center runs it.
+using NetworkPeerImm =
+    PeerImm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
+using NetworkCentralImm =
+    CentralImm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
 
 /// The IMM of `scenario` (its filter's CA model and ImmConfig) starting from `initial` (its
 /// [p; v; a] estimate and P0).

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
@@ -75,6 +76,9 @@ struct MotionModelConfig {
 /// the CV and CT modes are kept tight, since the paper's 0.5 m per step of position noise would
 /// let every mode explain every step equally well and the probabilities would never move.
 struct ImmConfig {
+  /// The modes, in the order every probability vector and wire sample uses.
+  static constexpr std::array<std::string_view, 3> kModeNames = {
+      "constant_velocity", "constant_acceleration", "coordinated_turn"};
   /// Per-step standard deviations: CV [position m, velocity m/s]; CT [position m, velocity m/s,
   /// turn rate rad/s].
   std::array<double, 2> constant_velocity{0.01, 0.05};

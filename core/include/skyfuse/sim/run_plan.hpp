@@ -31,6 +31,8 @@ struct RunPlan {
   std::vector<int> participant_ids() const;
   /// The participant with this id, or nullptr.
   const StationConfig* participant(int station_id) const;
+  /// The fusion weights of the participants `ids`, in that order.
+  std::vector<double> weights_of(std::span<const int> ids) const;
   TruthTrajectory truth() const {
     return generate_truth(scenario.target, speed_mps, scenario.time_step_s, scenario.steps);
   }

@@ -110,6 +110,44 @@ std::optional<DropKind> check_contribution(const PeerContribution<N>& contributi
   return check_estimate(contribution.prior);
 }
 
+/// The mode probabilities of an IMM sample or track: finite, each in [0, 1], summing to 1 within
+/// 1e-9 (the IMM normalises them; rounding leaves about 1e-16).
+template <typename Probabilities>
+std::optional<DropKind> check_mode_probabilities(const Probabilities& probabilities) {
+  constexpr double kSumTolerance = 1e-9;
+  if (!probabilities.allFinite()) return DropKind::kNonFinite;
+  if ((probabilities.array() < 0.0).any() || (probabilities.array() > 1.0).any() ||
+      std::abs(probabilities.sum() - 1.0) > kSumTolerance) {
+    return DropKind::kOutOfRange;
+  }
+  return std::nullopt;
+}
+
+/// The likelihood terms that travel with an IMM mode's increment: finite, nu^T R^-1 nu >= 0, a
+/// measured dimension in [1, kMaxMeasurementDim] and |log det R| within kMaxLogDetNoise; or, for
+/// a measurement screened out, all zero with a zero increment.
+template <int N>
+std::optional<DropKind> check_likelihood_terms(const LikelihoodTerms& terms,
+                                               const InformationIncrement<N>& increment) {
+  constexpr int kMaxMeasurementDim = 16;
+  constexpr double kMaxLogDetNoise = 1.0e3;  // 16 components of variance 1e-27 .. 1e27
+  if (!std::isfinite(terms.weighted_innovation) || !std::isfinite(terms.log_det_noise)) {
+    return DropKind::kNonFinite;
+  }
+  if (terms.measurement_dim == 0) {
+    const bool all_zero = terms.weighted_innovation == 0.0 && terms.log_det_noise == 0.0 &&
+                          increment.delta_information.isZero(0.0) &&
+                          increment.delta_vector.isZero(0.0);
+    return all_zero ? std::nullopt : std::optional(DropKind::kOutOfRange);
+  }
+  if (terms.weighted_innovation < 0.0 || terms.measurement_dim < 0 ||
+      terms.measurement_dim > kMaxMeasurementDim ||
+      std::abs(terms.log_det_noise) > kMaxLogDetNoise) {
+    return DropKind::kOutOfRange;
+  }
+  return std::nullopt;
+}
+
 /// What a measurement's source must be, whatever it reports: R and the sensor's site finite, R
 /// positive definite, the site within kMaxRangeM of the origin. A receiver checks it for every
 /// sample that brings its own R and site; a station and the in-process run, whose R and site do

@@ -1,0 +1,76 @@
+#pragma once
+// What the center runs on the measurements of a round, by the run's filter kind: the stacked
+// EKF (SingleModelCenter) or the network IMM's stacked form (ImmCenter). Both screen each
+// measurement against their own prior by the round rule, update, and make the track; the center
+// process (center_process.cpp) moves the samples.
+
+#include <cstdint>
+#include <vector>
+
+#include "skyfuse/experiments/network_imm.hpp"
+#include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/tracking/round_rule.hpp"
+#include "skyfuse/transport/imm_wire.hpp"
+#include "skyfuse/transport/wire_conversion.hpp"
+
+namespace skyfuse::center {
+
+/// The stacked EKF, for stations of `Sensor` (one sensor type, or a SensorPack).
+template <typename Sensor>
+class SingleModelCenter {
+ public:
+  using Model = transport::WireModel;
+  using Observation = ObservationFor<Sensor>;
+
+  explicit SingleModelCenter(const RunPlan& plan)
+      : tracker_(plan.motion_model<Model>(), plan.initial_estimate<Model>()),
+        round_(static_cast<std::size_t>(plan.stations)) {}
+
+  /// observation_at(i): the i-th of `count` participants' observation (ascending id) or null;
+  /// on_refused(station_id, why) for each screened out.
+  template <typename ObservationAt, typename OnRefused>
+  NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& gate,
+                         OnRefused on_refused) {
+    return round_.update(tracker_, count, observation_at, gate, on_refused).status;
+  }
+
+  wire::TrackEstimate track(std::uint64_t run_id, std::uint64_t k, int source_id) const {
+    return transport::to_wire(tracker_.estimate(), run_id, static_cast<std::uint32_t>(k), source_id,
+                              wire::CENTRAL, round_.contributors());
+  }
+  void predict() { tracker_.predict(); }
+
+ private:
+  CentralTracker<Model, Sensor> tracker_;
+  CentralRound<Model, Sensor> round_;
+};
+
+/// The network IMM with every mode on the stacked measurement, for stations of one `Sensor`.
+template <typename Sensor>
+class ImmCenter {
+ public:
+  using Observation = StationObservation<Sensor>;
+
+  explicit ImmCenter(const RunPlan& plan)
+      : imm_(make_network_imm(plan.scenario, plan.initial_estimate<ConstantAcceleration3D>())) {
+    contributors_.reserve(static_cast<std::size_t>(plan.stations));
+  }
+
+  template <typename ObservationAt, typename OnRefused>
+  NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& gate,
+                         OnRefused on_refused) {
+    return imm_.template update<Observation>(count, observation_at, gate, on_refused,
+                                             contributors_);
+  }
+
+  wire::TrackEstimate track(std::uint64_t run_id, std::uint64_t k, int source_id) const {
+    return transport::imm_track(imm_.filter(), run_id, k, source_id, wire::CENTRAL, contributors_);
+  }
+  void predict() { imm_.predict(); }
+
+ private:
+  NetworkCentralImm imm_;
+  std::vector<int> contributors_;
+};
+
+}  // namespace skyfuse::center

@@ -1,0 +1,157 @@
+#pragma once
+// What a station fuses when the run's filter is the network IMM (kind imm): per round, one
+// sample per mode from each station (its increment against that mode's prior, the likelihood
+// terms, the prior's mode probabilities), collected by (station, mode). A station counts as
+// arrived when all its modes have; the round is fused by PeerImm::fuse_round in ascending
+// station id onto the lowest-id arrival's mode priors (tracking/imm_network.hpp). Same interface
+// as SingleModelFusion (single_model_fusion.hpp).
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "skyfuse/experiments/network_imm.hpp"
+#include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/imm_wire.hpp"
+#include "skyfuse/transport/source_binding.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
+
+namespace skyfuse::station {
+
+template <typename Sensor>
+class ImmFusion {
+ public:
+  using Peers = NetworkPeerImm;
+  using Contribution = typename Peers::Contribution;
+  static constexpr int kModes = Peers::kModes;
+  template <int I>
+  using ModeSample =
+      transport::ImmModeSample<std::tuple_element_t<I, typename Peers::Filter::ModeStates>::kDim,
+                               kModes>;
+
+  explicit ImmFusion(const RunPlan& plan)
+      : peers_(make_network_imm(plan.scenario, plan.initial_estimate<ConstantAcceleration3D>())),
+        collectors_(make_collectors(plan.participant_ids(), std::make_index_sequence<kModes>{})),
+        weights_(plan.weights_of(station_ids())),
+        assembled_(station_ids().size()) {
+    arrivals_.reserve(assembled_.size());
+    round_weights_.reserve(assembled_.size());
+    contributors_.reserve(assembled_.size());
+  }
+
+  std::span<const int> station_ids() const { return std::get<0>(collectors_).station_ids(); }
+  void start_at(std::uint64_t step) {
+    std::apply([&](auto&... c) { (c.start_at(step), ...); }, collectors_);
+  }
+
+  /// Screens this station's own measurement against the common mixture prior, writes one
+  /// sample per mode (write(sample)) and keeps them for the round.
+  template <typename Write>
+  OwnContribution contribute(std::uint64_t k, const StationObservation<Sensor>& observation,
+                             const NisGate& gate, std::uint64_t run_id, Write write) {
+    Contribution own;
+    const OwnContribution result = peers_.contribute(observation, gate, own);
+    if (result.status != NumericalStatus::kOk) return result;
+    const auto step = static_cast<std::uint32_t>(k);
+    for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      write(transport::mode_to_wire<I>(own, run_id, step));
+      std::get<I>(collectors_)
+          .offer(k, observation.station_id,
+                 ModeSample<I>{std::get<I>(own.modes), own.terms[I], own.prior_probabilities});
+    });
+    return result;
+  }
+
+  /// Checks a peer's sample (its run id already checked) and keeps it under (station, mode);
+  /// why not if it did not.
+  std::optional<DropKind> admit(const wire::InformationIncrement& sample,
+                                const transport::WriterId& writer,
+                                transport::SourceBinding& sources) {
+    std::optional<DropKind> why = DropKind::kOutOfRange;  // a mode this run does not have
+    for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      if (sample.mode() != static_cast<std::uint32_t>(I)) return;
+      const auto mode = transport::mode_from_wire<ModeSample<I>::kDim, kModes>(sample);
+      if (!mode) return;  // not this mode's state dimension, or not kModes probabilities
+      why = check_contribution(mode->contribution);
+      if (!why) why = check_likelihood_terms(mode->terms, mode->contribution.increment);
+      if (!why) why = check_mode_probabilities(mode->prior_probabilities);
+      if (!why) {
+        why = transport::admit(std::get<I>(collectors_), sources, sample.step(),
+                               sample.station_id(), writer, *mode);
+      }
+    });
+    return why;
+  }
+
+  /// Stations all of whose modes are in for the current round.
+  std::size_t arrived_count() const {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < assembled_.size(); ++i) count += complete(i) ? 1 : 0;
+    return count;
+  }
+
+  /// Fuses the stations whose every mode arrived; arrived() then says whether any did. A
+  /// station's prior mode probabilities are its first mode's sample's.
+  RoundFusion fuse() {
+    arrivals_.clear();
+    round_weights_.clear();
+    contributors_.clear();
+    for (std::size_t i = 0; i < assembled_.size(); ++i) {
+      if (!complete(i)) continue;
+      Contribution& c = assembled_[i];
+      c.station_id = station_ids()[i];
+      c.prior_probabilities = std::get<0>(collectors_).payloads()[i].prior_probabilities;
+      for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+        const ModeSample<I>& sample = std::get<I>(collectors_).payloads()[i];
+        std::get<I>(c.modes) = sample.contribution;
+        c.terms[I] = sample.terms;
+      });
+      arrivals_.push_back(&c);
+      round_weights_.push_back(weights_[i]);
+      contributors_.push_back(c.station_id);
+    }
+    return peers_.fuse_round(arrivals_, round_weights_);
+  }
+  bool arrived() const { return !contributors_.empty(); }
+
+  /// The fused track of the round just fused: the mixture's [p; v; a] and the probabilities.
+  wire::TrackEstimate track(std::uint64_t run_id, std::uint64_t k, int station_id) const {
+    return transport::imm_track(peers_.filter(), run_id, k, station_id, wire::PEER, contributors_);
+  }
+
+  void predict() { peers_.predict(); }
+  void advance() {
+    std::apply([](auto&... c) { (c.advance(), ...); }, collectors_);
+  }
+
+ private:
+  template <std::size_t... I>
+  static auto make_collectors(const std::vector<int>& ids, std::index_sequence<I...>) {
+    return std::tuple<StepCollector<ModeSample<static_cast<int>(I)>>...>(
+        StepCollector<ModeSample<static_cast<int>(I)>>(ids)...);
+  }
+  template <typename Fn>
+  static void for_each_mode(Fn&& fn) {
+    [&]<int... I>(std::integer_sequence<int, I...>) {
+      (fn(std::integral_constant<int, I>{}), ...);
+    }
+    (std::make_integer_sequence<int, kModes>{});
+  }
+  bool complete(std::size_t i) const {
+    return std::apply([&](const auto&... c) { return (c.filled(i) && ...); }, collectors_);
+  }
+
+  Peers peers_;
+  decltype(make_collectors({}, std::make_index_sequence<kModes>{})) collectors_;
+  std::vector<double> weights_;          // ascending station id
+  std::vector<Contribution> assembled_;  // per station, rebuilt from its modes each round
+  std::vector<const Contribution*> arrivals_;
+  std::vector<double> round_weights_;
+  std::vector<int> contributors_;
+};
+
+}  // namespace skyfuse::station
