@@ -18,6 +18,7 @@ struct Paper {
 constexpr Paper kPapers[] = {{"paper000", reproduce_paper000},
                              {"paper000-imm", reproduce_paper000_imm},
                              {"paper001", reproduce_paper001},
+                             {"paper002", reproduce_paper002},
                              {"paper003", reproduce_paper003}};
 
 }  // namespace

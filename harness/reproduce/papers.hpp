@@ -25,6 +25,8 @@ Reproduction reproduce_paper000(const ReproduceSettings& settings);
 Reproduction reproduce_paper000_imm(const ReproduceSettings& settings);
 /// Paper 001: manoeuvring-target filters and the LSTM networks on 1 000 test paths.
 Reproduction reproduce_paper001(const ReproduceSettings& settings);
+/// Paper 002: TDOA from a UAV formation; the NCRKF against the nominal, optimal and extended KFs.
+Reproduction reproduce_paper002(const ReproduceSettings& settings);
 /// Paper 003: the GPS Kalman filter's MSE against time.
 Reproduction reproduce_paper003(const ReproduceSettings& settings);
 

@@ -1,0 +1,85 @@
+// The NCRKF in information form against its Eq 11, and its refusal of an update whose fused
+// information is not positive definite.
+#include "skyfuse/filters/ncrkf.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+
+namespace skyfuse {
+namespace {
+
+GaussianState<9> prior() {
+  GaussianState<9> p;
+  p.mean << 1800.0, 2400.0, 3000.0, -40.0, 12.0, -20.0, 0.0, 0.0, 0.0;
+  p.covariance = Covariance<9>::Identity();
+  p.covariance.diagonal().head<3>().setConstant(400.0);
+  p.covariance.diagonal().segment<3>(3).setConstant(25.0);
+  p.covariance(0, 3) = p.covariance(3, 0) = 20.0;
+  return p;
+}
+
+std::vector<PseudoLinearTdoaRow> rows() {
+  return {pseudo_linear_tdoa_row(Vector<2>(200.0, 0.0), -112.3, -112.3, 0.4),
+          pseudo_linear_tdoa_row(Vector<2>(-200.0, 0.0), 126.1, 126.1, 0.4),
+          pseudo_linear_tdoa_row(Vector<2>(0.0, 200.0), -152.8, -152.8, 0.4)};
+}
+
+TEST(Ncrkf, TheInformationFormIsEquation11) {
+  const GaussianState<9> before = prior();
+  GaussianState<9> fused = before;
+  TdoaUpdateScratch scratch;
+  ASSERT_EQ(tdoa_update(fused, rows(), BiasCompensation::kCompensated, scratch),
+            NumericalStatus::kOk);
+
+  // Eq 11: P+^-1 = P-^-1 + sum H^T R^-1 H - W;
+  //        x+ = (I + P+ W) x- + P+ H^T R^-1 (y - H x-) - P+ V.
+  Covariance<9> information = before.covariance.inverse();
+  Covariance<9> w = Covariance<9>::Zero();
+  Vector<9> v = Vector<9>::Zero();
+  Vector<9> innovation_term = Vector<9>::Zero();
+  for (const PseudoLinearTdoaRow& row : rows()) {
+    information += row.h.transpose() * row.h / row.noise;
+    w(2, 2) += row.w;
+    v(2) += row.v;
+    innovation_term += row.h.transpose() * ((row.y - row.h.dot(before.mean)) / row.noise);
+  }
+  information -= w;
+  const Covariance<9> p = information.inverse();
+  const Vector<9> x =
+      (Covariance<9>::Identity() + p * w) * before.mean + p * innovation_term - p * v;
+  EXPECT_LT((fused.mean - x).cwiseAbs().maxCoeff(), 1e-6 * x.cwiseAbs().maxCoeff());
+  EXPECT_LT((fused.covariance - p).cwiseAbs().maxCoeff(), 1e-9 * p.cwiseAbs().maxCoeff());
+
+  // Without compensation it is the plain KF (the nominal filter): W and V make a difference.
+  GaussianState<9> nominal = before;
+  ASSERT_EQ(tdoa_update(nominal, rows(), BiasCompensation::kNone, scratch), NumericalStatus::kOk);
+  EXPECT_GT(std::abs(nominal.mean(2) - fused.mean(2)), 1e-6);
+}
+
+TEST(Ncrkf, ASingleIncrementMayBeIndefiniteAndAnUpdateThatIsNotPositiveDefiniteIsRefused) {
+  // |r~| < sigma: the increment's d_t1 entry 4 r~^2 / R - W is negative.
+  const PseudoLinearTdoaRow row = pseudo_linear_tdoa_row(Vector<2>(200.0, 0.0), 0.1, 0.1, 0.4);
+  const auto increment = tdoa_increment(2, row, BiasCompensation::kCompensated);
+  EXPECT_LT(increment.delta_information(2, 2), 0.0);
+
+  // A prior that knows next to nothing of d_t1 cannot absorb it: the update is refused and the
+  // state kept.
+  GaussianState<9> state = prior();
+  state.covariance(2, 2) = 1e12;
+  const GaussianState<9> before = state;
+  TdoaUpdateScratch scratch;
+  const std::vector<PseudoLinearTdoaRow> one = {row};
+  EXPECT_EQ(tdoa_update(state, one, BiasCompensation::kCompensated, scratch),
+            NumericalStatus::kNotPositiveDefinite);
+  EXPECT_EQ(state.mean, before.mean);
+  EXPECT_EQ(state.covariance, before.covariance);
+  // A prior that knows d_t1 to 0.1 m (information 100 against the increment's -10.4) takes it.
+  GaussianState<9> confident = prior();
+  confident.covariance(2, 2) = 0.01;
+  EXPECT_EQ(tdoa_update(confident, one, BiasCompensation::kCompensated, scratch),
+            NumericalStatus::kOk);
+}
+
+}  // namespace
+}  // namespace skyfuse
