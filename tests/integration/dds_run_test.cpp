@@ -89,19 +89,19 @@ INSTANTIATE_TEST_SUITE_P(Stations, DdsRun, ::testing::Values(1, 3, 8), [](const 
   return name;
 });
 
-// Paper 000's radars with the aircraft's own GPS report as a fifth participant: station
-// processes of two sensor kinds, the center stacking both. Every peer holds the same bits,
-// central equals peer-to-peer, and the run equals the in-process one bit for bit.
-TEST(DdsRunMixed, RadarsAndTheAircraftsGpsEqualTheInProcessRunBitForBit) {
+// `skyfuse run` of a scenario file with `stations` participants: every peer holds the same bits,
+// central equals peer-to-peer within 1e-6 m, nothing is refused, and every track equals the
+// in-process run's bit for bit. Returns the run's folder.
+std::filesystem::path expect_run_equals_twin(const std::string& scenario_file, int stations,
+                                             int domain) {
   const auto dir = test_dir();
-  const std::string scenario = bin("scenarios/paper000-gps.yaml");
-  const Completed run = skyfuse_run(5, 179, dir / "out", {"--scenario", scenario});
-  ASSERT_TRUE(run.status.exited && run.status.code == 0) << run.output;
+  const std::string scenario = bin("scenarios/" + scenario_file);
+  const Completed run = skyfuse_run(stations, domain, dir / "out", {"--scenario", scenario});
+  EXPECT_TRUE(run.status.exited && run.status.code == 0) << run.output;
 
-  const RunPlan plan = make_run_plan(load_scenario_file(scenario), {5, kSteps, {}, 0});
-  ASSERT_EQ(plan.participants()[4].sensor.kind, "position_velocity");
+  const RunPlan plan = make_run_plan(load_scenario_file(scenario), {stations, kSteps, {}, 0});
   const auto tracks = read_tracks(dir / "out" / "tracks.csv");
-  ASSERT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * 6));
+  EXPECT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * (stations + 1)));
   EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   EXPECT_EQ(summary.at("max_abs_diff_between_peers"), 0.0);
@@ -109,8 +109,22 @@ TEST(DdsRunMixed, RadarsAndTheAircraftsGpsEqualTheInProcessRunBitForBit) {
   for (const auto& [kind, count] : summary.at("dropped_by_kind").items()) {
     EXPECT_EQ(count.get<int>(), 0) << kind;
   }
+  return dir / "out";
+}
+
+// Paper 000's radars with the aircraft's own GPS report as a fifth participant: station
+// processes of two sensor kinds, the center stacking both.
+TEST(DdsRunMixed, RadarsAndTheAircraftsGpsEqualTheInProcessRunBitForBit) {
+  const auto out = expect_run_equals_twin("paper000-gps.yaml", 5, 179);
   // The GPS's rows name their sensor in measurements.csv.
-  EXPECT_NE(read_file(dir / "out" / "measurements.csv").find(",11,position_velocity,"),
+  EXPECT_NE(read_file(out / "measurements.csv").find(",11,position_velocity,"), std::string::npos);
+}
+
+// Paper 002's formation: three TDOA receivers as station processes (a one-component sensor
+// whose site is fixed in the reference UAV's frame), the EKF on the range differences.
+TEST(DdsRunTdoa, ThreeReceiversOfPaper002EqualTheInProcessRunBitForBit) {
+  const auto out = expect_run_equals_twin("paper002.yaml", 3, 183);
+  EXPECT_NE(read_file(out / "measurements.csv").find("step,station_id,range_difference_m"),
             std::string::npos);
 }
 

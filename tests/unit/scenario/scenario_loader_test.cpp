@@ -295,5 +295,21 @@ TEST(ScenarioLoader, RefusesImmSettingsThatCannotWork) {
             "(line 39)");
 }
 
+TEST(ScenarioLoader, ReadsPaper002sTdoaReceivers) {
+  const Scenario s = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002.yaml");
+  ASSERT_EQ(s.stations.size(), 3U);
+  EXPECT_EQ(s.stations[0].sensor.kind, "tdoa_range_difference");
+  EXPECT_EQ(s.stations[0].sensor.noise_std, Eigen::VectorXd::Constant(1, 0.4));
+  EXPECT_EQ(s.stations[2].position_m, Vector3(0.0, 200.0, 0.0));
+  EXPECT_EQ(s.steps, 5000);
+  EXPECT_EQ(
+      rejection(
+          default_with("sensor: &radar {kind: range_azimuth_elevation, noise_std: [0.1, "
+                       "0.01, 0.01]}",
+                       "sensor: &radar {kind: tdoa_range_difference, noise_std: [0.1, 0.2]}")),
+      "test.yaml: stations[0].sensor.noise_std: expected [range_difference_m], got '[0.1, 0.2]' "
+      "(line 38)");
+}
+
 }  // namespace
 }  // namespace skyfuse

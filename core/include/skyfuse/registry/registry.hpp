@@ -16,13 +16,14 @@
 #include "skyfuse/models/constant_velocity.hpp"
 #include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/models/tdoa/range_difference_sensor.hpp"
 #include "skyfuse/registry/part_lists.hpp"
 #include "skyfuse/registry/sensor_pack.hpp"
 
 namespace skyfuse {
 
 using MotionModels = ModelList<ConstantAcceleration3D, ConstantVelocity3D>;
-using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity>;
+using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity, RangeDifferenceSensor>;
 
 /// Stations with different sensors in one run: any registered sensor, for an N-entry state.
 template <int N>
