@@ -10,6 +10,7 @@
 
 #include "report/output_files.hpp"
 #include "report/statistics.hpp"
+#include "skyfuse/models/state_position.hpp"
 #include "skyfuse/registry/part_info.hpp"
 
 namespace skyfuse::harness {
@@ -65,9 +66,18 @@ RunRecorder::RunRecorder(const RunPlan& plan, std::vector<int> station_ids,
     : plan_(plan),
       station_ids_(std::move(station_ids)),
       restarts_(std::move(restarts)),
-      truth_(plan.truth()) {
+      truth_(plan.truth()),
+      position_dim_(find_motion_model(plan.scenario.filter.motion_model.kind)->position_dim) {
   std::sort(station_ids_.begin(), station_ids_.end());
   rounds_.reserve(static_cast<std::size_t>(plan.scenario.steps));
+}
+
+Vector3 RunRecorder::position_of(const ReceivedTrack& track) const {
+  return state_position(track.estimate.mean, position_dim_);
+}
+
+Vector3 RunRecorder::truth_position(std::uint64_t step) const {
+  return state_position(truth_.states[step], position_dim_);
 }
 
 void RunRecorder::add(RoundRecord round) {
@@ -88,21 +98,20 @@ RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) c
   std::vector<double> latencies_us;
   for (int id : station_ids_) s.rounds_missing_by_station[id] = 0;
   for (const RoundRecord& r : rounds_) {
-    const Vector3 p = truth_.position(r.step);
+    const Vector3 p = truth_position(r.step);
     const ReceivedTrack* peer = first_peer(r);
     if (r.central) {
-      sq_central += (p - r.central->estimate.mean.head<3>()).squaredNorm();
+      sq_central += (p - position_of(*r.central)).squaredNorm();
       ++n_central;
     }
     if (peer) {
-      sq_p2p += (p - peer->estimate.mean.head<3>()).squaredNorm();
+      sq_p2p += (p - position_of(*peer)).squaredNorm();
       ++n_p2p;
       s.max_abs_diff_between_peers = std::max(s.max_abs_diff_between_peers, peer_spread(r));
     }
     if (r.central && peer) {
-      s.max_abs_diff_central_vs_p2p =
-          std::max(s.max_abs_diff_central_vs_p2p,
-                   (r.central->estimate.mean.head<3>() - peer->estimate.mean.head<3>()).norm());
+      s.max_abs_diff_central_vs_p2p = std::max(
+          s.max_abs_diff_central_vs_p2p, (position_of(*r.central) - position_of(*peer)).norm());
       s.max_abs_diff_mode_probability_central_vs_p2p =
           std::max(s.max_abs_diff_mode_probability_central_vs_p2p,
                    mode_probability_difference(*r.central, *peer));
@@ -188,11 +197,10 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const RoundRecord& r : rounds_) {
     // A node that delivered nothing leaves NaN in steps.csv and no row in the other files.
-    const Vector3 p = truth_.position(r.step);
+    const Vector3 p = truth_position(r.step);
     const ReceivedTrack* peer = first_peer(r);
-    const Vector3 c =
-        r.central ? Vector3(r.central->estimate.mean.head<3>()) : Vector3::Constant(nan);
-    const Vector3 d = peer ? Vector3(peer->estimate.mean.head<3>()) : Vector3::Constant(nan);
+    const Vector3 c = r.central ? position_of(*r.central) : Vector3::Constant(nan);
+    const Vector3 d = peer ? position_of(*peer) : Vector3::Constant(nan);
     steps += fmt::format(
         "{},{:.3f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6e},{:.6e},{:."
         "3e},{:.3e}\n",

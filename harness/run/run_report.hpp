@@ -89,7 +89,11 @@ class RunRecorder {
   std::vector<int> station_ids_;
   std::vector<StationEvent> restarts_;
   TruthTrajectory truth_;
+  int position_dim_;  // leading state entries that are the position (models/state_position.hpp)
   std::vector<RoundRecord> rounds_;
+
+  Vector3 position_of(const ReceivedTrack& track) const;
+  Vector3 truth_position(std::uint64_t step) const;
 
   // measurements.csv: `step,station_id,` and the sensor's components when every participant
   // has the same sensor (what --replay reads), else `step,station_id,sensor,z0,z1,...`.

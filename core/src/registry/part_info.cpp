@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "skyfuse/models/state_position.hpp"
 #include "skyfuse/registry/registry.hpp"
 
 namespace skyfuse {
@@ -11,7 +12,8 @@ template <typename... Models>
 std::vector<MotionModelInfo> describe(ModelList<Models...> /*list*/) {
   return {MotionModelInfo{
       Models::kKind, Models::kDim,
-      std::vector<std::string_view>(Models::kNoiseFields.begin(), Models::kNoiseFields.end())}...};
+      std::vector<std::string_view>(Models::kNoiseFields.begin(), Models::kNoiseFields.end()),
+      position_dim<Models>()}...};
 }
 
 // Sensor<N> for an N large enough for any sensor: the constants do not depend on N.

@@ -80,18 +80,16 @@ class ImmRunStepper {
     const Vector3 p = x.head<3>();
     const Vector3 p_central = central_estimate_.mean.head<3>();
     const Vector3 p_p2p = p2p_estimate_.mean.head<3>();
-    trace_.sq_error_central[k] = (p - p_central).squaredNorm();
-    trace_.sq_error_p2p[k] = (p - p_p2p).squaredNorm();
+    run_setup::record_positions(trace_, k, p, p_central, p_p2p);
     trace_.nees_p2p[k] =
         nees<kImmNeesDof>(x.head<kImmNeesDof>(),
                           {p2p_estimate_.mean.head<kImmNeesDof>(),
                            p2p_estimate_.covariance.topLeftCorner<kImmNeesDof, kImmNeesDof>()});
     trace_.nis_central[k] =
         contributors_.empty() ? 0.0 : prior_probabilities.dot(central_.mode_nis());
-    trace_.max_abs_diff_m = std::max(trace_.max_abs_diff_m, (p_central - p_p2p).norm());
     if (observer) {
       observer({static_cast<int>(k), x, EstimateView::of(central_estimate_),
-                EstimateView::of(p2p_estimate_), trace_.nis_central[k]});
+                EstimateView::of(p2p_estimate_), trace_.nis_central[k], p_central, p_p2p});
     }
     central_.predict();
     peers_.predict();

@@ -11,7 +11,9 @@
 #include <thread>
 
 #include "sim/imm_run_stepper.hpp"
+#include "sim/ncrkf_run_stepper.hpp"
 #include "sim/run_setup.hpp"
+#include "skyfuse/models/state_position.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/registry/part_info.hpp"
@@ -83,20 +85,7 @@ class RunStepper {
           fmt::format("p2p: step {}: fusion failed: {}", k, to_string(fused.status)));
     }
 
-    const Vector3 p = x.head<3>();
-    const Vector3 p_central = central_.estimate().mean.template head<3>();
-    const Vector3 p_p2p = peers_.estimate().mean.template head<3>();
-    trace_.sq_error_central[k] = (p - p_central).squaredNorm();
-    trace_.sq_error_p2p[k] = (p - p_p2p).squaredNorm();
-    // P^-1 is the fused information matrix the peers hold anyway: e^T Y e.
-    const Vector<kDim> error = Model::from_kinematics(x) - peers_.estimate().mean;
-    trace_.nees_p2p[k] = error.dot(peers_.information() * error);
-    trace_.nis_central[k] = central_report.nis;
-    trace_.max_abs_diff_m = std::max(trace_.max_abs_diff_m, (p_central - p_p2p).norm());
-    if (observer) {
-      observer({static_cast<int>(k), x, EstimateView::of(central_.estimate()),
-                EstimateView::of(peers_.estimate()), central_report.nis});
-    }
+    run_setup::record_step(trace_, k, x, central_.estimate(), peers_, central_report.nis, observer);
     central_.predict();
     peers_.predict();
   }
@@ -166,6 +155,19 @@ std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
       scenario, most,
       [&]<typename Model, template <int> class SensorOf>(std::type_identity<Model>,
                                                          SensorTemplate<SensorOf>) {
+        if (scenario.filter.kind == "ncrkf") {
+          // The loader allows the NCRKF only over its model and sensor.
+          if constexpr (std::is_same_v<Model, TdoaRelativeMotion> &&
+                        std::is_same_v<SensorOf<9>, RangeDifferenceSensor<9>>) {
+            traces = simulate_runs<NcrkfRunStepper, SensorOf>(scenario, truth, station_counts, run,
+                                                              gate, observer);
+          } else {
+            throw std::logic_error(
+                "filter ncrkf: needs tdoa_relative_constant_acceleration and "
+                "tdoa_range_difference");
+          }
+          return;
+        }
         if (scenario.filter.kind != "imm") {
           traces = simulate_runs<RunStepper<Model, SensorOf>, SensorOf>(
               scenario, truth, station_counts, run, gate, observer);

@@ -11,11 +11,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "skyfuse/models/state_position.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/registry/sensor_pack.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
+#include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse::run_setup {
@@ -62,6 +64,33 @@ std::vector<ObservationFor<Sensor>> checked_observations(const Scenario& scenari
     }
   }
   return out;
+}
+
+/// Records step k's position errors of both tracks and their difference.
+inline void record_positions(RunTrace& trace, std::size_t k, const Vector3& truth,
+                             const Vector3& central, const Vector3& p2p) {
+  trace.sq_error_central[k] = (truth - central).squaredNorm();
+  trace.sq_error_p2p[k] = (truth - p2p).squaredNorm();
+  trace.max_abs_diff_m = std::max(trace.max_abs_diff_m, (central - p2p).norm());
+}
+
+/// Records step k of a run whose peers hold a PeerTracker (truth x, the center's estimate, the
+/// central NIS) and tells the observer. P^-1 for the NEES is the fused information matrix the
+/// peers hold anyway: e^T Y e.
+template <typename Model>
+void record_step(RunTrace& trace, std::size_t k, const Vector<9>& x,
+                 const GaussianState<Model::kDim>& central, const PeerTracker<Model>& peers,
+                 double nis_central, const StepObserver& observer) {
+  const Vector3 p_central = state_position<Model>(central.mean);
+  const Vector3 p_p2p = state_position<Model>(peers.estimate().mean);
+  record_positions(trace, k, state_position<Model>(Model::from_kinematics(x)), p_central, p_p2p);
+  const Vector<Model::kDim> error = Model::from_kinematics(x) - peers.estimate().mean;
+  trace.nees_p2p[k] = error.dot(peers.information() * error);
+  trace.nis_central[k] = nis_central;
+  if (observer) {
+    observer({static_cast<int>(k), x, EstimateView::of(central), EstimateView::of(peers.estimate()),
+              nis_central, p_central, p_p2p});
+  }
 }
 
 inline RunTrace sized_trace(int steps) {

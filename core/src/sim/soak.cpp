@@ -44,7 +44,7 @@ SoakReport soak(const Scenario& base, int stations, std::int64_t steps) {
       }
       if (bad) ++report.bad_steps;
       if (r.step >= window_start) {
-        window_sum += (r.truth.head<3>() - r.decentralised.mean.head<3>()).squaredNorm();
+        window_sum += (r.truth.head<3>() - r.position_p2p).squaredNorm();
       }
     });
   } catch (const NumericalError& e) {

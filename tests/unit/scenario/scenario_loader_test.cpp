@@ -234,8 +234,9 @@ TEST(ScenarioLoader, RefusesAnUnknownPart) {
                         0),
             0U)
       << model;
-  EXPECT_EQ(rejection(default_with("kind: ekf", "kind: particle")),
-            "test.yaml: filter.kind: unknown filter 'particle' (registered: ekf, imm) (line 57)");
+  EXPECT_EQ(
+      rejection(default_with("kind: ekf", "kind: particle")),
+      "test.yaml: filter.kind: unknown filter 'particle' (registered: ekf, imm, ncrkf) (line 57)");
 }
 
 TEST(ScenarioLoader, RefusesFieldsThatDoNotFitThePart) {
@@ -309,6 +310,27 @@ TEST(ScenarioLoader, ReadsPaper002sTdoaReceivers) {
                        "sensor: &radar {kind: tdoa_range_difference, noise_std: [0.1, 0.2]}")),
       "test.yaml: stations[0].sensor.noise_std: expected [range_difference_m], got '[0.1, 0.2]' "
       "(line 38)");
+}
+
+TEST(ScenarioLoader, TheNcrkfNeedsItsModelAndTdoaReceivers) {
+  const Scenario s = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002-ncrkf.yaml");
+  EXPECT_EQ(s.filter.kind, "ncrkf");
+  EXPECT_EQ(s.filter.motion_model.kind, "tdoa_relative_constant_acceleration");
+  EXPECT_EQ(rejection(default_with("  kind: ekf\n", "  kind: ncrkf\n")),
+            "test.yaml: filter.motion_model.kind: filter 'ncrkf' runs on "
+            "tdoa_relative_constant_acceleration, not 'constant_acceleration_3d' (line 59)");
+  std::string radars = default_with("  kind: ekf\n", "  kind: ncrkf\n");
+  const std::string model =
+      "kind: constant_acceleration_3d\n"
+      "    process_noise_std: {position_m: 0.5, velocity_mps: 0.1, "
+      "acceleration_mps2: 0.05}";
+  ASSERT_NE(radars.find(model), std::string::npos);
+  radars.replace(radars.find(model), model.size(),
+                 "kind: tdoa_relative_constant_acceleration\n"
+                 "    process_noise_std: {acceleration_mps2: 0.1}");
+  EXPECT_EQ(rejection(radars),
+            "test.yaml: stations[0]: filter 'ncrkf' needs tdoa_range_difference receivers; "
+            "station 1 has range_azimuth_elevation (line 36)");
 }
 
 }  // namespace

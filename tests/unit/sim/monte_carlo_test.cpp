@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "skyfuse/scenario/scenario_loader.hpp"
 
 namespace skyfuse {
@@ -40,6 +42,25 @@ TEST(MonteCarlo, AnImmScenarioRunsCentralAndPeerToPeerAlikeAndFollowsTheTurn) {
     ca_turn += c.sq_error_p2p[k];
   }
   EXPECT_LT(imm_turn, 0.5 * ca_turn);
+}
+
+// Filter kind "ncrkf" (paper 002's receivers): the center fuses the same bias-compensated
+// increments onto its own prior, so central and peer-to-peer hold the same bits; two receivers
+// cannot fix the target, three can.
+TEST(MonteCarlo, AnNcrkfScenarioRunsCentralAndPeerToPeerAlike) {
+  const Scenario s = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002-ncrkf.yaml");
+  const TruthTrajectory truth =
+      generate_truth(s.target, s.target.speeds_mps.front(), s.time_step_s, s.steps);
+  const RunTrace three = simulate_run(s, truth, 3, 0);
+  EXPECT_EQ(three.max_abs_diff_m, 0.0);
+  EXPECT_EQ(three.refused_p2p, three.refused_central);
+  double late = 0.0;
+  for (std::size_t k = 2500; k < 5000; ++k) late += three.sq_error_p2p[k];
+  EXPECT_LT(std::sqrt(late / 2500.0), 20.0);
+  const RunTrace two = simulate_run(s, truth, 2, 0);
+  double late_two = 0.0;
+  for (std::size_t k = 2500; k < 5000; ++k) late_two += two.sq_error_p2p[k];
+  EXPECT_GT(std::sqrt(late_two / 2500.0), 3.0 * std::sqrt(late / 2500.0));
 }
 
 TEST(MonteCarlo, ReproducesThePapersRmseBoundForThreeOrMoreStations) {

@@ -16,6 +16,8 @@ struct MotionModelInfo {
   int state_dim = 0;
   /// Names of the process-noise standard deviations, in the order the model takes them.
   std::vector<std::string_view> noise_fields;
+  /// Leading state entries that are the position (models/state_position.hpp).
+  int position_dim = 3;
 };
 
 struct SensorInfo {
@@ -31,8 +33,9 @@ struct SensorInfo {
 
 /// Filters a scenario can name. "ekf": the extended Kalman filter, which is the Kalman filter
 /// itself when the model and sensor are linear. "imm": an IMM of 3-D CV, CA (the scenario's
-/// motion model) and CT modes (scenario.hpp, ImmConfig).
-inline constexpr std::string_view kFilterKinds[] = {"ekf", "imm"};
+/// motion model) and CT modes (scenario.hpp, ImmConfig). "ncrkf": paper 002's noise-correlation
+/// robust KF on tdoa_range_difference receivers and the tdoa_relative_constant_acceleration model.
+inline constexpr std::string_view kFilterKinds[] = {"ekf", "imm", "ncrkf"};
 
 std::vector<MotionModelInfo> motion_model_infos();
 std::vector<SensorInfo> sensor_infos();

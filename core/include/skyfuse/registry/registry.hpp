@@ -17,12 +17,13 @@
 #include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/models/tdoa/range_difference_sensor.hpp"
+#include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/registry/part_lists.hpp"
 #include "skyfuse/registry/sensor_pack.hpp"
 
 namespace skyfuse {
 
-using MotionModels = ModelList<ConstantAcceleration3D, ConstantVelocity3D>;
+using MotionModels = ModelList<ConstantAcceleration3D, ConstantVelocity3D, TdoaRelativeMotion>;
 using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity, RangeDifferenceSensor>;
 
 /// Stations with different sensors in one run: any registered sensor, for an N-entry state.

@@ -42,6 +42,9 @@ struct StepRecord {
   EstimateView central;
   EstimateView decentralised;
   double nis_central;
+  /// The two estimates' positions (models/state_position.hpp).
+  Vector3 position_central;
+  Vector3 position_p2p;
 };
 using StepObserver = std::function<void(const StepRecord&)>;
 

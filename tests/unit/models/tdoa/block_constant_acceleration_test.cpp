@@ -37,5 +37,16 @@ TEST(BlockConstantAcceleration, ItsProcessNoiseIsQTimesGGTransposed) {
   EXPECT_GT(eigen.eigenvalues().minCoeff(), -1e-12 * eigen.eigenvalues().maxCoeff());
 }
 
+TEST(BlockConstantAcceleration, ItsBlockPropagationIsFPFTransposedPlusQ) {
+  const BlockConstantAcceleration<3> model(0.002, 0.01);
+  Covariance<9> p = Covariance<9>::Identity();
+  for (int i = 0; i < 9; ++i) {
+    for (int j = 0; j < 9; ++j) p(i, j) += 0.01 * (i + 1) * (j + 1);
+  }
+  const Covariance<9> f = model.jacobian(Vector<9>::Zero());
+  const Covariance<9> dense = f * p * f.transpose() + model.process_noise();
+  EXPECT_LT((model.propagate_covariance(p) - dense).cwiseAbs().maxCoeff(), 1e-15);
+}
+
 }  // namespace
 }  // namespace skyfuse

@@ -1,0 +1,42 @@
+#pragma once
+/// \file
+/// Paper 002's relative state as a scenario's motion model, `tdoa_relative_constant_acceleration`:
+/// BlockConstantAcceleration<3> over [dx, dy, d_t1] (block_constant_acceleration.hpp), in the
+/// frame of the reference receiver at the origin, with one noise field, the standard deviation
+/// of each acceleration's increment per step (the paper's q is its square). The position is
+/// [dx, dy] (planar); d_t1 = |[dx, dy]| is a state of its own, not enforced.
+
+#include <array>
+#include <string_view>
+
+#include "skyfuse/models/tdoa/block_constant_acceleration.hpp"
+
+namespace skyfuse {
+
+class TdoaRelativeMotion : public BlockConstantAcceleration<3> {
+ public:
+  static constexpr std::string_view kKind = "tdoa_relative_constant_acceleration";
+  static constexpr std::array<std::string_view, 1> kNoiseFields = {"acceleration_mps2"};
+  using NoiseStd = std::array<double, kNoiseFields.size()>;
+  /// [dx, dy] is the position; entry 2 is the range d_t1, not a height.
+  static constexpr int kPositionDim = 2;
+
+  TdoaRelativeMotion(double time_step_s, const NoiseStd& noise_std)
+      : BlockConstantAcceleration<3>(time_step_s, noise_std[0] * noise_std[0]) {}
+
+  /// The state of the target's kinematics [p; v; a] (relative to the reference receiver):
+  /// [dx, dy, d, dvx, dvy, d', dax, day, d''] with d = |dp|, d' = dp.dv / d and
+  /// d'' = (|dv|^2 + dp.da - d'^2) / d, in the horizontal plane.
+  static State from_kinematics(const Vector<9>& kinematics) {
+    const Vector<2> p = kinematics.segment<2>(0);
+    const Vector<2> v = kinematics.segment<2>(3);
+    const Vector<2> a = kinematics.segment<2>(6);
+    const double d = p.norm();
+    const double d_rate = p.dot(v) / d;
+    State x;
+    x << p, d, v, d_rate, a, (v.squaredNorm() + p.dot(a) - d_rate * d_rate) / d;
+    return x;
+  }
+};
+
+}  // namespace skyfuse

@@ -1,0 +1,110 @@
+#pragma once
+// One run of filter kind "ncrkf" stepping through its measurements: the peers' fused NCRKF and
+// the center's stacked one (tracking/tdoa_round.hpp), by the same rule the processes will
+// follow. Same interface as monte_carlo.cpp's RunStepper.
+
+#include <fmt/format.h>
+
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+#include "sim/run_setup.hpp"
+#include "skyfuse/models/state_position.hpp"
+#include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
+#include "skyfuse/registry/make_parts.hpp"
+#include "skyfuse/sim/monte_carlo.hpp"
+#include "skyfuse/tracking/round_rule.hpp"
+#include "skyfuse/tracking/tdoa_round.hpp"
+
+namespace skyfuse {
+
+class NcrkfRunStepper {
+ public:
+  using Model = TdoaRelativeMotion;
+  static constexpr int kDim = Model::kDim;
+  using Sensor = RangeDifferenceSensor<kDim>;
+  using Observation = StationObservation<Sensor>;
+  using Measurement = Vector<1>;
+
+  NcrkfRunStepper(const Scenario& scenario, const TruthTrajectory& truth, int stations,
+                  std::uint64_t run, const NisGate& gate)
+      : motion_(make_motion_model<Model>(scenario)),
+        central_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
+        peers_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
+        order_(run_setup::ascending(scenario, stations)),
+        observations_(run_setup::checked_observations<Sensor>(scenario, order_, run)),
+        central_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_)),
+        peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_)),
+        trace_(run_setup::sized_trace(scenario.steps)) {
+    if (gate.enabled()) {
+      throw std::invalid_argument(
+          "filter ncrkf: takes no NIS gate (its increments are not an "
+          "EKF's)");
+    }
+    increments_.resize(order_.size());
+    usable_.assign(order_.size(), true);
+  }
+
+  void step(std::size_t k, const Vector<9>& x, std::span<const Measurement> z,
+            const StepObserver& observer) {
+    for (std::size_t j = 0; j < order_.size(); ++j) {
+      observations_[j].z = z[order_[j]];
+      usable_[j] = !Sensor::check_reported(observations_[j].z);
+      if (!usable_[j]) ++trace_.refused_p2p;
+      increments_[j] = tdoa_contribution(observations_[j]);
+    }
+    // The center computes the same increments from the same measurements: its stacked NCRKF is
+    // their fusion onto its own prior.
+    trace_.refused_central += fuse(central_, central_round_, k, "central");
+    trace_.refused_p2p += fuse(peers_, peer_round_, k, "p2p");
+
+    // The pseudo-linear update has no EKF innovation: no NIS.
+    run_setup::record_step(trace_, k, x, central_.estimate(), peers_, 0.0, observer);
+    central_.predict();
+    peers_.predict();
+  }
+
+  RunTrace take_trace() { return std::move(trace_); }
+
+ private:
+  // Fuses the usable increments of the round onto `tracker`'s prior; if the fused information is
+  // not positive definite, again without the indefinite ones. Returns how many it refused.
+  int fuse(PeerTracker<Model>& tracker, PeerRound<Model>& round, std::size_t k, const char* who) {
+    const GaussianState<kDim> prior = tracker.estimate();
+    const auto slots = [&](bool skip_indefinite) {
+      return [&, skip_indefinite](std::size_t j) {
+        if (!usable_[j] || (skip_indefinite && is_indefinite(increments_[j]))) {
+          return PeerSlot<kDim>{};
+        }
+        return PeerSlot<kDim>{&increments_[j], &prior};
+      };
+    };
+    RoundFusion fused = round.fuse(tracker, slots(false));
+    int refused = 0;
+    if (fused.status == NumericalStatus::kNotPositiveDefinite) {
+      for (std::size_t j = 0; j < increments_.size(); ++j) {
+        refused += usable_[j] && is_indefinite(increments_[j]) ? 1 : 0;
+      }
+      fused = round.fuse(tracker, slots(true));
+    }
+    if (fused.status != NumericalStatus::kOk) {
+      throw NumericalError(
+          fmt::format("{} NCRKF: step {}: fusion failed: {}", who, k, to_string(fused.status)));
+    }
+    return refused;
+  }
+
+  Model motion_;
+  PeerTracker<Model> central_;
+  PeerTracker<Model> peers_;
+  std::vector<std::size_t> order_;  // ascending id -> scenario index
+  std::vector<Observation> observations_;
+  std::vector<InformationIncrement<kDim>> increments_;
+  std::vector<bool> usable_;  // each measurement passed its check
+  PeerRound<Model> central_round_;
+  PeerRound<Model> peer_round_;
+  RunTrace trace_;
+};
+
+}  // namespace skyfuse
