@@ -1,10 +1,13 @@
-// The NCRKF in information form against its Eq 11, and its refusal of an update whose fused
-// information is not positive definite.
+// The NCRKF in information form against its Eq 11, its refusal of an update whose fused
+// information is not positive definite, and what a received TDOA increment must be.
 #include "skyfuse/filters/ncrkf.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <cmath>
+
+#include "skyfuse/tracking/tdoa_round.hpp"
 
 namespace skyfuse {
 namespace {
@@ -79,6 +82,38 @@ TEST(Ncrkf, ASingleIncrementMayBeIndefiniteAndAnUpdateThatIsNotPositiveDefiniteI
   confident.covariance(2, 2) = 0.01;
   EXPECT_EQ(tdoa_update(confident, one, BiasCompensation::kCompensated, scratch),
             NumericalStatus::kOk);
+}
+
+TEST(TdoaIncrementCheck, TakesEveryRealIncrementIndefiniteOnesIncludedAndRefusesGarbage) {
+  constexpr double kSigma = 0.4;
+  // Real increments over range differences from -150 m to 150 m, |r~| < sigma among them.
+  for (double r = -150.0; r <= 150.0; r += 0.05) {
+    const auto increment =
+        tdoa_increment(2, pseudo_linear_tdoa_row(Vector<2>(200.0, 0.0), r, r, kSigma),
+                       BiasCompensation::kCompensated);
+    ASSERT_EQ(check_tdoa_increment(increment, kSigma), std::nullopt) << "r~ " << r;
+  }
+  const auto real =
+      tdoa_increment(2, pseudo_linear_tdoa_row(Vector<2>(0.0, 200.0), 0.1, 0.1, kSigma),
+                     BiasCompensation::kCompensated);
+  ASSERT_TRUE(is_indefinite(real));
+  // More indefinite than any W of this sigma.
+  auto too_negative = real;
+  too_negative.delta_information(2, 2) -= 2.0 / (kSigma * kSigma);
+  EXPECT_EQ(check_tdoa_increment(too_negative, kSigma), DropKind::kNotPositive);
+  // Information about a velocity or an acceleration: no TDOA receiver gives that.
+  auto velocity = real;
+  velocity.delta_information(4, 4) = 1.0;
+  EXPECT_EQ(check_tdoa_increment(velocity, kSigma), DropKind::kOutOfRange);
+  auto vector = real;
+  vector.delta_vector(8) = 1.0;
+  EXPECT_EQ(check_tdoa_increment(vector, kSigma), DropKind::kOutOfRange);
+  auto nan = real;
+  nan.delta_vector(0) = std::nan("");
+  EXPECT_EQ(check_tdoa_increment(nan, kSigma), DropKind::kNonFinite);
+  auto huge = real;
+  huge.delta_information(0, 0) = 1e300;
+  EXPECT_EQ(check_tdoa_increment(huge, kSigma), DropKind::kOutOfRange);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 /// the same rule to the same increments and so keep the same bits.
 
 #include <cmath>
+#include <optional>
 
 #include "skyfuse/filters/ncrkf.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
@@ -28,6 +29,29 @@ inline InformationIncrement<PseudoLinearTdoaRow::kDim> tdoa_contribution(
   const PseudoLinearTdoaRow row = pseudo_linear_tdoa_row(observation.sensor.offset(),
                                                          observation.z(0), observation.z(0), sigma);
   return tdoa_increment(observation.station_id, row, BiasCompensation::kCompensated);
+}
+
+/// What a TDOA increment received from a receiver of noise `sigma` must be, since one need not
+/// be positive semi-definite: finite and within check_increment()'s bounds; zero outside
+/// [dx, dy, d_t1] (its 3 x 3 block and the first three entries of dy); and no more indefinite
+/// than bias compensation can make it, ΔQ + (2 / sigma^2) e3 e3^T positive semi-definite, since
+/// H~^T R^-1 H~ is and W_j = 2 / (2 r~^2 + sigma^2) <= 2 / sigma^2.
+inline std::optional<DropKind> check_tdoa_increment(
+    const InformationIncrement<PseudoLinearTdoaRow::kDim>& increment, double sigma) {
+  constexpr int kRange = PseudoLinearTdoaRow::kRange;
+  constexpr int kBlock = kRange + 1;
+  constexpr int kRest = PseudoLinearTdoaRow::kDim - kBlock;
+  if (!increment.delta_information.allFinite() || !increment.delta_vector.allFinite()) {
+    return DropKind::kNonFinite;
+  }
+  const auto& q = increment.delta_information;
+  if (!q.bottomRows<kRest>().isZero(0.0) || !q.rightCols<kRest>().isZero(0.0) ||
+      !increment.delta_vector.tail<kRest>().isZero(0.0)) {
+    return DropKind::kOutOfRange;
+  }
+  InformationIncrement<PseudoLinearTdoaRow::kDim> compensated = increment;
+  compensated.delta_information(kRange, kRange) += 2.0 / (sigma * sigma);
+  return check_increment(compensated);
 }
 
 /// Whether an increment is indefinite: the contributions a round that is not positive definite
