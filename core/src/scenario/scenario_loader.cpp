@@ -313,8 +313,7 @@ FilterConfig read_filter(const YamlField& field) {
   } else if (imm) {
     imm->fail(fmt::format("only a filter of kind 'imm' has modes; this one is '{}'", filter.kind));
   }
-  if (filter.kind == "ncrkf" &&
-      filter.motion_model.kind != "tdoa_relative_constant_acceleration") {
+  if (filter.kind == "ncrkf" && filter.motion_model.kind != "tdoa_relative_constant_acceleration") {
     (model ? model->required("kind") : field)
         .fail(fmt::format("filter 'ncrkf' runs on tdoa_relative_constant_acceleration, not '{}'",
                           filter.motion_model.kind));
@@ -376,9 +375,9 @@ Scenario read_scenario(const YamlField& root) {
   const MotionModelInfo model = *find_motion_model(s.filter.motion_model.kind);
   for (std::size_t i = 0; i < s.stations.size(); ++i) {
     if (s.filter.kind == "ncrkf" && s.stations[i].sensor.kind != "tdoa_range_difference") {
-      station_items[i].fail(fmt::format(
-          "filter 'ncrkf' needs tdoa_range_difference receivers; station {} has {}",
-          s.stations[i].id, s.stations[i].sensor.kind));
+      station_items[i].fail(
+          fmt::format("filter 'ncrkf' needs tdoa_range_difference receivers; station {} has {}",
+                      s.stations[i].id, s.stations[i].sensor.kind));
     }
     // The IMM's modes each take the stations' sensor at their own dimension: one kind.
     if (s.filter.kind == "imm" && s.stations[i].sensor.kind != s.stations[0].sensor.kind) {
