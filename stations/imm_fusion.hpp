@@ -57,7 +57,7 @@ class ImmFusion {
     const OwnContribution result = peers_.contribute(observation, gate, own);
     if (result.status != NumericalStatus::kOk) return result;
     const auto step = static_cast<std::uint32_t>(k);
-    for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+    Peers::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
       write(transport::mode_to_wire<I>(own, run_id, step));
       std::get<I>(collectors_)
           .offer(k, observation.station_id,
@@ -72,7 +72,7 @@ class ImmFusion {
                                 const transport::WriterId& writer,
                                 transport::SourceBinding& sources) {
     std::optional<DropKind> why = DropKind::kOutOfRange;  // a mode this run does not have
-    for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+    Peers::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
       if (sample.mode() != static_cast<std::uint32_t>(I)) return;
       const auto mode = transport::mode_from_wire<ModeSample<I>::kDim, kModes>(sample);
       if (!mode) return;  // not this mode's state dimension, or not kModes probabilities
@@ -105,7 +105,7 @@ class ImmFusion {
       Contribution& c = assembled_[i];
       c.station_id = station_ids()[i];
       c.prior_probabilities = std::get<0>(collectors_).payloads()[i].prior_probabilities;
-      for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      Peers::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
         const ModeSample<I>& sample = std::get<I>(collectors_).payloads()[i];
         std::get<I>(c.modes) = sample.contribution;
         c.terms[I] = sample.terms;
@@ -133,13 +133,6 @@ class ImmFusion {
   static auto make_collectors(const std::vector<int>& ids, std::index_sequence<I...>) {
     return std::tuple<StepCollector<ModeSample<static_cast<int>(I)>>...>(
         StepCollector<ModeSample<static_cast<int>(I)>>(ids)...);
-  }
-  template <typename Fn>
-  static void for_each_mode(Fn&& fn) {
-    [&]<int... I>(std::integer_sequence<int, I...>) {
-      (fn(std::integral_constant<int, I>{}), ...);
-    }
-    (std::make_integer_sequence<int, kModes>{});
   }
   bool complete(std::size_t i) const {
     return std::apply([&](const auto&... c) { return (c.filled(i) && ...); }, collectors_);

@@ -8,6 +8,7 @@
 #include "skyfuse/models/tdoa/block_constant_acceleration.hpp"
 #include "skyfuse/models/tdoa/pseudo_linear_tdoa.hpp"
 #include "skyfuse/models/tdoa/range_difference_sensor.hpp"
+#include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/random/counter_rng.hpp"
 
 namespace skyfuse {
@@ -30,15 +31,6 @@ Relative relative_at(const Paper002Setup& s, double t) {
       s.target_range_m * Vector<2>(std::cos(s.target_bearing_rad), std::sin(s.target_bearing_rad));
   const Vector<2> velocity = s.target_velocity_mps - s.formation_velocity_mps;
   return {start + velocity * t, velocity};
-}
-
-// The pseudo-linear state of relative kinematics: [dp, d, dv, d', a (0), d''].
-Vector<9> pseudo_linear_state(const Vector<2>& p, const Vector<2>& v) {
-  const double d = p.norm();
-  const double d_rate = p.dot(v) / d;
-  Vector<9> x = Vector<9>::Zero();
-  x << p.x(), p.y(), d, v.x(), v.y(), d_rate, 0.0, 0.0, (v.squaredNorm() - d_rate * d_rate) / d;
-  return x;
 }
 
 struct Accumulator {
@@ -109,8 +101,10 @@ Paper002Result run_paper002(const Paper002Setup& s) {
     Vector<2> v_hat = start.velocity;
     for (int i = 0; i < 2; ++i) p_hat(i) += s.initial_position_std_m * start_noise.normal();
     for (int i = 0; i < 2; ++i) v_hat(i) += s.initial_velocity_std_mps * start_noise.normal();
-    Vector<9> x0 = pseudo_linear_state(p_hat, v_hat);
-    x0.tail<3>().setZero();
+    Vector<9> kinematics = Vector<9>::Zero();
+    kinematics << p_hat, 0.0, v_hat, 0.0, 0.0, 0.0, 0.0;
+    Vector<9> x0 = TdoaRelativeMotion::from_kinematics(kinematics);
+    x0.tail<3>().setZero();  // the accelerations, d'' included, start at 0
     std::array<GaussianState<9>, 3> linear{GaussianState<9>{x0, p0}, GaussianState<9>{x0, p0},
                                            GaussianState<9>{x0, p0}};
     Vector<6> x0_ekf = Vector<6>::Zero();

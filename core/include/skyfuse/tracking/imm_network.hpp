@@ -84,6 +84,15 @@ class PeerImm {
 
   explicit PeerImm(Filter imm) : imm_(std::move(imm)) {}
 
+  /// fn(std::integral_constant<int, I>{}) for every mode I, in order.
+  template <typename Fn>
+  static void for_each_mode(Fn&& fn) {
+    [&]<int... I>(std::integer_sequence<int, I...>) {
+      (fn(std::integral_constant<int, I>{}), ...);
+    }
+    (std::make_integer_sequence<int, kModes>{});
+  }
+
   /// Mixing and every mode's time update.
   void predict() { imm_.predict(); }
 
@@ -158,14 +167,6 @@ class PeerImm {
   const Filter& filter() const { return imm_; }
 
  private:
-  template <typename Fn>
-  static void for_each_mode(Fn&& fn) {
-    [&]<int... I>(std::integer_sequence<int, I...>) {
-      (fn(std::integral_constant<int, I>{}), ...);
-    }
-    (std::make_integer_sequence<int, kModes>{});
-  }
-
   Filter imm_;
 };
 
