@@ -31,7 +31,8 @@ using namespace std::chrono_literals;
 constexpr auto kPollSlice = 50ms;
 
 // The center for stations of `Sensor` (one sensor type, or a SensorPack when they differ),
-// whose rounds `Fusion` updates: SingleModelCenter or ImmCenter, by the run's filter kind.
+// whose rounds `Fusion` updates: SingleModelCenter, ImmCenter or NcrkfCenter, by the run's
+// filter kind.
 template <typename Sensor, typename Fusion>
 class Center {
  public:
@@ -213,7 +214,15 @@ int run_center(const options::NodeOptions& options) {
                              std::type_identity<Model>, SensorTemplate<SensorOf>) {
                            // The processes run the wire's model (load_plan refused another).
                            using Sensor = SensorOf<Model::kDim>;
-                           if constexpr (std::is_same_v<Model, transport::WireModel>) {
+                           if constexpr (std::is_same_v<Model, NcrkfCenter::Model>) {
+                             // The loader gives filter ncrkf TDOA receivers only.
+                             if constexpr (std::is_same_v<Sensor, NcrkfCenter::Sensor>) {
+                               Center<Sensor, NcrkfCenter> center(options, plan);
+                               code = center.run();
+                             } else {
+                               throw std::logic_error("filter ncrkf without TDOA receivers");
+                             }
+                           } else if constexpr (std::is_same_v<Model, transport::WireModel>) {
                              if (plan.scenario.filter.kind != "imm") {
                                Center<Sensor, SingleModelCenter<Sensor>> center(options, plan);
                                code = center.run();

@@ -1,15 +1,17 @@
 #pragma once
 // What the center runs on the measurements of a round, by the run's filter kind: the stacked
-// EKF (SingleModelCenter) or the network IMM's stacked form (ImmCenter). Both screen each
-// measurement against their own prior by the round rule, update, and make the track; the center
-// process (center_process.cpp) moves the samples.
+// EKF (SingleModelCenter), the network IMM's stacked form (ImmCenter), or paper 002's stacked
+// NCRKF (NcrkfCenter). Each takes the round's measurements by the round rule, updates, and makes
+// the track; the center process (center_process.cpp) moves the samples.
 
 #include <cstdint>
 #include <vector>
 
 #include "skyfuse/experiments/network_imm.hpp"
+#include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
+#include "skyfuse/tracking/tdoa_round.hpp"
 #include "skyfuse/transport/imm_wire.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 
@@ -71,6 +73,56 @@ class ImmCenter {
  private:
   NetworkCentralImm imm_;
   std::vector<int> contributors_;
+};
+
+/// Paper 002's stacked NCRKF: the center computes each receiver's bias-compensated increment
+/// from its raw measurement, as the receiver does, and fuses them onto its own prior by the TDOA
+/// round rule, exactly as a peer does (tracking/tdoa_round.hpp).
+class NcrkfCenter {
+ public:
+  using Model = TdoaRelativeMotion;
+  static constexpr int kDim = Model::kDim;
+  using Sensor = RangeDifferenceSensor<kDim>;
+  using Observation = StationObservation<Sensor>;
+
+  explicit NcrkfCenter(const RunPlan& plan)
+      : ids_(plan.participant_ids()),
+        tracker_(plan.motion_model<Model>(), plan.initial_estimate<Model>()),
+        round_(ids_, plan.weights_of(ids_)),
+        increments_(ids_.size()) {}
+
+  /// observation_at(i): the i-th of `count` participants' observation (ascending id) or null;
+  /// on_refused(station_id, kNotPositive) for each indefinite increment the round was fused
+  /// without. The NCRKF has no innovation to gate (require_wire_configuration refuses a gate).
+  template <typename ObservationAt, typename OnRefused>
+  NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& /*gate*/,
+                         OnRefused on_refused) {
+    prior_ = tracker_.estimate();
+    for (std::size_t i = 0; i < count; ++i) {
+      if (const Observation* o = observation_at(i)) increments_[i] = tdoa_contribution(*o);
+    }
+    return fuse_tdoa_round(
+               round_, tracker_, count,
+               [&](std::size_t i) {
+                 return observation_at(i) != nullptr ? PeerSlot<kDim>{&increments_[i], &prior_}
+                                                     : PeerSlot<kDim>{};
+               },
+               [&](std::size_t i) { on_refused(ids_[i], DropKind::kNotPositive); })
+        .status;
+  }
+
+  wire::TrackEstimate track(std::uint64_t run_id, std::uint64_t k, int source_id) const {
+    return transport::to_wire(tracker_.estimate(), run_id, static_cast<std::uint32_t>(k), source_id,
+                              wire::CENTRAL, round_.contributors());
+  }
+  void predict() { tracker_.predict(); }
+
+ private:
+  std::vector<int> ids_;  // participants, ascending
+  PeerTracker<Model> tracker_;
+  PeerRound<Model> round_;
+  std::vector<InformationIncrement<kDim>> increments_;  // the round's, by participant
+  GaussianState<kDim> prior_;
 };
 
 }  // namespace skyfuse::center

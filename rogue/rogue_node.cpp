@@ -8,11 +8,13 @@
 //   duplicate     a well-formed sample for a real station, from the wrong writer
 //   non_finite    a NaN in dQ / in z
 //   not_positive  dQ with a negative direction / R with a zero variance
-//   out_of_range  a negative range (measurements only)
+//   out_of_range  a negative range (measurements only); in a TDOA run, a range difference
+//                 beyond any plausible one, and an increment with information outside
+//                 [dx, dy, d_t1]
 //   wrong_site    the victim's id from another station position (measurements only)
-// Every other measurement claims the victim's own site (from the scenario, --scenario), so that
-// it is refused for its one fault. It prints how many samples of each kind it sent, one line per
-// topic and kind.
+// Every other measurement claims the victim's own site and sensor kind (from the scenario,
+// --scenario: a radar's three components, or a TDOA receiver's one), so that it is refused for
+// its one fault. It prints how many samples of each kind it sent, one line per topic and kind.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
@@ -23,6 +25,7 @@
 
 #include "secure_probe.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/models/tdoa/range_difference_sensor.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -57,14 +60,20 @@ std::vector<Attack> attacks_at(std::uint64_t run, std::uint32_t k, int victim) {
           {DropKind::kWrongSite, run, k, victim}};
 }
 
-// Kinds that only a measurement can carry.
-bool measurement_only(DropKind kind) {
-  return kind == DropKind::kOutOfRange || kind == DropKind::kWrongSite;
+// The victim as the scenario has it: where it stands and whether it is a TDOA receiver.
+struct Victim {
+  Vector3 site = Vector3::Zero();  // an id that is no station's stands nowhere
+  bool tdoa = false;
+};
+
+// Kinds that only a measurement can carry (a TDOA increment can be out of range as well).
+bool measurement_only(DropKind kind, const Victim& victim) {
+  return kind == DropKind::kWrongSite || (kind == DropKind::kOutOfRange && !victim.tdoa);
 }
 
 wire::InformationIncrement increment_for(const Attack& a) {
   // Well-formed but for the one fault the attack carries: a plausible range-like information
-  // along x, about a prior with P = I.
+  // along x (inside a TDOA increment's [dx, dy, d_t1] block too), about a prior with P = I.
   transport::WireContribution c;
   c.increment.station_id = a.station;
   c.increment.delta_information(0, 0) = 1e-4;
@@ -72,19 +81,29 @@ wire::InformationIncrement increment_for(const Attack& a) {
   wire::InformationIncrement s = transport::to_wire(c, a.run_id, a.step);
   if (a.kind == DropKind::kNonFinite) s.delta_information()[10] = std::nan("");
   if (a.kind == DropKind::kNotPositive) s.delta_information()[0] = -1.0;
+  if (a.kind == DropKind::kOutOfRange) s.delta_information().back() = 1e-4;  // dQ(8, 8)
   return s;
 }
 
-wire::Measurement measurement_for(const Attack& a, const Vector3& victim_site) {
+wire::Measurement measurement_for(const Attack& a, const Victim& victim) {
   wire::Measurement s;
   s.run_id(a.run_id);
   s.step(a.step);
   s.station_id(a.station);
+  s.station_position() = {victim.site.x(), victim.site.y(), victim.site.z()};
+  if (a.kind == DropKind::kWrongSite) s.station_position()[0] += 10.0;
+  if (victim.tdoa) {
+    s.sensor(std::string(RangeDifferenceSensor<9>::kKind));
+    s.z() = {150.0};
+    s.noise() = {0.16};
+    if (a.kind == DropKind::kNonFinite) s.z()[0] = std::numeric_limits<double>::infinity();
+    if (a.kind == DropKind::kNotPositive) s.noise()[0] = 0.0;
+    if (a.kind == DropKind::kOutOfRange) s.z()[0] = 2.0 * kMaxRangeM;
+    return s;
+  }
   s.sensor(std::string(RangeAzimuthElevation<9>::kKind));
   s.z() = {1500.0, 0.5, 0.3};
   s.noise() = {1.0, 0.0, 0.0, 1e-4, 0.0, 1e-4};  // upper triangle of diag(1, 1e-4, 1e-4)
-  s.station_position() = {victim_site.x(), victim_site.y(), victim_site.z()};
-  if (a.kind == DropKind::kWrongSite) s.station_position()[0] += 10.0;
   if (a.kind == DropKind::kNonFinite) s.z()[1] = std::numeric_limits<double>::infinity();
   if (a.kind == DropKind::kNotPositive) s.noise()[5] = 0.0;
   if (a.kind == DropKind::kOutOfRange) s.z()[0] = -5.0;
@@ -123,9 +142,11 @@ int main(int argc, char** argv) {
 
   try {
     if (probe.probe) return rogue::run_probe(probe, {domain, run_id, victim, timeout_s});
-    Vector3 victim_site = Vector3::Zero();  // an id that is no station's stands nowhere
+    Victim victim_config;
     for (const StationConfig& s : load_scenario_or_default(scenario_path).stations) {
-      if (s.id == victim) victim_site = s.position_m;
+      if (s.id != victim) continue;
+      victim_config.site = s.position_m;
+      victim_config.tdoa = s.sensor.kind == RangeDifferenceSensor<9>::kKind;
     }
     transport::NodeConfig config;
     config.domain_id = domain;
@@ -167,11 +188,11 @@ int main(int argc, char** argv) {
         }
         for (const Attack& a : attacks_at(run_id, *newest, victim)) {
           const auto kind = static_cast<std::size_t>(a.kind);
-          if (!measurement_only(a.kind)) {
+          if (!measurement_only(a.kind, victim_config)) {
             increments.write(increment_for(a));
             ++sent_increments[kind];
           }
-          measurements.write(measurement_for(a, victim_site));
+          measurements.write(measurement_for(a, victim_config));
           ++sent_measurements[kind];
         }
       }

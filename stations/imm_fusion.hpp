@@ -95,8 +95,10 @@ class ImmFusion {
   }
 
   /// Fuses the stations whose every mode arrived; arrived() then says whether any did. A
-  /// station's prior mode probabilities are its first mode's sample's.
-  RoundFusion fuse() {
+  /// station's prior mode probabilities are its first mode's sample's. Refuses nothing at
+  /// fusion (on_refused is never called): every sample was checked on arrival.
+  template <typename OnRefused>
+  RoundFusion fuse(OnRefused /*on_refused*/) {
     arrivals_.clear();
     round_weights_.clear();
     contributors_.clear();

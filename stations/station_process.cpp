@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "imm_fusion.hpp"
+#include "ncrkf_fusion.hpp"
 #include "single_model_fusion.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
@@ -51,8 +52,9 @@ struct StationEndpoints {
   transport::ReaderWaitSet wait_set;
 };
 
-// A station with a `Sensor` of the wire's motion model's state (a radar, the aircraft's GPS),
-// whose rounds `Fusion` fuses: SingleModelFusion or ImmFusion, by the run's filter kind.
+// A station with a `Sensor` of the wire's motion model's state (a radar, the aircraft's GPS, a
+// TDOA receiver), whose rounds `Fusion` fuses: SingleModelFusion, ImmFusion or NcrkfFusion, by
+// the run's filter kind.
 template <typename Sensor, typename Fusion>
 class Station {
  public:
@@ -254,7 +256,9 @@ class Station {
   int fuse_and_publish(std::uint64_t k) {
     // What arrived (everything, in a healthy lock-step round), by the round rule; the track
     // names exactly these stations.
-    const RoundFusion fused = fusion_.fuse();
+    const RoundFusion fused = fusion_.fuse([&](int station_id, DropKind why) {
+      transport::count_drop(drops_, why, "increment", station_id, k);
+    });
     if (!fusion_.arrived()) {  // only while resynchronising: no peer's prior arrived this round
       spdlog::warn("step {}: no peer increment arrived; still without a prior", k);
       return -1;
@@ -316,6 +320,14 @@ int run_with_sensor(const StationOptions& options, const RunPlan& plan, const St
   if (plan.scenario.filter.kind == "imm") {
     Station<Sensor, ImmFusion<Sensor>> station(options, plan, me, std::move(source));
     return station.run();
+  }
+  if (plan.scenario.filter.kind == "ncrkf") {  // the loader gives it TDOA receivers only
+    if constexpr (std::is_same_v<Sensor, NcrkfFusion::Sensor>) {
+      Station<Sensor, NcrkfFusion> station(options, plan, me, std::move(source));
+      return station.run();
+    } else {
+      throw std::logic_error("filter ncrkf with a station of sensor kind " + me.sensor.kind);
+    }
   }
   Station<Sensor, SingleModelFusion<Sensor>> station(options, plan, me, std::move(source));
   return station.run();

@@ -43,11 +43,11 @@ std::string scenario_text(const std::string& path) {
   return path.empty() ? std::string(default_scenario_yaml()) : read_scenario_text(path);
 }
 
-RunPlan plan_from(const std::string& text, const std::string& source,
-                  const RunOverrides& overrides) {
+RunPlan plan_from(const std::string& text, const std::string& source, const RunOverrides& overrides,
+                  const NisGate& gate) {
   RunPlan plan = make_run_plan(parse_scenario(text, source), overrides);
   // Refused here, before any process starts, rather than by each node.
-  transport::require_wire_configuration(plan.scenario);
+  transport::require_wire_configuration(plan.scenario, gate);
   return plan;
 }
 
@@ -304,7 +304,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
 RunPlan load_run_plan(const RunOptions& o) {
   return plan_from(scenario_text(o.node.scenario_path),
                    o.node.scenario_path.empty() ? "<embedded paper000.yaml>" : o.node.scenario_path,
-                   o.node.overrides);
+                   o.node.overrides, o.node.nis_gate());
 }
 
 }  // namespace skyfuse::harness

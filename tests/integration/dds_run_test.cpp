@@ -121,11 +121,20 @@ TEST(DdsRunMixed, RadarsAndTheAircraftsGpsEqualTheInProcessRunBitForBit) {
 }
 
 // Paper 002's formation: three TDOA receivers as station processes (a one-component sensor
-// whose site is fixed in the reference UAV's frame), the EKF on the range differences.
-TEST(DdsRunTdoa, ThreeReceiversOfPaper002EqualTheInProcessRunBitForBit) {
+// whose site is fixed in the reference UAV's frame), each publishing its bias-compensated NCRKF
+// increment; the center computes the same increments from the raw measurements and fuses them
+// onto its own prior, so central and peer-to-peer hold the same bits.
+TEST(DdsRunTdoa, ThreeNcrkfReceiversOfPaper002EqualTheCenterAndTheInProcessRunBitForBit) {
   const auto out = expect_run_equals_twin("paper002.yaml", 3, 183);
   EXPECT_NE(read_file(out / "measurements.csv").find("step,station_id,range_difference_m"),
             std::string::npos);
+  const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary.at("max_abs_diff_central_vs_p2p").get<double>(), 0.0);
+}
+
+// The same receivers with the EKF on the range differences.
+TEST(DdsRunTdoa, ThreeEkfReceiversOfPaper002EqualTheInProcessRunBitForBit) {
+  expect_run_equals_twin("paper002-ekf.yaml", 3, 184);
 }
 
 TEST(DdsRunDeterminism, SameSeedGivesTheSameBytesEvenWithTheOtherCoreBusy) {

@@ -20,7 +20,7 @@ NodeConfig node_config(const options::NodeOptions& options, const std::string& n
 
 RunPlan load_plan(const options::NodeOptions& options) {
   RunPlan plan = make_run_plan(load_scenario_or_default(options.scenario_path), options.overrides);
-  require_wire_configuration(plan.scenario);
+  require_wire_configuration(plan.scenario, options.nis_gate());
   return plan;
 }
 

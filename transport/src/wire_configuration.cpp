@@ -6,14 +6,20 @@
 
 namespace skyfuse::transport {
 
-void require_wire_configuration(const Scenario& scenario) {
-  // Every registered sensor runs, mixed or not; the processes are compiled for one model.
-  if (scenario.filter.motion_model.kind != WireModel::kKind) {
+void require_wire_configuration(const Scenario& scenario, const NisGate& gate) {
+  // Every registered sensor runs, mixed or not; the processes are compiled for these models.
+  const std::string& model = scenario.filter.motion_model.kind;
+  const bool ncrkf = scenario.filter.kind == "ncrkf";
+  if (ncrkf && gate.enabled()) {
     throw std::invalid_argument(fmt::format(
-        "scenario '{}': motion model {}: the station and center processes run {} only for now; "
-        "other models run in-process",
-        scenario.name, scenario.filter.motion_model.kind, WireModel::kKind));
+        "scenario '{}': filter ncrkf takes no NIS gate (its increments have no innovation)",
+        scenario.name));
   }
+  if (model == WireModel::kKind || (ncrkf && model == TdoaRelativeMotion::kKind)) return;
+  throw std::invalid_argument(
+      fmt::format("scenario '{}': motion model {}: the station and center processes run {} (and "
+                  "{} with filter ncrkf) only for now; other models run in-process",
+                  scenario.name, model, WireModel::kKind, TdoaRelativeMotion::kKind));
 }
 
 }  // namespace skyfuse::transport

@@ -68,26 +68,17 @@ class NcrkfRunStepper {
   RunTrace take_trace() { return std::move(trace_); }
 
  private:
-  // Fuses the usable increments of the round onto `tracker`'s prior; if the fused information is
-  // not positive definite, again without the indefinite ones. Returns how many it refused.
+  // Fuses the usable increments of the round onto `tracker`'s prior by the TDOA round rule.
+  // Returns how many indefinite increments it refused.
   int fuse(PeerTracker<Model>& tracker, PeerRound<Model>& round, std::size_t k, const char* who) {
     const GaussianState<kDim> prior = tracker.estimate();
-    const auto slots = [&](bool skip_indefinite) {
-      return [&, skip_indefinite](std::size_t j) {
-        if (!usable_[j] || (skip_indefinite && is_indefinite(increments_[j]))) {
-          return PeerSlot<kDim>{};
-        }
-        return PeerSlot<kDim>{&increments_[j], &prior};
-      };
-    };
-    RoundFusion fused = round.fuse(tracker, slots(false));
     int refused = 0;
-    if (fused.status == NumericalStatus::kNotPositiveDefinite) {
-      for (std::size_t j = 0; j < increments_.size(); ++j) {
-        refused += usable_[j] && is_indefinite(increments_[j]) ? 1 : 0;
-      }
-      fused = round.fuse(tracker, slots(true));
-    }
+    const RoundFusion fused = fuse_tdoa_round(
+        round, tracker, order_.size(),
+        [&](std::size_t j) {
+          return usable_[j] ? PeerSlot<kDim>{&increments_[j], &prior} : PeerSlot<kDim>{};
+        },
+        [&](std::size_t) { ++refused; });
     if (fused.status != NumericalStatus::kOk) {
       throw NumericalError(
           fmt::format("{} NCRKF: step {}: fusion failed: {}", who, k, to_string(fused.status)));

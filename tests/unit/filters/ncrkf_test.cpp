@@ -1,5 +1,6 @@
 // The NCRKF in information form against its Eq 11, its refusal of an update whose fused
-// information is not positive definite, and what a received TDOA increment must be.
+// information is not positive definite, what a received TDOA increment must be, and the round
+// rule that fuses a round without its indefinite increments when it must.
 #include "skyfuse/filters/ncrkf.hpp"
 
 #include <gtest/gtest.h>
@@ -7,6 +8,7 @@
 #include <Eigen/LU>
 #include <cmath>
 
+#include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/tracking/tdoa_round.hpp"
 
 namespace skyfuse {
@@ -114,6 +116,69 @@ TEST(TdoaIncrementCheck, TakesEveryRealIncrementIndefiniteOnesIncludedAndRefuses
   auto huge = real;
   huge.delta_information(0, 0) = 1e300;
   EXPECT_EQ(check_tdoa_increment(huge, kSigma), DropKind::kOutOfRange);
+}
+
+TEST(TdoaRound, ARoundThatIsNotPositiveDefiniteIsFusedAgainWithoutItsIndefiniteIncrements) {
+  const TdoaRelativeMotion model(0.002, {0.1});
+  GaussianState<9> start = prior();
+  start.covariance(2, 2) = 1e12;  // knows next to nothing of d_t1: cannot absorb -W
+  // Participant 2's increment is indefinite (|r~| < sigma); participant 3's is positive
+  // semi-definite information about dx alone.
+  const auto indefinite =
+      tdoa_increment(2, pseudo_linear_tdoa_row(Vector<2>(200.0, 0.0), 0.1, 0.1, 0.4),
+                     BiasCompensation::kCompensated);
+  ASSERT_TRUE(is_indefinite(indefinite));
+  InformationIncrement<9> along_x;
+  along_x.station_id = 3;
+  along_x.delta_information(0, 0) = 4.0;
+  along_x.delta_vector(0) = 4.0 * 1801.0;
+  const std::vector<InformationIncrement<9>> increments = {indefinite, along_x};
+  const std::vector<int> ids = {2, 3};
+  const std::vector<double> weights = {1.0, 1.0};
+
+  PeerTracker<TdoaRelativeMotion> tracker(model, start);
+  PeerRound<TdoaRelativeMotion> round(ids, weights);
+  std::vector<std::size_t> refused;
+  const RoundFusion fused = fuse_tdoa_round(
+      round, tracker, ids.size(),
+      [&](std::size_t i) {
+        return PeerSlot<9>{&increments[i], &start};
+      },
+      [&](std::size_t i) { refused.push_back(i); });
+  ASSERT_EQ(fused.status, NumericalStatus::kOk);
+  EXPECT_EQ(refused, std::vector<std::size_t>{0});
+  EXPECT_EQ(std::vector<int>(round.contributors().begin(), round.contributors().end()),
+            std::vector<int>{3});
+
+  // The same bits as a round of participant 3 alone.
+  PeerTracker<TdoaRelativeMotion> alone(model, start);
+  PeerRound<TdoaRelativeMotion> alone_round(ids, weights);
+  ASSERT_EQ(alone_round
+                .fuse(alone,
+                      [&](std::size_t i) {
+                        return i == 1 ? PeerSlot<9>{&increments[1], &start} : PeerSlot<9>{};
+                      })
+                .status,
+            NumericalStatus::kOk);
+  EXPECT_EQ(tracker.estimate().mean, alone.estimate().mean);
+  EXPECT_EQ(tracker.estimate().covariance, alone.estimate().covariance);
+  EXPECT_LT(std::abs(tracker.estimate().mean(0) - 1801.0), std::abs(start.mean(0) - 1801.0));
+
+  // A round that is positive definite as it is keeps its indefinite increment.
+  GaussianState<9> confident = prior();
+  confident.covariance(2, 2) = 0.01;
+  PeerTracker<TdoaRelativeMotion> sure(model, confident);
+  refused.clear();
+  ASSERT_EQ(fuse_tdoa_round(
+                round, sure, ids.size(),
+                [&](std::size_t i) {
+                  return PeerSlot<9>{&increments[i], &confident};
+                },
+                [&](std::size_t i) { refused.push_back(i); })
+                .status,
+            NumericalStatus::kOk);
+  EXPECT_TRUE(refused.empty());
+  EXPECT_EQ(round.contributors().size(), 2U);
 }
 
 }  // namespace

@@ -313,7 +313,7 @@ TEST(ScenarioLoader, ReadsPaper002sTdoaReceivers) {
 }
 
 TEST(ScenarioLoader, TheNcrkfNeedsItsModelAndTdoaReceivers) {
-  const Scenario s = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002-ncrkf.yaml");
+  const Scenario s = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002.yaml");
   EXPECT_EQ(s.filter.kind, "ncrkf");
   EXPECT_EQ(s.filter.motion_model.kind, "tdoa_relative_constant_acceleration");
   EXPECT_EQ(rejection(default_with("  kind: ekf\n", "  kind: ncrkf\n")),

@@ -48,7 +48,7 @@ TEST(MonteCarlo, AnImmScenarioRunsCentralAndPeerToPeerAlikeAndFollowsTheTurn) {
 // increments onto its own prior, so central and peer-to-peer hold the same bits; two receivers
 // cannot fix the target, three can.
 TEST(MonteCarlo, AnNcrkfScenarioRunsCentralAndPeerToPeerAlike) {
-  const Scenario s = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002-ncrkf.yaml");
+  const Scenario s = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002.yaml");
   const TruthTrajectory truth =
       generate_truth(s.target, s.target.speeds_mps.front(), s.time_step_s, s.steps);
   const RunTrace three = simulate_run(s, truth, 3, 0);

@@ -17,6 +17,7 @@
 #include "skyfuse/filters/ncrkf.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
 #include "skyfuse/models/tdoa/range_difference_sensor.hpp"
+#include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse {
@@ -59,6 +60,27 @@ inline std::optional<DropKind> check_tdoa_increment(
 template <int N>
 bool is_indefinite(const InformationIncrement<N>& increment) {
   return check_increment(increment) == DropKind::kNotPositive;
+}
+
+/// Fuses a round of TDOA increments into `tracker` by the rule above: slot_at(i) is the i-th
+/// participant's slot, as for PeerRound::fuse. If the fused information is not positive
+/// definite, the round is fused again without its indefinite increments, on_refused(i) named
+/// for each. What the peers, the center and the in-process twin all run.
+template <typename Model, typename SlotAt, typename OnRefused>
+RoundFusion fuse_tdoa_round(PeerRound<Model>& round, PeerTracker<Model>& tracker,
+                            std::size_t participants, SlotAt slot_at, OnRefused on_refused) {
+  RoundFusion fused = round.fuse(tracker, slot_at);
+  if (fused.status != NumericalStatus::kNotPositiveDefinite) return fused;
+  const auto indefinite = [&](const PeerSlot<Model::kDim>& slot) {
+    return slot.increment != nullptr && is_indefinite(*slot.increment);
+  };
+  for (std::size_t i = 0; i < participants; ++i) {
+    if (indefinite(slot_at(i))) on_refused(i);
+  }
+  return round.fuse(tracker, [&](std::size_t i) {
+    const PeerSlot<Model::kDim> slot = slot_at(i);
+    return indefinite(slot) ? PeerSlot<Model::kDim>{} : slot;
+  });
 }
 
 }  // namespace skyfuse

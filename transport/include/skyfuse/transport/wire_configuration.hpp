@@ -5,20 +5,26 @@
 
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/models/constant_acceleration.hpp"
+#include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/tracking/peer_contribution.hpp"
+#include "skyfuse/validation/nis_gate.hpp"
 
 namespace skyfuse::transport {
 
 /// The motion model the station and center processes are compiled for: the 9-state
-/// constant-acceleration model, with any registered sensors, mixed or not. Other models run
-/// in-process (require_wire_configuration says so before anything starts).
+/// constant-acceleration model, with any registered sensors, mixed or not; and, for filter kind
+/// ncrkf only, paper 002's relative model (TdoaRelativeMotion), of the same dimension, which the
+/// wire types carry alike. Other models run in-process (require_wire_configuration says so
+/// before anything starts).
 using WireModel = ConstantAcceleration3D;
+static_assert(TdoaRelativeMotion::kDim == WireModel::kDim);
 using WireContribution = PeerContribution<WireModel::kDim>;
 using WireEstimate = GaussianState<WireModel::kDim>;
 
 /// Refuses, with std::invalid_argument naming it, a scenario whose motion model the station
-/// and center processes are not compiled for. Any registered sensor runs, mixed or not.
-void require_wire_configuration(const Scenario& scenario);
+/// and center processes are not compiled for, or a NIS gate for a filter that has no
+/// innovation to gate (ncrkf). Any registered sensor runs, mixed or not.
+void require_wire_configuration(const Scenario& scenario, const NisGate& gate);
 
 }  // namespace skyfuse::transport

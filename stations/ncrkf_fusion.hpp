@@ -1,0 +1,90 @@
+#pragma once
+// What a station fuses when the run's filter is paper 002's NCRKF (kind ncrkf): one
+// bias-compensated pseudo-linear increment per receiver and round, which depends on the
+// receiver's measurement and site only (tracking/tdoa_round.hpp), fused onto the lowest-id
+// contribution's prior by the TDOA round rule. A received increment need not be positive
+// semi-definite, so it is checked by check_tdoa_increment() against its sender's noise, not by
+// check_increment(). Same interface as SingleModelFusion (single_model_fusion.hpp).
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "increment_round.hpp"
+#include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
+#include "skyfuse/scenario/measurement_simulation.hpp"
+#include "skyfuse/tracking/tdoa_round.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
+
+namespace skyfuse::station {
+
+class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
+ public:
+  using Model = TdoaRelativeMotion;
+  using Sensor = RangeDifferenceSensor<kDim>;
+
+  explicit NcrkfFusion(const RunPlan& plan) : IncrementRound(plan) {
+    for (const int id : station_ids()) {
+      sigmas_.push_back(std::sqrt(station_noise_covariance<Sensor::kMeasDim>(
+          plan.scenario, *plan.participant(id), plan.mc_run)(0, 0)));
+    }
+  }
+
+  /// This station's increment for its own measurement (write(sample)), kept for the round. The
+  /// NCRKF has no innovation to screen (require_wire_configuration refuses a NIS gate): a
+  /// measurement that fails its sensor's check yields a zero increment, which tells the peers
+  /// not to wait for one.
+  template <typename Write>
+  OwnContribution contribute(std::uint64_t k, const StationObservation<Sensor>& observation,
+                             const NisGate& /*gate*/, std::uint64_t run_id, Write write) {
+    Contribution own;
+    own.prior = tracker_.estimate();
+    OwnContribution result;
+    result.refused = Sensor::check_reported(observation.z);
+    if (result.refused) {
+      own.increment.station_id = observation.station_id;
+      own.increment.delta_information.setZero();
+      own.increment.delta_vector.setZero();
+    } else {
+      own.increment = tdoa_contribution(observation);
+    }
+    publish(k, observation.station_id, own, run_id, write);
+    return result;
+  }
+
+  /// Checks a peer's sample (its run id already checked) against its sender's noise and keeps
+  /// it; why not if it did not.
+  std::optional<DropKind> admit(const wire::InformationIncrement& sample,
+                                const transport::WriterId& writer,
+                                transport::SourceBinding& sources) {
+    const auto contribution = contribution_of(sample);
+    if (!contribution) return DropKind::kOutOfRange;  // not the run's filter or dimension
+    // An unknown sender has no noise to check against; keep() refuses it by name.
+    const auto ids = station_ids();
+    const auto sender = std::find(ids.begin(), ids.end(), static_cast<int>(sample.station_id()));
+    if (sender != ids.end()) {
+      const double sigma = sigmas_[static_cast<std::size_t>(sender - ids.begin())];
+      if (const auto why = check_tdoa_increment(contribution->increment, sigma)) return why;
+      if (const auto why = check_estimate(contribution->prior)) return why;
+    }
+    return keep(sample, writer, sources, *contribution);
+  }
+
+  /// Fuses what arrived by the TDOA round rule; on_refused(station_id, kNotPositive) for each
+  /// indefinite increment the round had to be fused without. arrived() then says whether
+  /// anything did.
+  template <typename OnRefused>
+  RoundFusion fuse(OnRefused on_refused) {
+    const auto ids = station_ids();
+    return fuse_tdoa_round(
+        round_, tracker_, ids.size(), [&](std::size_t i) { return slot(i); },
+        [&](std::size_t i) { on_refused(ids[i], DropKind::kNotPositive); });
+  }
+
+ private:
+  std::vector<double> sigmas_;  // each participant's range-difference noise, ascending id
+};
+
+}  // namespace skyfuse::station
