@@ -53,6 +53,7 @@ void add_run_command(CLI::App& app, RunOptions& o) {
       ->capture_default_str();
   options::add_loss_options(*cmd, o.node.loss, o.node.best_effort);
   options::add_nis_gate_option(*cmd, o.node.gate);
+  options::add_network_options(*cmd, o.node.network);
   cmd->add_option_function<std::vector<std::string>>(
          "--kill",
          [&o](const std::vector<std::string>& all) {
@@ -78,6 +79,10 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Real-time mode: nodes step on the wall clock at the scenario's dt and each "
                   "round closes this many ms after it starts, with what has arrived")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--hosts", o.hosts,
+                  "Place the center and the stations, round robin, on N simulated hosts: network "
+                  "namespaces joined by a bridge, discovering through the harness (root only)")
+      ->check(CLI::Range(1, 250));
   cmd->add_flag("--external", o.external,
                 "Do not start processes: drive stations and a center started elsewhere");
   cmd->add_flag("-v,--verbose", o.verbose, "Let the node processes log at info level");

@@ -1,6 +1,7 @@
 #include "run/child_processes.hpp"
 
 #include <fmt/format.h>
+#include <sched.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -33,7 +34,8 @@ ChildProcesses::~ChildProcesses() {
   terminate_all(std::chrono::milliseconds(2000));
 }
 
-pid_t ChildProcesses::spawn(const std::string& name, const std::vector<std::string>& argv) {
+pid_t ChildProcesses::spawn(const std::string& name, const std::vector<std::string>& argv,
+                            int network_namespace) {
   // Everything exec needs is prepared before fork: the child of a multi-threaded process may
   // only call async-signal-safe functions.
   std::vector<char*> args;
@@ -47,6 +49,7 @@ pid_t ChildProcesses::spawn(const std::string& name, const std::vector<std::stri
     // Die with the harness, however it dies; and if it died before this line, go now.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (getppid() != parent) _exit(127);
+    if (network_namespace >= 0 && setns(network_namespace, CLONE_NEWNET) != 0) _exit(126);
     // Keep only stdin, stdout and stderr: the harness's DDS sockets (Fast DDS does not open
     // them close-on-exec) would otherwise stay bound in every node, and stay open after the
     // harness has gone.

@@ -28,7 +28,10 @@ class ChildProcesses {
   ChildProcesses& operator=(const ChildProcesses&) = delete;
 
   /// Starts `argv[0]` with `argv`; `name` identifies it in messages. Throws on failure.
-  pid_t spawn(const std::string& name, const std::vector<std::string>& argv);
+  /// `network_namespace`: a namespace's file descriptor (a simulated host) to run it in; -1:
+  /// the harness's own.
+  pid_t spawn(const std::string& name, const std::vector<std::string>& argv,
+              int network_namespace = -1);
 
   /// Kills the child called `name` with SIGKILL and reaps it: a crash the caller asked for, so
   /// it is not reported by poll() or exited(). Throws if there is no such live child.

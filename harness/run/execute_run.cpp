@@ -14,6 +14,7 @@
 #include "run/child_processes.hpp"
 #include "run/lockstep_driver.hpp"
 #include "run/secure_start.hpp"
+#include "run/simulated_hosts.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -55,8 +56,10 @@ RunPlan plan_from(const std::string& text, const std::string& source, const RunO
 // node options with what the harness decides for this run filled in.
 std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan,
                                         std::uint64_t run_id,
-                                        const std::filesystem::path& scenario_file) {
+                                        const std::filesystem::path& scenario_file,
+                                        const options::NetworkOptions& network) {
   options::NodeOptions child = o.node;
+  child.network = network;
   child.scenario_path = scenario_file.string();
   child.run_id = run_id;
   child.overrides = {plan.stations, plan.scenario.steps, plan.speed_mps * 3.6, plan.mc_run};
@@ -133,9 +136,39 @@ void check_station_events(const RunOptions& o, const RunPlan& plan) {
   }
 }
 
+// Where the processes run: on this host's interface, or each on a simulated host of its own
+// network, discovering each other through the harness.
+struct Placement {
+  std::optional<SimulatedHosts> hosts;
+  options::NetworkOptions harness;  // the harness's interface and discovery server
+
+  // The network options and namespace of the process with index `i`: 0 the center, then the
+  // stations in ascending id. Round robin over the hosts, the center on the first.
+  std::pair<options::NetworkOptions, int> of(const options::NetworkOptions& common,
+                                             std::size_t i) const {
+    if (!hosts) return {common, -1};
+    const int host = static_cast<int>(i % static_cast<std::size_t>(hosts->count()));
+    options::NetworkOptions network = harness;
+    network.interface_address = hosts->address(host);
+    return {network, hosts->namespace_fd(host)};
+  }
+};
+
+void check_hosts(const RunOptions& o) {
+  if (o.hosts == 0) return;
+  if (o.external) throw std::invalid_argument("--hosts: not with --external (it starts the nodes)");
+  if (o.node.network != options::NetworkOptions{}) {
+    throw std::invalid_argument(
+        "--hosts: gives every node its host's interface and the harness's discovery server; "
+        "leave out --interface and --discovery-server");
+  }
+  SimulatedHosts::check_allowed(o.hosts);
+}
+
 RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   // Refusals first: a refused command leaves an earlier run's folder as it was.
   check_station_events(o, plan);
+  check_hosts(o);
   const std::vector<int> ids = plan.participant_ids();
   if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
     transport::SecurityFolder{*o.node.secure_dir}.check(transport::run_identities(ids));
@@ -157,11 +190,21 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       if (!e.success()) throw RunAborted(e.describe());
     }
   };
+  Placement placement;
+  placement.harness = o.node.network;
+  if (o.hosts > 0) {
+    placement.hosts.emplace(o.hosts);
+    placement.harness.interface_address = placement.hosts->bridge_address();
+    placement.harness.discovery_server =
+        options::Ipv4Endpoint{placement.hosts->bridge_address(), options::kDefaultDiscoveryPort};
+  }
   transport::NodeConfig config;
   config.domain_id = o.node.domain;
   config.name = "skyfuse-harness";
   if (o.node.qos_file) config.qos_file = *o.node.qos_file;
   config.best_effort_data = o.node.best_effort;
+  config.network = placement.harness;
+  config.serves_discovery = config.network.discovery_server.has_value();  // the nodes' server
   if (o.node.secure_dir) {
     config.security = transport::SecurityConfig{*o.node.secure_dir, transport::kHarnessIdentity};
   }
@@ -169,8 +212,14 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   LockstepDriver driver(config, run_id, plan.participants(), modes, check);
 
   try {
-    const std::vector<std::string> common = node_arguments(o, plan, run_id, scenario_file);
+    // Process 0 is the center, process 1 + j the j-th station in ascending id.
+    const auto process_index = [&](int id) {
+      return 1 + static_cast<std::size_t>(std::find(ids.begin(), ids.end(), id) - ids.begin());
+    };
     const auto spawn_station = [&](int id, std::optional<std::uint64_t> rejoin_step) {
+      const auto [network, netns] = placement.of(placement.harness, process_index(id));
+      const std::vector<std::string> common =
+          node_arguments(o, plan, run_id, scenario_file, network);
       std::vector<std::string> station{(executable_dir() / "skyfuse-station").string(), "--id",
                                        std::to_string(id)};
       station.insert(station.end(), common.begin(), common.end());
@@ -182,12 +231,15 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
         station.push_back("--rejoin-at-step");
         station.push_back(std::to_string(*rejoin_step));
       }
-      children.spawn(node_name(id), station);
+      children.spawn(node_name(id), station, netns);
     };
     if (!o.external) {
+      const auto [network, netns] = placement.of(placement.harness, 0);
+      const std::vector<std::string> common =
+          node_arguments(o, plan, run_id, scenario_file, network);
       std::vector<std::string> center{(executable_dir() / "skyfuse-center").string()};
       center.insert(center.end(), common.begin(), common.end());
-      children.spawn(node_name(kCenterNodeId), center);
+      children.spawn(node_name(kCenterNodeId), center, netns);
       for (int id : ids) spawn_station(id, std::nullopt);
     }
     const auto discovery =
@@ -267,6 +319,10 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     summary.round_deadline_ms = o.node.round_deadline_ms;
     summary.loss = o.node.loss;
     summary.best_effort = o.node.best_effort;
+    summary.hosts = o.hosts;
+    if (placement.harness.discovery_server) {
+      summary.discovery_server = placement.harness.discovery_server->to_string();
+    }
     recorder.write(out, summary, run_id);
     return summary;
   } catch (...) {

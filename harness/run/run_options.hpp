@@ -26,6 +26,7 @@ struct RunOptions {
   std::vector<StationEvent> restarts;  ///< start a killed station again before a step's round
   std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating
   bool external = false;    ///< stations and center are started elsewhere (by hand, compose)
+  int hosts = 0;  ///< > 0: place the processes on this many simulated hosts (simulated_hosts.hpp)
   bool verbose = false;
 };
 

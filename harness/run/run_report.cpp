@@ -307,6 +307,10 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
         {"seed", summary.loss.seed},
         {"best_effort", summary.best_effort}};
   }
+  full["network"] = {
+      {"hosts", summary.hosts},
+      {"discovery",
+       summary.discovery_server.empty() ? "multicast" : "server " + summary.discovery_server}};
   full["dropped_by_kind"] = by_kind;
   full["dropped_by_node"] = by_node;
   write_file_atomically(dir / "summary.json", full.dump(2) + "\n");

@@ -65,6 +65,10 @@ struct RunSummary {
   double round_deadline_ms = 0.0;
   LinkLoss loss;
   bool best_effort = false;
+  /// Where the processes ran and how they found each other: simulated hosts (0: this host),
+  /// and the discovery server's address ("": multicast).
+  int hosts = 0;
+  std::string discovery_server;
 };
 
 /// A station the harness kills (SIGKILL) or starts again, before the round of `step`.

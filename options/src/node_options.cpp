@@ -77,6 +77,7 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
       ->capture_default_str();
   add_loss_options(app, o.loss, o.best_effort);
   add_nis_gate_option(app, o.gate);
+  add_network_options(app, o.network);
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();
@@ -104,6 +105,7 @@ std::vector<std::string> to_arguments(const NodeOptions& o) {
   add("--round-deadline-ms", fmt::format("{}", o.round_deadline_ms));
   for (std::string& a : loss_arguments(o.loss, o.best_effort)) args.push_back(std::move(a));
   if (o.gate.enabled()) add("--nis-gate", fmt::format("{}", o.gate.probability()));
+  for (std::string& a : network_arguments(o.network)) args.push_back(std::move(a));
   add("--log-level", o.log_level);
   return args;
 }

@@ -53,6 +53,8 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   o.loss.end_step = 20;
   o.best_effort = true;
   o.gate = NisGate::at_probability(0.9999);
+  o.network.interface_address = "10.77.0.3";
+  o.network.discovery_server = Ipv4Endpoint{"10.77.0.254", 11811};
   o.log_level = "warn";
 
   const NodeOptions back = parsed(to_arguments(o));
@@ -73,6 +75,7 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   EXPECT_EQ(back.loss.end_step, o.loss.end_step);
   EXPECT_EQ(back.best_effort, o.best_effort);
   EXPECT_EQ(back.gate.probability(), o.gate.probability());
+  EXPECT_EQ(back.network, o.network);
   EXPECT_EQ(back.log_level, o.log_level);
 
   // Defaults travel as defaults: nothing set, nothing invented.
@@ -81,6 +84,23 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   EXPECT_FALSE(plain.qos_file.has_value());
   EXPECT_FALSE(plain.gate.enabled());
   EXPECT_EQ(plain.loss.probability, 0.0);
+  EXPECT_EQ(plain.network, NetworkOptions{});
+  EXPECT_EQ(plain.network.interface_address, "127.0.0.1");
+}
+
+TEST(NetworkOptions, TakeAnIpv4AddressAndPortAndRefuseAnythingElse) {
+  EXPECT_EQ(parse_ipv4_endpoint("127.0.0.1:11811"), (Ipv4Endpoint{"127.0.0.1", 11811}));
+  EXPECT_EQ(parse_ipv4_endpoint("10.0.0.254:1"), (Ipv4Endpoint{"10.0.0.254", 1}));
+  for (const char* bad : {"127.0.0.1", "127.0.0.1:", ":11811", "127.0.0.1:0", "127.0.0.1:65536",
+                          "127.0.0.1:-1", "127.0.0.1:+80", "127.0.0.1: 80", "localhost:11811",
+                          "256.0.0.1:80", "10.0.0:80", "::1:80"}) {
+    EXPECT_EQ(parse_ipv4_endpoint(bad), std::nullopt) << bad;
+  }
+  EXPECT_TRUE(is_ipv4_address("192.168.1.20"));
+  EXPECT_FALSE(is_ipv4_address("192.168.1.20 "));
+  EXPECT_FALSE(is_ipv4_address("eth0"));
+  EXPECT_THROW(parsed({"--interface", "eth0"}), CLI::ValidationError);
+  EXPECT_THROW(parsed({"--discovery-server", "10.0.0.1"}), CLI::ValidationError);
 }
 
 }  // namespace

@@ -12,7 +12,8 @@ bool ReaderWaitSet::wait(std::chrono::microseconds timeout) {
 }
 
 DdsNode::DdsNode(const NodeConfig& config)
-    : qos_(config.qos_file, config.best_effort_data, config.domain_id) {
+    : qos_(config.qos_file, config.best_effort_data, config.domain_id, config.network,
+           config.serves_discovery) {
   if (config.domain_id < 0 || config.domain_id > kMaxDomainId) {
     throw DdsError(
         fmt::format("--domain: must be in [0, {}], got {}", kMaxDomainId, config.domain_id));

@@ -12,6 +12,7 @@ NodeConfig node_config(const options::NodeOptions& options, const std::string& n
   config.name = name;
   if (options.qos_file) config.qos_file = *options.qos_file;
   config.best_effort_data = options.best_effort;
+  config.network = options.network;
   if (options.secure_dir) {
     config.security = SecurityConfig{*options.secure_dir, identity_for_participant(name)};
   }

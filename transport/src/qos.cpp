@@ -1,5 +1,6 @@
 #include "skyfuse/transport/qos.hpp"
 
+#include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 
 namespace skyfuse::transport {
@@ -113,8 +115,15 @@ void apply_common(EndpointQos& qos, const std::string& topic, bool best_effort_d
 }  // namespace
 
 QosProfiles::QosProfiles(const std::optional<std::filesystem::path>& xml_file,
-                         bool best_effort_data, int domain_id)
-    : best_effort_data_(best_effort_data), domain_id_(domain_id) {
+                         bool best_effort_data, int domain_id, options::NetworkOptions network,
+                         bool serves_discovery)
+    : best_effort_data_(best_effort_data),
+      domain_id_(domain_id),
+      network_(std::move(network)),
+      serves_discovery_(serves_discovery) {
+  if (serves_discovery_ && !network_.discovery_server) {
+    throw std::invalid_argument("a discovery server needs its address");
+  }
   auto* factory = dds::DomainParticipantFactory::get_instance();
   if (xml_file && factory->load_XML_profiles_file(xml_file->string()) != ReturnCode_t::RETCODE_OK) {
     throw std::runtime_error(
@@ -131,12 +140,12 @@ dds::DomainParticipantQos QosProfiles::participant(const std::string& name) cons
   dds::DomainParticipantQos qos = user_participant_.value_or(dds::DomainParticipantQos());
   qos.name(name);
   if (user_participant_) return qos;
-  // UDP on the loopback interface only: one host, no traffic leaves it, and no shared-memory
-  // segments for a killed process to leave in /dev/shm. Runs across hosts or containers give
-  // a profile with their own transport (docker/fastdds_profile.xml).
+  // UDP on one interface only - loopback by default: one host, no traffic leaves it - and no
+  // shared-memory segments for a killed process to leave in /dev/shm, nor for two simulated
+  // hosts (network namespaces) to share. Runs across hosts give each node its host's address.
   qos.transport().use_builtin_transports = false;
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-  udp->interfaceWhiteList.emplace_back("127.0.0.1");
+  udp->interfaceWhiteList.emplace_back(network_.interface_address);
   // With the default 208 KiB, a round's burst overflowed the sockets from ~20 stations on and
   // each lost datagram waited for a repair: M = 32, 300 rounds: 33 810 datagrams dropped,
   // 14 rounds/s; with 4 MiB none, 19 rounds/s. The kernel caps it at net.core.rmem_max.
@@ -152,6 +161,7 @@ dds::DomainParticipantQos QosProfiles::participant(const std::string& name) cons
   // Announce quickly at start so that all-matched is reached in tenths of a second.
   discovery.initial_announcements.count = 10;
   discovery.initial_announcements.period = Duration_t(0, 50'000'000);
+  if (network_.discovery_server) use_discovery_server(qos, *network_.discovery_server);
   return qos;
 }
 
@@ -197,6 +207,28 @@ dds::DataReaderQos QosProfiles::reader(const dds::Subscriber& subscriber,
     qos.endpoint().multicast_locator_list.push_back(group);
   }
   return qos;
+}
+
+void QosProfiles::use_discovery_server(dds::DomainParticipantQos& qos,
+                                       const options::Ipv4Endpoint& server) const {
+  // The server's GUID prefix is the one `fastdds discovery -i 0` uses, so that such a server
+  // can stand in for the harness's.
+  namespace rtps = eprosima::fastrtps::rtps;
+  rtps::Locator_t locator;
+  rtps::IPLocator::createLocator(LOCATOR_KIND_UDPv4, server.address, server.port, locator);
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  if (serves_discovery_) {
+    discovery.discoveryProtocol = rtps::DiscoveryProtocol_t::SERVER;
+    std::istringstream(eprosima::fastdds::rtps::DEFAULT_ROS2_SERVER_GUIDPREFIX) >>
+        qos.wire_protocol().prefix;
+    qos.wire_protocol().builtin.metatrafficUnicastLocatorList.push_back(locator);
+    return;
+  }
+  discovery.discoveryProtocol = rtps::DiscoveryProtocol_t::CLIENT;
+  eprosima::fastdds::rtps::RemoteServerAttributes remote;
+  remote.ReadguidPrefix(eprosima::fastdds::rtps::DEFAULT_ROS2_SERVER_GUIDPREFIX);
+  remote.metatrafficUnicastLocatorList.push_back(locator);
+  discovery.m_DiscoveryServers.push_back(remote);
 }
 
 }  // namespace skyfuse::transport

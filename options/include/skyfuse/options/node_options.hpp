@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "skyfuse/options/network_options.hpp"
 #include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/validation/nis_gate.hpp"
@@ -45,6 +46,8 @@ struct NodeOptions {
   bool best_effort = false;  ///< increments and measurements BEST_EFFORT instead of RELIABLE
   /// The chi^2 gate on measurements (`--nis-gate P`; default: none).
   NisGate gate;
+  /// The interface and the discovery (`--interface`, `--discovery-server`).
+  NetworkOptions network;
   std::string log_level = "info";
 
   std::chrono::microseconds round_deadline() const;

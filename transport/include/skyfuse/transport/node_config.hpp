@@ -34,6 +34,11 @@ struct NodeConfig {
   /// not repaired, and a round closes at its deadline without the sample.
   bool best_effort_data = false;
   std::optional<SecurityConfig> security;  ///< none: plain DDS
+  /// The interface the sockets use and the discovery: multicast, or as a client of
+  /// network.discovery_server.
+  options::NetworkOptions network;
+  /// This participant is the discovery server at network.discovery_server (the harness).
+  bool serves_discovery = false;
 };
 
 /// Domain ids above 232 make Fast DDS 2.9 exit the process during participant creation.

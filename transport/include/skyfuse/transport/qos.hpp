@@ -23,6 +23,8 @@
 #include <string>
 #include <string_view>
 
+#include "skyfuse/options/network_options.hpp"
+
 namespace eprosima::fastdds::dds {
 class Publisher;
 class Subscriber;
@@ -57,13 +59,16 @@ class QosProfiles {
  public:
   /// Loads `xml_file` if given; a file that does not load is an error, not a silent default.
   /// `best_effort_data`: the data links (increments, measurements) are BEST_EFFORT.
-  /// `domain_id` places the multicast ports.
+  /// `domain_id` places the multicast ports. `network`: the built-in participant's interface
+  /// and discovery; `serves_discovery`: it is the discovery server at
+  /// network.discovery_server, not a client.
   QosProfiles(const std::optional<std::filesystem::path>& xml_file, bool best_effort_data,
-              int domain_id);
+              int domain_id, options::NetworkOptions network = {}, bool serves_discovery = false);
 
-  /// True when the built-in participant is used, and with it multicast for the one-to-many
-  /// topics; false when a `skyfuse_participant` profile replaces it.
-  bool multicast() const { return !user_participant_; }
+  /// True when the built-in participant discovers by multicast, and with it the one-to-many
+  /// topics travel by multicast; false when a `skyfuse_participant` profile replaces it or a
+  /// discovery server is used (where multicast may not reach).
+  bool multicast() const { return !user_participant_ && !network_.discovery_server; }
 
   eprosima::fastdds::dds::DomainParticipantQos participant(const std::string& name) const;
   eprosima::fastdds::dds::DataWriterQos writer(const eprosima::fastdds::dds::Publisher& publisher,
@@ -72,8 +77,14 @@ class QosProfiles {
                                                const std::string& topic) const;
 
  private:
+  // Makes `qos` the discovery server at `server`, or a client of it.
+  void use_discovery_server(eprosima::fastdds::dds::DomainParticipantQos& qos,
+                            const options::Ipv4Endpoint& server) const;
+
   bool best_effort_data_;
   int domain_id_;
+  options::NetworkOptions network_;
+  bool serves_discovery_;
   // The user's `skyfuse_participant` profile, read once; none: the built-in participant.
   std::optional<eprosima::fastdds::dds::DomainParticipantQos> user_participant_;
 };

@@ -1,0 +1,95 @@
+// Beyond one loopback interface: `skyfuse run --hosts N` places the processes on N network
+// namespaces joined by a bridge, with multicast off on every host's interface, so the nodes can
+// find each other only through the harness's discovery server; and `--discovery-server` on one
+// host. Either way the tracks equal the in-process run bit for bit.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "integration/run_fixture.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+
+namespace skyfuse::test {
+namespace {
+
+using namespace std::chrono_literals;
+using ::testing::HasSubstr;
+
+constexpr int kSteps = 200;
+
+// What a shell command prints on stdout.
+std::string output_of(const std::string& command) {
+  std::string out;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return out;
+  char buffer[256];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
+  pclose(pipe);
+  return out;
+}
+
+// Runs `skyfuse run` with `extra` and checks every track against the in-process twin; returns
+// summary.json.
+nlohmann::json expect_equal_to_twin(int stations, int domain,
+                                    const std::vector<std::string>& extra) {
+  const auto dir = test_dir();
+  std::vector<std::string> args = {bin("skyfuse"), "run",
+                                   "--stations",   std::to_string(stations),
+                                   "--steps",      std::to_string(kSteps),
+                                   "--domain",     std::to_string(domain),
+                                   "--out",        (dir / "out").string(),
+                                   "--verbose"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const Completed run = run_to_completion(args, dir / "run.log", 120s);
+  EXPECT_EQ(run.status.code, 0) << run.output;
+  if (run.status.code != 0) return {};
+
+  const RunPlan plan = make_run_plan(load_default_scenario(), {stations, kSteps, {}, 0});
+  const auto tracks = read_tracks(dir / "out" / "tracks.csv");
+  EXPECT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * (stations + 1)));
+  EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_EQ(summary.at("max_abs_diff_between_peers"), 0.0);
+  for (const auto& [kind, count] : summary.at("dropped_by_kind").items()) {
+    EXPECT_EQ(count.get<int>(), 0) << kind;
+  }
+  return summary;
+}
+
+TEST(DdsHosts, FourStationsOnThreeHostsEqualTheInProcessRunBitForBit) {
+  if (geteuid() != 0) GTEST_SKIP() << "--hosts creates network namespaces: root only";
+  if (std::system("ip -V > /dev/null 2>&1") != 0) GTEST_SKIP() << "no `ip` (iproute2)";
+  const auto summary = expect_equal_to_twin(4, 188, {"--hosts", "3"});
+  EXPECT_EQ(summary["network"]["hosts"], 3);
+  EXPECT_THAT(summary["network"]["discovery"].get<std::string>(), HasSubstr("server 198.18."));
+  // Nothing is left behind: no namespace, no bridge of the run.
+  EXPECT_THAT(output_of("ip netns list"), ::testing::Not(HasSubstr("skyfuse-")));
+  EXPECT_THAT(output_of("ip -o link show type bridge"), ::testing::Not(HasSubstr("sfbr")));
+}
+
+TEST(DdsHosts, RefusedWithoutRootBeforeWritingAnything) {
+  const auto dir = test_dir();
+  std::vector<std::string> args = {bin("skyfuse"), "run", "--hosts", "2",
+                                   "--steps",      "5",   "--out",   (dir / "out").string()};
+  if (geteuid() == 0) {  // as nobody: what a user without root sees
+    if (std::system("setpriv --help > /dev/null 2>&1") != 0) GTEST_SKIP() << "no setpriv";
+    std::filesystem::permissions(dir, std::filesystem::perms::all);
+    args.insert(args.begin(),
+                {"/usr/bin/setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"});
+  }
+  const Completed run = run_to_completion(args, dir / "run.log", 60s);
+  EXPECT_NE(run.status.code, 0);
+  EXPECT_THAT(run.output, HasSubstr("--hosts: creating network namespaces needs root"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+}
+
+TEST(DdsDiscoveryServer, NodesFindEachOtherThroughTheHarnessOnLoopback) {
+  const auto summary = expect_equal_to_twin(3, 189, {"--discovery-server", "127.0.0.1:11911"});
+  EXPECT_EQ(summary["network"]["discovery"], "server 127.0.0.1:11911");
+}
+
+}  // namespace
+}  // namespace skyfuse::test
