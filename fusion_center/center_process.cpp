@@ -14,6 +14,7 @@
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/delayed_inbox.hpp"
 #include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
@@ -133,15 +134,23 @@ class Center {
       }
       wire::Measurement sample;
       transport::WriterId writer;
+      const auto now = std::chrono::steady_clock::now();
       while (measurements_.take(sample, &writer)) {
         if (options_.loss.lost(kCenterSourceId, sample.station_id(), sample.step())) {
           ++lost_;  // the simulated link lost it: as if it never arrived
           continue;
         }
-        if (const auto why = refusal(sample, writer)) {
-          transport::count_drop(drops_, *why, "measurement", sample.station_id(), sample.step());
+        if (options_.delay.enabled()) {  // the simulated link holds it back
+          delayed_.hold(
+              sample, writer,
+              now + options_.delay.of(options_.loss.seed, kCenterSourceId,
+                                      static_cast<int>(sample.station_id()), sample.step()));
+          continue;
         }
+        receive(sample, writer);
       }
+      delayed_.release_due(
+          now, [&](const wire::Measurement& m, const transport::WriterId& w) { receive(m, w); });
       if (collector_.complete()) return -1;
       if (realtime && epoch_ns_ != 0) {
         close = transport::step_start(epoch_ns_, k, plan_.scenario.time_step_s) +
@@ -165,7 +174,15 @@ class Center {
         slice =
             std::clamp(left + std::chrono::microseconds(1), std::chrono::microseconds(1), slice);
       }
-      wait_set_.wait(slice);
+      // Nor past the next delayed measurement.
+      wait_set_.wait(delayed_.wait_limit(std::chrono::steady_clock::now(), slice));
+    }
+  }
+
+  // Checks a received measurement and keeps it, or counts why not.
+  void receive(const wire::Measurement& sample, const transport::WriterId& writer) {
+    if (const auto why = refusal(sample, writer)) {
+      transport::count_drop(drops_, *why, "measurement", sample.station_id(), sample.step());
     }
   }
 
@@ -202,6 +219,7 @@ class Center {
   transport::SourceBinding sources_;
   DropTally drops_;
   std::uint64_t lost_ = 0;  // measurements removed by the simulated loss
+  transport::DelayedInbox<wire::Measurement> delayed_;  // held by --link-delay-ms
 };
 
 }  // namespace

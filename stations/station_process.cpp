@@ -16,6 +16,7 @@
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/delayed_inbox.hpp"
 #include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
@@ -163,17 +164,37 @@ class Station {
     }
     wire::InformationIncrement sample;
     transport::WriterId writer;
+    const auto now = std::chrono::steady_clock::now();
     while (io_.increments_in.take(sample, &writer)) {
       if (sample.station_id() == me_.id && writer == io_.increments_out.id()) continue;  // own
       if (options_.node.loss.lost(me_.id, sample.station_id(), sample.step())) {
         ++lost_;  // the simulated link lost it: as if it never arrived
         continue;
       }
-      if (const auto why = refusal(sample, writer)) {
-        transport::count_drop(drops_, *why, "increment", sample.station_id(), sample.step());
+      if (options_.node.delay.enabled()) {  // the simulated link holds it back
+        delayed_.hold(
+            sample, writer,
+            now + options_.node.delay.of(options_.node.loss.seed, me_.id,
+                                         static_cast<int>(sample.station_id()), sample.step()));
+        continue;
       }
+      receive(sample, writer);
     }
+    delayed_.release_due(now, [&](const wire::InformationIncrement& s,
+                                  const transport::WriterId& w) { receive(s, w); });
     return -1;
+  }
+
+  // Checks a received increment and keeps it, or counts why not.
+  void receive(const wire::InformationIncrement& sample, const transport::WriterId& writer) {
+    if (const auto why = refusal(sample, writer)) {
+      transport::count_drop(drops_, *why, "increment", sample.station_id(), sample.step());
+    }
+  }
+
+  // How long to wait for samples: a poll slice at most, and not past the next delayed one.
+  std::chrono::microseconds wait_slice(std::chrono::microseconds longest = kPollSlice) const {
+    return delayed_.wait_limit(std::chrono::steady_clock::now(), longest);
   }
 
   // Checks a received increment and offers it to the collector; nothing if it was kept.
@@ -203,7 +224,7 @@ class Station {
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
         return options::kExitIdleTimeout;
       }
-      io_.wait_set.wait(kPollSlice);
+      io_.wait_set.wait(wait_slice());
     }
   }
 
@@ -228,8 +249,8 @@ class Station {
       if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
       const auto left = close - std::chrono::system_clock::now();
       if (left <= std::chrono::system_clock::duration::zero()) return -1;
-      io_.wait_set.wait(std::min<std::chrono::microseconds>(
-          std::chrono::duration_cast<std::chrono::microseconds>(left) + 1us, kPollSlice));
+      io_.wait_set.wait(wait_slice(std::min<std::chrono::microseconds>(
+          std::chrono::duration_cast<std::chrono::microseconds>(left) + 1us, kPollSlice)));
     }
   }
 
@@ -297,6 +318,7 @@ class Station {
   std::uint64_t lost_ = 0;      // increments removed by the simulated loss
   std::uint32_t resyncs_ = 0;   // rounds fused onto another station's prior
   transport::SourceBinding sources_;
+  transport::DelayedInbox<wire::InformationIncrement> delayed_;  // held by --link-delay-ms
   DropTally drops_;
 };
 

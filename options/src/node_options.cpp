@@ -76,6 +76,7 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   add_loss_options(app, o.loss, o.best_effort);
+  add_delay_options(app, o.delay);
   add_nis_gate_option(app, o.gate);
   add_network_options(app, o.network);
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")
@@ -104,6 +105,7 @@ std::vector<std::string> to_arguments(const NodeOptions& o) {
   add("--realtime-deadline-ms", fmt::format("{}", o.realtime_deadline_ms));
   add("--round-deadline-ms", fmt::format("{}", o.round_deadline_ms));
   for (std::string& a : loss_arguments(o.loss, o.best_effort)) args.push_back(std::move(a));
+  for (std::string& a : delay_arguments(o.delay)) args.push_back(std::move(a));
   if (o.gate.enabled()) add("--nis-gate", fmt::format("{}", o.gate.probability()));
   for (std::string& a : network_arguments(o.network)) args.push_back(std::move(a));
   add("--log-level", o.log_level);
@@ -128,9 +130,27 @@ void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort) {
          },
          "Apply --loss only to steps A to B-1, as A:B (default: every step)")
       ->type_name("A:B");
-  app.add_option("--loss-seed", loss.seed, "Seed of the simulated loss")->capture_default_str();
+  app.add_option("--loss-seed", loss.seed, "Seed of the simulated loss and delay")
+      ->capture_default_str();
   app.add_flag("--best-effort", best_effort,
                "Increments and measurements travel BEST_EFFORT: lost datagrams are not repaired");
+}
+
+void add_delay_options(CLI::App& app, LinkDelay& delay) {
+  app.add_option("--link-delay-ms", delay.delay_ms,
+                 "Hold each received increment and measurement this many ms on its link "
+                 "(seeded by --loss-seed: a rerun delays the same samples alike)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--link-jitter-ms", delay.jitter_ms,
+                 "Vary each link delay uniformly by up to this many ms either way (never below "
+                 "0): samples arrive late and out of order")
+      ->check(CLI::NonNegativeNumber);
+}
+
+std::vector<std::string> delay_arguments(const LinkDelay& delay) {
+  if (!delay.enabled()) return {};
+  return {"--link-delay-ms", fmt::format("{}", delay.delay_ms), "--link-jitter-ms",
+          fmt::format("{}", delay.jitter_ms)};
 }
 
 std::optional<std::pair<std::uint64_t, std::uint64_t>> parse_number_pair(std::string_view text,
@@ -170,12 +190,15 @@ void add_nis_gate_option(CLI::App& app, NisGate& gate) {
 std::vector<std::string> loss_arguments(const LinkLoss& loss, bool best_effort) {
   std::vector<std::string> args;
   if (loss.probability > 0.0) {
-    args = {"--loss", fmt::format("{}", loss.probability), "--loss-seed",
-            std::to_string(loss.seed)};
+    args = {"--loss", fmt::format("{}", loss.probability)};
     if (loss.first_step != 0 || loss.end_step != LinkLoss{}.end_step) {
       args.push_back("--loss-steps");
       args.push_back(fmt::format("{}:{}", loss.first_step, loss.end_step));
     }
+  }
+  if (loss.seed != LinkLoss{}.seed) {  // the delay draws with it too
+    args.push_back("--loss-seed");
+    args.push_back(std::to_string(loss.seed));
   }
   if (best_effort) args.push_back("--best-effort");
   return args;

@@ -52,6 +52,8 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   o.loss.first_step = 10;
   o.loss.end_step = 20;
   o.best_effort = true;
+  o.delay.delay_ms = 10.0;
+  o.delay.jitter_ms = 0.1 + 0.7;
   o.gate = NisGate::at_probability(0.9999);
   o.network.interface_address = "10.77.0.3";
   o.network.discovery_server = Ipv4Endpoint{"10.77.0.254", 11811};
@@ -74,6 +76,8 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   EXPECT_EQ(back.loss.first_step, o.loss.first_step);
   EXPECT_EQ(back.loss.end_step, o.loss.end_step);
   EXPECT_EQ(back.best_effort, o.best_effort);
+  EXPECT_EQ(back.delay.delay_ms, o.delay.delay_ms);
+  EXPECT_EQ(back.delay.jitter_ms, o.delay.jitter_ms);
   EXPECT_EQ(back.gate.probability(), o.gate.probability());
   EXPECT_EQ(back.network, o.network);
   EXPECT_EQ(back.log_level, o.log_level);
@@ -84,8 +88,20 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   EXPECT_FALSE(plain.qos_file.has_value());
   EXPECT_FALSE(plain.gate.enabled());
   EXPECT_EQ(plain.loss.probability, 0.0);
+  EXPECT_FALSE(plain.delay.enabled());
   EXPECT_EQ(plain.network, NetworkOptions{});
   EXPECT_EQ(plain.network.interface_address, "127.0.0.1");
+}
+
+// The delay draws with the loss's seed: a delay without loss still passes the seed on.
+TEST(NodeOptions, ADelayWithoutLossKeepsItsSeed) {
+  NodeOptions o;
+  o.loss.seed = 42;
+  o.delay.jitter_ms = 3.0;
+  const NodeOptions back = parsed(to_arguments(o));
+  EXPECT_EQ(back.loss.seed, 42U);
+  EXPECT_FALSE(back.loss.enabled());
+  EXPECT_EQ(back.delay.jitter_ms, 3.0);
 }
 
 TEST(NetworkOptions, TakeAnIpv4AddressAndPortAndRefuseAnythingElse) {

@@ -9,6 +9,7 @@
 
 #include "skyfuse/models/constant_acceleration.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/random/link_delay.hpp"
 #include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/run_plan.hpp"
@@ -163,6 +164,35 @@ TEST(LinkLoss, DrawsArePureFunctionsOfLinkAndStepAndMatchTheRate) {
   loss.end_step = 20;
   for (int k = 0; k < 10; ++k) EXPECT_FALSE(loss.lost(1, 2, static_cast<std::uint64_t>(k)));
   for (int k = 20; k < 100; ++k) EXPECT_FALSE(loss.lost(1, 2, static_cast<std::uint64_t>(k)));
+}
+
+TEST(LinkDelay, DrawsArePureFunctionsOfLinkAndStepWithinTheJitterAndReorderLinks) {
+  using std::chrono::microseconds;
+  const LinkDelay delay{10.0, 8.0};
+  double sum_ms = 0.0;
+  int reordered = 0;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    const auto step = static_cast<std::uint64_t>(k);
+    const microseconds d = delay.of(7, 1, 2, step);
+    EXPECT_EQ(d, delay.of(7, 1, 2, step));
+    EXPECT_GE(d, microseconds(2000));
+    EXPECT_LE(d, microseconds(18000));
+    sum_ms += static_cast<double>(d.count()) / 1000.0;
+    reordered += delay.of(7, 1, 3, step) < d ? 1 : 0;  // station 3's sample overtakes 2's
+  }
+  // Uniform on [2, 18] ms: sd 4.6 ms, of the mean of 20000 draws 0.033 ms; 5 sd either side.
+  EXPECT_NEAR(sum_ms / n, 10.0, 5 * 0.033);
+  EXPECT_NEAR(reordered, n / 2, 5 * 71);  // Binomial(20000, 1/2): sd 71
+  EXPECT_NE(delay.of(8, 1, 2, 0), delay.of(7, 1, 2, 0)) << "the seed matters";
+  EXPECT_EQ(delay.of(7, 3, 3, 0), microseconds(0)) << "a node's own sample is not delayed";
+  // Never below zero, however large the jitter.
+  const LinkDelay wide{1.0, 5.0};
+  for (int k = 0; k < 1000; ++k) {
+    EXPECT_GE(wide.of(7, 1, 2, static_cast<std::uint64_t>(k)), microseconds(0));
+  }
+  EXPECT_FALSE(LinkDelay{}.enabled());
+  EXPECT_EQ(LinkDelay{}.of(7, 1, 2, 0), microseconds(0));
 }
 
 }  // namespace

@@ -16,6 +16,7 @@ enum class NoiseStream : std::uint64_t {
   kInitialState = 3,  ///< error of the filter's initial estimate
   kProcess = 4,       ///< process noise of a simulated truth (tests)
   kLinkLoss = 5,      ///< simulated loss of a sample on one link (`skyfuse run --loss`)
+  kLinkDelay = 6,     ///< simulated delay of a sample on one link (`--link-delay-ms`)
 };
 
 struct NoiseKey {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "skyfuse/options/network_options.hpp"
+#include "skyfuse/random/link_delay.hpp"
 #include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/validation/nis_gate.hpp"
@@ -43,6 +44,9 @@ struct NodeOptions {
   double round_deadline_ms = 1000.0;
   /// Simulated loss of received increments and measurements (`--loss`, `--loss-steps`).
   LinkLoss loss;
+  /// Simulated delay of received increments and measurements (`--link-delay-ms`,
+  /// `--link-jitter-ms`), drawn with the loss's seed.
+  LinkDelay delay;
   bool best_effort = false;  ///< increments and measurements BEST_EFFORT instead of RELIABLE
   /// The chi^2 gate on measurements (`--nis-gate P`; default: none).
   NisGate gate;
@@ -77,6 +81,11 @@ void add_plan_options(CLI::App& app, RunOverrides& overrides);
 /// `--loss P`, `--loss-steps A:B`, `--loss-seed S` and `--best-effort` into `loss` and
 /// `best_effort`: shared by the nodes and `skyfuse run`, which passes them on.
 void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort);
+/// `--link-delay-ms D` and `--link-jitter-ms J` into `delay`: shared by the nodes and `skyfuse
+/// run`, which passes them on.
+void add_delay_options(CLI::App& app, LinkDelay& delay);
+/// The arguments that give a node the same delay (empty when there is none).
+std::vector<std::string> delay_arguments(const LinkDelay& delay);
 /// "A<separator>B" with A and B unsigned decimal integers and nothing else (no sign, no
 /// spaces); nothing if the text is not that. For option values like `100:200` and `2@100`.
 std::optional<std::pair<std::uint64_t, std::uint64_t>> parse_number_pair(std::string_view text,
