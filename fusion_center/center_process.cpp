@@ -96,7 +96,7 @@ class Center {
       collector_.advance();
     }
     presence_.set_drops(drops_.counts());
-    presence_.set_link_counts(lost_, 0);
+    presence_.set_link_counts(lost_, 0, 0);
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
     transport::finish_when_released(ticks_, options_.run_id, presence_, tracks_, 5s);
     spdlog::info("finished {} steps", steps);

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -33,15 +34,21 @@ class ImmFusion {
       transport::ImmModeSample<std::tuple_element_t<I, typename Peers::Filter::ModeStates>::kDim,
                                kModes>;
 
-  explicit ImmFusion(const RunPlan& plan)
+  ImmFusion(const RunPlan& plan, std::size_t lag)
       : peers_(make_network_imm(plan.scenario, plan.initial_estimate<ConstantAcceleration3D>())),
         collectors_(make_collectors(plan.participant_ids(), std::make_index_sequence<kModes>{})),
         weights_(plan.weights_of(station_ids())),
         assembled_(station_ids().size()) {
+    if (lag != 0) {
+      throw std::invalid_argument(
+          "--refusion-lag: filter imm fuses each round once for now; leave it at 0");
+    }
     arrivals_.reserve(assembled_.size());
     round_weights_.reserve(assembled_.size());
     contributors_.reserve(assembled_.size());
   }
+  /// Contributions kept although their round had closed: none, without re-fusion.
+  std::uint64_t late_used() const { return 0; }
 
   std::span<const int> station_ids() const { return std::get<0>(collectors_).station_ids(); }
   void start_at(std::uint64_t step) {

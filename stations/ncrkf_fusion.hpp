@@ -25,7 +25,7 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
   using Model = TdoaRelativeMotion;
   using Sensor = RangeDifferenceSensor<kDim>;
 
-  explicit NcrkfFusion(const RunPlan& plan) : IncrementRound(plan) {
+  NcrkfFusion(const RunPlan& plan, std::size_t lag) : IncrementRound(plan, lag) {
     for (const int id : station_ids()) {
       sigmas_.push_back(std::sqrt(station_noise_covariance<Sensor::kMeasDim>(
           plan.scenario, *plan.participant(id), plan.mc_run)(0, 0)));
@@ -39,9 +39,11 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
   template <typename Write>
   OwnContribution contribute(std::uint64_t k, const StationObservation<Sensor>& observation,
                              const NisGate& /*gate*/, std::uint64_t run_id, Write write) {
+    OwnContribution result;
+    result.status = refresh_prior(fuse_one_round([](int, DropKind) {}));
+    if (result.status != NumericalStatus::kOk) return result;
     Contribution own;
     own.prior = tracker_.estimate();
-    OwnContribution result;
     result.refused = Sensor::check_reported(observation.z);
     if (result.refused) {
       own.increment.station_id = observation.station_id;
@@ -77,13 +79,22 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
   /// anything did.
   template <typename OnRefused>
   RoundFusion fuse(OnRefused on_refused) {
-    const auto ids = station_ids();
-    return fuse_tdoa_round(
-        round_, tracker_, ids.size(), [&](std::size_t i) { return slot(i); },
-        [&](std::size_t i) { on_refused(ids[i], DropKind::kNotPositive); });
+    return fuse_current(fuse_one_round(on_refused));
   }
 
  private:
+  // One round by the TDOA round rule; refusals are reported for the round being closed only,
+  // not again when a later round fuses it again.
+  template <typename OnRefused>
+  auto fuse_one_round(OnRefused on_refused) {
+    return [this, on_refused](std::uint64_t step, auto slot_at) {
+      const auto ids = station_ids();
+      return fuse_tdoa_round(round_, tracker_, ids.size(), slot_at, [&](std::size_t i) {
+        if (is_current(step)) on_refused(ids[i], DropKind::kNotPositive);
+      });
+    };
+  }
+
   std::vector<double> sigmas_;  // each participant's range-difference noise, ascending id
 };
 

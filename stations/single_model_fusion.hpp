@@ -17,15 +17,19 @@ template <typename Sensor>
 class SingleModelFusion : public IncrementRound<transport::WireModel> {
  public:
   using IncrementRound::IncrementRound;
+  using IncrementRound::kDim;
 
   /// Screens this station's own measurement against the common prior, writes its contribution
   /// (write(sample)) and keeps it for the round.
   template <typename Write>
   OwnContribution contribute(std::uint64_t k, const StationObservation<Sensor>& observation,
                              const NisGate& gate, std::uint64_t run_id, Write write) {
+    OwnContribution result;
+    result.status = refresh_prior(fuse_one_round());
+    if (result.status != NumericalStatus::kOk) return result;
     Contribution own;
     own.prior = tracker_.estimate();
-    const OwnContribution result = skyfuse::contribute(own.prior, observation, gate, own.increment);
+    result = skyfuse::contribute(own.prior, observation, gate, own.increment);
     if (result.status != NumericalStatus::kOk) return result;
     publish(k, observation.station_id, own, run_id, write);
     return result;
@@ -45,7 +49,13 @@ class SingleModelFusion : public IncrementRound<transport::WireModel> {
   /// (on_refused(station_id, why) is never called): every sample was checked on arrival.
   template <typename OnRefused>
   RoundFusion fuse(OnRefused /*on_refused*/) {
-    return round_.fuse(tracker_, [&](std::size_t i) { return slot(i); });
+    return fuse_current(fuse_one_round());
+  }
+
+ private:
+  // One round by the round rule.
+  auto fuse_one_round() {
+    return [this](std::uint64_t /*step*/, auto slot_at) { return round_.fuse(tracker_, slot_at); };
   }
 };
 

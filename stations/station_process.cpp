@@ -68,7 +68,7 @@ class Station {
         node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", me.id))),
         presence_(node_, options.node.run_id, me.id),
         io_(node_),
-        fusion_(plan),
+        fusion_(plan, options.node.refusion_lag),
         sensor_(make_sensor<Sensor>(me)),
         noise_(station_noise_covariance<Sensor::kMeasDim>(plan.scenario, me, plan.mc_run)),
         syncing_(options.rejoin_step.has_value()) {
@@ -134,11 +134,13 @@ class Station {
       fusion_.advance();
     }
     presence_.set_drops(drops_.counts());
-    presence_.set_link_counts(lost_, resyncs_);
+    presence_.set_link_counts(lost_, resyncs_, fusion_.late_used());
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
     transport::finish_when_released(io_.ticks, options_.node.run_id, presence_, io_.tracks, 5s);
-    spdlog::info("finished {} steps ({} rounds resynchronised, {} samples lost to --loss)",
-                 steps - first, resyncs_, lost_);
+    spdlog::info(
+        "finished {} steps ({} rounds resynchronised, {} samples lost to --loss, {} late ones "
+        "re-fused)",
+        steps - first, resyncs_, lost_, fusion_.late_used());
     return options::kExitOk;
   }
 

@@ -53,6 +53,7 @@ void add_run_command(CLI::App& app, RunOptions& o) {
       ->capture_default_str();
   options::add_loss_options(*cmd, o.node.loss, o.node.best_effort);
   options::add_delay_options(*cmd, o.node.delay);
+  options::add_refusion_option(*cmd, o.node.refusion_lag);
   options::add_nis_gate_option(*cmd, o.node.gate);
   options::add_network_options(*cmd, o.node.network);
   cmd->add_option_function<std::vector<std::string>>(

@@ -169,6 +169,10 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   // Refusals first: a refused command leaves an earlier run's folder as it was.
   check_station_events(o, plan);
   check_hosts(o);
+  if (o.node.refusion_lag != 0 && plan.scenario.filter.kind == "imm") {
+    throw std::invalid_argument(
+        "--refusion-lag: filter imm fuses each round once for now; leave it at 0");
+  }
   const std::vector<int> ids = plan.participant_ids();
   if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
     transport::SecurityFolder{*o.node.secure_dir}.check(transport::run_identities(ids));
@@ -320,6 +324,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     summary.loss = o.node.loss;
     summary.best_effort = o.node.best_effort;
     summary.hosts = o.hosts;
+    summary.refusion_lag = o.node.refusion_lag;
     if (placement.harness.discovery_server) {
       summary.discovery_server = placement.harness.discovery_server->to_string();
     }

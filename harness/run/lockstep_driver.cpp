@@ -153,6 +153,7 @@ struct LockstepDriver::Impl {
         std::copy(s.dropped().begin(), s.dropped().end(), counts.dropped.begin());
         counts.lost = s.lost();
         counts.resyncs = s.resyncs();
+        counts.late_used = s.late_used();
       }
     }
   }

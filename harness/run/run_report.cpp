@@ -274,6 +274,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
   nlohmann::json by_node = nlohmann::json::object();
   nlohmann::json lost = nlohmann::json::object();
   nlohmann::json resyncs = nlohmann::json::object();
+  nlohmann::json late_used = nlohmann::json::object();
   for (std::size_t i = 0; i < kDropKinds; ++i) {
     std::uint64_t total = 0;
     for (const auto& [node, counts] : summary.node_counts) total += counts.dropped[i];
@@ -289,6 +290,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
     by_node[node_key(node)] = kinds;
     if (node != kHarnessNodeId) lost[node_key(node)] = counts.lost;
     if (node > 0) resyncs[node_key(node)] = counts.resyncs;
+    if (node > 0) late_used[node_key(node)] = counts.late_used;
   }
   nlohmann::json missing = nlohmann::json::object();
   for (const auto& [id, count] : summary.rounds_missing_by_station) missing[node_key(id)] = count;
@@ -298,6 +300,10 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
   full["rejoin_step_by_station"] = rejoin;
   full["lost_by_node"] = lost;
   full["resyncs_by_station"] = resyncs;
+  // Late samples used (kept and re-fused within --refusion-lag) and too late for it (refused
+  // as stale_step, in dropped_by_node).
+  full["late_used_by_station"] = late_used;
+  full["refusion_lag"] = summary.refusion_lag;
   if (summary.loss.probability > 0.0 || summary.best_effort) {
     full["loss"] = {
         {"probability", summary.loss.probability},

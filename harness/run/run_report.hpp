@@ -69,6 +69,7 @@ struct RunSummary {
   /// and the discovery server's address ("": multicast).
   int hosts = 0;
   std::string discovery_server;
+  std::size_t refusion_lag = 0;
 };
 
 /// A station the harness kills (SIGKILL) or starts again, before the round of `step`.

@@ -77,6 +77,7 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
       ->capture_default_str();
   add_loss_options(app, o.loss, o.best_effort);
   add_delay_options(app, o.delay);
+  add_refusion_option(app, o.refusion_lag);
   add_nis_gate_option(app, o.gate);
   add_network_options(app, o.network);
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")
@@ -106,6 +107,7 @@ std::vector<std::string> to_arguments(const NodeOptions& o) {
   add("--round-deadline-ms", fmt::format("{}", o.round_deadline_ms));
   for (std::string& a : loss_arguments(o.loss, o.best_effort)) args.push_back(std::move(a));
   for (std::string& a : delay_arguments(o.delay)) args.push_back(std::move(a));
+  if (o.refusion_lag != 0) add("--refusion-lag", std::to_string(o.refusion_lag));
   if (o.gate.enabled()) add("--nis-gate", fmt::format("{}", o.gate.probability()));
   for (std::string& a : network_arguments(o.network)) args.push_back(std::move(a));
   add("--log-level", o.log_level);
@@ -145,6 +147,14 @@ void add_delay_options(CLI::App& app, LinkDelay& delay) {
                  "Vary each link delay uniformly by up to this many ms either way (never below "
                  "0): samples arrive late and out of order")
       ->check(CLI::NonNegativeNumber);
+}
+
+void add_refusion_option(CLI::App& app, std::size_t& lag) {
+  app.add_option("--refusion-lag", lag,
+                 "Keep late increments for this many closed rounds and fuse those rounds again "
+                 "(fixed-lag re-fusion; 0: a late sample is refused as stale)")
+      ->check(CLI::Range(std::size_t{0}, kMaxRefusionLag))
+      ->capture_default_str();
 }
 
 std::vector<std::string> delay_arguments(const LinkDelay& delay) {

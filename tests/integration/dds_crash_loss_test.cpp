@@ -31,18 +31,6 @@ std::vector<std::string> run_args(int domain, const std::filesystem::path& out, 
   return args;
 }
 
-// steps.csv's peer_spread column, by step.
-std::vector<double> peer_spread(const std::filesystem::path& steps_csv) {
-  std::ifstream in(steps_csv);
-  std::string line;
-  std::getline(in, line);
-  std::vector<double> spread;
-  while (std::getline(in, line)) {
-    spread.push_back(std::strtod(line.substr(line.rfind(',') + 1).c_str(), nullptr));
-  }
-  return spread;
-}
-
 nlohmann::json summary_of(const std::filesystem::path& dir) {
   return nlohmann::json::parse(read_file(dir / "summary.json"));
 }

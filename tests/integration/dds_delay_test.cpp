@@ -1,9 +1,13 @@
 // Delayed and reordered links (`--link-delay-ms`, `--link-jitter-ms`): every increment and
 // measurement is held on its link for a seeded time before the receiver sees it. In lock-step a
 // round waits for its inputs, so the delay costs time and nothing else: the tracks equal the
-// in-process run bit for bit.
+// in-process run bit for bit. Fixed-lag re-fusion (`--refusion-lag`) fuses the lag's rounds
+// again every round: without late samples that changes no bit, and samples lost for good leave
+// the lag and the peers agree again.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "integration/run_fixture.hpp"
@@ -14,15 +18,19 @@ namespace {
 
 using namespace std::chrono_literals;
 
-TEST(DdsDelay, LockStepRoundsWaitForDelayedSamplesAndEqualTheInProcessRunBitForBit) {
+// `skyfuse run` of 4 stations and 200 steps with `extra`; every track equal to the in-process
+// run's, every peer the same bits, nothing refused.
+void expect_lossless_run_equals_twin(int domain, const std::vector<std::string>& extra) {
   const auto dir = test_dir();
   constexpr int kStations = 4;
   constexpr int kSteps = 200;
-  const Completed run = run_to_completion(
-      {bin("skyfuse"), "run", "--stations", std::to_string(kStations), "--steps",
-       std::to_string(kSteps), "--domain", "191", "--link-delay-ms", "10", "--link-jitter-ms", "8",
-       "--loss-seed", "3", "--out", (dir / "out").string()},
-      dir / "run.log", 120s);
+  std::vector<std::string> args = {bin("skyfuse"), "run",
+                                   "--stations",   std::to_string(kStations),
+                                   "--steps",      std::to_string(kSteps),
+                                   "--domain",     std::to_string(domain),
+                                   "--out",        (dir / "out").string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const Completed run = run_to_completion(args, dir / "run.log", 120s);
   ASSERT_EQ(run.status.code, 0) << run.output;
 
   const RunPlan plan = make_run_plan(load_default_scenario(), {kStations, kSteps, {}, 0});
@@ -35,6 +43,35 @@ TEST(DdsDelay, LockStepRoundsWaitForDelayedSamplesAndEqualTheInProcessRunBitForB
   for (const auto& [kind, count] : summary.at("dropped_by_kind").items()) {
     EXPECT_EQ(count.get<int>(), 0) << kind;
   }
+}
+
+TEST(DdsDelay, LockStepRoundsWaitForDelayedSamplesAndEqualTheInProcessRunBitForBit) {
+  expect_lossless_run_equals_twin(
+      191, {"--link-delay-ms", "10", "--link-jitter-ms", "8", "--loss-seed", "3"});
+}
+
+TEST(DdsRefusion, FusingTheLagsRoundsAgainChangesNoBitWithoutLateSamples) {
+  expect_lossless_run_equals_twin(194, {"--refusion-lag", "3"});
+}
+
+// Samples lost for good are never re-fused: once the rounds that lost them leave the lag, every
+// chain starts from the same round's reference prior again.
+TEST(DdsRefusion, PeersAgreeAgainOnceTheLossyRoundsLeaveTheLag) {
+  const auto dir = test_dir();
+  constexpr int kLag = 3;
+  const Completed done = run_to_completion(
+      {bin("skyfuse"), "run", "--stations", "4", "--steps", "300", "--domain", "195",
+       "--round-deadline-ms", "50", "--loss", "0.2", "--loss-steps", "100:200", "--refusion-lag",
+       std::to_string(kLag), "--out", (dir / "run").string()},
+      dir / "run.log", 180s);
+  ASSERT_EQ(done.status.code, 0) << done.output;
+  const std::vector<double> spread = peer_spread(dir / "run" / "steps.csv");
+  ASSERT_EQ(spread.size(), 300u);
+  for (int k = 0; k < 100; ++k) EXPECT_EQ(spread[k], 0.0) << k;
+  EXPECT_GT(*std::max_element(spread.begin() + 100, spread.begin() + 200), 0.0);
+  // Round 200 + L is the first whose lag holds no lossy round; one more for an increment that
+  // missed a deadline on a loaded machine.
+  for (int k = 200 + kLag + 2; k < 300; ++k) EXPECT_EQ(spread[k], 0.0) << k;
 }
 
 }  // namespace

@@ -29,6 +29,18 @@ TrackRows read_tracks(const std::filesystem::path& csv) {
   return tracks;
 }
 
+// steps.csv's peer_spread column, by step.
+std::vector<double> peer_spread(const std::filesystem::path& steps_csv) {
+  std::ifstream in(steps_csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<double> spread;
+  while (std::getline(in, line)) {
+    spread.push_back(std::strtod(line.substr(line.rfind(',') + 1).c_str(), nullptr));
+  }
+  return spread;
+}
+
 TwinTracks in_process_twin(const RunPlan& plan, const NisGate& gate, RunTrace* trace) {
   TwinTracks twin;
   RunTrace t = simulate_run(

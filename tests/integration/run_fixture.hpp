@@ -40,6 +40,9 @@ using TrackRows = std::map<std::pair<int, int>, StateRow>;
 /// tracks.csv as (step, source) -> state; %.17g in the file makes the values exact.
 TrackRows read_tracks(const std::filesystem::path& csv);
 
+/// steps.csv's peer_spread column, by step.
+std::vector<double> peer_spread(const std::filesystem::path& steps_csv);
+
 /// The in-process twin of a DDS run: its (central, peer-to-peer) means per step, as
 /// simulate_run computes them (with `gate`); its trace into `trace` if given.
 using TwinTracks = std::vector<std::pair<Vector<9>, Vector<9>>>;

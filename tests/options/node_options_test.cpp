@@ -54,6 +54,7 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   o.best_effort = true;
   o.delay.delay_ms = 10.0;
   o.delay.jitter_ms = 0.1 + 0.7;
+  o.refusion_lag = 3;
   o.gate = NisGate::at_probability(0.9999);
   o.network.interface_address = "10.77.0.3";
   o.network.discovery_server = Ipv4Endpoint{"10.77.0.254", 11811};
@@ -78,6 +79,7 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   EXPECT_EQ(back.best_effort, o.best_effort);
   EXPECT_EQ(back.delay.delay_ms, o.delay.delay_ms);
   EXPECT_EQ(back.delay.jitter_ms, o.delay.jitter_ms);
+  EXPECT_EQ(back.refusion_lag, o.refusion_lag);
   EXPECT_EQ(back.gate.probability(), o.gate.probability());
   EXPECT_EQ(back.network, o.network);
   EXPECT_EQ(back.log_level, o.log_level);

@@ -40,6 +40,7 @@ void NodePresence::announce(wire::NodeState state, std::uint32_t step, const std
   std::copy(drops_.begin(), drops_.end(), status.dropped().begin());
   status.lost(lost_);
   status.resyncs(resyncs_);
+  status.late_used(late_used_);
   writer_.write(status);
 }
 

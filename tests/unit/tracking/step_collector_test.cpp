@@ -62,3 +62,39 @@ TEST(StepCollector, KnowsWhoWasAbsentFromTheStepClosedLast) {
 
 }  // namespace
 }  // namespace skyfuse
+
+namespace skyfuse {
+namespace {
+
+TEST(StepCollector, WithALagTakesLateSamplesForTheStepsClosedLast) {
+  const std::vector<int> ids{1, 2};
+  StepCollector<int> c(ids, 2);
+  EXPECT_EQ(c.lag(), 2U);
+  EXPECT_EQ(c.offer(0, 1, 10), std::nullopt);
+  c.advance();
+  c.advance();
+  c.advance();  // at step 3: steps 1 and 2 closed within the lag, step 0 past it
+  EXPECT_EQ(c.current_step(), 3U);
+  EXPECT_EQ(c.offer(0, 2, 20), DropKind::kStaleStep) << "too late for the lag";
+  EXPECT_FALSE(c.has_step(0));
+  EXPECT_EQ(c.offer(1, 2, 21), std::nullopt) << "late, within the lag";
+  EXPECT_EQ(c.offer(1, 2, 99), DropKind::kDuplicate);
+  EXPECT_EQ(c.offer(2, 1, 12), std::nullopt);
+  EXPECT_EQ(c.offer(4, 1, 14), std::nullopt) << "the next step, as without a lag";
+  EXPECT_EQ(c.offer(5, 1, 15), DropKind::kFutureStep);
+  ASSERT_TRUE(c.has_step(1));
+  EXPECT_FALSE(c.filled_at(1, 0));
+  EXPECT_TRUE(c.filled_at(1, 1));
+  EXPECT_EQ(c.payload_at(1, 1), 21);
+  EXPECT_EQ(c.payload_at(2, 0), 12);
+  EXPECT_EQ(c.count(), 0U) << "late samples do not fill the current step";
+  c.advance();  // step 4 current, with what arrived early; step 1 leaves the lag
+  EXPECT_TRUE(c.filled(0));
+  EXPECT_FALSE(c.has_step(1));
+  EXPECT_EQ(c.offer(1, 1, 11), DropKind::kStaleStep);
+  EXPECT_TRUE(c.has_step(2));
+  EXPECT_EQ(c.payload_at(2, 0), 12);
+}
+
+}  // namespace
+}  // namespace skyfuse

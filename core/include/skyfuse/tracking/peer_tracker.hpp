@@ -65,6 +65,8 @@ class PeerTracker {
   /// Y = P^-1 of the estimate after the last fuse().
   const Covariance<kDim>& information() const { return information_; }
   void predict() { skyfuse::predict(estimate_, motion_); }
+  /// Replaces the estimate: a fixed-lag re-fusion going back to a round's prior.
+  void reset_to(const State& estimate) { estimate_ = estimate; }
   const State& estimate() const { return estimate_; }
 
  private:

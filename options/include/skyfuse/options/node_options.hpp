@@ -47,6 +47,9 @@ struct NodeOptions {
   /// Simulated delay of received increments and measurements (`--link-delay-ms`,
   /// `--link-jitter-ms`), drawn with the loss's seed.
   LinkDelay delay;
+  /// Fixed-lag re-fusion: how many closed rounds still take late samples and are fused again
+  /// (`--refusion-lag`; 0: a late sample is refused as stale).
+  std::size_t refusion_lag = 0;
   bool best_effort = false;  ///< increments and measurements BEST_EFFORT instead of RELIABLE
   /// The chi^2 gate on measurements (`--nis-gate P`; default: none).
   NisGate gate;
@@ -84,6 +87,10 @@ void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort);
 /// `--link-delay-ms D` and `--link-jitter-ms J` into `delay`: shared by the nodes and `skyfuse
 /// run`, which passes them on.
 void add_delay_options(CLI::App& app, LinkDelay& delay);
+/// `--refusion-lag L` into `lag`.
+void add_refusion_option(CLI::App& app, std::size_t& lag);
+/// The largest --refusion-lag: the rounds a node keeps, each with its prior and contributions.
+inline constexpr std::size_t kMaxRefusionLag = 64;
 /// The arguments that give a node the same delay (empty when there is none).
 std::vector<std::string> delay_arguments(const LinkDelay& delay);
 /// "A<separator>B" with A and B unsigned decimal integers and nothing else (no sign, no

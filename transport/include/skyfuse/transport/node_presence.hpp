@@ -27,9 +27,10 @@ class NodePresence {
   void announce(wire::NodeState state, std::uint32_t step = 0, const std::string& detail = {});
   void set_drops(const DropCounts& drops) { drops_ = drops; }
   /// Samples removed by the simulated loss, and rounds that resynchronised this node's prior.
-  void set_link_counts(std::uint64_t lost, std::uint32_t resyncs) {
+  void set_link_counts(std::uint64_t lost, std::uint32_t resyncs, std::uint64_t late_used) {
     lost_ = lost;
     resyncs_ = resyncs;
+    late_used_ = late_used;
   }
   /// Waits until every reader has the last announcement: call before exiting.
   bool wait_delivered(std::chrono::milliseconds timeout) {
@@ -53,6 +54,7 @@ class NodePresence {
   DropCounts drops_{};
   std::uint64_t lost_ = 0;
   std::uint32_t resyncs_ = 0;
+  std::uint64_t late_used_ = 0;
 };
 
 /// A node's last act after announcing FINISHED: waits until the harness releases it with a
