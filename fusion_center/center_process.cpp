@@ -48,7 +48,13 @@ class Center {
         measurements_(node_.make_reader<wire::Measurement>()),
         tracks_(node_.make_writer<wire::TrackEstimate>()),
         fusion_(plan),
-        collector_(plan.participant_ids()) {
+        collector_(plan.participant_ids(), options.refusion_lag) {
+    if constexpr (Fusion::kRefuses) {
+      priors_.assign(options.refusion_lag + 1, fusion_.state());
+    } else if (options.refusion_lag != 0) {
+      throw std::invalid_argument(
+          "--refusion-lag: filter imm fuses each round once for now; leave it at 0");
+    }
     wait_set_.attach(ticks_);
     wait_set_.attach(measurements_);
   }
@@ -76,13 +82,7 @@ class Center {
       if (const int code = wait_for_measurements(k); code >= 0) return code;
       // The measurements that arrived by the deadline, screened and stacked by the round rule,
       // as the in-process twin does: both compute the same bits.
-      const NumericalStatus status = fusion_.update(
-          collector_.station_ids().size(),
-          [&](std::size_t j) { return collector_.filled(j) ? &collector_.payloads()[j] : nullptr; },
-          options_.nis_gate(),
-          [&](int station_id, DropKind why) {
-            transport::count_drop(drops_, why, "measurement", station_id, k);
-          });
+      const NumericalStatus status = update_round(k);
       if (status != NumericalStatus::kOk) {
         const std::string detail =
             fmt::format("step {}: stacked update failed: {}", k, to_string(status));
@@ -93,10 +93,11 @@ class Center {
       }
       tracks_.write(fusion_.track(options_.run_id, k, kCenterSourceId));
       fusion_.predict();
+      if constexpr (Fusion::kRefuses) prior_of(k + 1) = fusion_.state();
       collector_.advance();
     }
     presence_.set_drops(drops_.counts());
-    presence_.set_link_counts(lost_, 0, 0);
+    presence_.set_link_counts(lost_, 0, late_used_);
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
     transport::finish_when_released(ticks_, options_.run_id, presence_, tracks_, 5s);
     spdlog::info("finished {} steps", steps);
@@ -104,6 +105,40 @@ class Center {
   }
 
  private:
+  // Updates round k with the measurements that arrived by the round rule, as the in-process
+  // twin does, so both compute the same bits. With a re-fusion lag, the rounds that late
+  // measurements came for are updated again first, from the earliest one's prior (the
+  // out-of-sequence measurements enter the track where they belong).
+  NumericalStatus update_round(std::uint64_t k) {
+    std::uint64_t from = k;
+    if constexpr (Fusion::kRefuses) {
+      if (late_from_ && *late_from_ < k) {
+        from = *late_from_;
+        fusion_.reset_to(prior_of(from));
+      }
+      late_from_.reset();
+    }
+    for (std::uint64_t q = from; q <= k; ++q) {
+      if (q > from) {
+        fusion_.predict();
+        if constexpr (Fusion::kRefuses) prior_of(q) = fusion_.state();
+      }
+      const NumericalStatus status = fusion_.update(
+          collector_.station_ids().size(),
+          [&](std::size_t j) {
+            return collector_.filled_at(q, j) ? &collector_.payload_at(q, j) : nullptr;
+          },
+          options_.nis_gate(),
+          [&](int station_id, DropKind why) {  // counted once: when the round closes
+            if (q == k) transport::count_drop(drops_, why, "measurement", station_id, k);
+          });
+      if (status != NumericalStatus::kOk) return status;
+    }
+    return NumericalStatus::kOk;
+  }
+
+  transport::WireEstimate& prior_of(std::uint64_t step) { return priors_[step % priors_.size()]; }
+
   // Waits until every measurement of step k is in, or the round's deadline passes: in lock-step
   // the deadline runs from tick k, in real time from the step's scheduled start (after the
   // start tick). Measurements that arrive before the tick are kept all the same.
@@ -201,8 +236,13 @@ class Center {
             observation, [&](const auto& o) { return check_station_measurement(o, station); })) {
       return why;
     }
-    return transport::admit(collector_, sources_, sample.step(), sample.station_id(), writer,
-                            observation);
+    const auto why = transport::admit(collector_, sources_, sample.step(), sample.station_id(),
+                                      writer, observation);
+    if (!why && sample.step() < collector_.current_step()) {  // late, within the lag
+      ++late_used_;
+      late_from_ = std::min<std::uint64_t>(late_from_.value_or(sample.step()), sample.step());
+    }
+    return why;
   }
 
   const options::NodeOptions& options_;
@@ -220,6 +260,11 @@ class Center {
   DropTally drops_;
   std::uint64_t lost_ = 0;  // measurements removed by the simulated loss
   transport::DelayedInbox<wire::Measurement> delayed_;  // held by --link-delay-ms
+  // Fixed-lag re-fusion: each round's prior in the lag, the oldest round a late measurement
+  // came for since the last update, and how many came.
+  std::vector<transport::WireEstimate> priors_;
+  std::optional<std::uint64_t> late_from_;
+  std::uint64_t late_used_ = 0;
 };
 
 }  // namespace

@@ -23,6 +23,8 @@ class SingleModelCenter {
  public:
   using Model = transport::WireModel;
   using Observation = ObservationFor<Sensor>;
+  using State = GaussianState<Model::kDim>;
+  static constexpr bool kRefuses = true;  // takes a fixed-lag re-fusion (state, reset_to)
 
   explicit SingleModelCenter(const RunPlan& plan)
       : tracker_(plan.motion_model<Model>(), plan.initial_estimate<Model>()),
@@ -41,6 +43,9 @@ class SingleModelCenter {
                               wire::CENTRAL, round_.contributors());
   }
   void predict() { tracker_.predict(); }
+  /// The estimate, and going back to one: a fixed-lag re-fusion of late measurements.
+  const State& state() const { return tracker_.estimate(); }
+  void reset_to(const State& state) { tracker_.reset_to(state); }
 
  private:
   CentralTracker<Model, Sensor> tracker_;
@@ -69,6 +74,8 @@ class ImmCenter {
     return transport::imm_track(imm_.filter(), run_id, k, source_id, wire::CENTRAL, contributors_);
   }
   void predict() { imm_.predict(); }
+  /// No fixed-lag re-fusion for the IMM yet (--refusion-lag is refused for it).
+  static constexpr bool kRefuses = false;
 
  private:
   NetworkCentralImm imm_;
@@ -84,6 +91,8 @@ class NcrkfCenter {
   static constexpr int kDim = Model::kDim;
   using Sensor = RangeDifferenceSensor<kDim>;
   using Observation = StationObservation<Sensor>;
+  using State = GaussianState<kDim>;
+  static constexpr bool kRefuses = true;  // takes a fixed-lag re-fusion (state, reset_to)
 
   explicit NcrkfCenter(const RunPlan& plan)
       : ids_(plan.participant_ids()),
@@ -116,6 +125,9 @@ class NcrkfCenter {
                               wire::CENTRAL, round_.contributors());
   }
   void predict() { tracker_.predict(); }
+  /// The estimate, and going back to one: a fixed-lag re-fusion of late measurements.
+  const State& state() const { return tracker_.estimate(); }
+  void reset_to(const State& state) { tracker_.reset_to(state); }
 
  private:
   std::vector<int> ids_;  // participants, ascending

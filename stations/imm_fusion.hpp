@@ -47,8 +47,17 @@ class ImmFusion {
     round_weights_.reserve(assembled_.size());
     contributors_.reserve(assembled_.size());
   }
-  /// Contributions kept although their round had closed: none, without re-fusion.
+  /// Contributions kept although their round had closed: none, without re-fusion; and so no
+  /// settled tracks either.
   std::uint64_t late_used() const { return 0; }
+  std::optional<std::uint64_t> settled_round() const { return std::nullopt; }
+  std::pair<std::uint64_t, std::uint64_t> settle(NumericalStatus& status) {
+    status = NumericalStatus::kOk;
+    return {0, 0};
+  }
+  wire::TrackEstimate settled_track(std::uint64_t, std::uint64_t, int) const {
+    throw std::logic_error("filter imm has no settled tracks");
+  }
 
   std::span<const int> station_ids() const { return std::get<0>(collectors_).station_ids(); }
   void start_at(std::uint64_t step) {

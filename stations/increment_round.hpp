@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "skyfuse/sim/run_plan.hpp"
@@ -38,7 +39,11 @@ class IncrementRound {
       : tracker_(plan.motion_model<Model>(), plan.initial_estimate<Model>()),
         collector_(plan.participant_ids(), lag),
         round_(collector_.station_ids(), plan.weights_of(collector_.station_ids())),
-        priors_(lag + 1, tracker_.estimate()) {}
+        priors_(lag + 1, tracker_.estimate()),
+        posteriors_(lag + 1, tracker_.estimate()),
+        contributors_(lag + 1) {
+    for (std::vector<int>& c : contributors_) c.reserve(collector_.station_ids().size());
+  }
 
   std::span<const int> station_ids() const { return collector_.station_ids(); }
   void start_at(std::uint64_t step) {
@@ -48,6 +53,33 @@ class IncrementRound {
   }
   /// Contributions kept although their round had closed (re-fused), so far.
   std::uint64_t late_used() const { return late_used_; }
+
+  /// With a lag, the round whose estimate the last fuse() made final: the oldest in the lag,
+  /// which leaves it at the next advance().
+  std::optional<std::uint64_t> settled_round() const {
+    const std::uint64_t c = collector_.current_step();
+    if (collector_.lag() == 0 || c < first_ + collector_.lag()) return std::nullopt;
+    return c - collector_.lag();
+  }
+  /// The end of the run, after the last advance(): every round still in the lag fused again
+  /// with what has come since, all of them final now. The rounds, oldest first.
+  template <typename FuseRound>
+  std::pair<std::uint64_t, std::uint64_t> settle_rest(FuseRound fuse_round,
+                                                      NumericalStatus& status) {
+    const std::uint64_t c = collector_.current_step();
+    const std::uint64_t base = c - std::min<std::uint64_t>(collector_.lag(), c - first_);
+    status = base < c ? fuse_rounds(c - 1, fuse_round).status : NumericalStatus::kOk;
+    return {base, c};
+  }
+  /// The final track of a settled round (settled_round(), or one of settle_rest()'s).
+  wire::TrackEstimate settled_track(std::uint64_t run_id, std::uint64_t step,
+                                    int station_id) const {
+    wire::TrackEstimate track = transport::to_wire(
+        posteriors_[step % posteriors_.size()], run_id, static_cast<std::uint32_t>(step),
+        station_id, wire::PEER, contributors_[step % contributors_.size()]);
+    track.settled(true);
+    return track;
+  }
 
   /// Stations whose contribution to the current round is in.
   std::size_t arrived_count() const { return collector_.count(); }
@@ -148,13 +180,18 @@ class IncrementRound {
         return {&contribution.increment, own != nullptr ? own : &contribution.prior};
       });
       if (result.status != NumericalStatus::kOk) return result;
+      posteriors_[q % posteriors_.size()] = tracker_.estimate();
+      std::vector<int>& fused_from = contributors_[q % contributors_.size()];
+      fused_from.assign(round_.contributors().begin(), round_.contributors().end());
     }
     late_since_fused_ = false;
     return result;
   }
 
-  std::vector<GaussianState<kDim>> priors_;  // the chain's prior of each round in the lag
-  std::uint64_t first_ = 0;                  // the first round this node fuses
+  std::vector<GaussianState<kDim>> priors_;      // the chain's prior of each round in the lag
+  std::vector<GaussianState<kDim>> posteriors_;  // and its posterior
+  std::vector<std::vector<int>> contributors_;   // and the stations fused into it
+  std::uint64_t first_ = 0;                      // the first round this node fuses
   std::uint64_t late_used_ = 0;
   bool late_since_fused_ = false;
 };

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "increment_round.hpp"
@@ -96,6 +97,12 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
   }
 
   std::vector<double> sigmas_;  // each participant's range-difference noise, ascending id
+
+ public:
+  /// The end of the run: the rounds still in the lag, final now (settled_track()).
+  std::pair<std::uint64_t, std::uint64_t> settle(NumericalStatus& status) {
+    return settle_rest(fuse_one_round([](int, DropKind) {}), status);
+  }
 };
 
 }  // namespace skyfuse::station

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 
 #include "increment_round.hpp"
 #include "skyfuse/transport/wire_configuration.hpp"
@@ -50,6 +51,11 @@ class SingleModelFusion : public IncrementRound<transport::WireModel> {
   template <typename OnRefused>
   RoundFusion fuse(OnRefused /*on_refused*/) {
     return fuse_current(fuse_one_round());
+  }
+
+  /// The end of the run: the rounds still in the lag, final now (settled_track()).
+  std::pair<std::uint64_t, std::uint64_t> settle(NumericalStatus& status) {
+    return settle_rest(fuse_one_round(), status);
   }
 
  private:

@@ -133,6 +133,7 @@ class Station {
       if (const int code = fuse_and_publish(k); code >= 0) return code;
       fusion_.advance();
     }
+    if (const int code = settle_the_lag(steps); code >= 0) return code;
     presence_.set_drops(drops_.counts());
     presence_.set_link_counts(lost_, resyncs_, fusion_.late_used());
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
@@ -301,7 +302,41 @@ class Station {
     }
     syncing_ = false;
     io_.tracks.write(fusion_.track(options_.node.run_id, k, me_.id));
+    if (const auto settled = fusion_.settled_round()) {  // leaves the lag: final now
+      io_.tracks.write(fusion_.settled_track(options_.node.run_id, *settled, me_.id));
+    }
     fusion_.predict();
+    return -1;
+  }
+
+  // After the last round, with a re-fusion lag: in real time, waits a lag's worth of steps for
+  // late increments; then fuses the rounds still in the lag again and sends their final tracks.
+  // Returns an exit code if the run must end, -1 otherwise.
+  int settle_the_lag(std::uint64_t steps) {
+    if (options_.node.refusion_lag == 0) return -1;
+    if (options_.node.realtime_deadline_ms > 0.0) {
+      const auto until =
+          std::chrono::steady_clock::now() +
+          std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::duration<double>(
+              static_cast<double>(options_.node.refusion_lag) * plan_.scenario.time_step_s));
+      bool unused = false;
+      while (std::chrono::steady_clock::now() < until) {
+        if (const int code = drain(steps, unused); code >= 0) return code;
+        const auto left = std::chrono::duration_cast<std::chrono::microseconds>(
+            until - std::chrono::steady_clock::now());
+        io_.wait_set.wait(wait_slice(std::clamp<std::chrono::microseconds>(
+            left, 0us, std::chrono::duration_cast<std::chrono::microseconds>(kPollSlice))));
+      }
+    }
+    NumericalStatus status = NumericalStatus::kOk;
+    const auto [from, to] = fusion_.settle(status);
+    if (status != NumericalStatus::kOk) {
+      throw std::runtime_error(fmt::format("settling the last rounds: {}", to_string(status)));
+    }
+    for (std::uint64_t s = from; s < to; ++s) {
+      io_.tracks.write(fusion_.settled_track(options_.node.run_id, s, me_.id));
+    }
+    io_.tracks.wait_acknowledged(2s);  // before FINISHED: the harness stops reading then
     return -1;
   }
 

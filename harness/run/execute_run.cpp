@@ -325,6 +325,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     summary.best_effort = o.node.best_effort;
     summary.hosts = o.hosts;
     summary.refusion_lag = o.node.refusion_lag;
+    summary.settled = recorder.summarise_settled(driver.settled_tracks());
     if (placement.harness.discovery_server) {
       summary.discovery_server = placement.harness.discovery_server->to_string();
     }

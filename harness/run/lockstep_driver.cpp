@@ -174,10 +174,28 @@ struct LockstepDriver::Impl {
     }
   }
 
+  // A settled track (a round's final estimate, sent as it leaves a station's lag): the content
+  // checks, its source, then one per (step, source).
+  std::optional<DropKind> settled_refusal(const wire::TrackEstimate& t,
+                                          const std::optional<transport::WireEstimate>& estimate,
+                                          const transport::WriterId& writer) {
+    if (const auto why = track_content_refusal(t, estimate, run_id, modes)) return why;
+    if (t.mode() != wire::PEER) return DropKind::kUnknownStation;  // only stations re-fuse
+    if (!std::binary_search(station_ids.begin(), station_ids.end(), t.source_id())) {
+      return DropKind::kUnknownStation;
+    }
+    if (!track_sources.accept(t.source_id(), writer)) return DropKind::kDuplicate;
+    const bool inserted =
+        settled.try_emplace({t.step(), t.source_id()}, received_track(t, *estimate)).second;
+    if (!inserted) return DropKind::kDuplicate;
+    return std::nullopt;
+  }
+
   // The content checks, then the step window, the source and duplicates (admit).
   std::optional<DropKind> track_refusal(const wire::TrackEstimate& t,
                                         const transport::WriterId& writer) {
     const auto estimate = transport::estimate_from_wire<transport::WireModel::kDim>(t);
+    if (t.settled()) return settled_refusal(t, estimate, writer);
     if (const auto why = track_content_refusal(t, estimate, run_id, modes)) return why;
     const ReceivedTrack track = received_track(t, *estimate);
     return transport::admit(track_collector, track_sources, t.step(), t.source_id(), writer, track);
@@ -224,6 +242,7 @@ struct LockstepDriver::Impl {
   std::map<int, NodeCounts> finished;           // from FINISHED statuses
   transport::SourceBinding track_sources;
   transport::SourceBinding measurement_sources;
+  std::map<std::pair<std::uint64_t, int>, ReceivedTrack> settled;  // by (step, source)
   DropTally own_drops;
 };
 
@@ -377,6 +396,12 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     transport::WriterId writer;
     while (d.tracks.take(t, &writer)) {
       const auto estimate = transport::estimate_from_wire<transport::WireModel::kDim>(t);
+      if (t.settled()) {
+        if (const auto why = d.settled_refusal(t, estimate, writer)) {
+          transport::count_drop(d.own_drops, *why, "settled track", t.source_id(), t.step());
+        }
+        continue;
+      }
       auto why = track_content_refusal(t, estimate, d.run_id, d.modes);
       if (!why) why = rounds.check_track(t.source_id(), t.step());
       if (!why && !d.track_sources.accept(t.source_id(), writer)) why = DropKind::kDuplicate;
@@ -433,6 +458,11 @@ bool LockstepDriver::wait_until_finished(std::chrono::milliseconds timeout) {
     if (Clock::now() >= give_up) return false;
     d.wait_set.wait(std::chrono::milliseconds(10));
   }
+}
+
+const std::map<std::pair<std::uint64_t, int>, ReceivedTrack>& LockstepDriver::settled_tracks()
+    const {
+  return impl_->settled;
 }
 
 void LockstepDriver::stop() {

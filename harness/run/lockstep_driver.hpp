@@ -90,6 +90,10 @@ class LockstepDriver {
   /// Waits until every node that is up has announced FINISHED; false if `timeout` passed first.
   bool wait_until_finished(std::chrono::milliseconds timeout);
 
+  /// The settled tracks received (fixed-lag re-fusion: each round's final estimate), by
+  /// (step, source id).
+  const std::map<std::pair<std::uint64_t, int>, ReceivedTrack>& settled_tracks() const;
+
   /// Tells every process to stop (a Tick with stop = true); after the last round, this
   /// releases the nodes waiting to exit.
   void stop();

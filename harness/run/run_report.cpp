@@ -80,6 +80,32 @@ Vector3 RunRecorder::truth_position(std::uint64_t step) const {
   return state_position(truth_.states[step], position_dim_);
 }
 
+std::optional<SettledFigures> RunRecorder::summarise_settled(
+    const std::map<std::pair<std::uint64_t, int>, ReceivedTrack>& settled) const {
+  if (settled.empty()) return std::nullopt;
+  SettledFigures f;
+  f.tracks = static_cast<int>(settled.size());
+  double sq = 0.0;
+  // Ordered by step, then source: the first track of a step is its lowest-id peer's.
+  const ReceivedTrack* first = nullptr;
+  std::uint64_t step = 0;
+  for (const auto& [key, track] : settled) {
+    if (first == nullptr || key.first != step) {
+      first = &track;
+      step = key.first;
+      ++f.rounds;
+      sq += (truth_position(step) - position_of(track)).squaredNorm();
+      f.peer_spread_end = 0.0;
+      continue;
+    }
+    const double difference = max_abs_entry_difference(track, *first);
+    f.max_abs_diff_between_peers = std::max(f.max_abs_diff_between_peers, difference);
+    f.peer_spread_end = std::max(f.peer_spread_end, difference);
+  }
+  f.rmse_p2p_m = std::sqrt(sq / f.rounds);
+  return f;
+}
+
 void RunRecorder::add(RoundRecord round) {
   rounds_.push_back(std::move(round));
 }
@@ -290,7 +316,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
     by_node[node_key(node)] = kinds;
     if (node != kHarnessNodeId) lost[node_key(node)] = counts.lost;
     if (node > 0) resyncs[node_key(node)] = counts.resyncs;
-    if (node > 0) late_used[node_key(node)] = counts.late_used;
+    if (node != kHarnessNodeId) late_used[node_key(node)] = counts.late_used;
   }
   nlohmann::json missing = nlohmann::json::object();
   for (const auto& [id, count] : summary.rounds_missing_by_station) missing[node_key(id)] = count;
@@ -300,10 +326,17 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
   full["rejoin_step_by_station"] = rejoin;
   full["lost_by_node"] = lost;
   full["resyncs_by_station"] = resyncs;
-  // Late samples used (kept and re-fused within --refusion-lag) and too late for it (refused
-  // as stale_step, in dropped_by_node).
-  full["late_used_by_station"] = late_used;
+  // Late samples used (kept and re-fused within --refusion-lag; increments at the stations,
+  // measurements at the center) and too late for it (stale_step in dropped_by_node).
+  full["late_used_by_node"] = late_used;
   full["refusion_lag"] = summary.refusion_lag;
+  if (summary.settled) {
+    full["settled"] = {{"tracks", summary.settled->tracks},
+                       {"rounds", summary.settled->rounds},
+                       {"rmse_p2p_m", summary.settled->rmse_p2p_m},
+                       {"max_abs_diff_between_peers", summary.settled->max_abs_diff_between_peers},
+                       {"peer_spread_end", summary.settled->peer_spread_end}};
+  }
   if (summary.loss.probability > 0.0 || summary.best_effort) {
     full["loss"] = {
         {"probability", summary.loss.probability},
@@ -336,6 +369,12 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
              s.max_abs_diff_between_peers == 0.0 ? "  (every peer bit-identical)" : "");
   if (s.max_abs_diff_between_peers != 0.0) {
     fmt::print(out, "  |peer - peer| at the end {:.2e}\n", s.peer_spread_end);
+  }
+  if (s.settled) {
+    fmt::print(
+        out,
+        "  settled (re-fused) RMSE p2p {:.4f} m, |peer - peer| max {:.2e}, at the end {:.2e}\n",
+        s.settled->rmse_p2p_m, s.settled->max_abs_diff_between_peers, s.settled->peer_spread_end);
   }
   fmt::print(out, "  rounds per second        {:.0f}\n", s.rounds_per_s);
   fmt::print(out, "  round latency p50/p99/max {:.0f} / {:.0f} / {:.0f} us\n",

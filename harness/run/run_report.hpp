@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <vector>
 
 #include "run/lockstep_driver.hpp"
@@ -22,6 +23,15 @@
 #include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {
+
+/// Fixed-lag re-fusion: the figures of the settled tracks, each round's final estimate.
+struct SettledFigures {
+  int tracks = 0;
+  int rounds = 0;  ///< rounds with at least one settled track
+  double rmse_p2p_m = 0.0;
+  double max_abs_diff_between_peers = 0.0;
+  double peer_spread_end = 0.0;  ///< at the last settled round
+};
 
 struct RunSummary {
   int stations = 0;
@@ -70,6 +80,7 @@ struct RunSummary {
   int hosts = 0;
   std::string discovery_server;
   std::size_t refusion_lag = 0;
+  std::optional<SettledFigures> settled;  ///< none: no station re-fused
 };
 
 /// A station the harness kills (SIGKILL) or starts again, before the round of `step`.
@@ -86,6 +97,9 @@ class RunRecorder {
   void add(RoundRecord round);
 
   RunSummary summarise(double discovery_s, double rounds_elapsed_s) const;
+  /// The settled tracks' figures, none if there are none (by (step, source id)).
+  std::optional<SettledFigures> summarise_settled(
+      const std::map<std::pair<std::uint64_t, int>, ReceivedTrack>& settled) const;
   void write(const std::filesystem::path& dir, const RunSummary& summary,
              std::uint64_t run_id) const;
 

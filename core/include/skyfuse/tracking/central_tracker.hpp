@@ -36,6 +36,8 @@ class CentralTracker {
   }
   void predict() { skyfuse::predict(estimate_, motion_); }
   const State& estimate() const { return estimate_; }
+  /// Replaces the estimate: a fixed-lag re-fusion going back to a round's prior.
+  void reset_to(const State& estimate) { estimate_ = estimate; }
 
  private:
   Model motion_;
