@@ -41,10 +41,10 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
   OwnContribution contribute(std::uint64_t k, const StationObservation<Sensor>& observation,
                              const NisGate& /*gate*/, std::uint64_t run_id, Write write) {
     OwnContribution result;
-    result.status = refresh_prior(fuse_one_round([](int, DropKind) {}));
+    result.status = chain_.refresh_prior(fuse_one_round([](int, DropKind) {}));
     if (result.status != NumericalStatus::kOk) return result;
     Contribution own;
-    own.prior = tracker_.estimate();
+    own.prior = chain_.tracker().estimate();
     result.refused = Sensor::check_reported(observation.z);
     if (result.refused) {
       own.increment.station_id = observation.station_id;
@@ -80,7 +80,7 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
   /// anything did.
   template <typename OnRefused>
   RoundFusion fuse(OnRefused on_refused) {
-    return fuse_current(fuse_one_round(on_refused));
+    return chain_.fuse_current(fuse_one_round(on_refused));
   }
 
  private:
@@ -90,9 +90,11 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
   auto fuse_one_round(OnRefused on_refused) {
     return [this, on_refused](std::uint64_t step, auto slot_at) {
       const auto ids = station_ids();
-      return fuse_tdoa_round(round_, tracker_, ids.size(), slot_at, [&](std::size_t i) {
-        if (is_current(step)) on_refused(ids[i], DropKind::kNotPositive);
-      });
+      return fuse_tdoa_round(chain_.round(), chain_.tracker(), ids.size(), slot_at,
+                             [&](std::size_t i) {
+                               if (chain_.is_current(step))
+                                 on_refused(ids[i], DropKind::kNotPositive);
+                             });
     };
   }
 
@@ -101,7 +103,7 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
  public:
   /// The end of the run: the rounds still in the lag, final now (settled_track()).
   std::pair<std::uint64_t, std::uint64_t> settle(NumericalStatus& status) {
-    return settle_rest(fuse_one_round([](int, DropKind) {}), status);
+    return chain_.settle_rest(fuse_one_round([](int, DropKind) {}), status);
   }
 };
 

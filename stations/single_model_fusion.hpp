@@ -26,10 +26,10 @@ class SingleModelFusion : public IncrementRound<transport::WireModel> {
   OwnContribution contribute(std::uint64_t k, const StationObservation<Sensor>& observation,
                              const NisGate& gate, std::uint64_t run_id, Write write) {
     OwnContribution result;
-    result.status = refresh_prior(fuse_one_round());
+    result.status = chain_.refresh_prior(fuse_one_round());
     if (result.status != NumericalStatus::kOk) return result;
     Contribution own;
-    own.prior = tracker_.estimate();
+    own.prior = chain_.tracker().estimate();
     result = skyfuse::contribute(own.prior, observation, gate, own.increment);
     if (result.status != NumericalStatus::kOk) return result;
     publish(k, observation.station_id, own, run_id, write);
@@ -50,18 +50,20 @@ class SingleModelFusion : public IncrementRound<transport::WireModel> {
   /// (on_refused(station_id, why) is never called): every sample was checked on arrival.
   template <typename OnRefused>
   RoundFusion fuse(OnRefused /*on_refused*/) {
-    return fuse_current(fuse_one_round());
+    return chain_.fuse_current(fuse_one_round());
   }
 
   /// The end of the run: the rounds still in the lag, final now (settled_track()).
   std::pair<std::uint64_t, std::uint64_t> settle(NumericalStatus& status) {
-    return settle_rest(fuse_one_round(), status);
+    return chain_.settle_rest(fuse_one_round(), status);
   }
 
  private:
   // One round by the round rule.
   auto fuse_one_round() {
-    return [this](std::uint64_t /*step*/, auto slot_at) { return round_.fuse(tracker_, slot_at); };
+    return [this](std::uint64_t /*step*/, auto slot_at) {
+      return chain_.round().fuse(chain_.tracker(), slot_at);
+    };
   }
 };
 

@@ -21,6 +21,7 @@
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/truth.hpp"
+#include "skyfuse/tracking/fixed_lag_peer.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 
@@ -75,6 +76,8 @@ struct Problem {
   TruthTrajectory truth =
       generate_truth(scenario.target, scenario.target.speeds_mps[0], scenario.time_step_s, 600);
 };
+
+volatile std::uint64_t settled_sink = 0;  // keeps a value from being optimised away
 
 TEST(HotPathAllocations, StationStepFusionAndStackedUpdateAllocateNothing) {
   const Problem p;
@@ -173,6 +176,53 @@ TEST(HotPathAllocations, TheMixedStackedUpdateAllocatesNothingAfterItsFirstStep)
   const long after = g_allocations.load();
   Eigen::internal::set_is_malloc_allowed(true);
   EXPECT_EQ(after - before, 0) << "heap allocations in 499 mixed stacked updates";
+}
+
+// Fixed-lag re-fusion: a round with a late contribution fused again over the lag, and settled
+// rounds, keep to the buffers made at construction.
+TEST(HotPathAllocations, AFixedLagPeerAllocatesNothingPerRound) {
+  const Problem p;
+  const auto motion = make_motion_model<ConstantAcceleration3D>(p.scenario);
+  const std::vector<int> ids = {1, 2, 3, 4};
+  const std::vector<double> weights(ids.size(), 1.0);
+  FixedLagPeer<ConstantAcceleration3D> peer(
+      motion, initial_estimate<ConstantAcceleration3D>(p.scenario, p.truth.states[0], 0), ids,
+      weights, 3);
+  const auto fuse_round = [&peer](std::uint64_t, auto slot_at) {
+    return peer.round().fuse(peer.tracker(), slot_at);
+  };
+  PeerContribution<9> late;
+  auto step = [&](std::uint64_t k) {
+    if (k > 0 && k % 5 == 0) {  // station 4's contribution to the last round comes now
+      ASSERT_FALSE(peer.collector().offer(k - 1, 4, late).has_value());
+      peer.kept(k - 1);
+    }
+    ASSERT_EQ(peer.refresh_prior(fuse_round), NumericalStatus::kOk);
+    for (int id : ids) {
+      PeerContribution<9> c;
+      c.prior = peer.tracker().estimate();
+      c.increment.station_id = id;
+      c.increment.delta_information(0, 0) = 1.0;
+      c.increment.delta_vector(0) = static_cast<double>(k);
+      if (id == 4 && k % 5 == 4) {
+        late = c;  // held back
+        continue;
+      }
+      ASSERT_FALSE(peer.collector().offer(k, id, c).has_value());
+    }
+    ASSERT_EQ(peer.fuse_current(fuse_round).status, NumericalStatus::kOk);
+    settled_sink = peer.settled_round().value_or(0);
+    peer.predict();
+    peer.advance();
+  };
+  for (std::uint64_t k = 0; k < 10; ++k) step(k);
+  Eigen::internal::set_is_malloc_allowed(false);
+  const long before = g_allocations.load();
+  for (std::uint64_t k = 10; k < 500; ++k) step(k);
+  const long after = g_allocations.load();
+  Eigen::internal::set_is_malloc_allowed(true);
+  EXPECT_EQ(after - before, 0) << "heap allocations in 490 rounds with a lag of 3";
+  EXPECT_EQ(peer.late_used(), 99U);
 }
 
 TEST(HotPathAllocations, TheCounterSeesAnAllocation) {
