@@ -211,8 +211,8 @@ dds::DataReaderQos QosProfiles::reader(const dds::Subscriber& subscriber,
 
 void QosProfiles::use_discovery_server(dds::DomainParticipantQos& qos,
                                        const options::Ipv4Endpoint& server) const {
-  // The server's GUID prefix is the one `fastdds discovery -i 0` uses, so that such a server
-  // can stand in for the harness's.
+  // Clients must know their server's GUID prefix (Fast DDS 2.9): server id 0's, the one the
+  // headers give `fastdds discovery -i 0`.
   namespace rtps = eprosima::fastrtps::rtps;
   rtps::Locator_t locator;
   rtps::IPLocator::createLocator(LOCATOR_KIND_UDPv4, server.address, server.port, locator);
