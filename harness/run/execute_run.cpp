@@ -18,6 +18,7 @@
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/qos.hpp"
 #include "skyfuse/transport/security_folder.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -155,6 +156,9 @@ struct Placement {
 };
 
 void check_hosts(const RunOptions& o) {
+  if (o.node.secure_dir && (o.hosts > 0 || o.node.network.discovery_server)) {
+    throw std::invalid_argument(transport::kSecureDiscoveryServerRefusal);
+  }
   if (o.hosts == 0) return;
   if (o.external) throw std::invalid_argument("--hosts: not with --external (it starts the nodes)");
   if (o.node.network != options::NetworkOptions{}) {

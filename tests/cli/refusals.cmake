@@ -24,6 +24,12 @@ elseif(CASE STREQUAL "run_station_not_in_run")
   set(args run --stations 4 --kill 9@5 --out ${WORK}/run)
   set(expect "--kill 9@5: station 9 does not take part in the run")
   set(untouched ${WORK}/run)
+elseif(CASE STREQUAL "run_secure_discovery_server")
+  # Fast DDS 2.9 aborts a secure discovery server: refused before anything starts or is written.
+  file(MAKE_DIRECTORY ${WORK}/certs)
+  set(args run --secure ${WORK}/certs --discovery-server 127.0.0.1:11899 --out ${WORK}/secure_ds)
+  set(expect "--secure with a discovery server")
+  set(untouched ${WORK}/secure_ds)
 elseif(CASE STREQUAL "station_replay_out_of_range")
   # No receiver would take an elevation past the zenith: refused when the file is read, with
   # its line, not fused by the station alone.

@@ -1,5 +1,7 @@
 #include "skyfuse/transport/node_setup.hpp"
 
+#include <stdexcept>
+
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/security_folder.hpp"
 #include "skyfuse/transport/wire_configuration.hpp"
@@ -20,6 +22,9 @@ NodeConfig node_config(const options::NodeOptions& options, const std::string& n
 }
 
 RunPlan load_plan(const options::NodeOptions& options) {
+  if (options.secure_dir && options.network.discovery_server) {
+    throw std::invalid_argument(kSecureDiscoveryServerRefusal);
+  }
   RunPlan plan = make_run_plan(load_scenario_or_default(options.scenario_path), options.overrides);
   require_wire_configuration(plan.scenario, options.nis_gate());
   return plan;

@@ -11,11 +11,20 @@
 
 namespace skyfuse::transport {
 
+/// Why a discovery server (`--discovery-server`, `--hosts`) and `--secure` are refused together:
+/// measured, Debian's Fast DDS 2.9 (built with assertions) aborts the secure server participant
+/// as the first clients join.
+inline constexpr const char* kSecureDiscoveryServerRefusal =
+    "--secure with a discovery server (--discovery-server, --hosts): Fast DDS 2.9 aborts a "
+    "secure discovery server (assertion in SecurityManager::encode_rtps_message); use "
+    "multicast discovery for secure runs";
+
 /// The participant settings of the node called `name` (its security identity follows the
 /// name).
 NodeConfig node_config(const options::NodeOptions& options, const std::string& name);
 
-/// The run this node joins: the scenario with the options' overrides.
+/// The run this node joins: the scenario with the options' overrides. Refuses what the nodes
+/// cannot run (the wire's models; a secure discovery server).
 RunPlan load_plan(const options::NodeOptions& options);
 
 }  // namespace skyfuse::transport
