@@ -9,12 +9,18 @@
 /// contributions for rounds b .. c hold the same bits. L = 0 is the round rule alone; without
 /// late samples every L gives the bits of L = 0, since each sender's prior is then the chain's.
 ///
+/// Only what changed is fused again: the rounds from the oldest one that took a late
+/// contribution, or from b if its reference prior is not the chain's own prior of b (bit for
+/// bit); the rounds before keep the posteriors stored when they were fused, which a full pass
+/// from b would give again. Without late samples a round costs one fusion, whatever L.
+///
 /// How one round's slots are fused is the caller's (fuse_round(step, slot_at), e.g.
 /// PeerRound::fuse, or the TDOA round rule); the chain is the same for every filter. No
 /// allocation per round.
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <optional>
 #include <span>
 #include <utility>
@@ -63,7 +69,7 @@ class FixedLagPeer {
   void kept(std::uint64_t step) {
     if (step >= collector_.current_step()) return;
     ++late_used_;
-    late_since_fused_ = true;
+    dirty_from_ = std::min(dirty_from_.value_or(step), step);
   }
   /// Contributions kept although their round had closed, so far.
   std::uint64_t late_used() const { return late_used_; }
@@ -73,11 +79,10 @@ class FixedLagPeer {
   template <typename FuseRound>
   NumericalStatus refresh_prior(FuseRound fuse_round) {
     const std::uint64_t c = collector_.current_step();
-    if (!late_since_fused_ || c == first_) return NumericalStatus::kOk;
+    if (!dirty_from_ || c == first_) return NumericalStatus::kOk;
     const RoundFusion fused = fuse_rounds(c - 1, fuse_round);
     if (fused.status != NumericalStatus::kOk) return fused.status;
-    tracker_.predict();
-    prior_of(c) = tracker_.estimate();
+    predict();
     return NumericalStatus::kOk;
   }
 
@@ -119,7 +124,7 @@ class FixedLagPeer {
 
   void predict() {
     tracker_.predict();
-    prior_of(collector_.current_step() + 1) = tracker_.estimate();
+    if (keeps_history()) prior_of(collector_.current_step() + 1) = tracker_.estimate();
   }
   void advance() { collector_.advance(); }
 
@@ -130,17 +135,42 @@ class FixedLagPeer {
     return c - std::min<std::uint64_t>(collector_.lag(), c - first_);
   }
 
-  // Rounds base_round() through `last`, from the base's prior: the base onto the lowest-id
-  // contribution's prior (this peer's own if none arrived), the later ones onto the chain's
-  // own, each prior, posterior and contributor list stored as it is reached.
+  // With a lag, each round's prior, posterior and contributors are kept; without, nothing is
+  // fused again and nothing need be.
+  bool keeps_history() const { return collector_.lag() != 0; }
+
+  // Whether round `base`'s reference prior (the lowest-id contribution's) is no longer,
+  // bit for bit, the chain's own prior of it, under which the round was last fused.
+  bool reference_moved(std::uint64_t base) {
+    const auto ids = collector_.station_ids();
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      if (!collector_.filled_at(base, i)) continue;
+      const State& reference = collector_.payload_at(base, i).prior;
+      const State& own = prior_of(base);
+      return std::memcmp(reference.mean.data(), own.mean.data(), sizeof(double) * kDim) != 0 ||
+             std::memcmp(reference.covariance.data(), own.covariance.data(),
+                         sizeof(double) * kDim * kDim) != 0;
+    }
+    return false;  // nothing arrived: fused onto the chain's own prior, as before
+  }
+
+  // Fuses the rounds through `last` that may have changed (see the file comment), the base
+  // round by the round rule and the later ones onto the chain's own prior, storing each prior,
+  // posterior and contributor list as it is reached. The last round fused's result; nothing
+  // fused, kOk.
   template <typename FuseRound>
   RoundFusion fuse_rounds(std::uint64_t last, FuseRound fuse_round) {
+    const std::uint64_t c = collector_.current_step();
     const std::uint64_t base = base_round();
+    std::uint64_t from = last == c ? c : last + 1;  // the current round is new: always fused
+    if (dirty_from_) from = std::min(from, std::max(*dirty_from_, base));
+    if (base < from && base < c && reference_moved(base)) from = base;
+    dirty_from_.reset();
+    // Entering the current round the tracker holds its prior already (predict()).
+    if (from < c) tracker_.reset_to(prior_of(from));
     RoundFusion result;
-    for (std::uint64_t q = base; q <= last; ++q) {
-      if (q == base) {
-        tracker_.reset_to(prior_of(q));
-      } else {
+    for (std::uint64_t q = from; q <= last; ++q) {
+      if (q > from) {
         tracker_.predict();
         prior_of(q) = tracker_.estimate();
       }
@@ -151,11 +181,11 @@ class FixedLagPeer {
         return {&contribution.increment, own != nullptr ? own : &contribution.prior};
       });
       if (result.status != NumericalStatus::kOk) return result;
+      if (!keeps_history()) continue;
       posteriors_[q % posteriors_.size()] = tracker_.estimate();
       std::vector<int>& fused_from = contributors_[q % contributors_.size()];
       fused_from.assign(round_.contributors().begin(), round_.contributors().end());
     }
-    late_since_fused_ = false;
     return result;
   }
 
@@ -167,7 +197,7 @@ class FixedLagPeer {
   std::vector<std::vector<int>> contributors_;  // and the stations fused into it
   std::uint64_t first_ = 0;                     // the first round this peer fuses
   std::uint64_t late_used_ = 0;
-  bool late_since_fused_ = false;
+  std::optional<std::uint64_t> dirty_from_;  // the oldest round a late contribution came for
 };
 
 }  // namespace skyfuse
