@@ -49,12 +49,8 @@ class Center {
         tracks_(node_.make_writer<wire::TrackEstimate>()),
         fusion_(plan),
         collector_(plan.participant_ids(), options.refusion_lag) {
-    if constexpr (Fusion::kRefuses) {
-      priors_.assign(options.refusion_lag + 1, fusion_.state());
-    } else if (options.refusion_lag != 0) {
-      throw std::invalid_argument(
-          "--refusion-lag: filter imm fuses each round once for now; leave it at 0");
-    }
+    // (load_plan refuses a lag for a fusion that takes none.)
+    if constexpr (Fusion::kRefuses) priors_.assign(options.refusion_lag + 1, fusion_.state());
     wait_set_.attach(ticks_);
     wait_set_.attach(measurements_);
   }
@@ -93,7 +89,9 @@ class Center {
       }
       tracks_.write(fusion_.track(options_.run_id, k, kCenterSourceId));
       fusion_.predict();
-      if constexpr (Fusion::kRefuses) prior_of(k + 1) = fusion_.state();
+      if constexpr (Fusion::kRefuses) {
+        if (collector_.lag() != 0) prior_of(k + 1) = fusion_.state();  // the lag's history
+      }
       collector_.advance();
     }
     presence_.set_drops(drops_.counts());

@@ -5,8 +5,10 @@
 // the track; the center process (center_process.cpp) moves the samples.
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
+#include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/experiments/network_imm.hpp"
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/sim/run_plan.hpp"
@@ -17,26 +19,13 @@
 
 namespace skyfuse::center {
 
-/// The stacked EKF, for stations of `Sensor` (one sensor type, or a SensorPack).
-template <typename Sensor>
-class SingleModelCenter {
+/// What a single-model center holds and how its track is made, whatever updates it: the tracker
+/// and the round that names the stations fused. SingleModelCenter and NcrkfCenter derive from it.
+template <typename Tracker, typename Round>
+class TrackedCenter {
  public:
-  using Model = transport::WireModel;
-  using Observation = ObservationFor<Sensor>;
-  using State = GaussianState<Model::kDim>;
+  using State = typename Tracker::State;
   static constexpr bool kRefuses = true;  // takes a fixed-lag re-fusion (state, reset_to)
-
-  explicit SingleModelCenter(const RunPlan& plan)
-      : tracker_(plan.motion_model<Model>(), plan.initial_estimate<Model>()),
-        round_(static_cast<std::size_t>(plan.stations)) {}
-
-  /// observation_at(i): the i-th of `count` participants' observation (ascending id) or null;
-  /// on_refused(station_id, why) for each screened out.
-  template <typename ObservationAt, typename OnRefused>
-  NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& gate,
-                         OnRefused on_refused) {
-    return round_.update(tracker_, count, observation_at, gate, on_refused).status;
-  }
 
   wire::TrackEstimate track(std::uint64_t run_id, std::uint64_t k, int source_id) const {
     return transport::to_wire(tracker_.estimate(), run_id, static_cast<std::uint32_t>(k), source_id,
@@ -47,9 +36,34 @@ class SingleModelCenter {
   const State& state() const { return tracker_.estimate(); }
   void reset_to(const State& state) { tracker_.reset_to(state); }
 
- private:
-  CentralTracker<Model, Sensor> tracker_;
-  CentralRound<Model, Sensor> round_;
+ protected:
+  TrackedCenter(Tracker tracker, Round round)
+      : tracker_(std::move(tracker)), round_(std::move(round)) {}
+
+  Tracker tracker_;
+  Round round_;
+};
+
+/// The stacked EKF, for stations of `Sensor` (one sensor type, or a SensorPack).
+template <typename Sensor>
+class SingleModelCenter : public TrackedCenter<CentralTracker<transport::WireModel, Sensor>,
+                                               CentralRound<transport::WireModel, Sensor>> {
+ public:
+  using Model = transport::WireModel;
+  using Observation = ObservationFor<Sensor>;
+
+  explicit SingleModelCenter(const RunPlan& plan)
+      : SingleModelCenter::TrackedCenter(
+            {plan.motion_model<Model>(), plan.initial_estimate<Model>()},
+            CentralRound<Model, Sensor>(static_cast<std::size_t>(plan.stations))) {}
+
+  /// observation_at(i): the i-th of `count` participants' observation (ascending id) or null;
+  /// on_refused(station_id, why) for each screened out.
+  template <typename ObservationAt, typename OnRefused>
+  NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& gate,
+                         OnRefused on_refused) {
+    return this->round_.update(this->tracker_, count, observation_at, gate, on_refused).status;
+  }
 };
 
 /// The network IMM with every mode on the stacked measurement, for stations of one `Sensor`.
@@ -85,20 +99,16 @@ class ImmCenter {
 /// Paper 002's stacked NCRKF: the center computes each receiver's bias-compensated increment
 /// from its raw measurement, as the receiver does, and fuses them onto its own prior by the TDOA
 /// round rule, exactly as a peer does (tracking/tdoa_round.hpp).
-class NcrkfCenter {
+class NcrkfCenter
+    : public TrackedCenter<PeerTracker<TdoaRelativeMotion>, PeerRound<TdoaRelativeMotion>> {
  public:
   using Model = TdoaRelativeMotion;
   static constexpr int kDim = Model::kDim;
   using Sensor = RangeDifferenceSensor<kDim>;
   using Observation = StationObservation<Sensor>;
-  using State = GaussianState<kDim>;
-  static constexpr bool kRefuses = true;  // takes a fixed-lag re-fusion (state, reset_to)
 
   explicit NcrkfCenter(const RunPlan& plan)
-      : ids_(plan.participant_ids()),
-        tracker_(plan.motion_model<Model>(), plan.initial_estimate<Model>()),
-        round_(ids_, plan.weights_of(ids_)),
-        increments_(ids_.size()) {}
+      : NcrkfCenter(plan, sorted_ascending(plan.participant_ids())) {}
 
   /// observation_at(i): the i-th of `count` participants' observation (ascending id) or null;
   /// on_refused(station_id, kNotPositive) for each indefinite increment the round was fused
@@ -120,19 +130,14 @@ class NcrkfCenter {
         .status;
   }
 
-  wire::TrackEstimate track(std::uint64_t run_id, std::uint64_t k, int source_id) const {
-    return transport::to_wire(tracker_.estimate(), run_id, static_cast<std::uint32_t>(k), source_id,
-                              wire::CENTRAL, round_.contributors());
-  }
-  void predict() { tracker_.predict(); }
-  /// The estimate, and going back to one: a fixed-lag re-fusion of late measurements.
-  const State& state() const { return tracker_.estimate(); }
-  void reset_to(const State& state) { tracker_.reset_to(state); }
-
  private:
-  std::vector<int> ids_;  // participants, ascending
-  PeerTracker<Model> tracker_;
-  PeerRound<Model> round_;
+  NcrkfCenter(const RunPlan& plan, std::vector<int> ascending_ids)
+      : TrackedCenter({plan.motion_model<Model>(), plan.initial_estimate<Model>()},
+                      PeerRound<Model>(ascending_ids, plan.weights_of(ascending_ids))),
+        ids_(std::move(ascending_ids)),
+        increments_(ids_.size()) {}
+
+  std::vector<int> ids_;                                // participants, ascending
   std::vector<InformationIncrement<kDim>> increments_;  // the round's, by participant
   GaussianState<kDim> prior_;
 };

@@ -5,12 +5,12 @@
 // NcrkfFusion (paper 002's bias-compensated ones) derive from it and differ in how an increment
 // is made, checked and fused.
 
-#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
 
+#include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/tracking/fixed_lag_peer.hpp"
 #include "skyfuse/transport/imm_wire.hpp"
@@ -26,9 +26,7 @@ class IncrementRound {
   using Contribution = PeerContribution<kDim>;
 
   IncrementRound(const RunPlan& plan, std::size_t lag)
-      : chain_(plan.motion_model<Model>(), plan.initial_estimate<Model>(),
-               sorted(plan.participant_ids()), plan.weights_of(sorted(plan.participant_ids())),
-               lag) {}
+      : IncrementRound(plan, sorted_ascending(plan.participant_ids()), lag) {}
 
   std::span<const int> station_ids() const { return chain_.collector().station_ids(); }
   void start_at(std::uint64_t step) { chain_.start_at(step); }
@@ -89,10 +87,9 @@ class IncrementRound {
   FixedLagPeer<Model> chain_;
 
  private:
-  static std::vector<int> sorted(std::vector<int> ids) {
-    std::sort(ids.begin(), ids.end());
-    return ids;
-  }
+  IncrementRound(const RunPlan& plan, const std::vector<int>& ascending_ids, std::size_t lag)
+      : chain_(plan.motion_model<Model>(), plan.initial_estimate<Model>(), ascending_ids,
+               plan.weights_of(ascending_ids), lag) {}
 };
 
 }  // namespace skyfuse::station

@@ -6,7 +6,6 @@
 // semi-definite, so it is checked by check_tdoa_increment() against its sender's noise, not by
 // check_increment(). Same interface as SingleModelFusion (single_model_fusion.hpp).
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -14,6 +13,7 @@
 #include <vector>
 
 #include "increment_round.hpp"
+#include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/tracking/tdoa_round.hpp"
@@ -65,10 +65,8 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
     const auto contribution = contribution_of(sample);
     if (!contribution) return DropKind::kOutOfRange;  // not the run's filter or dimension
     // An unknown sender has no noise to check against; keep() refuses it by name.
-    const auto ids = station_ids();
-    const auto sender = std::find(ids.begin(), ids.end(), static_cast<int>(sample.station_id()));
-    if (sender != ids.end()) {
-      const double sigma = sigmas_[static_cast<std::size_t>(sender - ids.begin())];
+    if (const auto sender = position_of(station_ids(), static_cast<int>(sample.station_id()))) {
+      const double sigma = sigmas_[*sender];
       if (const auto why = check_tdoa_increment(contribution->increment, sigma)) return why;
       if (const auto why = check_estimate(contribution->prior)) return why;
     }

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <optional>
 #include <span>
+#include <vector>
 
 namespace skyfuse {
 
@@ -14,6 +15,12 @@ inline std::optional<std::size_t> position_of(std::span<const int> sorted_ids, i
   const auto it = std::lower_bound(sorted_ids.begin(), sorted_ids.end(), id);
   if (it == sorted_ids.end() || *it != id) return std::nullopt;
   return static_cast<std::size_t>(it - sorted_ids.begin());
+}
+
+/// `ids` in ascending order, the order that position_of() and every round keep.
+inline std::vector<int> sorted_ascending(std::vector<int> ids) {
+  std::sort(ids.begin(), ids.end());
+  return ids;
 }
 
 }  // namespace skyfuse
