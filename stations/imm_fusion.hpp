@@ -34,15 +34,12 @@ class ImmFusion {
       transport::ImmModeSample<std::tuple_element_t<I, typename Peers::Filter::ModeStates>::kDim,
                                kModes>;
 
-  ImmFusion(const RunPlan& plan, std::size_t lag)
+  /// No re-fusion lag for the IMM (load_plan refuses one).
+  ImmFusion(const RunPlan& plan, std::size_t /*lag*/)
       : peers_(make_network_imm(plan.scenario, plan.initial_estimate<ConstantAcceleration3D>())),
         collectors_(make_collectors(plan.participant_ids(), std::make_index_sequence<kModes>{})),
         weights_(plan.weights_of(station_ids())),
         assembled_(station_ids().size()) {
-    if (lag != 0) {
-      throw std::invalid_argument(
-          "--refusion-lag: filter imm fuses each round once for now; leave it at 0");
-    }
     arrivals_.reserve(assembled_.size());
     round_weights_.reserve(assembled_.size());
     contributors_.reserve(assembled_.size());

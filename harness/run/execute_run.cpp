@@ -45,11 +45,11 @@ std::string scenario_text(const std::string& path) {
   return path.empty() ? std::string(default_scenario_yaml()) : read_scenario_text(path);
 }
 
-RunPlan plan_from(const std::string& text, const std::string& source, const RunOverrides& overrides,
-                  const NisGate& gate) {
-  RunPlan plan = make_run_plan(parse_scenario(text, source), overrides);
+RunPlan plan_from(const std::string& text, const std::string& source,
+                  const options::NodeOptions& node) {
+  RunPlan plan = make_run_plan(parse_scenario(text, source), node.overrides);
   // Refused here, before any process starts, rather than by each node.
-  transport::require_wire_configuration(plan.scenario, gate);
+  transport::require_wire_configuration(plan.scenario, node);
   return plan;
 }
 
@@ -144,10 +144,10 @@ struct Placement {
   options::NetworkOptions harness;  // the harness's interface and discovery server
 
   // The network options and namespace of the process with index `i`: 0 the center, then the
-  // stations in ascending id. Round robin over the hosts, the center on the first.
-  std::pair<options::NetworkOptions, int> of(const options::NetworkOptions& common,
-                                             std::size_t i) const {
-    if (!hosts) return {common, -1};
+  // stations in ascending id. Round robin over the hosts, the center on the first; without
+  // hosts, the harness's own options and namespace.
+  std::pair<options::NetworkOptions, int> of(std::size_t i) const {
+    if (!hosts) return {harness, -1};
     const int host = static_cast<int>(i % static_cast<std::size_t>(hosts->count()));
     options::NetworkOptions network = harness;
     network.interface_address = hosts->address(host);
@@ -173,10 +173,6 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   // Refusals first: a refused command leaves an earlier run's folder as it was.
   check_station_events(o, plan);
   check_hosts(o);
-  if (o.node.refusion_lag != 0 && plan.scenario.filter.kind == "imm") {
-    throw std::invalid_argument(
-        "--refusion-lag: filter imm fuses each round once for now; leave it at 0");
-  }
   const std::vector<int> ids = plan.participant_ids();
   if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
     transport::SecurityFolder{*o.node.secure_dir}.check(transport::run_identities(ids));
@@ -225,7 +221,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       return 1 + static_cast<std::size_t>(std::find(ids.begin(), ids.end(), id) - ids.begin());
     };
     const auto spawn_station = [&](int id, std::optional<std::uint64_t> rejoin_step) {
-      const auto [network, netns] = placement.of(placement.harness, process_index(id));
+      const auto [network, netns] = placement.of(process_index(id));
       const std::vector<std::string> common =
           node_arguments(o, plan, run_id, scenario_file, network);
       std::vector<std::string> station{(executable_dir() / "skyfuse-station").string(), "--id",
@@ -242,7 +238,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       children.spawn(node_name(id), station, netns);
     };
     if (!o.external) {
-      const auto [network, netns] = placement.of(placement.harness, 0);
+      const auto [network, netns] = placement.of(0);
       const std::vector<std::string> common =
           node_arguments(o, plan, run_id, scenario_file, network);
       std::vector<std::string> center{(executable_dir() / "skyfuse-center").string()};
@@ -370,7 +366,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
 RunPlan load_run_plan(const RunOptions& o) {
   return plan_from(scenario_text(o.node.scenario_path),
                    o.node.scenario_path.empty() ? "<embedded paper000.yaml>" : o.node.scenario_path,
-                   o.node.overrides, o.node.nis_gate());
+                   o.node);
 }
 
 }  // namespace skyfuse::harness

@@ -26,7 +26,7 @@ RunPlan load_plan(const options::NodeOptions& options) {
     throw std::invalid_argument(kSecureDiscoveryServerRefusal);
   }
   RunPlan plan = make_run_plan(load_scenario_or_default(options.scenario_path), options.overrides);
-  require_wire_configuration(plan.scenario, options.nis_gate());
+  require_wire_configuration(plan.scenario, options);
   return plan;
 }
 

@@ -6,9 +6,9 @@
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/models/constant_acceleration.hpp"
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
+#include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/tracking/peer_contribution.hpp"
-#include "skyfuse/validation/nis_gate.hpp"
 
 namespace skyfuse::transport {
 
@@ -23,8 +23,9 @@ using WireContribution = PeerContribution<WireModel::kDim>;
 using WireEstimate = GaussianState<WireModel::kDim>;
 
 /// Refuses, with std::invalid_argument naming it, a scenario whose motion model the station
-/// and center processes are not compiled for, or a NIS gate for a filter that has no
-/// innovation to gate (ncrkf). Any registered sensor runs, mixed or not.
-void require_wire_configuration(const Scenario& scenario, const NisGate& gate);
+/// and center processes are not compiled for, or node options its filter does not take: a NIS
+/// gate for one with no innovation to gate (ncrkf), a re-fusion lag for the IMM. Any registered
+/// sensor runs, mixed or not.
+void require_wire_configuration(const Scenario& scenario, const options::NodeOptions& node);
 
 }  // namespace skyfuse::transport
