@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <limits>
 
+#include "run/simulated_hosts.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/transport/node_config.hpp"
@@ -84,7 +85,7 @@ void add_run_command(CLI::App& app, RunOptions& o) {
   cmd->add_option("--hosts", o.hosts,
                   "Place the center and the stations, round robin, on N simulated hosts: network "
                   "namespaces joined by a bridge, discovering through the harness (root only)")
-      ->check(CLI::Range(1, 250));
+      ->check(CLI::Range(1, SimulatedHosts::kMaxHosts));
   cmd->add_flag("--external", o.external,
                 "Do not start processes: drive stations and a center started elsewhere");
   cmd->add_flag("-v,--verbose", o.verbose, "Let the node processes log at info level");

@@ -19,7 +19,6 @@ namespace {
 // RFC 2544's benchmarking range, 198.18.0.0/15: meant for test networks, routed nowhere, so a
 // /24 of it is unlikely to collide with a real network of the machine.
 constexpr const char* kSubnetPrefix = "198.18";
-constexpr int kMaxHosts = 250;
 
 // Runs `ip` with `args`; its exit status (127 if it could not start).
 int ip(const std::vector<std::string>& args, bool quiet = false) {

@@ -13,6 +13,9 @@ namespace skyfuse::harness {
 
 class SimulatedHosts {
  public:
+  /// The most hosts a run may ask for: the /24 of their bridge has room for them.
+  static constexpr int kMaxHosts = 250;
+
   /// Throws std::invalid_argument with the reason when this process may not create `count`
   /// hosts (not root, no `ip`, a count out of range).
   static void check_allowed(int count);

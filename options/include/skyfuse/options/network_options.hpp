@@ -31,7 +31,7 @@ bool is_ipv4_address(std::string_view text);
 /// "ADDRESS:PORT" with an IPv4 address and a port in [1, 65535]; nothing if the text is not.
 std::optional<Ipv4Endpoint> parse_ipv4_endpoint(std::string_view text);
 
-/// The UDP port of the harness's discovery server when the user names only the address.
+/// The UDP port the harness serves discovery on for `--hosts`, on the bridge's address.
 inline constexpr std::uint16_t kDefaultDiscoveryPort = 11811;
 
 struct NetworkOptions {

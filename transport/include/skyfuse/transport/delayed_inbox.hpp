@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstddef>
 #include <map>
 #include <utility>
 
@@ -42,8 +41,6 @@ class DelayedInbox {
     const auto left = std::chrono::ceil<std::chrono::microseconds>(held_.begin()->first - now);
     return std::clamp(left, std::chrono::microseconds(0), longest);
   }
-
-  std::size_t size() const { return held_.size(); }
 
  private:
   struct Held {
