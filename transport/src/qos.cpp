@@ -46,6 +46,23 @@ bool is_status_topic(const std::string& topic) {
   return topic == "skyfuse_status";
 }
 
+// Tracks and statuses are keyed by their source (wire types: @key), one instance each, and
+// durable: a reader that joins late - a viewer, a client of another DDS implementation - gets
+// each source's latest track at once, also from a station that has gone silent.
+bool is_track_topic(const std::string& topic) {
+  return topic == "skyfuse_track";
+}
+bool is_keyed_topic(const std::string& topic) {
+  return is_status_topic(topic) || is_track_topic(topic);
+}
+// A source's instances: its live and its settled tracks, or its status. The center is source 0.
+constexpr int kMaxInstances = 2 * (kMaxStations + 1);
+// Per instance, a keyed reader holds at most this many samples not yet taken (a reliable writer
+// then waits for it), and a track writer keeps this many for late joiners: 1.3 s of tracks at
+// dt = 0.02 s. A reliable KEEP_LAST writer drops its oldest sample even if unacknowledged, so
+// the depth is also how far the harness may fall behind a station before a track is lost.
+constexpr int kSamplesPerInstance = 64;
+
 // The links fusion tolerates losing: a round closes at its deadline without the sample.
 bool is_data_link_topic(const std::string& topic) {
   return topic == "skyfuse_increment" || topic == "skyfuse_measurement";
@@ -97,15 +114,19 @@ void apply_common(EndpointQos& qos, const std::string& topic, bool best_effort_d
   qos.reliability().kind = best_effort_data && is_data_link_topic(topic)
                                ? dds::BEST_EFFORT_RELIABILITY_QOS
                                : dds::RELIABLE_RELIABILITY_QOS;
-  if (is_status_topic(topic)) {
-    qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
-  } else {
-    qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
-  }
+  qos.durability().kind =
+      is_keyed_topic(topic) ? dds::TRANSIENT_LOCAL_DURABILITY_QOS : dds::VOLATILE_DURABILITY_QOS;
   qos.history().kind = dds::KEEP_ALL_HISTORY_QOS;
-  qos.resource_limits().max_instances = 1;
-  qos.resource_limits().max_samples = kMaxSamples;
-  qos.resource_limits().max_samples_per_instance = kMaxSamples;
+  // Fast DDS refuses limits where max_samples < max_instances * max_samples_per_instance.
+  if (is_keyed_topic(topic)) {
+    qos.resource_limits().max_instances = kMaxInstances;
+    qos.resource_limits().max_samples_per_instance = kSamplesPerInstance;
+    qos.resource_limits().max_samples = kMaxInstances * kSamplesPerInstance;
+  } else {
+    qos.resource_limits().max_instances = 1;
+    qos.resource_limits().max_samples = kMaxSamples;
+    qos.resource_limits().max_samples_per_instance = kMaxSamples;
+  }
   qos.resource_limits().allocated_samples = 64;
   // Data-sharing would put samples in /dev/shm segments that a killed process leaves behind;
   // at ~500 bytes a sample the copy is not what costs (wake-ups are).
@@ -176,6 +197,9 @@ dds::DataWriterQos QosProfiles::writer(const dds::Publisher& publisher,
   if (is_status_topic(topic)) {
     qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
     qos.history().depth = 1;
+  } else if (is_track_topic(topic)) {
+    qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+    qos.history().depth = kSamplesPerInstance;
   }
   qos.reliability().max_blocking_time = kMaxBlockingTime;
   qos.reliable_writer_qos().times.heartbeatPeriod = kHeartbeatPeriod;
