@@ -11,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "integration/run_fixture.hpp"
-#include "skyfuse/scenario/scenario_loader.hpp"
 
 namespace skyfuse::test {
 namespace {
@@ -34,16 +33,8 @@ nlohmann::json expect_lossless_run_equals_twin(int domain, const std::vector<std
   EXPECT_EQ(run.status.code, 0) << run.output;
   if (run.status.code != 0) return {};
 
-  const RunPlan plan = make_run_plan(load_default_scenario(), {kStations, kSteps, {}, 0});
-  const auto tracks = read_tracks(dir / "out" / "tracks.csv");
-  EXPECT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * (kStations + 1)));
-  EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);
-  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
-  EXPECT_EQ(summary.at("max_abs_diff_between_peers"), 0.0);
+  const auto summary = expect_default_run_equals_twin(dir / "out", kStations, kSteps);
   EXPECT_EQ(summary.at("rounds_closed_incomplete"), 0);
-  for (const auto& [kind, count] : summary.at("dropped_by_kind").items()) {
-    EXPECT_EQ(count.get<int>(), 0) << kind;
-  }
   return summary;
 }
 

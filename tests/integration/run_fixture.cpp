@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "skyfuse/scenario/scenario_loader.hpp"
+
 namespace skyfuse::test {
 
 TrackRows read_tracks(const std::filesystem::path& csv) {
@@ -78,6 +80,20 @@ std::optional<std::string> difference_from_twin(const TrackRows& tracks, const R
     }
   }
   return std::nullopt;
+}
+
+nlohmann::json expect_default_run_equals_twin(const std::filesystem::path& out, int stations,
+                                              int steps) {
+  const RunPlan plan = make_run_plan(load_default_scenario(), {stations, steps, {}, 0});
+  const auto tracks = read_tracks(out / "tracks.csv");
+  EXPECT_EQ(tracks.size(), static_cast<std::size_t>(steps * (stations + 1)));
+  EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);
+  const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
+  EXPECT_EQ(summary.at("max_abs_diff_between_peers"), 0.0);
+  for (const auto& [kind, count] : summary.at("dropped_by_kind").items()) {
+    EXPECT_EQ(count.get<int>(), 0) << kind;
+  }
+  return summary;
 }
 
 }  // namespace skyfuse::test

@@ -7,6 +7,7 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
@@ -53,5 +54,11 @@ TwinTracks in_process_twin(const RunPlan& plan, const NisGate& gate = {},
 /// tracks.csv equal the twin's bit for bit; else the first difference, in words.
 std::optional<std::string> difference_from_twin(const TrackRows& tracks, const RunPlan& plan,
                                                 const TwinTracks& twin);
+
+/// For a run of the default scenario with `stations` and `steps` that wrote its files to `out`:
+/// expects every track in tracks.csv, each equal to the in-process run's bit for bit, every
+/// peer the same bits and nothing refused. Returns summary.json.
+nlohmann::json expect_default_run_equals_twin(const std::filesystem::path& out, int stations,
+                                              int steps);
 
 }  // namespace skyfuse::test
