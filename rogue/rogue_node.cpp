@@ -132,6 +132,8 @@ int main(int argc, char** argv) {
   options::add_scenario_option(app, scenario_path);
   rogue::ProbeOptions probe;
   rogue::add_probe_options(app, probe);
+  options::NetworkOptions network;
+  options::add_network_options(app, network);
   CLI11_PARSE(app, argc, argv);
   spdlog::set_pattern("[rogue] %^%l%$: %v");
   transport::install_shutdown_handlers();
@@ -141,7 +143,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (probe.probe) return rogue::run_probe(probe, {domain, run_id, victim, timeout_s});
+    if (probe.probe) return rogue::run_probe(probe, {domain, run_id, victim, timeout_s, network});
     Victim victim_config;
     for (const StationConfig& s : load_scenario_or_default(scenario_path).stations) {
       if (s.id != victim) continue;
@@ -152,6 +154,7 @@ int main(int argc, char** argv) {
     config.domain_id = domain;
     config.name = "skyfuse-rogue";
     config.security = probe.security();
+    config.network = network;
     transport::DdsNode node(config);
     auto ticks = node.make_reader<wire::Tick>();
     auto increments = node.make_writer<wire::InformationIncrement>();

@@ -176,6 +176,7 @@ int run_probe(const ProbeOptions& options, const ProbeTarget& target) {
   config.domain_id = target.domain;
   config.name = "skyfuse-rogue";
   config.security = options.security();
+  config.network = target.network;
   transport::DdsNode node(config);
   try {
     probe(node, options, target);

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "skyfuse/options/network_options.hpp"
 #include "skyfuse/transport/security.hpp"
 
 namespace skyfuse::rogue {
@@ -31,6 +32,7 @@ struct ProbeTarget {
   std::uint64_t run_id = 0;
   int victim = 0;  ///< the station the probe speaks for
   double duration_s = 60.0;
+  options::NetworkOptions network;  ///< the interface and discovery of the run
 };
 
 /// Speaks for the victim station on the increment and measurement topics every 10 ms and counts
