@@ -118,7 +118,7 @@ static dds_entity_t create_participant(const struct options* o) {
            o->interface_address);
   const dds_entity_t domain = dds_create_domain((dds_domainid_t)o->domain, config);
   if (domain < 0) {
-    fprintf(stderr, "cannot create domain %d: %s\n", o->domain, dds_strretcode(-domain));
+    fprintf(stderr, "cannot create domain %d: %s\n", o->domain, dds_strretcode(domain));
     return domain;
   }
   return dds_create_participant((dds_domainid_t)o->domain, NULL, NULL);
@@ -168,14 +168,14 @@ int main(int argc, char** argv) {
   }
   const dds_entity_t participant = create_participant(&o);
   if (participant < 0) {
-    fprintf(stderr, "cannot create participant: %s\n", dds_strretcode(-participant));
+    fprintf(stderr, "cannot create participant: %s\n", dds_strretcode(participant));
     return 1;
   }
   static struct match_times matches = {.lock = PTHREAD_MUTEX_INITIALIZER};
   const dds_time_t joined = dds_time();
   const dds_entity_t reader = create_track_reader(participant, o.latest_sources > 0, &matches);
   if (reader < 0) {
-    fprintf(stderr, "cannot create the track reader: %s\n", dds_strretcode(-reader));
+    fprintf(stderr, "cannot create the track reader: %s\n", dds_strretcode(reader));
     return 1;
   }
   fprintf(out, "# joined_ns=%" PRId64 "\n", (int64_t)joined);

@@ -14,6 +14,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "skyfuse/options/node_options.hpp"
+
 namespace skyfuse::transport {
 namespace dds = eprosima::fastdds::dds;
 using eprosima::fastrtps::Duration_t;
@@ -62,6 +64,9 @@ constexpr int kMaxInstances = 2 * (kMaxStations + 1);
 // dt = 0.02 s. A reliable KEEP_LAST writer drops its oldest sample even if unacknowledged, so
 // the depth is also how far the harness may fall behind a station before a track is lost.
 constexpr int kSamplesPerInstance = 64;
+// At the end of a run a station sends its last --refusion-lag settled tracks at once: they must
+// fit in the settled instance's history together.
+static_assert(kSamplesPerInstance >= static_cast<int>(options::kMaxRefusionLag));
 
 // The links fusion tolerates losing: a round closes at its deadline without the sample.
 bool is_data_link_topic(const std::string& topic) {
