@@ -50,7 +50,10 @@ class Center {
         fusion_(plan),
         collector_(plan.participant_ids(), options.refusion_lag) {
     // (load_plan refuses a lag for a fusion that takes none.)
-    if constexpr (Fusion::kRefuses) priors_.assign(options.refusion_lag + 1, fusion_.state());
+    if constexpr (Fusion::kRefuses) {
+      priors_.assign(options.refusion_lag + 1, fusion_.state());
+      final_tracks_.resize(options.refusion_lag + 1);
+    }
     wait_set_.attach(ticks_);
     wait_set_.attach(measurements_);
   }
@@ -88,11 +91,18 @@ class Center {
         return options::kExitNumerical;
       }
       tracks_.write(fusion_.track(options_.run_id, k, kCenterSourceId));
+      if constexpr (Fusion::kRefuses) {
+        const std::uint64_t lag = collector_.lag();
+        if (lag != 0 && k >= lag) tracks_.write(settled_track(k - lag));  // leaves the lag
+      }
       fusion_.predict();
       if constexpr (Fusion::kRefuses) {
         if (collector_.lag() != 0) prior_of(k + 1) = fusion_.state();  // the lag's history
       }
       collector_.advance();
+    }
+    if constexpr (Fusion::kRefuses) {
+      if (const int code = settle_the_lag(steps); code >= 0) return code;
     }
     presence_.set_drops(drops_.counts());
     presence_.set_link_counts(lost_, 0, late_used_);
@@ -116,7 +126,14 @@ class Center {
       }
       late_from_.reset();
     }
-    for (std::uint64_t q = from; q <= k; ++q) {
+    return update_rounds(from, k, k);
+  }
+
+  // Updates rounds [from, to], the fusion holding round `from`'s prior; the refusals of round
+  // `closing` (the one closing now, if any) are counted.
+  NumericalStatus update_rounds(std::uint64_t from, std::uint64_t to,
+                                std::optional<std::uint64_t> closing) {
+    for (std::uint64_t q = from; q <= to; ++q) {
       if (q > from) {
         fusion_.predict();
         if constexpr (Fusion::kRefuses) prior_of(q) = fusion_.state();
@@ -128,14 +145,67 @@ class Center {
           },
           options_.nis_gate(),
           [&](int station_id, DropKind why) {  // counted once: when the round closes
-            if (q == k) transport::count_drop(drops_, why, "measurement", station_id, k);
+            if (q == closing) transport::count_drop(drops_, why, "measurement", station_id, q);
           });
       if (status != NumericalStatus::kOk) return status;
+      if constexpr (Fusion::kRefuses) {
+        if (collector_.lag() != 0)
+          final_tracks_[q % final_tracks_.size()] =
+              fusion_.track(options_.run_id, q, kCenterSourceId);
+      }
     }
     return NumericalStatus::kOk;
   }
 
   transport::WireEstimate& prior_of(std::uint64_t step) { return priors_[step % priors_.size()]; }
+
+  // Round `step`'s final estimate, as it leaves the lag.
+  wire::TrackEstimate settled_track(std::uint64_t step) const {
+    wire::TrackEstimate track = final_tracks_[step % final_tracks_.size()];
+    track.settled(true);
+    return track;
+  }
+
+  // After the last round, with a re-fusion lag: in real time, waits a lag's worth of steps for
+  // late measurements; then updates the rounds they came for again and sends the final tracks
+  // of the rounds still in the lag. Returns an exit code if the run must end, -1 otherwise.
+  int settle_the_lag(std::uint64_t steps) {
+    const std::uint64_t lag = collector_.lag();
+    if (lag == 0 || steps == 0) return -1;
+    if (options_.realtime_deadline_ms > 0.0) {
+      const auto until =
+          std::chrono::steady_clock::now() +
+          std::chrono::duration_cast<std::chrono::microseconds>(
+              std::chrono::duration<double>(static_cast<double>(lag) * plan_.scenario.time_step_s));
+      while (std::chrono::steady_clock::now() < until) {
+        if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
+        drain_measurements();
+        wait_set_.wait(delayed_.wait_limit(
+            std::chrono::steady_clock::now(),
+            std::clamp(std::chrono::duration_cast<std::chrono::microseconds>(
+                           until - std::chrono::steady_clock::now()),
+                       std::chrono::microseconds(1),
+                       std::chrono::duration_cast<std::chrono::microseconds>(kPollSlice))));
+      }
+    }
+    if (late_from_) {
+      fusion_.reset_to(prior_of(*late_from_));
+      const NumericalStatus status = update_rounds(*late_from_, steps - 1, std::nullopt);
+      late_from_.reset();
+      if (status != NumericalStatus::kOk) {
+        const std::string detail =
+            fmt::format("settling the last rounds: stacked update failed: {}", to_string(status));
+        spdlog::error("{}", detail);
+        presence_.announce(wire::FAILED, static_cast<std::uint32_t>(steps), detail);
+        return options::kExitNumerical;
+      }
+    }
+    for (std::uint64_t s = steps > lag ? steps - lag : 0; s < steps; ++s) {
+      tracks_.write(settled_track(s));
+    }
+    tracks_.wait_acknowledged(2s);  // before FINISHED: the harness stops reading then
+    return -1;
+  }
 
   // Waits until every measurement of step k is in, or the round's deadline passes: in lock-step
   // the deadline runs from tick k, in real time from the step's scheduled start (after the
@@ -165,25 +235,7 @@ class Center {
           close = std::chrono::system_clock::now() + options_.round_deadline();
         }
       }
-      wire::Measurement sample;
-      transport::WriterId writer;
-      const auto now = std::chrono::steady_clock::now();
-      while (measurements_.take(sample, &writer)) {
-        if (options_.loss.lost(kCenterSourceId, sample.station_id(), sample.step())) {
-          ++lost_;  // the simulated link lost it: as if it never arrived
-          continue;
-        }
-        if (options_.delay.enabled()) {  // the simulated link holds it back
-          delayed_.hold(
-              sample, writer,
-              now + options_.delay.of(options_.loss.seed, kCenterSourceId,
-                                      static_cast<int>(sample.station_id()), sample.step()));
-          continue;
-        }
-        receive(sample, writer);
-      }
-      delayed_.release_due(
-          now, [&](const wire::Measurement& m, const transport::WriterId& w) { receive(m, w); });
+      drain_measurements();
       if (collector_.complete()) return -1;
       if (realtime && epoch_ns_ != 0) {
         close = transport::step_start(epoch_ns_, k, plan_.scenario.time_step_s) +
@@ -210,6 +262,30 @@ class Center {
       // Nor past the next delayed measurement.
       wait_set_.wait(delayed_.wait_limit(std::chrono::steady_clock::now(), slice));
     }
+  }
+
+  // Takes what the measurement reader holds through the simulated link (loss, delay) and
+  // receives what is due.
+  void drain_measurements() {
+    wire::Measurement sample;
+    transport::WriterId writer;
+    const auto now = std::chrono::steady_clock::now();
+    while (measurements_.take(sample, &writer)) {
+      if (options_.loss.lost(kCenterSourceId, sample.station_id(), sample.step())) {
+        ++lost_;  // the simulated link lost it: as if it never arrived
+        continue;
+      }
+      if (options_.delay.enabled()) {  // the simulated link holds it back
+        delayed_.hold(
+            sample, writer,
+            now + options_.delay.of(options_.loss.seed, kCenterSourceId,
+                                    static_cast<int>(sample.station_id()), sample.step()));
+        continue;
+      }
+      receive(sample, writer);
+    }
+    delayed_.release_due(
+        now, [&](const wire::Measurement& m, const transport::WriterId& w) { receive(m, w); });
   }
 
   // Checks a received measurement and keeps it, or counts why not.
@@ -261,6 +337,7 @@ class Center {
   // Fixed-lag re-fusion: each round's prior in the lag, the oldest round a late measurement
   // came for since the last update, and how many came.
   std::vector<transport::WireEstimate> priors_;
+  std::vector<wire::TrackEstimate> final_tracks_;  // each round's latest estimate in the lag
   std::optional<std::uint64_t> late_from_;
   std::uint64_t late_used_ = 0;
 };

@@ -174,16 +174,18 @@ struct LockstepDriver::Impl {
     }
   }
 
-  // A settled track (a round's final estimate, sent as it leaves a station's lag): the content
-  // checks, its source, then one per (step, source).
+  // A settled track (a round's final estimate, sent as it leaves a node's lag): the content
+  // checks, its source (a station's PEER track or the center's CENTRAL one), then one per
+  // (step, source).
   std::optional<DropKind> settled_refusal(const wire::TrackEstimate& t,
                                           const std::optional<transport::WireEstimate>& estimate,
                                           const transport::WriterId& writer) {
     if (const auto why = track_content_refusal(t, estimate, run_id, modes)) return why;
-    if (t.mode() != wire::PEER) return DropKind::kUnknownStation;  // only stations re-fuse
-    if (!std::binary_search(station_ids.begin(), station_ids.end(), t.source_id())) {
-      return DropKind::kUnknownStation;
-    }
+    const bool from_center = t.source_id() == kCenterNodeId;  // CENTRAL: checked above
+    const bool from_station =
+        t.mode() == wire::PEER &&
+        std::binary_search(station_ids.begin(), station_ids.end(), t.source_id());
+    if (!from_center && !from_station) return DropKind::kUnknownStation;
     if (!track_sources.accept(t.source_id(), writer)) return DropKind::kDuplicate;
     const bool inserted =
         settled.try_emplace({t.step(), t.source_id()}, received_track(t, *estimate)).second;

@@ -86,10 +86,17 @@ std::optional<SettledFigures> RunRecorder::summarise_settled(
   SettledFigures f;
   f.tracks = static_cast<int>(settled.size());
   double sq = 0.0;
-  // Ordered by step, then source: the first track of a step is its lowest-id peer's.
+  double sq_central = 0.0;
+  int central_rounds = 0;
+  // Ordered by step, then source: the center (source 0) first, then the lowest-id peer's.
   const ReceivedTrack* first = nullptr;
   std::uint64_t step = 0;
   for (const auto& [key, track] : settled) {
+    if (key.second == kCenterNodeId) {
+      sq_central += (truth_position(key.first) - position_of(track)).squaredNorm();
+      ++central_rounds;
+      continue;
+    }
     if (first == nullptr || key.first != step) {
       first = &track;
       step = key.first;
@@ -102,7 +109,8 @@ std::optional<SettledFigures> RunRecorder::summarise_settled(
     f.max_abs_diff_between_peers = std::max(f.max_abs_diff_between_peers, difference);
     f.peer_spread_end = std::max(f.peer_spread_end, difference);
   }
-  f.rmse_p2p_m = std::sqrt(sq / f.rounds);
+  if (f.rounds > 0) f.rmse_p2p_m = std::sqrt(sq / f.rounds);
+  if (central_rounds > 0) f.rmse_central_m = std::sqrt(sq_central / central_rounds);
   return f;
 }
 
@@ -334,6 +342,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
     full["settled"] = {{"tracks", summary.settled->tracks},
                        {"rounds", summary.settled->rounds},
                        {"rmse_p2p_m", summary.settled->rmse_p2p_m},
+                       {"rmse_central_m", summary.settled->rmse_central_m},
                        {"max_abs_diff_between_peers", summary.settled->max_abs_diff_between_peers},
                        {"peer_spread_end", summary.settled->peer_spread_end}};
   }
@@ -371,10 +380,12 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
     fmt::print(out, "  |peer - peer| at the end {:.2e}\n", s.peer_spread_end);
   }
   if (s.settled) {
-    fmt::print(
-        out,
-        "  settled (re-fused) RMSE p2p {:.4f} m, |peer - peer| max {:.2e}, at the end {:.2e}\n",
-        s.settled->rmse_p2p_m, s.settled->max_abs_diff_between_peers, s.settled->peer_spread_end);
+    fmt::print(out,
+               "  settled (re-fused) RMSE p2p {:.4f} m, central {:.4f} m, |peer - peer| max "
+               "{:.2e}, at the "
+               "end {:.2e}\n",
+               s.settled->rmse_p2p_m, s.settled->rmse_central_m,
+               s.settled->max_abs_diff_between_peers, s.settled->peer_spread_end);
   }
   fmt::print(out, "  rounds per second        {:.0f}\n", s.rounds_per_s);
   fmt::print(out, "  round latency p50/p99/max {:.0f} / {:.0f} / {:.0f} us\n",

@@ -26,9 +26,10 @@ namespace skyfuse::harness {
 
 /// Fixed-lag re-fusion: the figures of the settled tracks, each round's final estimate.
 struct SettledFigures {
-  int tracks = 0;
-  int rounds = 0;  ///< rounds with at least one settled track
+  int tracks = 0;  ///< the center's and the stations'
+  int rounds = 0;  ///< rounds with at least one station's settled track
   double rmse_p2p_m = 0.0;
+  double rmse_central_m = 0.0;  ///< the center's settled tracks (out-of-sequence updates)
   double max_abs_diff_between_peers = 0.0;
   double peer_spread_end = 0.0;  ///< at the last settled round
 };

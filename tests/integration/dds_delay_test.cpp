@@ -7,10 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "integration/run_fixture.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
 
 namespace skyfuse::test {
 namespace {
@@ -48,9 +50,10 @@ TEST(DdsRefusion, FusingTheLagsRoundsAgainChangesNoBitWithoutLateSamples) {
   // Every round's settled track came, the same as the one sent when it closed.
   ASSERT_TRUE(summary.contains("settled"));
   EXPECT_EQ(summary["settled"]["rounds"], 200);
-  EXPECT_EQ(summary["settled"]["tracks"], 800);
+  EXPECT_EQ(summary["settled"]["tracks"], 1000);  // 4 stations and the center
   EXPECT_EQ(summary["settled"]["max_abs_diff_between_peers"], 0.0);
   EXPECT_EQ(summary["settled"]["rmse_p2p_m"], summary["rmse_p2p_m"]);
+  EXPECT_EQ(summary["settled"]["rmse_central_m"], summary["rmse_central_m"]);
 }
 
 // Real time over links delayed 10 +- 8 ms with a 15 ms deadline: increments miss their round
@@ -75,7 +78,20 @@ TEST(DdsRefusion, LateIncrementsAreFusedAndEveryPeerSettlesOnTheSameBits) {
   EXPECT_GT(summary["max_abs_diff_between_peers"].get<double>(), 0.0)
       << "the live tracks differ: some increments missed their round";
   EXPECT_EQ(summary["settled"]["rounds"], 300);
+  EXPECT_EQ(summary["settled"]["tracks"], 300 * 5)
+      << "every round's, from 4 stations and the center";
   EXPECT_EQ(summary["settled"]["max_abs_diff_between_peers"], 0.0);
+  // Every late measurement came within the lag, and the center updated again from its round:
+  // its settled track is the track of the same run without delay.
+  const RunPlan plan = make_run_plan(load_default_scenario(), {4, 300, {}, 0});
+  const TruthTrajectory truth = plan.truth();
+  const TwinTracks twin = in_process_twin(plan);
+  double sq = 0.0;
+  for (std::size_t k = 0; k < twin.size(); ++k) {
+    sq += (truth.position(k) - twin[k].first.head<3>()).squaredNorm();
+  }
+  EXPECT_NEAR(summary["settled"]["rmse_central_m"].get<double>(),
+              std::sqrt(sq / static_cast<double>(twin.size())), 1e-12);
 }
 
 // Samples lost for good are never re-fused: once the rounds that lost them leave the lag, every
