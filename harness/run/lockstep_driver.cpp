@@ -181,11 +181,11 @@ struct LockstepDriver::Impl {
                                           const std::optional<transport::WireEstimate>& estimate,
                                           const transport::WriterId& writer) {
     if (const auto why = track_content_refusal(t, estimate, run_id, modes)) return why;
-    const bool from_center = t.source_id() == kCenterNodeId;  // CENTRAL: checked above
-    const bool from_station =
-        t.mode() == wire::PEER &&
-        std::binary_search(station_ids.begin(), station_ids.end(), t.source_id());
-    if (!from_center && !from_station) return DropKind::kUnknownStation;
+    // (The content checks tie CENTRAL to the center's id and PEER to every other.)
+    if (t.source_id() != kCenterNodeId &&
+        !std::binary_search(station_ids.begin(), station_ids.end(), t.source_id())) {
+      return DropKind::kUnknownStation;
+    }
     if (!track_sources.accept(t.source_id(), writer)) return DropKind::kDuplicate;
     const bool inserted =
         settled.try_emplace({t.step(), t.source_id()}, received_track(t, *estimate)).second;

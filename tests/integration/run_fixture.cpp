@@ -1,5 +1,6 @@
 #include "integration/run_fixture.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -41,6 +42,15 @@ std::vector<double> peer_spread(const std::filesystem::path& steps_csv) {
     spread.push_back(std::strtod(line.substr(line.rfind(',') + 1).c_str(), nullptr));
   }
   return spread;
+}
+
+void expect_peers_differ_only_around_the_loss(const std::filesystem::path& steps_csv, int steps,
+                                              int loss_from, int loss_to, int agree_from) {
+  const std::vector<double> spread = peer_spread(steps_csv);
+  ASSERT_EQ(spread.size(), static_cast<std::size_t>(steps));
+  for (int k = 0; k < loss_from; ++k) EXPECT_EQ(spread[k], 0.0) << k;
+  EXPECT_GT(*std::max_element(spread.begin() + loss_from, spread.begin() + loss_to), 0.0);
+  for (int k = agree_from; k < steps; ++k) EXPECT_EQ(spread[k], 0.0) << k;
 }
 
 TwinTracks in_process_twin(const RunPlan& plan, const NisGate& gate, RunTrace* trace) {

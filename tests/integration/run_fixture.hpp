@@ -44,6 +44,12 @@ TrackRows read_tracks(const std::filesystem::path& csv);
 /// steps.csv's peer_spread column, by step.
 std::vector<double> peer_spread(const std::filesystem::path& steps_csv);
 
+/// For a run of `steps` rounds whose links lost samples in rounds [loss_from, loss_to): expects
+/// its steps.csv to show every peer the same bits before, some difference during, and the same
+/// bits again from round `agree_from` on.
+void expect_peers_differ_only_around_the_loss(const std::filesystem::path& steps_csv, int steps,
+                                              int loss_from, int loss_to, int agree_from);
+
 /// The in-process twin of a DDS run: its (central, peer-to-peer) means per step, as
 /// simulate_run computes them (with `gate`); its trace into `trace` if given.
 using TwinTracks = std::vector<std::pair<Vector<9>, Vector<9>>>;
