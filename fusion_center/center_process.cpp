@@ -173,10 +173,8 @@ class Center {
     const std::uint64_t lag = collector_.lag();
     if (lag == 0 || steps == 0) return -1;
     if (options_.realtime_deadline_ms > 0.0) {
-      const auto until =
-          std::chrono::steady_clock::now() +
-          std::chrono::duration_cast<std::chrono::microseconds>(
-              std::chrono::duration<double>(static_cast<double>(lag) * plan_.scenario.time_step_s));
+      const auto until = std::chrono::steady_clock::now() +
+                         transport::steps_duration(lag, plan_.scenario.time_step_s);
       while (std::chrono::steady_clock::now() < until) {
         if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
         drain_measurements();

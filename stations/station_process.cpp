@@ -317,8 +317,7 @@ class Station {
     if (options_.node.realtime_deadline_ms > 0.0) {
       const auto until =
           std::chrono::steady_clock::now() +
-          std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::duration<double>(
-              static_cast<double>(options_.node.refusion_lag) * plan_.scenario.time_step_s));
+          transport::steps_duration(options_.node.refusion_lag, plan_.scenario.time_step_s);
       bool unused = false;
       while (std::chrono::steady_clock::now() < until) {
         if (const int code = drain(steps, unused); code >= 0) return code;
