@@ -47,7 +47,7 @@ def main(track_path, rmse_path, png_path):
 
     names = [c for c in rmse[0].keys() if c != "path"]
     ax_rmse.boxplot([[float(r[n]) for r in rmse] for n in names], labels=names, showfliers=False)
-    ax_rmse.set_ylabel("per-path RMSE (m)")
+    ax_rmse.set_ylabel("per-path RMSE per axis (m)")
     ax_rmse.set_title(f"{len(rmse)} test paths")
     ax_rmse.tick_params(axis="x", labelsize=8)
     fig.tight_layout()

@@ -135,6 +135,8 @@ TEST(Paper001Data, RmseOfTheTruthIsZeroAndOfAnOffsetTrackItsOffset) {
   }
   EXPECT_EQ(path_rmse(tracked, truth), 0.0);
   EXPECT_NEAR(path_rmse(tracked, offset), 5.0, 1e-12);
+  // Per axis: the mean of 3^2 and 4^2, i.e. 12.5 m^2.
+  EXPECT_NEAR(per_axis_rmse(tracked, offset), std::sqrt(12.5), 1e-12);
   truth.pop_back();
   EXPECT_THROW(path_rmse(tracked, truth), std::invalid_argument);
 }

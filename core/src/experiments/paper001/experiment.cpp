@@ -34,7 +34,7 @@ std::vector<FilterScore> score(const std::vector<NamedFilter>& filters,
       const PositionTrack track = filter.track(path);
       spent += Clock::now() - start;
       steps += track.size() - 1;
-      s.rmse.push_back(path_rmse(path, track));
+      s.rmse.push_back(per_axis_rmse(path, track));
     }
     s.spread = spread_of(s.rmse);
     s.seconds_per_step = std::chrono::duration<double>(spent).count() / static_cast<double>(steps);

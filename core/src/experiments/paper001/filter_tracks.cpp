@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "skyfuse/filters/imm.hpp"
@@ -100,6 +101,10 @@ double path_rmse(const TrackedPath& tracked, const PositionTrack& track) {
     sum += (track[k] - tracked.path.truth[k].head<2>()).squaredNorm();
   }
   return std::sqrt(sum / static_cast<double>(track.size() - 1));
+}
+
+double per_axis_rmse(const TrackedPath& tracked, const PositionTrack& track) {
+  return path_rmse(tracked, track) / std::numbers::sqrt2;
 }
 
 }  // namespace skyfuse::paper001

@@ -42,7 +42,7 @@ Spread spread_of(const std::vector<double>& values);
 
 struct FilterScore {
   std::string name;
-  std::vector<double> rmse;  ///< per path
+  std::vector<double> rmse;  ///< per path, per axis: the paper's metric (per_axis_rmse)
   Spread spread;
   double seconds_per_step = 0.0;  ///< wall time of the whole run over the steps it covered
 };
