@@ -77,9 +77,13 @@ void print_tables(const ExperimentResult& r) {
                100.0 * (1.0 - ec / mean_of(r.table3, "IMM")));
     fmt::print("Table 4 ({} paths inside +-210 m):",
                r.table4.empty() ? 0 : r.table4[0].rmse.size());
-    for (std::size_t i = 0; i < r.table4.size(); ++i) {
-      fmt::print(" {} paper {:.2f}/{:.2f} | this run {:.2f}/{:.2f}", r.table4[i].name,
-                 kTable4[i].mean, kTable4[i].std, r.table4[i].spread.mean, r.table4[i].spread.std);
+    for (const FilterScore& s : r.table4) {
+      std::string paper = "-";
+      for (const PaperFigure& f : kTable4) {
+        if (s.name == f.name) paper = fmt::format("{:.2f}/{:.2f}", f.mean, f.std);
+      }
+      fmt::print(" | {} paper {} this run {:.2f}/{:.2f}", s.name, paper, s.spread.mean,
+                 s.spread.std);
     }
     fmt::print("\n");
   }
@@ -92,12 +96,14 @@ void print_tables(const ExperimentResult& r) {
       "this run {:.3f}/{:.4f}, {:.2f}/{:.2f}\n",
       r.se_targets.mean.x(), r.se_targets.mean.y(), r.se_targets.std.x(), r.se_targets.std.y());
   if (r.networks) {
-    for (const auto* rec : {&*r.ec_record, &*r.se_record}) {
+    for (const auto* rec : {&r.ec_record, &r.ec_absolute_record, &r.se_record}) {
+      if (!*rec) continue;
+      const learning::LstmTrainingRecord& t = **rec;
       fmt::print(
-          "{} network: {} training, best epoch {} of {}, train/val loss {:.3g}/{:.3g} m^2 (MSE + "
-          "L2), {} windows an epoch, trained in {:.0f} s\n",
-          rec->network, rec->mode, rec->best_epoch, rec->epochs, rec->train_loss, rec->val_loss,
-          rec->windows, rec->training_seconds);
+          "{} network ({} frame): {} training, best epoch {} of {}, train/val loss {:.3g}/{:.3g} "
+          "m^2 (MSE + L2), {} windows an epoch, trained in {:.0f} s\n",
+          t.network, t.frame, t.mode, t.best_epoch, t.epochs, t.train_loss, t.val_loss, t.windows,
+          t.training_seconds);
     }
     fmt::print("  paper: EC stops at epoch 89, loss 1.62/1.74; SE at 335, 5.77/4.93\n");
   }
@@ -145,6 +151,7 @@ nlohmann::json scores_json(const std::vector<FilterScore>& scores) {
 
 nlohmann::json record_json(const learning::LstmTrainingRecord& r) {
   return {{"mode", r.mode},
+          {"frame", r.frame},
           {"epochs", r.epochs},
           {"best_epoch", r.best_epoch},
           {"train_loss", r.train_loss},
@@ -163,6 +170,9 @@ Reproduction reproduce_paper001(const ReproduceSettings& settings) {
   const std::filesystem::path weights = settings.data_dir / "paper001";
   setup.ec_weights = weights / "ec.lstm";
   setup.se_weights = weights / "se.lstm";
+  if (std::filesystem::exists(weights / "ec-absolute.lstm")) {
+    setup.ec_absolute_weights = weights / "ec-absolute.lstm";
+  }
   const ExperimentResult r = paper001::run_experiment(setup);
 
   print_tables(r);
@@ -211,6 +221,7 @@ Reproduction reproduce_paper001(const ReproduceSettings& settings) {
   nlohmann::json networks = nlohmann::json::object();
   if (r.networks) {
     networks = {{"ec", record_json(*r.ec_record)}, {"se", record_json(*r.se_record)}};
+    if (r.ec_absolute_record) networks["ec_absolute_frame"] = record_json(*r.ec_absolute_record);
   }
   out.details = {{"training_mode", mode_of(r)},
                  {"rmse_metric", "per axis: sqrt(mean over steps and both axes); 2-D = sqrt(2) x"},

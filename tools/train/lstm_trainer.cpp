@@ -89,6 +89,8 @@ TrainConfig preset(Network network, Mode mode) {
   TrainConfig c;
   c.network = network;
   c.mode = mode;
+  c.frame = network == Network::kErrorCompensation ? paper001::WindowFrame::kRelative
+                                                   : paper001::WindowFrame::kAbsolute;
   switch (mode) {
     case Mode::kSmoke:
       c.paths = 50, c.stride = 14, c.batch = 128, c.max_epochs = 3;
@@ -244,6 +246,7 @@ TrainResult train(const TrainConfig& config, const WindowTensors& train,
   learning::LstmTrainingRecord record;
   record.network = network_name(config.network);
   record.mode = mode_name(config.mode);
+  record.frame = paper001::name_of(config.frame);
   record.seed = config.seed;
   record.windows = static_cast<std::uint64_t>(tr.inputs.size(0));
   std::vector<torch::Tensor> best = copy_parameters(*model);

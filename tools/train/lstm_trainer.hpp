@@ -50,6 +50,10 @@ std::string network_name(paper001::Network network);
 struct TrainConfig {
   paper001::Network network = paper001::Network::kErrorCompensation;
   Mode mode = Mode::kSmoke;
+  /// The windows' positions: EC learns from them relative to the window's last estimate (its
+  /// target, the CVKF's error, does not depend on where the path lies); SE needs them as
+  /// they are.
+  paper001::WindowFrame frame = paper001::WindowFrame::kAbsolute;
   int paths = 50;   ///< paths in all three splits (7:2:1)
   int stride = 14;  ///< a window starts every `stride` steps, training and validation
   int batch = 128;
@@ -67,6 +71,7 @@ struct TrainConfig {
 /// reduced: all 10 000 paths (7000 train), stride 14, batch 512, 10 epochs (about 30 s an
 ///   epoch on one thread here: both networks in about 11 minutes; docs/lstm.md).
 /// full: the paper's: 10 000 paths, stride 3, batch 3072, up to 1000 epochs, patience 15.
+/// Every mode: EC in the relative frame, SE in the absolute one.
 TrainConfig preset(paper001::Network network, Mode mode);
 
 /// The per-feature input statistics and the output scaling stored with the weights.

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
       {"smoke", Mode::kSmoke}, {"reduced", Mode::kReduced}, {"full", Mode::kFull}};
   std::string network;
   std::string mode;
+  std::string frame;
   app.add_option("--network", network, "ec (error compensation) or se (state estimation)")
       ->required()
       ->check(CLI::IsMember({"ec", "se"}));
@@ -34,9 +35,14 @@ int main(int argc, char** argv) {
   app.add_option("--max-epochs", o.max_epochs, "overrides the mode's")->check(CLI::PositiveNumber);
   app.add_option("--patience", o.patience, "early-stopping patience")->check(CLI::PositiveNumber);
   app.add_option("--log", o.log, "CSV with one line per epoch");
+  app.add_option("--frame", frame,
+                 "the windows' positions: absolute, or relative to the window's last estimate "
+                 "(default: relative for ec, absolute for se; docs/lstm.md)")
+      ->check(CLI::IsMember({"absolute", "relative"}));
   CLI11_PARSE(app, argc, argv);
   o.network = networks.at(network);
   o.mode = modes.at(mode);
+  if (!frame.empty()) o.frame = skyfuse::paper001::window_frame_named(frame);
   try {
     return skyfuse::train::run_train_command(o, std::cout);
   } catch (const std::exception& e) {

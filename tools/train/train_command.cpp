@@ -36,13 +36,20 @@ int run_train_command(const CommandOptions& options, std::ostream& out) {
   if (options.paths) config.paths = *options.paths;
   if (options.max_epochs) config.max_epochs = *options.max_epochs;
   if (options.patience) config.patience = *options.patience;
+  if (options.frame) config.frame = *options.frame;
   if (config.paths < 10) throw std::invalid_argument("--paths must be at least 10");
+  if (config.network == paper001::Network::kStateEstimation &&
+      config.frame == paper001::WindowFrame::kRelative) {
+    throw std::invalid_argument(
+        "--frame relative is for ec only: se outputs the position, which a window relative to "
+        "its last estimate no longer holds");
+  }
   torch::set_num_threads(options.threads);
 
   paper001::DataSetup data;
   data.paths = config.paths;
-  fmt::print(out, "skyfuse-train: network {} mode {}\n", network_name(config.network),
-             mode_name(config.mode));
+  fmt::print(out, "skyfuse-train: network {} mode {} frame {}\n", network_name(config.network),
+             mode_name(config.mode), paper001::name_of(config.frame));
   fmt::print(out,
              "  data: {} paths (7:2:1 by path), {} steps each, data seed {}, window stride {}\n",
              data.paths, data.path.steps, data.seed, config.stride);
@@ -59,10 +66,10 @@ int run_train_command(const CommandOptions& options, std::ostream& out) {
   out.flush();
 
   const auto data_begin = Clock::now();
-  const WindowTensors train_windows = to_tensors(
-      paper001::make_windows(data, paper001::Split::kTrain, config.network, config.stride));
-  const WindowTensors val_windows = to_tensors(
-      paper001::make_windows(data, paper001::Split::kValidation, config.network, config.stride));
+  const WindowTensors train_windows = to_tensors(paper001::make_windows(
+      data, paper001::Split::kTrain, config.network, config.stride, config.frame));
+  const WindowTensors val_windows = to_tensors(paper001::make_windows(
+      data, paper001::Split::kValidation, config.network, config.stride, config.frame));
   fmt::print(out, "  windows: {} train, {} validation ({:.1f} s to build)\n",
              train_windows.inputs.size(0), val_windows.inputs.size(0),
              std::chrono::duration<double>(Clock::now() - data_begin).count());

@@ -21,6 +21,7 @@ struct CommandOptions {
   std::optional<int> paths;
   std::optional<int> max_epochs;
   std::optional<int> patience;
+  std::optional<paper001::WindowFrame> frame;  ///< default: the preset's
   int threads = 1;
 };
 

@@ -21,6 +21,9 @@ namespace {
 constexpr int kMaxWidth = 4096;
 constexpr std::array<std::string_view, 2> kNetworks = {"ec", "se"};
 constexpr std::array<std::string_view, 3> kModes = {"smoke", "reduced", "full"};
+constexpr std::array<std::string_view, 2> kFrames = {"absolute", "relative"};
+// Version 1 had no `frame` key: its networks see absolute positions.
+constexpr int kFirstVersionWithFrame = 2;
 
 template <std::size_t N>
 bool one_of(const std::string& value, const std::array<std::string_view, N>& names) {
@@ -51,6 +54,9 @@ std::string find_problem(const LstmWeights& w) {
   }
   if (!one_of(w.record.mode, kModes)) {
     return fmt::format("unknown mode '{}' (expected smoke, reduced or full)", w.record.mode);
+  }
+  if (!one_of(w.record.frame, kFrames)) {
+    return fmt::format("unknown frame '{}' (expected absolute or relative)", w.record.frame);
   }
   const LstmTrainingRecord& r = w.record;
   if (r.epochs < 0 || r.best_epoch < 0 || r.best_epoch > r.epochs) {
@@ -187,9 +193,9 @@ LstmWeights read_lstm_weights(const std::filesystem::path& path) {
   if (!parse_number(line.substr(magic.size()), version)) {
     throw fail(fmt::format("malformed version in first line '{}'", line));
   }
-  if (version != kLstmFormatVersion) {
-    throw fail(fmt::format("unsupported format version {} (this build reads version {})", version,
-                           kLstmFormatVersion));
+  if (version < 1 || version > kLstmFormatVersion) {
+    throw fail(fmt::format("unsupported format version {} (this build reads versions 1 to {})",
+                           version, kLstmFormatVersion));
   }
 
   LstmWeights w;
@@ -208,7 +214,7 @@ LstmWeights read_lstm_weights(const std::filesystem::path& path) {
       return !v.empty();
     };
   };
-  const std::map<std::string, Parser, std::less<>> parsers = {
+  std::map<std::string, Parser, std::less<>> parsers = {
       {"network", text(r.network)},
       {"mode", text(r.mode)},
       {"epochs", number(r.epochs)},
@@ -223,6 +229,7 @@ LstmWeights read_lstm_weights(const std::filesystem::path& path) {
       {"hidden2", number(hidden2)},
       {"outputs", number(outputs)},
   };
+  if (version >= kFirstVersionWithFrame) parsers.emplace("frame", text(r.frame));
   std::map<std::string, bool, std::less<>> seen;
   bool header_ended = false;
   for (int line_number = 2; std::getline(in, line); ++line_number) {
@@ -251,6 +258,7 @@ LstmWeights read_lstm_weights(const std::filesystem::path& path) {
   }
   if (!one_of(r.network, kNetworks)) throw fail(fmt::format("unknown network '{}'", r.network));
   if (!one_of(r.mode, kModes)) throw fail(fmt::format("unknown mode '{}'", r.mode));
+  if (!one_of(r.frame, kFrames)) throw fail(fmt::format("unknown frame '{}'", r.frame));
   for (const auto& [name, width] : {std::pair{"inputs", inputs}, std::pair{"hidden1", hidden1},
                                     std::pair{"hidden2", hidden2}, std::pair{"outputs", outputs}}) {
     if (width < 1 || width > kMaxWidth) {
@@ -292,7 +300,7 @@ void write_lstm_weights(const std::filesystem::path& path, const LstmWeights& we
   validate_lstm_weights(weights);
   const LstmTrainingRecord& r = weights.record;
   std::string header = fmt::format("{} {}\n", kLstmMagic, kLstmFormatVersion);
-  header += fmt::format("network {}\nmode {}\n", r.network, r.mode);
+  header += fmt::format("network {}\nmode {}\nframe {}\n", r.network, r.mode, r.frame);
   header += fmt::format("epochs {}\nbest_epoch {}\n", r.epochs, r.best_epoch);
   header += fmt::format("train_loss {}\nval_loss {}\n", number_text(r.train_loss),
                         number_text(r.val_loss));

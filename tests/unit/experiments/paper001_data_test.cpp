@@ -101,7 +101,8 @@ TEST(Paper001Data, WindowsCarryTheCvkfAndTheMeasurementsAndTheirTargets) {
   DataSetup setup;
   setup.paths = 10;
   const TrackedPath tracked = track_path(setup, 9);
-  const Matrix<kWindowSteps, kWindowFeatures> w = window_features(tracked, 20);
+  const Matrix<kWindowSteps, kWindowFeatures> w =
+      window_features(tracked, 20, WindowFrame::kAbsolute);
   // Row 0 is step 7, row 13 step 20.
   EXPECT_EQ(w.row(13).head<4>().transpose(), tracked.cvkf[20]);
   EXPECT_EQ(w.row(0).tail<2>().transpose(), tracked.path.measurements[7]);
@@ -110,10 +111,11 @@ TEST(Paper001Data, WindowsCarryTheCvkfAndTheMeasurementsAndTheirTargets) {
                              tracked.path.truth[20](1) - tracked.cvkf[20](2)));
   EXPECT_EQ(window_target(tracked, 20, Network::kStateEstimation),
             tracked.path.truth[20].head<2>());
-  EXPECT_THROW(window_features(tracked, 12), std::out_of_range);
+  EXPECT_THROW(window_features(tracked, 12, WindowFrame::kAbsolute), std::out_of_range);
 
   // One test path, stride 3: (L - 14) / 3 + 1 windows, in order.
-  const Windows windows = make_windows(setup, Split::kTest, Network::kErrorCompensation, 3);
+  const Windows windows =
+      make_windows(setup, Split::kTest, Network::kErrorCompensation, 3, WindowFrame::kAbsolute);
   const int steps = setup.path.steps;
   EXPECT_EQ(windows.count(), static_cast<std::size_t>((steps - kWindowSteps) / 3 + 1));
   EXPECT_EQ(windows.inputs.size(), windows.count() * kWindowSteps * kWindowFeatures);
@@ -121,6 +123,37 @@ TEST(Paper001Data, WindowsCarryTheCvkfAndTheMeasurementsAndTheirTargets) {
                   static_cast<float>(window_target(tracked, 16, Network::kErrorCompensation)(0)));
   EXPECT_FLOAT_EQ(windows.inputs[kWindowSteps * kWindowFeatures + 4],
                   static_cast<float>(tracked.path.measurements[3](0)));
+}
+
+// Relative to the CVKF position at the window's last step: the positions shift, the
+// velocities stay, and the whole window is the same wherever the path lies.
+TEST(Paper001Data, RelativeWindowsAreTheAbsoluteOnesMovedToTheLastEstimate) {
+  DataSetup setup;
+  setup.paths = 10;
+  TrackedPath tracked = track_path(setup, 9);
+  const auto absolute = window_features(tracked, 40, WindowFrame::kAbsolute);
+  const auto relative = window_features(tracked, 40, WindowFrame::kRelative);
+  const double x0 = tracked.cvkf[40](0);
+  const double y0 = tracked.cvkf[40](2);
+  EXPECT_EQ(relative(13, 0), 0.0);
+  EXPECT_EQ(relative(13, 2), 0.0);
+  for (int row = 0; row < kWindowSteps; ++row) {
+    EXPECT_DOUBLE_EQ(relative(row, 0), absolute(row, 0) - x0);
+    EXPECT_EQ(relative(row, 1), absolute(row, 1));
+    EXPECT_DOUBLE_EQ(relative(row, 2), absolute(row, 2) - y0);
+    EXPECT_EQ(relative(row, 3), absolute(row, 3));
+    EXPECT_DOUBLE_EQ(relative(row, 4), absolute(row, 4) - x0);
+    EXPECT_DOUBLE_EQ(relative(row, 5), absolute(row, 5) - y0);
+  }
+  // The same path 1 km away (every position moved by a power of two, so exactly).
+  for (Vector<4>& x : tracked.cvkf) x(0) += 1024.0, x(2) -= 1024.0;
+  for (Vector<2>& z : tracked.path.measurements) z += Vector<2>(1024.0, -1024.0);
+  EXPECT_NE(window_features(tracked, 40, WindowFrame::kAbsolute), absolute);
+  EXPECT_TRUE(window_features(tracked, 40, WindowFrame::kRelative).isApprox(relative, 1e-12));
+
+  EXPECT_EQ(window_frame_named("relative"), WindowFrame::kRelative);
+  EXPECT_STREQ(name_of(window_frame_named("absolute")), "absolute");
+  EXPECT_THROW(window_frame_named("polar"), std::invalid_argument);
 }
 
 TEST(Paper001Data, RmseOfTheTruthIsZeroAndOfAnOffsetTrackItsOffset) {

@@ -226,7 +226,8 @@ class LstmWeightsFile : public ::testing::Test {
 };
 
 TEST_F(LstmWeightsFile, RoundTripsEveryArrayAndTheRecordExactly) {
-  const LstmWeights w = random_weights(5, 3, 31);
+  LstmWeights w = random_weights(5, 3, 31);
+  w.record.frame = "relative";
   write_lstm_weights(path("w.lstm"), w);
   const LstmWeights r = read_lstm_weights(path("w.lstm"));
   EXPECT_EQ(r.input_mean, w.input_mean);
@@ -243,6 +244,7 @@ TEST_F(LstmWeightsFile, RoundTripsEveryArrayAndTheRecordExactly) {
   EXPECT_EQ(r.output_scale, w.output_scale);
   EXPECT_EQ(r.record.network, w.record.network);
   EXPECT_EQ(r.record.mode, w.record.mode);
+  EXPECT_EQ(r.record.frame, "relative");
   EXPECT_EQ(r.record.epochs, w.record.epochs);
   EXPECT_EQ(r.record.best_epoch, w.record.best_epoch);
   EXPECT_EQ(r.record.train_loss, w.record.train_loss);
@@ -257,7 +259,7 @@ TEST_F(LstmWeightsFile, RoundTripsEveryArrayAndTheRecordExactly) {
 
 TEST_F(LstmWeightsFile, StartsWithTheMagicLineAndIsHeaderPlusFloats) {
   const std::string bytes = valid_file();
-  EXPECT_EQ(bytes.rfind("skyfuse-lstm 1\n", 0), 0u);
+  EXPECT_EQ(bytes.rfind("skyfuse-lstm 2\n", 0), 0u);
   const auto data = bytes.find("\ndata\n");
   ASSERT_NE(data, std::string::npos);
   // 6+6 + 4*5*(6+5+1) + 4*3*(5+3+1) + 2*3+2 + 2+2 floats.
@@ -265,14 +267,31 @@ TEST_F(LstmWeightsFile, StartsWithTheMagicLineAndIsHeaderPlusFloats) {
 }
 
 TEST_F(LstmWeightsFile, RefusesAWrongMagic) {
-  expect_refusal(replaced(valid_file(), "skyfuse-lstm 1", "skyfuse-lstn 1"),
+  expect_refusal(replaced(valid_file(), "skyfuse-lstm 2", "skyfuse-lstn 2"),
                  "not a skyfuse LSTM weights file");
   expect_refusal("", "is empty");
 }
 
 TEST_F(LstmWeightsFile, RefusesAnotherVersion) {
-  expect_refusal(replaced(valid_file(), "skyfuse-lstm 1", "skyfuse-lstm 2"),
-                 "unsupported format version 2");
+  expect_refusal(replaced(valid_file(), "skyfuse-lstm 2", "skyfuse-lstm 3"),
+                 "unsupported format version 3");
+  expect_refusal(replaced(valid_file(), "skyfuse-lstm 2", "skyfuse-lstm 0"),
+                 "unsupported format version 0");
+}
+
+// Version 1 predates the frame key: its networks saw absolute positions. A version-1 file
+// must not carry the key, and a version-2 file must.
+TEST_F(LstmWeightsFile, ReadsVersionOneAsAbsoluteAndRequiresTheFrameFromVersionTwo) {
+  const std::string v2 = valid_file();
+  const std::string v1 =
+      replaced(replaced(v2, "skyfuse-lstm 2", "skyfuse-lstm 1"), "frame absolute\n", "");
+  write_bytes(path("v1.lstm"), v1);
+  const LstmWeights old = read_lstm_weights(path("v1.lstm"));
+  EXPECT_EQ(old.record.frame, "absolute");
+  EXPECT_EQ(old.lstm1.input, read_lstm_weights(path("valid.lstm")).lstm1.input);
+  expect_refusal(replaced(v2, "skyfuse-lstm 2", "skyfuse-lstm 1"), "known key");
+  expect_refusal(replaced(v2, "frame absolute\n", ""), "lacks the key 'frame'");
+  expect_refusal(replaced(v2, "frame absolute\n", "frame sideways\n"), "unknown frame 'sideways'");
 }
 
 TEST_F(LstmWeightsFile, RefusesTruncatedOrOverlongData) {
@@ -321,6 +340,9 @@ TEST_F(LstmWeightsFile, WriterRefusesInconsistentWeights) {
   EXPECT_THROW(write_lstm_weights(path("w.lstm"), w), std::invalid_argument);
   w = random_weights(5, 3, 41);
   w.dense.bias[0] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_THROW(write_lstm_weights(path("w.lstm"), w), std::invalid_argument);
+  w = random_weights(5, 3, 41);
+  w.record.frame = "sideways";
   EXPECT_THROW(write_lstm_weights(path("w.lstm"), w), std::invalid_argument);
   EXPECT_FALSE(std::filesystem::exists(path("w.lstm")));
 }

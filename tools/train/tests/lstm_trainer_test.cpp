@@ -22,11 +22,14 @@ struct TinyData {
 };
 
 // 30 paths of the real data set (21 train, 6 validation), every 14th step.
+// Windows in the frame each network's preset uses.
 TinyData tiny_data(Network network) {
   paper001::DataSetup setup;
   setup.paths = 30;
-  return {to_tensors(paper001::make_windows(setup, paper001::Split::kTrain, network, 14)),
-          to_tensors(paper001::make_windows(setup, paper001::Split::kValidation, network, 14))};
+  const paper001::WindowFrame frame = preset(network, Mode::kSmoke).frame;
+  return {
+      to_tensors(paper001::make_windows(setup, paper001::Split::kTrain, network, 14, frame)),
+      to_tensors(paper001::make_windows(setup, paper001::Split::kValidation, network, 14, frame))};
 }
 
 // Smoke training: 12 epochs of 4-5 batches on the tiny set (SE, narrower layers). The
@@ -137,6 +140,7 @@ TEST(LstmTrainer, WrittenFileReadsBackWithTheSameShapes) {
   EXPECT_EQ(back.parameter_count(), 89794);
   EXPECT_EQ(back.record.network, "ec");
   EXPECT_EQ(back.record.mode, "smoke");
+  EXPECT_EQ(back.record.frame, "relative");
   EXPECT_EQ(back.record.epochs, 1);
   EXPECT_EQ(back.record.best_epoch, 1);
   EXPECT_EQ(back.record.windows, static_cast<std::uint64_t>(data.train.inputs.size(0)));

@@ -11,10 +11,11 @@
 /// The network sees (x - input_mean) / input_std and reports
 /// output_mean + output_scale * dense(h2_last), per component.
 ///
-/// File format, version 1 (all of it documented in docs/lstm.md):
-///   skyfuse-lstm 1              first line, exactly
+/// File format, version 2 (all of it documented in docs/lstm.md):
+///   skyfuse-lstm 2              first line, exactly
 ///   key value                   one per line, each key exactly once, any order:
-///     network ec|se, mode smoke|reduced|full, epochs, best_epoch, train_loss, val_loss,
+///     network ec|se, mode smoke|reduced|full, frame absolute|relative, epochs, best_epoch,
+///     train_loss, val_loss,
 ///     seed, windows, training_seconds (the LstmTrainingRecord), and the widths
 ///     inputs In, hidden1 H1, hidden2 H2, outputs Out (each in [1, 4096])
 ///   data                        the header's last line
@@ -23,6 +24,7 @@
 ///   lstm1.bias[4H1], lstm2.input[4H2 x H1], lstm2.recurrent[4H2 x H2], lstm2.bias[4H2],
 ///   dense.weight[Out x H2], dense.bias[Out], output_mean[Out], output_scale[Out];
 ///   matrices row-major (PyTorch's weight_ih_l0 layout), nothing after the last array.
+/// Version 1 is the same without the `frame` key (read as frame absolute).
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -35,7 +37,7 @@ using RowMatrixXf = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::
 
 /// The first line of every weights file is kLstmMagic, a space, and the format version.
 inline constexpr const char* kLstmMagic = "skyfuse-lstm";
-inline constexpr int kLstmFormatVersion = 1;
+inline constexpr int kLstmFormatVersion = 2;
 
 /// One LSTM layer, gates stacked i, f, g, o along the rows.
 struct LstmLayerWeights {
@@ -55,10 +57,14 @@ struct DenseWeights {
 struct LstmTrainingRecord {
   std::string network = "ec";  ///< "ec" (error compensation) or "se" (state estimation)
   std::string mode = "smoke";  ///< "smoke", "reduced" or "full"
-  int epochs = 0;              ///< epochs run
-  int best_epoch = 0;          ///< the epoch whose weights these are (1-based; 0: untrained)
-  double train_loss = 0.0;     ///< training loss (MSE + L2 term, m^2) at best_epoch
-  double val_loss = 0.0;       ///< validation loss (MSE + L2 term, m^2) at best_epoch
+  /// The coordinates of the window's positions the network was trained on: "absolute", or
+  /// "relative" to the window's last estimate (paper001::WindowFrame). Inference must build
+  /// its windows the same way.
+  std::string frame = "absolute";
+  int epochs = 0;           ///< epochs run
+  int best_epoch = 0;       ///< the epoch whose weights these are (1-based; 0: untrained)
+  double train_loss = 0.0;  ///< training loss (MSE + L2 term, m^2) at best_epoch
+  double val_loss = 0.0;    ///< validation loss (MSE + L2 term, m^2) at best_epoch
   std::uint64_t seed = 0;
   std::uint64_t windows = 0;  ///< training windows per epoch
   double training_seconds = 0.0;
@@ -85,16 +91,16 @@ struct LstmWeights {
 LstmWeights make_lstm_weights(int inputs, int hidden1, int hidden2, int outputs);
 
 /// Throws std::invalid_argument naming the first inconsistent shape, non-finite value,
-/// non-positive input_std, or unknown network/mode name.
+/// non-positive input_std, or unknown network/mode/frame name.
 void validate_lstm_weights(const LstmWeights& weights);
 
-/// Reads a version-1 file. Throws std::runtime_error naming the file and what is wrong: it
-/// cannot be opened, wrong magic, another version, unknown/missing/duplicate/malformed key,
-/// widths out of [1, 4096], data truncated or followed by more bytes, a non-finite value, a
+/// Reads a version-1 or version-2 file. Throws std::runtime_error naming the file and what is
+/// wrong: it cannot be opened, wrong magic, another version, unknown/missing/duplicate/malformed
+/// key, widths out of [1, 4096], data truncated or followed by more bytes, a non-finite value, a
 /// non-positive input_std.
 LstmWeights read_lstm_weights(const std::filesystem::path& path);
 
-/// Writes `weights` (validated first) as a version-1 file. Throws std::invalid_argument on
+/// Writes `weights` (validated first) as a version-2 file. Throws std::invalid_argument on
 /// invalid weights and std::runtime_error when the file cannot be written.
 void write_lstm_weights(const std::filesystem::path& path, const LstmWeights& weights);
 

@@ -50,7 +50,19 @@ TrackedPath track_path(const DataSetup& setup, int path_index) {
   return tracked;
 }
 
-Matrix<kWindowSteps, kWindowFeatures> window_features(const TrackedPath& tracked, int last) {
+WindowFrame window_frame_named(const std::string& name) {
+  if (name == "absolute") return WindowFrame::kAbsolute;
+  if (name == "relative") return WindowFrame::kRelative;
+  throw std::invalid_argument("paper 001: unknown window frame '" + name +
+                              "' (expected absolute or relative)");
+}
+
+const char* name_of(WindowFrame frame) {
+  return frame == WindowFrame::kAbsolute ? "absolute" : "relative";
+}
+
+Matrix<kWindowSteps, kWindowFeatures> window_features(const TrackedPath& tracked, int last,
+                                                      WindowFrame frame) {
   if (last < kWindowSteps - 1 || last >= static_cast<int>(tracked.cvkf.size())) {
     throw std::out_of_range("paper 001: a window must end inside the path, after 13 steps");
   }
@@ -58,6 +70,11 @@ Matrix<kWindowSteps, kWindowFeatures> window_features(const TrackedPath& tracked
   for (int row = 0; row < kWindowSteps; ++row) {
     const auto k = static_cast<std::size_t>(last - (kWindowSteps - 1) + row);
     features.row(row) << tracked.cvkf[k].transpose(), tracked.path.measurements[k].transpose();
+  }
+  if (frame == WindowFrame::kRelative) {
+    const Vector<4>& origin = tracked.cvkf[static_cast<std::size_t>(last)];
+    for (const int column : {0, 4}) features.col(column).array() -= origin(0);  // x
+    for (const int column : {2, 5}) features.col(column).array() -= origin(2);  // y
   }
   return features;
 }
@@ -69,14 +86,15 @@ Vector<2> window_target(const TrackedPath& tracked, int last, Network network) {
   return truth - Vector<2>(tracked.cvkf[k](0), tracked.cvkf[k](2));
 }
 
-Windows make_windows(const DataSetup& setup, Split split, Network network, int stride) {
+Windows make_windows(const DataSetup& setup, Split split, Network network, int stride,
+                     WindowFrame frame) {
   if (stride < 1) throw std::invalid_argument("paper 001: the window stride must be >= 1");
   Windows out;
   for (const int index : paths_in(setup, split)) {
     const TrackedPath tracked = track_path(setup, index);
     const int steps = static_cast<int>(tracked.cvkf.size());
     for (int last = kWindowSteps - 1; last < steps; last += stride) {
-      const Matrix<kWindowSteps, kWindowFeatures> features = window_features(tracked, last);
+      const Matrix<kWindowSteps, kWindowFeatures> features = window_features(tracked, last, frame);
       for (int row = 0; row < kWindowSteps; ++row) {
         for (int col = 0; col < kWindowFeatures; ++col) {
           out.inputs.push_back(static_cast<float>(features(row, col)));

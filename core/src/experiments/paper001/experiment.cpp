@@ -114,14 +114,24 @@ ExperimentResult run_experiment(const ExperimentSetup& setup) {
        [&](const TrackedPath& p) { return ekf_track(data, p, TurnRateNoise::kPrinted); }},
       {"IMM", [&](const TrackedPath& p) { return imm_track(data, p); }},
   };
+  const std::size_t first_network = filters.size();
   std::unique_ptr<learning::LstmNetwork> se;
   std::unique_ptr<learning::LstmNetwork> ec;
+  std::unique_ptr<learning::LstmNetwork> ec_absolute;
   if (setup.se_weights && setup.ec_weights) {
     se = std::make_unique<learning::LstmNetwork>(learning::read_lstm_weights(*setup.se_weights));
     ec = std::make_unique<learning::LstmNetwork>(learning::read_lstm_weights(*setup.ec_weights));
     filters.push_back({"SE", [&](const TrackedPath& p) {
                          return network_track(p, *se, Network::kStateEstimation);
                        }});
+    if (setup.ec_absolute_weights) {
+      ec_absolute = std::make_unique<learning::LstmNetwork>(
+          learning::read_lstm_weights(*setup.ec_absolute_weights));
+      filters.push_back({"EC (absolute frame)", [&](const TrackedPath& p) {
+                           return network_track(p, *ec_absolute, Network::kErrorCompensation);
+                         }});
+      result.ec_absolute_record = ec_absolute->record();
+    }
     filters.push_back({"EC", [&](const TrackedPath& p) {
                          return network_track(p, *ec, Network::kErrorCompensation);
                        }});
@@ -148,7 +158,8 @@ ExperimentResult run_experiment(const ExperimentSetup& setup) {
     if (farthest(p) <= setup.in_range_m) in_range.push_back(p);
   }
   if (result.networks) {
-    result.table4 = score({filters.end() - 2, filters.end()}, in_range);
+    result.table4 = score(
+        {filters.begin() + static_cast<std::ptrdiff_t>(first_network), filters.end()}, in_range);
   }
 
   // Long paths from another seed: the same kinematics, flown far past the training range.

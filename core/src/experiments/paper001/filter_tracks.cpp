@@ -83,9 +83,13 @@ PositionTrack imm_track(const DataSetup& setup, const TrackedPath& tracked) {
 
 PositionTrack network_track(const TrackedPath& tracked, learning::LstmNetwork& network,
                             Network kind) {
+  const WindowFrame frame = window_frame_named(network.record().frame);
+  if (kind == Network::kStateEstimation && frame == WindowFrame::kRelative) {
+    throw std::invalid_argument("paper 001: a state-estimation network needs absolute positions");
+  }
   PositionTrack out = cvkf_track(tracked);
   for (int last = kWindowSteps - 1; last < static_cast<int>(out.size()); ++last) {
-    const Vector<2> prediction = network.predict(window_features(tracked, last));
+    const Vector<2> prediction = network.predict(window_features(tracked, last, frame));
     const auto k = static_cast<std::size_t>(last);
     out[k] = kind == Network::kErrorCompensation ? Vector<2>(out[k] + prediction) : prediction;
   }

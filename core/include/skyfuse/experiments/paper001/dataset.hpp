@@ -6,9 +6,16 @@
 /// A window's features at each step: the CVKF posterior [x, vx, y, vy] and the measurement
 /// [x, y]. Its target, at the window's last step: the CVKF's position error p_true - p_CVKF for
 /// error compensation (EC), the true position for state estimation (SE).
+///
+/// The positions (x, y of the posterior and the measurement) come in one of two frames: as
+/// they are (absolute), or relative to the CVKF position at the window's last step. The paper
+/// does not say how it scaled its inputs; in absolute coordinates, z-scored, a 3 m innovation
+/// is 0.014 of a feature's spread (the positions spread over ~210 m), and the EC network
+/// learns from it slowly (docs/paper001.md).
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
@@ -21,6 +28,12 @@ inline constexpr int kWindowFeatures = 6;
 
 enum class Split { kTrain, kValidation, kTest };
 enum class Network { kErrorCompensation, kStateEstimation };
+enum class WindowFrame { kAbsolute, kRelative };
+
+/// The frame a network's weights file names ("absolute" or "relative"); throws
+/// std::invalid_argument on anything else.
+WindowFrame window_frame_named(const std::string& name);
+const char* name_of(WindowFrame frame);
 
 struct DataSetup {
   PathSetup path;
@@ -47,8 +60,9 @@ std::vector<int> paths_in(const DataSetup& setup, Split split);
 TrackedPath track_path(const DataSetup& setup, int path_index);
 
 /// The features of the window ending at step `last` (>= kWindowSteps - 1) of a tracked path,
-/// row-major kWindowSteps x kWindowFeatures, unscaled.
-Matrix<kWindowSteps, kWindowFeatures> window_features(const TrackedPath& tracked, int last);
+/// row-major kWindowSteps x kWindowFeatures, unscaled, positions in `frame`.
+Matrix<kWindowSteps, kWindowFeatures> window_features(const TrackedPath& tracked, int last,
+                                                      WindowFrame frame);
 /// The target of that window for `network`.
 Vector<2> window_target(const TrackedPath& tracked, int last, Network network);
 
@@ -59,6 +73,7 @@ struct Windows {
   std::vector<float> targets;
   std::size_t count() const { return targets.size() / 2; }
 };
-Windows make_windows(const DataSetup& setup, Split split, Network network, int stride);
+Windows make_windows(const DataSetup& setup, Split split, Network network, int stride,
+                     WindowFrame frame);
 
 }  // namespace skyfuse::paper001

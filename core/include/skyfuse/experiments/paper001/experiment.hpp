@@ -32,6 +32,9 @@ struct ExperimentSetup {
   /// The trained networks; without them only the filters run.
   std::optional<std::filesystem::path> ec_weights;
   std::optional<std::filesystem::path> se_weights;
+  /// Optionally a second EC network, trained on absolute positions like SE, scored beside the
+  /// first as "EC (absolute frame)".
+  std::optional<std::filesystem::path> ec_absolute_weights;
 };
 
 struct Spread {
@@ -53,8 +56,9 @@ struct TargetSpread {
 };
 
 struct ExperimentResult {
-  std::vector<FilterScore> table3;      ///< CVKF, EKF, EKF (printed Q), IMM, then SE and EC
-  std::vector<FilterScore> table4;      ///< SE and EC on the in-range paths
+  /// CVKF, EKF, EKF (printed Q), IMM, then SE, EC (absolute frame) when given, and EC.
+  std::vector<FilterScore> table3;
+  std::vector<FilterScore> table4;      ///< the networks on the in-range paths
   std::vector<FilterScore> beyond;      ///< every filter on the long paths
   TargetSpread ec_targets, se_targets;  ///< Table 1, over the training windows
   double beyond_range_max_m = 0.0;      ///< the farthest any long path's truth went
@@ -62,7 +66,7 @@ struct ExperimentResult {
   int test_paths = 0;
   bool networks = false;
   /// How each network was trained (its weights file's record), when they ran.
-  std::optional<learning::LstmTrainingRecord> ec_record, se_record;
+  std::optional<learning::LstmTrainingRecord> ec_record, se_record, ec_absolute_record;
   /// One typical test path (the IMM's median RMSE) and every filter's track over it, for the
   /// picture (the paper's Fig 8).
   int example_path = 0;

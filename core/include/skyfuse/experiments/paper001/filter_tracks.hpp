@@ -26,7 +26,9 @@ PositionTrack ekf_track(const DataSetup& setup, const TrackedPath& tracked, Turn
 PositionTrack imm_track(const DataSetup& setup, const TrackedPath& tracked);
 /// The CVKF corrected by the error-compensation network (EC), or the state-estimation
 /// network's positions (SE): `network` predicts at each step from the window ending there;
-/// before the first full window (k < 13) the CVKF's own position stands.
+/// before the first full window (k < 13) the CVKF's own position stands. The windows are built
+/// in the frame the network's weights name; a state-estimation network in the relative frame
+/// is refused (std::invalid_argument): it could not know where the target is.
 PositionTrack network_track(const TrackedPath& tracked, learning::LstmNetwork& network,
                             Network kind);
 
