@@ -35,9 +35,9 @@ PositionTrack network_track(const TrackedPath& tracked, learning::LstmNetwork& n
 /// sqrt(mean over steps 1..L-1 of |p_hat - p|^2): the 2-D (Euclidean) per-path RMSE.
 double path_rmse(const TrackedPath& tracked, const PositionTrack& track);
 /// sqrt(mean over steps 1..L-1 and both axes of (p_hat - p)^2) = path_rmse / sqrt(2): the
-/// per-path RMSE of the paper's Tables 2-4. Its IMM (1.48 m) and EC (1.41 m) lie below what a
-/// 2-D RMSE can be for a filter whose every mode is at least as noisy as the CVKF: the CVKF's
-/// steady state alone is sqrt(2 x 1.216) = 1.56 m in 2-D on a straight line (SEEDS.md).
+/// per-path RMSE of the paper's Tables 2-4. Its IMM (1.48 m) lies below what a 2-D RMSE can be
+/// for a filter whose every mode is at least as noisy as the CVKF: the CVKF's steady state
+/// alone is sqrt(2 x 1.216) = 1.56 m in 2-D on a straight line (SEEDS.md).
 double per_axis_rmse(const TrackedPath& tracked, const PositionTrack& track);
 
 }  // namespace skyfuse::paper001
