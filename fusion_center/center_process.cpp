@@ -50,10 +50,8 @@ class Center {
         fusion_(plan),
         collector_(plan.participant_ids(), options.refusion_lag) {
     // (load_plan refuses a lag for a fusion that takes none.)
-    if constexpr (Fusion::kRefuses) {
-      priors_.assign(options.refusion_lag + 1, fusion_.state());
-      final_tracks_.resize(options.refusion_lag + 1);
-    }
+    if constexpr (Fusion::kRefuses) priors_.assign(options.refusion_lag + 1, fusion_.state());
+    final_tracks_.resize(options.refusion_lag + 1);
     wait_set_.attach(ticks_);
     wait_set_.attach(measurements_);
   }
@@ -90,7 +88,7 @@ class Center {
         presence_.announce(wire::FAILED, static_cast<std::uint32_t>(k), detail);
         return options::kExitNumerical;
       }
-      tracks_.write(fusion_.track(options_.run_id, k, kCenterSourceId));
+      tracks_.write(final_tracks_[k % final_tracks_.size()]);  // built by update_rounds
       if constexpr (Fusion::kRefuses) {
         const std::uint64_t lag = collector_.lag();
         if (lag != 0 && k >= lag) tracks_.write(settled_track(k - lag));  // leaves the lag
@@ -148,11 +146,7 @@ class Center {
             if (q == closing) transport::count_drop(drops_, why, "measurement", station_id, q);
           });
       if (status != NumericalStatus::kOk) return status;
-      if constexpr (Fusion::kRefuses) {
-        if (collector_.lag() != 0)
-          final_tracks_[q % final_tracks_.size()] =
-              fusion_.track(options_.run_id, q, kCenterSourceId);
-      }
+      final_tracks_[q % final_tracks_.size()] = fusion_.track(options_.run_id, q, kCenterSourceId);
     }
     return NumericalStatus::kOk;
   }
@@ -335,7 +329,8 @@ class Center {
   // Fixed-lag re-fusion: each round's prior in the lag, the oldest round a late measurement
   // came for since the last update, and how many came.
   std::vector<transport::WireEstimate> priors_;
-  std::vector<wire::TrackEstimate> final_tracks_;  // each round's latest estimate in the lag
+  // Each round's latest track while it is in the lag (without one: the round just updated).
+  std::vector<wire::TrackEstimate> final_tracks_;
   std::optional<std::uint64_t> late_from_;
   std::uint64_t late_used_ = 0;
 };

@@ -36,6 +36,15 @@ constexpr double kPaperEcGainVsImm = 4.70;
 constexpr double kCollapseFactor = 3.0;
 constexpr double kSqrt2 = std::numbers::sqrt2;
 
+// The paper's "mean / std" for `name` in one of its tables, "-" where it has none.
+template <std::size_t N>
+std::string paper_figure(const PaperFigure (&table)[N], const std::string& name) {
+  for (const PaperFigure& f : table) {
+    if (name == f.name) return fmt::format("{:.2f} / {:.2f}", f.mean, f.std);
+  }
+  return "-";
+}
+
 const FilterScore* find(const std::vector<FilterScore>& scores, const std::string& name) {
   for (const FilterScore& s : scores) {
     if (s.name == name) return &s;
@@ -61,11 +70,7 @@ void print_tables(const ExperimentResult& r) {
   fmt::print("{:<16} {:>18} {:>18} {:>14} {:>12}\n", "Table 3", "paper mean/std m", "this run m",
              "this run 2-D m", "us per step");
   for (const FilterScore& s : r.table3) {
-    std::string paper = "-";
-    for (const PaperFigure& f : kTable3) {
-      if (s.name == f.name) paper = fmt::format("{:.2f} / {:.2f}", f.mean, f.std);
-    }
-    fmt::print("{:<16} {:>18} {:>18} {:>14} {:>12.2f}\n", s.name, paper,
+    fmt::print("{:<16} {:>18} {:>18} {:>14} {:>12.2f}\n", s.name, paper_figure(kTable3, s.name),
                fmt::format("{:.2f} / {:.2f}", s.spread.mean, s.spread.std),
                fmt::format("{:.2f} / {:.2f}", kSqrt2 * s.spread.mean, kSqrt2 * s.spread.std),
                1e6 * s.seconds_per_step);
@@ -78,12 +83,8 @@ void print_tables(const ExperimentResult& r) {
     fmt::print("Table 4 ({} paths inside +-210 m):",
                r.table4.empty() ? 0 : r.table4[0].rmse.size());
     for (const FilterScore& s : r.table4) {
-      std::string paper = "-";
-      for (const PaperFigure& f : kTable4) {
-        if (s.name == f.name) paper = fmt::format("{:.2f}/{:.2f}", f.mean, f.std);
-      }
-      fmt::print(" | {} paper {} this run {:.2f}/{:.2f}", s.name, paper, s.spread.mean,
-                 s.spread.std);
+      fmt::print(" | {} paper {} this run {:.2f} / {:.2f}", s.name, paper_figure(kTable4, s.name),
+                 s.spread.mean, s.spread.std);
     }
     fmt::print("\n");
   }
