@@ -1,5 +1,7 @@
 #include "skyfuse/models/constant_acceleration.hpp"
 
+#include "skyfuse/models/block_kinematics.hpp"
+
 namespace skyfuse {
 
 ConstantAcceleration3D::ConstantAcceleration3D(double time_step_s, const NoiseStd& noise_std)
@@ -30,21 +32,8 @@ ConstantAcceleration3D::State ConstantAcceleration3D::propagate(const State& x) 
 }
 
 Covariance<9> ConstantAcceleration3D::propagate_covariance(const Covariance<9>& p) const {
-  const double dt = time_step_s_;
-  const double half_dt_sq = 0.5 * dt * dt;
-  // F P: every block row is a combination of P's block rows.
-  Covariance<9> fp;
-  fp.middleRows<3>(kPosition) = p.middleRows<3>(kPosition) + dt * p.middleRows<3>(kVelocity) +
-                                half_dt_sq * p.middleRows<3>(kAcceleration);
-  fp.middleRows<3>(kVelocity) = p.middleRows<3>(kVelocity) + dt * p.middleRows<3>(kAcceleration);
-  fp.middleRows<3>(kAcceleration) = p.middleRows<3>(kAcceleration);
-  // (F P) F^T: the same combination of block columns.
-  Covariance<9> out;
-  out.middleCols<3>(kPosition) = fp.middleCols<3>(kPosition) + dt * fp.middleCols<3>(kVelocity) +
-                                 half_dt_sq * fp.middleCols<3>(kAcceleration);
-  out.middleCols<3>(kVelocity) = fp.middleCols<3>(kVelocity) + dt * fp.middleCols<3>(kAcceleration);
-  out.middleCols<3>(kAcceleration) = fp.middleCols<3>(kAcceleration);
-  out.diagonal() += process_noise_.diagonal();
+  Covariance<9> out = propagate_block_kinematics<3>(p, time_step_s_);
+  out.diagonal() += process_noise_.diagonal();  // Q is diagonal: add only what it holds
   return out;
 }
 

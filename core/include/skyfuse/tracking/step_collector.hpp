@@ -3,7 +3,7 @@
 /// Gathers one sample per participating station for the current step, in ascending station
 /// order, from samples that arrive in any order. Samples for the next step are kept (a fast
 /// peer may start step k+1 before this process has closed step k); with a lag L, so are late
-/// samples for the L steps closed last, for a fixed-lag re-fusion (tracking/fixed_lag.hpp);
+/// samples for the L steps closed last, for a fixed-lag re-fusion (tracking/fixed_lag_peer.hpp);
 /// anything else is refused, and offer() says why: unknown station, stale step (older than the
 /// lag), step too far ahead, second copy.
 ///

@@ -13,6 +13,7 @@
 /// at constant velocity.
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/models/block_kinematics.hpp"
 #include "skyfuse/models/linear_transition.hpp"
 
 namespace skyfuse {
@@ -39,25 +40,9 @@ class BlockConstantAcceleration : public LinearTransition<3 * kAxes> {
     time_step_s_ = t;
   }
 
-  /// F P F^T + Q by block rows and columns, as F's structure allows: cheaper than two dense
-  /// products, and every peer rounds it alike.
+  /// F P F^T + Q, with F's structure (models/block_kinematics.hpp).
   Covariance<3 * kAxes> propagate_covariance(const Covariance<3 * kAxes>& p) const {
-    const double t = time_step_s_;
-    const double half_t_sq = 0.5 * t * t;
-    Covariance<3 * kAxes> fp;
-    fp.template middleRows<kAxes>(kPosition) =
-        p.template middleRows<kAxes>(kPosition) + t * p.template middleRows<kAxes>(kVelocity) +
-        half_t_sq * p.template middleRows<kAxes>(kAcceleration);
-    fp.template middleRows<kAxes>(kVelocity) =
-        p.template middleRows<kAxes>(kVelocity) + t * p.template middleRows<kAxes>(kAcceleration);
-    fp.template middleRows<kAxes>(kAcceleration) = p.template middleRows<kAxes>(kAcceleration);
-    Covariance<3 * kAxes> out;
-    out.template middleCols<kAxes>(kPosition) =
-        fp.template middleCols<kAxes>(kPosition) + t * fp.template middleCols<kAxes>(kVelocity) +
-        half_t_sq * fp.template middleCols<kAxes>(kAcceleration);
-    out.template middleCols<kAxes>(kVelocity) =
-        fp.template middleCols<kAxes>(kVelocity) + t * fp.template middleCols<kAxes>(kAcceleration);
-    out.template middleCols<kAxes>(kAcceleration) = fp.template middleCols<kAxes>(kAcceleration);
+    Covariance<3 * kAxes> out = propagate_block_kinematics<kAxes>(p, time_step_s_);
     out += this->process_noise_;
     return out;
   }
