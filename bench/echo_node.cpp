@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "skyfuse/options/node_options.hpp"
+#include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -25,23 +26,25 @@ int main(int argc, char** argv) {
   double discovery_timeout_s = 30.0;
   double timeout_s = 30.0;
   int all_to_all = 0;
-  app.add_option("--id", id, "Node id (>= 1)")->required()->check(CLI::PositiveNumber);
+  app.add_option("--id", id, "Node id (>= 1)")
+      ->required()
+      ->check(options::whole_number_at_least(1));
   app.add_option("--all-to-all", all_to_all,
                  "Before each answer, send an increment-sized sample to the other M - 1 echoes "
                  "and wait for theirs")
       ->type_name("M")
-      ->check(CLI::PositiveNumber);
+      ->check(options::whole_number_at_least(1));
   app.add_option("--domain", domain, "DDS domain id")
-      ->check(CLI::Range(0, transport::kMaxDomainId));
+      ->check(options::whole_number_in(0, transport::kMaxDomainId));
   app.add_option("--run-id", run_id, "Run id");
   app.add_option("--qos", qos, "Fast DDS XML profiles")->check(CLI::ExistingFile);
   app.add_option("--discovery-timeout", discovery_timeout_s,
                  "Seconds to wait until the commander (and with --all-to-all the other echoes) "
                  "matched, and then for the first tick")
-      ->check(CLI::PositiveNumber)
+      ->check(options::positive_number())
       ->capture_default_str();
   app.add_option("--idle-timeout", timeout_s, "Seconds without a tick before giving up")
-      ->check(CLI::PositiveNumber)
+      ->check(options::positive_number())
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   spdlog::set_pattern(fmt::format("[echo {}] %^%l%$: %v", id));

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 #include <stdexcept>
+#include <string>
 
 #include "commands/bench_command.hpp"
 #include "commands/certs_command.hpp"
@@ -33,6 +34,21 @@ int main(int argc, char** argv) {
   add_soak_command(app, soak);
   add_certs_command(app, certs);
   add_reproduce_command(app, reproduce);
+  // CLI11 takes a word that names no command for a stray argument and answers "A subcommand is
+  // required": say which word, and what the commands are.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string names;
+    bool known = false;
+    for (const CLI::App* command : app.get_subcommands({})) {
+      known = known || command->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + command->get_name();
+    }
+    if (!known) {
+      std::fprintf(stderr, "skyfuse: unknown command '%s' (commands: %s); see skyfuse --help\n",
+                   argv[1], names.c_str());
+      return 2;
+    }
+  }
   CLI11_PARSE(app, argc, argv);
 
   // Line-buffered even into a file or pipe, so that tables and child messages keep their order.

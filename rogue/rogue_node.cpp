@@ -27,6 +27,7 @@
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/models/tdoa/range_difference_sensor.hpp"
 #include "skyfuse/options/node_options.hpp"
+#include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -121,10 +122,10 @@ int main(int argc, char** argv) {
   int stations = 1;
   double timeout_s = 60.0;
   app.add_option("--domain", domain, "DDS domain id of the run")
-      ->check(CLI::Range(0, transport::kMaxDomainId));
+      ->check(skyfuse::options::whole_number_in(0, transport::kMaxDomainId));
   app.add_option("--run-id", run_id, "Id of the run to attack")->required();
   app.add_option("--stations", stations, "Station readers to reach before attacking")
-      ->check(CLI::PositiveNumber);
+      ->check(skyfuse::options::whole_number_at_least(1));
   app.add_option("--victim", victim, "A real station id to impersonate");
   app.add_option("--at-steps", steps, "Steps (>= 1) at which to attack")->capture_default_str();
   app.add_option("--timeout", timeout_s, "Seconds to wait for the run's ticks");

@@ -13,6 +13,7 @@
 #include "report/output_files.hpp"
 #include "run/execute_run.hpp"
 #include "run/lockstep_driver.hpp"
+#include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/qos.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -135,16 +136,16 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
                   "Scenario with enough stations (default: scenarios/ring64.yaml beside skyfuse)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--stations", o.stations, "Station counts to measure")
-      ->check(CLI::PositiveNumber)
+      ->check(options::whole_number_at_least(1))
       ->capture_default_str();
   cmd->add_option("--rounds", o.rounds, "Lock-step rounds per measurement")
-      ->check(CLI::Range(10, 1000000))
+      ->check(options::whole_number_in(10, 1000000))
       ->capture_default_str();
   cmd->add_option("--domain", o.domain,
                   fmt::format("DDS domain id of the runs (the floors use the next id; {} when "
                               "this is {})",
                               transport::kMaxDomainId - 1, transport::kMaxDomainId))
-      ->check(CLI::Range(0, transport::kMaxDomainId))
+      ->check(options::whole_number_in(0, transport::kMaxDomainId))
       ->capture_default_str();
   cmd->add_flag("!--no-micro", o.micro, "Skip the micro-benchmarks");
 }

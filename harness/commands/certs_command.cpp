@@ -10,6 +10,7 @@
 #include "security/access_grants.hpp"
 #include "security/certificate_authority.hpp"
 #include "security/security_documents.hpp"
+#include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 
 namespace skyfuse::harness {
@@ -55,7 +56,7 @@ void add_certs_command(CLI::App& app, CertsOptions& o) {
   cmd->add_option("--stations", o.stations,
                   "Station identities station-1 ... station-N (default: every station of the "
                   "embedded scenario)")
-      ->check(CLI::Range(1, kMaxCertifiedStations));
+      ->check(options::whole_number_in(1, kMaxCertifiedStations));
 }
 
 int run_certs(const CertsOptions& o) {

@@ -9,6 +9,7 @@
 
 #include "report/output_files.hpp"
 #include "run/execute_run.hpp"
+#include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/transport/node_config.hpp"
@@ -22,10 +23,10 @@ void add_demo_command(CLI::App& app, DemoOptions& o) {
       "over DDS at each speed, compared with the in-process result");
   cmd->add_option("--out", o.out_dir, "Results folder (default: results/demo-<date>-<time>)");
   cmd->add_option("--domain", o.domain, "DDS domain id")
-      ->check(CLI::Range(0, transport::kMaxDomainId))
+      ->check(options::whole_number_in(0, transport::kMaxDomainId))
       ->capture_default_str();
   cmd->add_option("--stations", o.stations, "Number of station processes")
-      ->check(CLI::PositiveNumber)
+      ->check(options::whole_number_at_least(1))
       ->capture_default_str();
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "reproduce/papers.hpp"
+#include "skyfuse/options/number_checks.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -32,11 +33,11 @@ void add_reproduce_command(CLI::App& app, ReproduceOptions& options) {
   cmd->add_option("paper", options.paper, "Which paper: " + names)->required();
   cmd->add_option("--runs", options.runs,
                   "Monte-Carlo runs, test paths for paper001 (default: the paper's)")
-      ->check(CLI::Range(1, 1000000));
+      ->check(options::whole_number_in(1, 1000000));
   cmd->add_option("--seed", options.seed, "Override the seed");
   cmd->add_option("--out", options.out_dir, "Output folder (default: results/reproduce/PAPER)");
   cmd->add_option("--threads", options.threads, "Worker threads (default: one per core)")
-      ->check(CLI::Range(0, 1024));
+      ->check(options::whole_number_in(0, 1024));
   cmd->add_flag("!--no-plot", options.plot, "Skip the PNG plots");
   cmd->add_option("--data", options.data_dir,
                   "Shipped data, e.g. paper001/ec.lstm (default: the source tree's data/)")

@@ -7,6 +7,7 @@
 
 #include "run/simulated_hosts.hpp"
 #include "skyfuse/options/node_options.hpp"
+#include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/transport/node_config.hpp"
 
@@ -30,28 +31,19 @@ void add_run_command(CLI::App& app, RunOptions& o) {
   options::add_plan_options(*cmd, o.node.overrides);
   cmd->add_option("--out", o.out_dir, "Folder for the per-step CSVs and summary.json")
       ->capture_default_str();
-  cmd->add_option("--domain", o.node.domain, "DDS domain id")
-      ->check(CLI::Range(0, transport::kMaxDomainId))
-      ->capture_default_str();
+  options::add_domain_option(*cmd, o.node.domain);
   cmd->add_option("--run-id", o.run_id, "Run id (default: random)");
-  cmd->add_option("--qos", o.node.qos_file, "Fast DDS XML profiles overriding the built-in QoS")
-      ->check(CLI::ExistingFile);
-  cmd->add_option("--secure", o.node.secure_dir,
-                  "DDS-Security: authenticate, authorise and encrypt with the identities in DIR "
-                  "(made by `skyfuse certs DIR`)")
-      ->check(CLI::ExistingDirectory);
+  options::add_qos_option(*cmd, o.node.qos_file);
+  options::add_secure_option(*cmd, o.node.secure_dir);
   cmd->add_option("--discovery-timeout", o.discovery_timeout_s,
                   "Seconds to wait until every process has joined (default: 30, or 2 per station "
                   "from 16 stations up)")
-      ->check(CLI::PositiveNumber);
+      ->check(options::positive_number());
   cmd->add_option("--round-timeout", o.round_timeout_s,
                   "Seconds a running node may deliver no track before the run is abandoned")
-      ->check(CLI::PositiveNumber)
+      ->check(options::positive_number())
       ->capture_default_str();
-  cmd->add_option("--round-deadline-ms", o.node.round_deadline_ms,
-                  "A lock-step round closes this many ms after its tick with what has arrived")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  options::add_deadline_options(*cmd, o.node);
   options::add_loss_options(*cmd, o.node.loss, o.node.best_effort);
   options::add_delay_options(*cmd, o.node.delay);
   options::add_refusion_option(*cmd, o.node.refusion_lag);
@@ -78,14 +70,10 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Stations replay their measurements from this CSV (a measurements.csv of an "
                   "earlier run) instead of simulating them")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--realtime-deadline-ms", o.node.realtime_deadline_ms,
-                  "Real-time mode: nodes step on the wall clock at the scenario's dt and each "
-                  "round closes this many ms after it starts, with what has arrived")
-      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--hosts", o.hosts,
                   "Place the center and the stations, round robin, on N simulated hosts: network "
                   "namespaces joined by a bridge, discovering through the harness (root only)")
-      ->check(CLI::Range(1, SimulatedHosts::kMaxHosts));
+      ->check(options::whole_number_in(1, SimulatedHosts::kMaxHosts));
   cmd->add_flag("--external", o.external,
                 "Do not start processes: drive stations and a center started elsewhere");
   cmd->add_flag("-v,--verbose", o.verbose, "Let the node processes log at info level");

@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/soak.hpp"
@@ -18,10 +19,10 @@ void add_soak_command(CLI::App& app, SoakOptions& options) {
   // take ~5 GB.
   cmd->add_option("--steps", options.steps,
                   "Steps to run (the trajectory is flown on; ~100 bytes of memory a step)")
-      ->check(CLI::Range(std::int64_t{1}, std::int64_t{50'000'000}))
+      ->check(options::whole_number_in(1, 50'000'000))
       ->capture_default_str();
   cmd->add_option("--stations", options.stations, "Stations M (default: all of the scenario)")
-      ->check(CLI::PositiveNumber);
+      ->check(options::whole_number_at_least(1));
 }
 
 int run_soak(const SoakOptions& options) {

@@ -8,6 +8,7 @@
 
 #include "report/sweep_report.hpp"
 #include "report/sweep_runner.hpp"
+#include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
@@ -19,18 +20,18 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
       "sweep", "Monte-Carlo comparison of central and peer-to-peer fusion, in-process");
   options::add_scenario_option(*cmd, options.scenario_path);
   cmd->add_option("--runs", options.runs, "Monte-Carlo runs per (M, speed)")
-      ->check(CLI::Range(1, 1000000))
+      ->check(options::whole_number_in(1, 1000000))
       ->capture_default_str();
   cmd->add_option("--max-stations", options.max_stations,
                   "Largest M; runs M = 1..M_max using the first M stations (default: all)")
-      ->check(CLI::Range(1, 100000));
+      ->check(options::whole_number_in(1, 100000));
   cmd->add_option("--out", options.out_dir, "Folder for sweep.csv, sweep.json and sweep.png")
       ->capture_default_str();
   cmd->add_option("--seed", options.seed, "Override the scenario's seed");
   cmd->add_option("--steps", options.steps, "Override the scenario's number of steps")
-      ->check(CLI::Range(1, 100000000));
+      ->check(options::whole_number_in(1, 100000000));
   cmd->add_option("--threads", options.threads, "Worker threads (default: one per core)")
-      ->check(CLI::Range(0, 1024));
+      ->check(options::whole_number_in(0, 1024));
   cmd->add_flag("!--no-plot", options.plot, "Skip the PNG plot");
 }
 

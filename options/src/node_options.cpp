@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 
@@ -35,46 +36,64 @@ std::chrono::milliseconds NodeOptions::first_tick_timeout() const {
 void add_plan_options(CLI::App& app, RunOverrides& overrides) {
   app.add_option("--stations", overrides.stations,
                  "Number of participating stations: the first M of the scenario (default: all)")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number_at_least(1));
   app.add_option("--steps", overrides.steps, "Override the scenario's number of steps")
-      ->check(CLI::PositiveNumber);
+      ->check(whole_number_at_least(1));
   app.add_option("--speed-kmh", overrides.speed_kmh,
                  "Target speed (default: the first the scenario lists)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app.add_option("--mc-run", overrides.mc_run,
                  "Monte-Carlo run index; selects the noise realisation")
       ->capture_default_str();
 }
 
+void add_domain_option(CLI::App& app, int& domain) {
+  app.add_option("--domain", domain, "DDS domain id")
+      ->check(whole_number_in(0, kMaxDomainId))
+      ->capture_default_str();
+}
+
+void add_qos_option(CLI::App& app, std::optional<std::string>& qos_file) {
+  app.add_option("--qos", qos_file, "Fast DDS XML profiles overriding the built-in QoS")
+      ->check(CLI::ExistingFile);
+}
+
+void add_secure_option(CLI::App& app, std::optional<std::string>& secure_dir) {
+  app.add_option("--secure", secure_dir,
+                 "DDS-Security: authenticate, authorise and encrypt with the identities in DIR "
+                 "(made by `skyfuse certs DIR`)")
+      ->check(CLI::ExistingDirectory);
+}
+
+void add_deadline_options(CLI::App& app, NodeOptions& o) {
+  app.add_option("--realtime-deadline-ms", o.realtime_deadline_ms,
+                 "Real-time mode: nodes step on the wall clock at the scenario's dt and each "
+                 "round closes this many ms after it starts, with what has arrived (0: lock-step "
+                 "on ticks)")
+      ->check(non_negative_number());
+  app.add_option("--round-deadline-ms", o.round_deadline_ms,
+                 "Lock-step: a round closes this many ms after its tick with what has arrived")
+      ->check(positive_number())
+      ->capture_default_str();
+}
+
 void add_node_options(CLI::App& app, NodeOptions& o) {
   add_scenario_option(app, o.scenario_path);
-  app.add_option("--domain", o.domain, "DDS domain id")
-      ->check(CLI::Range(0, kMaxDomainId))
-      ->capture_default_str();
+  add_domain_option(app, o.domain);
   app.add_option("--run-id", o.run_id, "Run id shared by every process of the run")
       ->capture_default_str();
   add_plan_options(app, o.overrides);
-  app.add_option("--qos", o.qos_file, "Fast DDS XML profiles overriding the built-in QoS")
-      ->check(CLI::ExistingFile);
-  app.add_option("--secure", o.secure_dir,
-                 "DDS-Security: this node's identity from a folder made by `skyfuse certs`")
-      ->check(CLI::ExistingDirectory);
+  add_qos_option(app, o.qos_file);
+  add_secure_option(app, o.secure_dir);
   app.add_option("--discovery-timeout", o.discovery_timeout_s,
                  "Seconds to wait for every peer to be discovered")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   app.add_option("--idle-timeout", o.idle_timeout_s,
                  "Seconds without progress after which the process gives up")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
-  app.add_option("--realtime-deadline-ms", o.realtime_deadline_ms,
-                 "Real-time mode: step on the wall clock at the scenario's dt and close each "
-                 "round this many ms after it starts (0: lock-step on ticks)")
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--round-deadline-ms", o.round_deadline_ms,
-                 "Lock-step: a round closes this many ms after its tick with what has arrived")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  add_deadline_options(app, o);
   add_loss_options(app, o.loss, o.best_effort);
   add_delay_options(app, o.delay);
   add_refusion_option(app, o.refusion_lag);
@@ -142,18 +161,18 @@ void add_delay_options(CLI::App& app, LinkDelay& delay) {
   app.add_option("--link-delay-ms", delay.delay_ms,
                  "Hold each received increment and measurement this many ms on its link "
                  "(seeded by --loss-seed: a rerun delays the same samples alike)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   app.add_option("--link-jitter-ms", delay.jitter_ms,
                  "Vary each link delay uniformly by up to this many ms either way (never below "
                  "0): samples arrive late and out of order")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
 }
 
 void add_refusion_option(CLI::App& app, std::size_t& lag) {
   app.add_option("--refusion-lag", lag,
                  "Keep late increments for this many closed rounds and fuse those rounds again "
                  "(fixed-lag re-fusion; 0: a late sample is refused as stale)")
-      ->check(CLI::Range(std::size_t{0}, kMaxRefusionLag))
+      ->check(whole_number_in(0, static_cast<std::int64_t>(kMaxRefusionLag)))
       ->capture_default_str();
 }
 

@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "skyfuse/options/number_checks.hpp"
 #include "train_command.hpp"
 
 int main(int argc, char** argv) {
@@ -30,10 +31,12 @@ int main(int argc, char** argv) {
   app.add_option("--seed", o.seed, "torch seed (initialisation, shuffling, dropout); default 1");
   app.add_option("--threads", o.threads, "torch intra-op threads")
       ->capture_default_str()
-      ->check(CLI::Range(1, 64));
+      ->check(skyfuse::options::whole_number_in(1, 64));
   app.add_option("--paths", o.paths, "paths in all three splits (overrides the mode's)");
-  app.add_option("--max-epochs", o.max_epochs, "overrides the mode's")->check(CLI::PositiveNumber);
-  app.add_option("--patience", o.patience, "early-stopping patience")->check(CLI::PositiveNumber);
+  app.add_option("--max-epochs", o.max_epochs, "overrides the mode's")
+      ->check(skyfuse::options::whole_number_at_least(1));
+  app.add_option("--patience", o.patience, "early-stopping patience")
+      ->check(skyfuse::options::whole_number_at_least(1));
   app.add_option("--log", o.log, "CSV with one line per epoch");
   app.add_option("--frame", frame,
                  "the windows' positions: absolute, or relative to the window's last estimate "

@@ -72,6 +72,14 @@ struct NodeOptions {
 
 void add_node_options(CLI::App& app, NodeOptions& options);
 
+/// The options of add_node_options that `skyfuse run` (and the other commands that start or
+/// drive nodes) pass on unchanged: declared once, here.
+void add_domain_option(CLI::App& app, int& domain);
+void add_qos_option(CLI::App& app, std::optional<std::string>& qos_file);
+void add_secure_option(CLI::App& app, std::optional<std::string>& secure_dir);
+/// `--realtime-deadline-ms D` and `--round-deadline-ms D`.
+void add_deadline_options(CLI::App& app, NodeOptions& options);
+
 /// The command line that gives a node exactly `options`: add_node_options parses it back to
 /// the same values, bit for bit (a unit test shows it). The one place where options become a
 /// child process's arguments.
