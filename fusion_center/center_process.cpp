@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <variant>
 #include <vector>
 
 #include "central_fusion.hpp"
@@ -31,9 +32,20 @@ using namespace std::chrono_literals;
 
 constexpr auto kPollSlice = 50ms;
 
+// What a fusion that takes a fixed-lag re-fusion keeps of each round in the lag: its state. One
+// that takes none keeps nothing.
+template <typename Fusion>
+struct PriorOf {
+  using type = std::monostate;
+};
+template <typename Fusion>
+requires Fusion::kRefuses struct PriorOf<Fusion> {
+  using type = typename Fusion::State;
+};
+
 // The center for stations of `Sensor` (one sensor type, or a SensorPack when they differ),
-// whose rounds `Fusion` updates: SingleModelCenter, ImmCenter or NcrkfCenter, by the run's
-// filter kind.
+// whose rounds `Fusion` updates: what the run's filter part runs at the center
+// (central_fusion.hpp, CenterFusionOf).
 template <typename Sensor, typename Fusion>
 class Center {
  public:
@@ -151,7 +163,7 @@ class Center {
     return NumericalStatus::kOk;
   }
 
-  transport::WireEstimate& prior_of(std::uint64_t step) { return priors_[step % priors_.size()]; }
+  auto& prior_of(std::uint64_t step) { return priors_[step % priors_.size()]; }
 
   // Round `step`'s final estimate, as it leaves the lag.
   wire::TrackEstimate settled_track(std::uint64_t step) const {
@@ -328,7 +340,7 @@ class Center {
   transport::DelayedInbox<wire::Measurement> delayed_;  // held by --link-delay-ms
   // Fixed-lag re-fusion: each round's prior in the lag, the oldest round a late measurement
   // came for since the last update, and how many came.
-  std::vector<transport::WireEstimate> priors_;
+  std::vector<typename PriorOf<Fusion>::type> priors_;
   // Each round's latest track while it is in the lag (without one: the round just updated).
   std::vector<wire::TrackEstimate> final_tracks_;
   std::optional<std::uint64_t> late_from_;
@@ -340,34 +352,24 @@ class Center {
 int run_center(const options::NodeOptions& options) {
   const RunPlan plan = transport::load_plan(options);
   int code = options::kExitError;
-  dispatch_configuration(plan.scenario, plan.stations,
-                         [&]<typename Model, template <int> class SensorOf>(
-                             std::type_identity<Model>, SensorTemplate<SensorOf>) {
-                           // The processes run the wire's model (load_plan refused another).
-                           using Sensor = SensorOf<Model::kDim>;
-                           if constexpr (std::is_same_v<Model, NcrkfCenter::Model>) {
-                             // The loader gives filter ncrkf TDOA receivers only.
-                             if constexpr (std::is_same_v<Sensor, NcrkfCenter::Sensor>) {
-                               Center<Sensor, NcrkfCenter> center(options, plan);
-                               code = center.run();
-                             } else {
-                               throw std::logic_error("filter ncrkf without TDOA receivers");
-                             }
-                           } else if constexpr (std::is_same_v<Model, transport::WireModel>) {
-                             if (plan.scenario.filter.kind != "imm") {
-                               Center<Sensor, SingleModelCenter<Sensor>> center(options, plan);
-                               code = center.run();
-                               return;
-                             }
-                             // The loader gives an IMM run one sensor kind.
-                             if constexpr (!IsSensorPack<Sensor>::value) {
-                               Center<Sensor, ImmCenter<Sensor>> center(options, plan);
-                               code = center.run();
-                             } else {
-                               throw std::logic_error("filter imm with mixed sensor kinds");
-                             }
-                           }
-                         });
+  dispatch_configuration(
+      plan.scenario, plan.stations,
+      [&]<typename Model, template <int> class SensorOf>(std::type_identity<Model>,
+                                                         SensorTemplate<SensorOf>) {
+        using Sensor = SensorOf<Model::kDim>;
+        visit_filter_kind<FilterParts>(
+            plan.scenario.filter.kind, [&]<typename Filter>(std::type_identity<Filter>) {
+              // The loader gives a filter only the models and stations it runs on.
+              if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
+                Center<Sensor, typename CenterFusionOf<Filter, Model, Sensor>::type> center(options,
+                                                                                            plan);
+                code = center.run();
+              } else {
+                throw std::logic_error(fmt::format("filter {} on {} with these stations",
+                                                   Filter::kKind, Model::kKind));
+              }
+            });
+      });
   return code;
 }
 

@@ -11,6 +11,7 @@
 #include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/experiments/network_imm.hpp"
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
+#include "skyfuse/registry/registry.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/tdoa_round.hpp"
@@ -18,6 +19,9 @@
 #include "skyfuse/transport/wire_conversion.hpp"
 
 namespace skyfuse::center {
+
+template <typename Filter, typename Model, typename Sensor>
+struct CenterFusionOf;
 
 /// What a single-model center holds and how its track is made, whatever updates it: the tracker
 /// and the round that names the stations fused. SingleModelCenter and NcrkfCenter derive from it.
@@ -44,12 +48,11 @@ class TrackedCenter {
   Round round_;
 };
 
-/// The stacked EKF, for stations of `Sensor` (one sensor type, or a SensorPack).
-template <typename Sensor>
-class SingleModelCenter : public TrackedCenter<CentralTracker<transport::WireModel, Sensor>,
-                                               CentralRound<transport::WireModel, Sensor>> {
+/// The stacked EKF on `Model`, for stations of `Sensor` (one sensor type, or a SensorPack).
+template <typename Model, typename Sensor>
+class SingleModelCenter
+    : public TrackedCenter<CentralTracker<Model, Sensor>, CentralRound<Model, Sensor>> {
  public:
-  using Model = transport::WireModel;
   using Observation = ObservationFor<Sensor>;
 
   explicit SingleModelCenter(const RunPlan& plan)
@@ -88,7 +91,7 @@ class ImmCenter {
     return transport::imm_track(imm_.filter(), run_id, k, source_id, wire::CENTRAL, contributors_);
   }
   void predict() { imm_.predict(); }
-  /// No fixed-lag re-fusion for the IMM yet (--refusion-lag is refused for it).
+  /// No fixed-lag re-fusion for the IMM yet (its part refuses --refusion-lag).
   static constexpr bool kRefuses = false;
 
  private:
@@ -112,7 +115,7 @@ class NcrkfCenter
 
   /// observation_at(i): the i-th of `count` participants' observation (ascending id) or null;
   /// on_refused(station_id, kNotPositive) for each indefinite increment the round was fused
-  /// without. The NCRKF has no innovation to gate (require_wire_configuration refuses a gate).
+  /// without. The NCRKF has no innovation to gate (its part refuses a gate).
   template <typename ObservationAt, typename OnRefused>
   NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& /*gate*/,
                          OnRefused on_refused) {
@@ -140,6 +143,20 @@ class NcrkfCenter
   std::vector<int> ids_;                                // participants, ascending
   std::vector<InformationIncrement<kDim>> increments_;  // the round's, by participant
   GaussianState<kDim> prior_;
+};
+
+/// What the center runs for each registered filter part: one line per filter.
+template <typename Model, typename Sensor>
+struct CenterFusionOf<EkfFilterPart, Model, Sensor> {
+  using type = SingleModelCenter<Model, Sensor>;
+};
+template <typename Model, typename Sensor>
+struct CenterFusionOf<ImmFilterPart, Model, Sensor> {
+  using type = ImmCenter<Sensor>;
+};
+template <typename Model, typename Sensor>
+struct CenterFusionOf<NcrkfFilterPart, Model, Sensor> {
+  using type = NcrkfCenter;
 };
 
 }  // namespace skyfuse::center

@@ -23,12 +23,14 @@
 #include <limits>
 #include <set>
 
+#include "forged_increment.hpp"
 #include "secure_probe.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/models/tdoa/range_difference_sensor.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
+#include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -61,10 +63,12 @@ std::vector<Attack> attacks_at(std::uint64_t run, std::uint32_t k, int victim) {
           {DropKind::kWrongSite, run, k, victim}};
 }
 
-// The victim as the scenario has it: where it stands and whether it is a TDOA receiver.
+// The victim as the scenario has it: where it stands, whether it is a TDOA receiver, and the
+// state its increments are of (the scenario's motion model's).
 struct Victim {
   Vector3 site = Vector3::Zero();  // an id that is no station's stands nowhere
   bool tdoa = false;
+  int state_dim = 0;
 };
 
 // Kinds that only a measurement can carry (a TDOA increment can be out of range as well).
@@ -72,17 +76,14 @@ bool measurement_only(DropKind kind, const Victim& victim) {
   return kind == DropKind::kWrongSite || (kind == DropKind::kOutOfRange && !victim.tdoa);
 }
 
-wire::InformationIncrement increment_for(const Attack& a) {
+wire::InformationIncrement increment_for(const Attack& a, const Victim& victim) {
   // Well-formed but for the one fault the attack carries: a plausible range-like information
   // along x (inside a TDOA increment's [dx, dy, d_t1] block too), about a prior with P = I.
-  transport::WireContribution c;
-  c.increment.station_id = a.station;
-  c.increment.delta_information(0, 0) = 1e-4;
-  c.prior.covariance = Covariance<9>::Identity();
-  wire::InformationIncrement s = transport::to_wire(c, a.run_id, a.step);
+  wire::InformationIncrement s =
+      rogue::plausible_increment(a.run_id, a.step, a.station, victim.state_dim);
   if (a.kind == DropKind::kNonFinite) s.delta_information()[10] = std::nan("");
   if (a.kind == DropKind::kNotPositive) s.delta_information()[0] = -1.0;
-  if (a.kind == DropKind::kOutOfRange) s.delta_information().back() = 1e-4;  // dQ(8, 8)
+  if (a.kind == DropKind::kOutOfRange) s.delta_information().back() = 1e-4;  // dQ(n-1, n-1)
   return s;
 }
 
@@ -144,9 +145,14 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (probe.probe) return rogue::run_probe(probe, {domain, run_id, victim, timeout_s, network});
+    const Scenario scenario = load_scenario_or_default(scenario_path);
+    const int state_dim = find_motion_model(scenario.filter.motion_model.kind)->state_dim;
+    if (probe.probe) {
+      return rogue::run_probe(probe, {domain, run_id, victim, state_dim, timeout_s, network});
+    }
     Victim victim_config;
-    for (const StationConfig& s : load_scenario_or_default(scenario_path).stations) {
+    victim_config.state_dim = state_dim;
+    for (const StationConfig& s : scenario.stations) {
       if (s.id != victim) continue;
       victim_config.site = s.position_m;
       victim_config.tdoa = s.sensor.kind == RangeDifferenceSensor<9>::kKind;
@@ -193,7 +199,7 @@ int main(int argc, char** argv) {
         for (const Attack& a : attacks_at(run_id, *newest, victim)) {
           const auto kind = static_cast<std::size_t>(a.kind);
           if (!measurement_only(a.kind, victim_config)) {
-            increments.write(increment_for(a));
+            increments.write(increment_for(a, victim_config));
             ++sent_increments[kind];
           }
           measurements.write(measurement_for(a, victim_config));

@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "forged_increment.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -22,15 +23,8 @@ using Clock = std::chrono::steady_clock;
 constexpr auto kSendPeriod = std::chrono::milliseconds(10);
 constexpr std::uint32_t kStepAhead = 2;
 
-// Samples that pass every content check, so that only who sent them can keep them out.
-wire::InformationIncrement plausible_increment(std::uint64_t run, std::uint32_t step, int station) {
-  transport::WireContribution c;
-  c.increment.station_id = station;
-  c.increment.delta_information(0, 0) = 1e-4;  // a plausible range-like information along x
-  c.prior.covariance = Covariance<9>::Identity();
-  return transport::to_wire(c, run, step);
-}
-
+// Samples that pass every content check, so that only who sent them can keep them out (the
+// increment: forged_increment.hpp).
 wire::Measurement plausible_measurement(std::uint64_t run, std::uint32_t step, int station) {
   wire::Measurement s;
   s.run_id(run);
@@ -134,7 +128,8 @@ void probe(transport::DdsNode& node, const ProbeOptions& options, const ProbeTar
     // sample that arrives is refused and counted, never fused, whatever the timing.
     if (Clock::now() >= next_send) {
       const std::uint32_t step = std::max(latest_tick.value_or(0), kStepAhead);
-      increments.writer.write(plausible_increment(target.run_id, step, target.victim));
+      increments.writer.write(
+          plausible_increment(target.run_id, step, target.victim, target.state_dim));
       measurements.writer.write(plausible_measurement(target.run_id, step, target.victim));
       ++increments.sent;
       ++measurements.sent;

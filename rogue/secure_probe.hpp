@@ -30,7 +30,8 @@ void add_probe_options(CLI::App& app, ProbeOptions& options);
 struct ProbeTarget {
   int domain = 0;
   std::uint64_t run_id = 0;
-  int victim = 0;  ///< the station the probe speaks for
+  int victim = 0;     ///< the station the probe speaks for
+  int state_dim = 0;  ///< of the run's motion model: what its increments are of
   double duration_s = 60.0;
   options::NetworkOptions network;  ///< the interface and discovery of the run
 };

@@ -74,6 +74,20 @@ class IncrementRound {
     return transport::contribution_from_wire<kDim>(sample);
   }
 
+  /// Checks a peer's sample (its run id already checked) and keeps it, or says why not: whether
+  /// it is a contribution of this run's filter and dimension, then `check(contribution)` (the
+  /// filter's own check of what it fuses), then its step, its station and its writer.
+  template <typename Check>
+  std::optional<DropKind> admit_checked(const wire::InformationIncrement& sample,
+                                        const transport::WriterId& writer,
+                                        transport::SourceBinding& sources, Check check) {
+    const auto contribution = contribution_of(sample);
+    if (!contribution) return DropKind::kOutOfRange;  // not the run's filter or dimension
+    if (const auto why = check(*contribution)) return why;
+    return keep(sample, writer, sources, *contribution);
+  }
+
+ private:
   /// Keeps a checked contribution, or says why not: its step, its station, its writer.
   std::optional<DropKind> keep(const wire::InformationIncrement& sample,
                                const transport::WriterId& writer, transport::SourceBinding& sources,
@@ -84,6 +98,7 @@ class IncrementRound {
     return why;
   }
 
+ protected:
   FixedLagPeer<Model> chain_;
 
  private:

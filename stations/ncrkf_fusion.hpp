@@ -34,7 +34,7 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
   }
 
   /// This station's increment for its own measurement (write(sample)), kept for the round. The
-  /// NCRKF has no innovation to screen (require_wire_configuration refuses a NIS gate): a
+  /// NCRKF has no innovation to screen (its part refuses a NIS gate): a
   /// measurement that fails its sensor's check yields a zero increment, which tells the peers
   /// not to wait for one.
   template <typename Write>
@@ -62,15 +62,14 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
   std::optional<DropKind> admit(const wire::InformationIncrement& sample,
                                 const transport::WriterId& writer,
                                 transport::SourceBinding& sources) {
-    const auto contribution = contribution_of(sample);
-    if (!contribution) return DropKind::kOutOfRange;  // not the run's filter or dimension
-    // An unknown sender has no noise to check against; keep() refuses it by name.
-    if (const auto sender = position_of(station_ids(), static_cast<int>(sample.station_id()))) {
-      const double sigma = sigmas_[*sender];
-      if (const auto why = check_tdoa_increment(contribution->increment, sigma)) return why;
-      if (const auto why = check_estimate(contribution->prior)) return why;
-    }
-    return keep(sample, writer, sources, *contribution);
+    return admit_checked(sample, writer, sources, [&](const Contribution& contribution) {
+      // An unknown sender has no noise to check against; keep() refuses it by name.
+      const auto sender = position_of(station_ids(), static_cast<int>(sample.station_id()));
+      std::optional<DropKind> why;
+      if (sender) why = check_tdoa_increment(contribution.increment, sigmas_[*sender]);
+      if (sender && !why) why = check_estimate(contribution.prior);
+      return why;
+    });
   }
 
   /// Fuses what arrived by the TDOA round rule; on_refused(station_id, kNotPositive) for each

@@ -2,7 +2,7 @@
 // Where a station's measurements come from: simulated from the scenario and the seed (the same
 // functions the in-process sweep calls), or replayed from a CSV file that `skyfuse run` wrote
 // (measurements.csv) or that came from a real sensor. A station's sensor is a sensor of the
-// 9-entry kinematic state, as the truth is.
+// truth's kinematic state (TruthSensorOf), whatever state the filter keeps.
 
 #include <cstdint>
 #include <filesystem>
@@ -33,7 +33,7 @@ class SimulatedSensor final : public SensorSource<Sensor> {
   using Measurement = Vector<Sensor::kMeasDim>;
   SimulatedSensor(const RunPlan& plan, const StationConfig& station)
       : truth_(plan.truth()),
-        sensor_(make_sensor<Sensor>(station)),
+        sensor_(make_sensor<TruthSensorOf<Sensor>>(station)),
         noise_(station_noise_covariance<Sensor::kMeasDim>(plan.scenario, station, plan.mc_run)),
         seed_(plan.scenario.seed),
         mc_run_(plan.mc_run),
@@ -47,7 +47,7 @@ class SimulatedSensor final : public SensorSource<Sensor> {
 
  private:
   TruthTrajectory truth_;
-  Sensor sensor_;
+  TruthSensorOf<Sensor> sensor_;
   Covariance<Sensor::kMeasDim> noise_;
   std::uint64_t seed_;
   std::uint64_t mc_run_;

@@ -1,24 +1,26 @@
 #pragma once
-// What a station fuses when the run's filter is one model (kind ekf): one increment per station
-// and round, fused onto the lowest-id contribution's prior (tracking/round_rule.hpp). The
-// station process (station_process.cpp) moves the samples; this decides what they mean.
-// ImmFusion (imm_fusion.hpp) and NcrkfFusion (ncrkf_fusion.hpp) have the same interface.
+// What a station fuses when the run's filter is the EKF on one motion model (any registered one):
+// one increment per station and round, fused onto the lowest-id contribution's prior
+// (tracking/round_rule.hpp). The station process (station_process.cpp) moves the samples; this
+// decides what they mean. ImmFusion (imm_fusion.hpp) and NcrkfFusion (ncrkf_fusion.hpp) have the
+// same interface.
 
 #include <cstdint>
 #include <optional>
 #include <utility>
 
 #include "increment_round.hpp"
-#include "skyfuse/transport/wire_configuration.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse::station {
 
-template <typename Sensor>
-class SingleModelFusion : public IncrementRound<transport::WireModel> {
+template <typename Model, typename Sensor>
+class SingleModelFusion : public IncrementRound<Model> {
+  using Base = IncrementRound<Model>;
+
  public:
-  using IncrementRound::IncrementRound;
-  using IncrementRound::kDim;
+  using Base::Base;
+  using typename Base::Contribution;
 
   /// Screens this station's own measurement against the common prior, writes its contribution
   /// (write(sample)) and keeps it for the round.
@@ -26,13 +28,13 @@ class SingleModelFusion : public IncrementRound<transport::WireModel> {
   OwnContribution contribute(std::uint64_t k, const StationObservation<Sensor>& observation,
                              const NisGate& gate, std::uint64_t run_id, Write write) {
     OwnContribution result;
-    result.status = chain_.refresh_prior(fuse_one_round());
+    result.status = this->chain_.refresh_prior(fuse_one_round());
     if (result.status != NumericalStatus::kOk) return result;
     Contribution own;
-    own.prior = chain_.tracker().estimate();
+    own.prior = this->chain_.tracker().estimate();
     result = skyfuse::contribute(own.prior, observation, gate, own.increment);
     if (result.status != NumericalStatus::kOk) return result;
-    publish(k, observation.station_id, own, run_id, write);
+    this->publish(k, observation.station_id, own, run_id, write);
     return result;
   }
 
@@ -40,29 +42,28 @@ class SingleModelFusion : public IncrementRound<transport::WireModel> {
   std::optional<DropKind> admit(const wire::InformationIncrement& sample,
                                 const transport::WriterId& writer,
                                 transport::SourceBinding& sources) {
-    const auto contribution = contribution_of(sample);
-    if (!contribution) return DropKind::kOutOfRange;  // not the run's filter or dimension
-    if (const auto why = check_contribution(*contribution)) return why;
-    return keep(sample, writer, sources, *contribution);
+    return this->admit_checked(sample, writer, sources, [](const Contribution& contribution) {
+      return check_contribution(contribution);
+    });
   }
 
   /// Fuses what arrived; arrived() then says whether anything did. Refuses nothing at fusion
   /// (on_refused(station_id, why) is never called): every sample was checked on arrival.
   template <typename OnRefused>
   RoundFusion fuse(OnRefused /*on_refused*/) {
-    return chain_.fuse_current(fuse_one_round());
+    return this->chain_.fuse_current(fuse_one_round());
   }
 
   /// The end of the run: the rounds still in the lag, final now (settled_track()).
   std::pair<std::uint64_t, std::uint64_t> settle(NumericalStatus& status) {
-    return chain_.settle_rest(fuse_one_round(), status);
+    return this->chain_.settle_rest(fuse_one_round(), status);
   }
 
  private:
   // One round by the round rule.
   auto fuse_one_round() {
     return [this](std::uint64_t /*step*/, auto slot_at) {
-      return chain_.round().fuse(chain_.tracker(), slot_at);
+      return this->chain_.round().fuse(this->chain_.tracker(), slot_at);
     };
   }
 };

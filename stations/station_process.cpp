@@ -9,9 +9,6 @@
 #include <thread>
 #include <vector>
 
-#include "imm_fusion.hpp"
-#include "ncrkf_fusion.hpp"
-#include "single_model_fusion.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
@@ -25,6 +22,7 @@
 #include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
+#include "station_fusions.hpp"
 
 namespace skyfuse::station {
 namespace {
@@ -53,9 +51,9 @@ struct StationEndpoints {
   transport::ReaderWaitSet wait_set;
 };
 
-// A station with a `Sensor` of the wire's motion model's state (a radar, the aircraft's GPS, a
-// TDOA receiver), whose rounds `Fusion` fuses: SingleModelFusion, ImmFusion or NcrkfFusion, by
-// the run's filter kind.
+// A station with a `Sensor` of the run's motion model's state (a radar, the aircraft's GPS, a
+// TDOA receiver), whose rounds `Fusion` fuses: the fusion of the run's filter part
+// (station_fusions.hpp).
 template <typename Sensor, typename Fusion>
 class Station {
  public:
@@ -358,8 +356,8 @@ class Station {
   DropTally drops_;
 };
 
-// Runs station `me` with its sensor of type Sensor.
-template <typename Sensor>
+// Runs station `me` with its sensor of type Sensor, on the run's motion model and filter.
+template <typename Model, typename Sensor>
 int run_with_sensor(const StationOptions& options, const RunPlan& plan, const StationConfig& me) {
   std::unique_ptr<SensorSource<Sensor>> source;
   if (options.replay_path.empty()) {
@@ -375,20 +373,20 @@ int run_with_sensor(const StationOptions& options, const RunPlan& plan, const St
     throw std::invalid_argument(
         fmt::format("station {}: its noise or site is unusable: {}", me.id, to_string(*why)));
   }
-  if (plan.scenario.filter.kind == "imm") {
-    Station<Sensor, ImmFusion<Sensor>> station(options, plan, me, std::move(source));
-    return station.run();
-  }
-  if (plan.scenario.filter.kind == "ncrkf") {  // the loader gives it TDOA receivers only
-    if constexpr (std::is_same_v<Sensor, NcrkfFusion::Sensor>) {
-      Station<Sensor, NcrkfFusion> station(options, plan, me, std::move(source));
-      return station.run();
-    } else {
-      throw std::logic_error("filter ncrkf with a station of sensor kind " + me.sensor.kind);
-    }
-  }
-  Station<Sensor, SingleModelFusion<Sensor>> station(options, plan, me, std::move(source));
-  return station.run();
+  int code = options::kExitError;
+  visit_filter_kind<FilterParts>(
+      plan.scenario.filter.kind, [&]<typename Filter>(std::type_identity<Filter>) {
+        // The loader gives a filter only the models and stations it runs on.
+        if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
+          Station<Sensor, typename StationFusionOf<Filter, Model, Sensor>::type> station(
+              options, plan, me, std::move(source));
+          code = station.run();
+        } else {
+          throw std::logic_error(fmt::format("filter {} on {} with a station of sensor kind {}",
+                                             Filter::kKind, Model::kKind, me.sensor.kind));
+        }
+      });
+  return code;
 }
 
 }  // namespace
@@ -411,11 +409,18 @@ int run_station(const StationOptions& options) {
     }
   }
   int code = options::kExitError;
-  const bool found = visit_sensor_kind<Sensors, transport::WireModel::kDim>(
-      me->sensor.kind, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-        code = run_with_sensor<SensorOf<transport::WireModel::kDim>>(options, plan, *me);
+  bool found = false;
+  visit_model_kind<MotionModels>(
+      plan.scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
+        found = visit_sensor_kind<Sensors, Model::kDim>(
+            me->sensor.kind, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
+              code = run_with_sensor<Model, SensorOf<Model::kDim>>(options, plan, *me);
+            });
       });
-  if (!found) throw std::logic_error("unregistered sensor kind " + me->sensor.kind);
+  if (!found) {
+    throw std::logic_error(fmt::format("unregistered motion model {} or sensor kind {}",
+                                       plan.scenario.filter.motion_model.kind, me->sensor.kind));
+  }
   return code;
 }
 

@@ -15,14 +15,16 @@
 #include "run/lockstep_driver.hpp"
 #include "run/secure_start.hpp"
 #include "run/simulated_hosts.hpp"
+#include "skyfuse/options/filter_options.hpp"
 #include "skyfuse/options/node_options.hpp"
+#include "skyfuse/registry/filter_info.hpp"
+#include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/qos.hpp"
 #include "skyfuse/transport/security_folder.hpp"
 #include "skyfuse/transport/shutdown.hpp"
-#include "skyfuse/transport/wire_configuration.hpp"
 
 namespace skyfuse::harness {
 
@@ -49,7 +51,7 @@ RunPlan plan_from(const std::string& text, const std::string& source,
                   const options::NodeOptions& node) {
   RunPlan plan = make_run_plan(parse_scenario(text, source), node.overrides);
   // Refused here, before any process starts, rather than by each node.
-  transport::require_wire_configuration(plan.scenario, node);
+  options::require_filter_takes(plan.scenario, node);
   return plan;
 }
 
@@ -212,8 +214,9 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   if (o.node.secure_dir) {
     config.security = transport::SecurityConfig{*o.node.secure_dir, transport::kHarnessIdentity};
   }
-  const std::size_t modes = plan.scenario.filter.kind == "imm" ? ImmConfig::kModeNames.size() : 0;
-  LockstepDriver driver(config, run_id, plan.participants(), modes, check);
+  const TrackShape shape{find_motion_model(plan.scenario.filter.motion_model.kind)->state_dim,
+                         find_filter(plan.scenario.filter.kind)->mode_names.size()};
+  LockstepDriver driver(config, run_id, plan.participants(), shape, check);
 
   try {
     // Process 0 is the center, process 1 + j the j-th station in ascending id.

@@ -11,6 +11,7 @@
 
 #include "run/realtime_rounds.hpp"
 #include "skyfuse/registry/registry.hpp"
+#include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
@@ -38,9 +39,9 @@ std::vector<int> with_center(std::vector<int> ids) {
 // mode that does not match its source, numbers that are not finite, mode probabilities that are
 // not the run's. The harness records what the nodes fused, so it refuses what they refuse;
 // lock-step and real time alike.
-std::optional<DropKind> track_content_refusal(
-    const wire::TrackEstimate& t, const std::optional<transport::WireEstimate>& estimate,
-    std::uint64_t run_id, std::size_t modes) {
+std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
+                                              const std::optional<DynamicGaussianState>& estimate,
+                                              std::uint64_t run_id, std::size_t modes) {
   if (t.run_id() != run_id) return DropKind::kWrongRun;
   if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterNodeId)) {
     return DropKind::kUnknownStation;
@@ -57,8 +58,7 @@ std::optional<DropKind> track_content_refusal(
   return std::nullopt;
 }
 
-ReceivedTrack received_track(const wire::TrackEstimate& t,
-                             const transport::WireEstimate& estimate) {
+ReceivedTrack received_track(const wire::TrackEstimate& t, const DynamicGaussianState& estimate) {
   return {
       estimate,
       {t.contributors().begin(), t.contributors().end()},
@@ -68,8 +68,9 @@ ReceivedTrack received_track(const wire::TrackEstimate& t,
 
 // The same for a measurement: another run, or an observation the center would refuse (its
 // content, or a participant's id at another site).
-// Any registered sensor's measurement of the wire's model's state.
-using AnyWireSensor = AnySensor<transport::WireModel::kDim>;
+// Any registered sensor, as it measures the truth's kinematics (every sensor's reported values
+// and checks are the same whatever the state it is linearised about).
+using AnyWireSensor = AnySensor<kKinematicsDim>;
 
 // The same for a measurement: another run, or an observation the center would refuse (its
 // content, a participant's id with another sensor or at another site). Its values go to `z`.
@@ -113,10 +114,11 @@ double default_discovery_timeout_s(int nodes) {
 
 struct LockstepDriver::Impl {
   Impl(const transport::NodeConfig& config, std::uint64_t run,
-       std::span<const StationConfig> participants, std::size_t mode_count,
+       std::span<const StationConfig> participants, TrackShape shape,
        std::function<void()> check_fn)
       : run_id(run),
-        modes(mode_count),
+        state_dim(shape.state_dim),
+        modes(shape.modes),
         station_ids(ids_of(participants)),
         check(std::move(check_fn)),
         node(config),
@@ -178,7 +180,7 @@ struct LockstepDriver::Impl {
   // checks, its source (a station's PEER track or the center's CENTRAL one), then one per
   // (step, source).
   std::optional<DropKind> settled_refusal(const wire::TrackEstimate& t,
-                                          const std::optional<transport::WireEstimate>& estimate,
+                                          const std::optional<DynamicGaussianState>& estimate,
                                           const transport::WriterId& writer) {
     if (const auto why = track_content_refusal(t, estimate, run_id, modes)) return why;
     // (The content checks tie CENTRAL to the center's id and PEER to every other.)
@@ -196,7 +198,7 @@ struct LockstepDriver::Impl {
   // The content checks, then the step window, the source and duplicates (admit).
   std::optional<DropKind> track_refusal(const wire::TrackEstimate& t,
                                         const transport::WriterId& writer) {
-    const auto estimate = transport::estimate_from_wire<transport::WireModel::kDim>(t);
+    const auto estimate = transport::estimate_from_wire(t, state_dim);
     if (t.settled()) return settled_refusal(t, estimate, writer);
     if (const auto why = track_content_refusal(t, estimate, run_id, modes)) return why;
     const ReceivedTrack track = received_track(t, *estimate);
@@ -211,6 +213,7 @@ struct LockstepDriver::Impl {
   }
 
   std::uint64_t run_id;
+  int state_dim;      // the run's: every track's estimate has it
   std::size_t modes;  // mode probabilities every track carries
   std::vector<int> station_ids;
   std::map<int, StationConfig> stations;  // by id: where each measurement must come from
@@ -249,9 +252,9 @@ struct LockstepDriver::Impl {
 };
 
 LockstepDriver::LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
-                               std::span<const StationConfig> participants, std::size_t modes,
+                               std::span<const StationConfig> participants, TrackShape shape,
                                std::function<void()> check)
-    : impl_(std::make_unique<Impl>(config, run_id, participants, modes, std::move(check))) {}
+    : impl_(std::make_unique<Impl>(config, run_id, participants, shape, std::move(check))) {}
 
 LockstepDriver::~LockstepDriver() = default;
 
@@ -397,7 +400,7 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     wire::TrackEstimate t;
     transport::WriterId writer;
     while (d.tracks.take(t, &writer)) {
-      const auto estimate = transport::estimate_from_wire<transport::WireModel::kDim>(t);
+      const auto estimate = transport::estimate_from_wire(t, d.state_dim);
       if (t.settled()) {
         if (const auto why = d.settled_refusal(t, estimate, writer)) {
           transport::count_drop(d.own_drops, *why, "settled track", t.source_id(), t.step());

@@ -52,12 +52,19 @@ struct NodeCounts {
   std::uint64_t late_used = 0;  ///< samples kept after their round closed, and re-fused
 };
 
+/// What every track of a run carries: an estimate of the run's state dimension, and as many
+/// mode probabilities as its filter has modes (0 for one model).
+struct TrackShape {
+  int state_dim = 0;
+  std::size_t modes = 0;
+};
+
 class LockstepDriver {
  public:
   /// `check` is called at least every 50 ms while waiting; it throws RunAborted to end the run.
-  /// Every track must carry `modes` mode probabilities (an IMM run's; 0 for one model).
+  /// A track of another `shape` is refused.
   LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
-                 std::span<const StationConfig> participants, std::size_t modes,
+                 std::span<const StationConfig> participants, TrackShape shape,
                  std::function<void()> check);
   ~LockstepDriver();
 

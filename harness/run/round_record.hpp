@@ -14,9 +14,10 @@ namespace skyfuse::harness {
 /// The center's node id (stations are numbered from 1).
 inline constexpr int kCenterNodeId = 0;
 
-/// A node's track as received: the estimate and the stations fused into it.
+/// A node's track as received: the estimate (of the run's state dimension) and the stations
+/// fused into it.
 struct ReceivedTrack {
-  GaussianState<9> estimate;
+  DynamicGaussianState estimate;
   std::vector<int> contributors;  ///< ascending station id
   /// An IMM run's mode probabilities (ImmConfig::kModeNames order); empty otherwise.
   Eigen::VectorXd mode_probabilities;

@@ -11,6 +11,7 @@
 #include "report/output_files.hpp"
 #include "report/statistics.hpp"
 #include "skyfuse/models/state_position.hpp"
+#include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/part_info.hpp"
 
 namespace skyfuse::harness {
@@ -67,7 +68,9 @@ RunRecorder::RunRecorder(const RunPlan& plan, std::vector<int> station_ids,
       station_ids_(std::move(station_ids)),
       restarts_(std::move(restarts)),
       truth_(plan.truth()),
-      position_dim_(find_motion_model(plan.scenario.filter.motion_model.kind)->position_dim) {
+      position_dim_(find_motion_model(plan.scenario.filter.motion_model.kind)->position_dim),
+      state_dim_(find_motion_model(plan.scenario.filter.motion_model.kind)->state_dim),
+      mode_names_(find_filter(plan.scenario.filter.kind)->mode_names) {
   std::sort(station_ids_.begin(), station_ids_.end());
   rounds_.reserve(static_cast<std::size_t>(plan.scenario.steps));
 }
@@ -124,7 +127,7 @@ RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) c
   s.steps = static_cast<int>(rounds_.size());
   s.speed_kmh = plan_.speed_mps * 3.6;
   s.discovery_s = discovery_s;
-  s.imm = plan_.scenario.filter.kind == "imm";
+  s.imm = !mode_names_.empty();
   double sq_central = 0.0;
   double sq_p2p = 0.0;
   int n_central = 0;
@@ -223,11 +226,13 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
   std::string steps =
       "step,time_s,truth_x,truth_y,truth_z,central_x,central_y,central_z,p2p_x,p2p_y,p2p_z,"
       "error_central_m,error_p2p_m,central_minus_p2p_m,peer_spread\n";
-  std::string tracks = "step,source,x0,x1,x2,x3,x4,x5,x6,x7,x8\n";
+  std::string tracks = "step,source";
+  for (int i = 0; i < state_dim_; ++i) tracks += fmt::format(",x{}", i);
+  tracks += '\n';
   std::string measurements = measurements_header();
   std::string rounds = "step,latency_us\n";
-  const bool imm = plan_.scenario.filter.kind == "imm";
-  std::string modes = fmt::format("step,source,{}\n", fmt::join(ImmConfig::kModeNames, ","));
+  const bool imm = !mode_names_.empty();
+  std::string modes = fmt::format("step,source,{}\n", fmt::join(mode_names_, ","));
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const RoundRecord& r : rounds_) {
     // A node that delivered nothing leaves NaN in steps.csv and no row in the other files.
@@ -245,11 +250,11 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
       if (!track) return;
       // %.17g round-trips a double exactly: the value read back is the value computed.
       tracks += fmt::format("{},{}", r.step, source);
-      for (int i = 0; i < 9; ++i) tracks += fmt::format(",{:.17g}", track->estimate.mean(i));
+      for (double v : track->estimate.mean) tracks += fmt::format(",{:.17g}", v);
       tracks += '\n';
       if (imm) {
         modes += fmt::format("{},{}", r.step, source);
-        for (double p : track->mode_probabilities) modes += fmt::format(",{:.17g}", p);
+        for (double mu : track->mode_probabilities) modes += fmt::format(",{:.17g}", mu);
         modes += '\n';
       }
     };
@@ -292,7 +297,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
                                {"discovery_s", summary.discovery_s}};
   nlohmann::json full = json;
   if (imm) {
-    full["filter"] = "imm";
+    full["filter"] = plan_.scenario.filter.kind;
     full["max_abs_diff_mode_probability_central_vs_p2p"] =
         summary.max_abs_diff_mode_probability_central_vs_p2p;
   }

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <string_view>
 #include <vector>
 
 #include "run/lockstep_driver.hpp"
@@ -110,6 +111,8 @@ class RunRecorder {
   std::vector<StationEvent> restarts_;
   TruthTrajectory truth_;
   int position_dim_;  // leading state entries that are the position (models/state_position.hpp)
+  int state_dim_;     // entries of every track's state: the run's motion model's
+  std::vector<std::string_view> mode_names_;  // the filter's modes (none: one model)
   std::vector<RoundRecord> rounds_;
 
   Vector3 position_of(const ReceivedTrack& track) const;

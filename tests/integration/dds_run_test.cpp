@@ -112,6 +112,14 @@ std::filesystem::path expect_run_equals_twin(const std::string& scenario_file, i
   return dir / "out";
 }
 
+// A constant-velocity model over DDS: the stations and the center run its 6-entry state as they
+// run the 9-entry one, and every track they publish has its six entries.
+TEST(DdsRunModels, AConstantVelocityRunEqualsTheInProcessRunBitForBit) {
+  const auto out = expect_run_equals_twin("paper000-cv.yaml", 4, 203);
+  const std::string tracks = read_file(out / "tracks.csv");
+  EXPECT_EQ(tracks.substr(0, tracks.find('\n')), "step,source,x0,x1,x2,x3,x4,x5");
+}
+
 // Paper 000's radars with the aircraft's own GPS report as a fifth participant: station
 // processes of two sensor kinds, the center stacking both.
 TEST(DdsRunMixed, RadarsAndTheAircraftsGpsEqualTheInProcessRunBitForBit) {

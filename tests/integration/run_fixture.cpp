@@ -22,11 +22,8 @@ TrackRows read_tracks(const std::filesystem::path& csv) {
     const int step = std::stoi(field);
     std::getline(fields, field, ',');
     const int source = std::stoi(field);
-    StateRow row{};
-    for (double& v : row) {
-      std::getline(fields, field, ',');
-      v = std::strtod(field.c_str(), nullptr);
-    }
+    StateRow row;
+    while (std::getline(fields, field, ',')) row.push_back(std::strtod(field.c_str(), nullptr));
     tracks[{step, source}] = row;
   }
   return tracks;
@@ -69,7 +66,12 @@ std::optional<std::string> difference_from_twin(const TrackRows& tracks, const R
     const int step = static_cast<int>(k);
     const auto central = tracks.find({step, 0});
     if (central == tracks.end()) return "step " + std::to_string(k) + ": no central track";
-    for (int i = 0; i < 9; ++i) {
+    if (central->second.size() != static_cast<std::size_t>(twin[k].first.size())) {
+      return "step " + std::to_string(k) + ": central track of " +
+             std::to_string(central->second.size()) + " entries, in-process " +
+             std::to_string(twin[k].first.size());
+    }
+    for (int i = 0; i < twin[k].first.size(); ++i) {
       if (!same_bits(central->second[static_cast<std::size_t>(i)], twin[k].first(i))) {
         return "step " + std::to_string(k) + ": central x" + std::to_string(i) + " DDS " +
                std::to_string(central->second[static_cast<std::size_t>(i)]) + " in-process " +
@@ -81,7 +83,11 @@ std::optional<std::string> difference_from_twin(const TrackRows& tracks, const R
       if (peer == tracks.end()) {
         return "step " + std::to_string(k) + ": no track of station " + std::to_string(s.id);
       }
-      for (int i = 0; i < 9; ++i) {
+      if (peer->second.size() != static_cast<std::size_t>(twin[k].second.size())) {
+        return "step " + std::to_string(k) + ": station " + std::to_string(s.id) +
+               " track of another dimension";
+      }
+      for (int i = 0; i < twin[k].second.size(); ++i) {
         if (!same_bits(peer->second[static_cast<std::size_t>(i)], twin[k].second(i))) {
           return "step " + std::to_string(k) + ": station " + std::to_string(s.id) + " x" +
                  std::to_string(i) + " differs from the in-process run";

@@ -36,7 +36,7 @@ inline std::filesystem::path test_dir() {
   return dir;
 }
 
-using StateRow = std::array<double, 9>;
+using StateRow = std::vector<double>;  // a track's state: as many entries as the run's model
 using TrackRows = std::map<std::pair<int, int>, StateRow>;
 /// tracks.csv as (step, source) -> state; %.17g in the file makes the values exact.
 TrackRows read_tracks(const std::filesystem::path& csv);
@@ -52,7 +52,7 @@ void expect_peers_differ_only_around_the_loss(const std::filesystem::path& steps
 
 /// The in-process twin of a DDS run: its (central, peer-to-peer) means per step, as
 /// simulate_run computes them (with `gate`); its trace into `trace` if given.
-using TwinTracks = std::vector<std::pair<Vector<9>, Vector<9>>>;
+using TwinTracks = std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>>;
 TwinTracks in_process_twin(const RunPlan& plan, const NisGate& gate = {},
                            RunTrace* trace = nullptr);
 

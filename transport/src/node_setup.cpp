@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
+#include "skyfuse/options/filter_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/security_folder.hpp"
-#include "skyfuse/transport/wire_configuration.hpp"
 
 namespace skyfuse::transport {
 
@@ -26,7 +26,7 @@ RunPlan load_plan(const options::NodeOptions& options) {
     throw std::invalid_argument(kSecureDiscoveryServerRefusal);
   }
   RunPlan plan = make_run_plan(load_scenario_or_default(options.scenario_path), options.overrides);
-  require_wire_configuration(plan.scenario, options);
+  options::require_filter_takes(plan.scenario, options);
   return plan;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "skyfuse/models/state_position.hpp"
+#include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/registry.hpp"
 
 namespace skyfuse {
@@ -27,11 +28,28 @@ std::vector<SensorInfo> describe(SensorList<Sensors...> /*list*/) {
                                                    Sensors<kAnyStateDim>::kComponents.end())}...};
 }
 
+template <typename... Filters>
+std::vector<FilterInfo> describe(FilterList<Filters...> /*list*/) {
+  return {FilterInfo{
+      Filters::kKind, Filters::kSummary, Filters::kMotionModel, Filters::kSensor,
+      Filters::kOneSensorKind, Filters::kTakesRefusionLag, Filters::kTakesNisGate,
+      std::vector<std::string_view>(Filters::kModeNames.begin(), Filters::kModeNames.end()),
+      Filters::kNeesDof}...};
+}
+
 template <typename Info>
 std::string kinds_of(const std::vector<Info>& infos) {
   std::string out;
   for (const Info& info : infos) out += (out.empty() ? "" : ", ") + std::string(info.kind);
   return out;
+}
+
+template <typename Info>
+std::optional<Info> find_kind(std::vector<Info> infos, std::string_view kind) {
+  for (Info& info : infos) {
+    if (info.kind == kind) return std::move(info);
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -44,15 +62,33 @@ std::vector<SensorInfo> sensor_infos() {
 }
 
 std::optional<MotionModelInfo> find_motion_model(std::string_view kind) {
-  for (MotionModelInfo& info : motion_model_infos()) {
-    if (info.kind == kind) return std::move(info);
-  }
-  return std::nullopt;
+  return find_kind(motion_model_infos(), kind);
 }
 
 std::optional<SensorInfo> find_sensor(std::string_view kind) {
-  for (SensorInfo& info : sensor_infos()) {
-    if (info.kind == kind) return std::move(info);
+  return find_kind(sensor_infos(), kind);
+}
+
+std::vector<FilterInfo> filter_infos() {
+  return describe(FilterParts{});
+}
+
+std::optional<FilterInfo> find_filter(std::string_view kind) {
+  return find_kind(filter_infos(), kind);
+}
+
+std::string filter_kinds() {
+  return kinds_of(filter_infos());
+}
+
+std::optional<std::string> filter_option_refusal(const FilterInfo& filter, std::size_t refusion_lag,
+                                                 bool nis_gate) {
+  if (refusion_lag != 0 && !filter.takes_refusion_lag) {
+    return fmt::format("--refusion-lag: filter {} fuses each round once; leave it at 0",
+                       filter.kind);
+  }
+  if (nis_gate && !filter.takes_nis_gate) {
+    return fmt::format("--nis-gate: filter {} has no innovation to gate", filter.kind);
   }
   return std::nullopt;
 }

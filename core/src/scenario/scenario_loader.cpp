@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "scenario/yaml_field.hpp"
+#include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
@@ -277,12 +278,12 @@ FilterConfig read_filter(const YamlField& field) {
   field.allow_only({"kind", "motion_model", "process_noise_std", "initial_covariance_diag",
                     "initial_state_error", "imm"});
   FilterConfig filter;
+  std::optional<FilterInfo> info = find_filter(filter.kind);  // the default, "ekf"
   if (const auto kind = field.optional("kind")) {
     filter.kind = kind->string();
-    if (std::find(std::begin(kFilterKinds), std::end(kFilterKinds), filter.kind) ==
-        std::end(kFilterKinds)) {
-      kind->fail(fmt::format("unknown filter '{}' (registered: {})", filter.kind,
-                             fmt::join(kFilterKinds, ", ")));
+    info = find_filter(filter.kind);
+    if (!info) {
+      kind->fail(fmt::format("unknown filter '{}' (registered: {})", filter.kind, filter_kinds()));
     }
   }
   const auto model = field.optional("motion_model");
@@ -301,22 +302,22 @@ FilterConfig read_filter(const YamlField& field) {
         "missing field 'motion_model' (e.g. {kind: constant_acceleration_3d, "
         "process_noise_std: {...}})");
   }
-  const auto imm = field.optional("imm");
-  if (filter.kind == "imm") {
-    // The CA mode is the scenario's model; the other modes are 3-D, like it.
-    if (filter.motion_model.kind != "constant_acceleration_3d") {
-      (model ? model->required("kind") : field)
-          .fail(fmt::format("filter 'imm' takes constant_acceleration_3d as its CA mode, not '{}'",
-                            filter.motion_model.kind));
-    }
-    if (imm) filter.imm = read_imm(*imm);
-  } else if (imm) {
-    imm->fail(fmt::format("only a filter of kind 'imm' has modes; this one is '{}'", filter.kind));
-  }
-  if (filter.kind == "ncrkf" && filter.motion_model.kind != "tdoa_relative_constant_acceleration") {
+  if (!info->motion_model.empty() && filter.motion_model.kind != info->motion_model) {
     (model ? model->required("kind") : field)
-        .fail(fmt::format("filter 'ncrkf' runs on tdoa_relative_constant_acceleration, not '{}'",
+        .fail(fmt::format("filter '{}' runs on {}, not '{}'", filter.kind, info->motion_model,
                           filter.motion_model.kind));
+  }
+  // The modes of a filter that has them (the IMM's CA mode is the scenario's model).
+  if (const auto imm = field.optional("imm")) {
+    if (info->mode_names.empty()) {
+      std::vector<std::string_view> with_modes;
+      for (const FilterInfo& f : filter_infos()) {
+        if (!f.mode_names.empty()) with_modes.push_back(f.kind);
+      }
+      imm->fail(fmt::format("only a filter of kind '{}' has modes; this one is '{}'",
+                            fmt::join(with_modes, "' or '"), filter.kind));
+    }
+    filter.imm = read_imm(*imm);
   }
   const int dim = find_motion_model(filter.motion_model.kind)->state_dim;
   filter.initial_covariance_diag = read_diagonal(field.required("initial_covariance_diag"), dim);
@@ -373,18 +374,19 @@ Scenario read_scenario(const YamlField& root) {
   const YamlField filter = root.required("filter");
   s.filter = read_filter(filter);
   const MotionModelInfo model = *find_motion_model(s.filter.motion_model.kind);
+  const FilterInfo filter_info = *find_filter(s.filter.kind);
   for (std::size_t i = 0; i < s.stations.size(); ++i) {
-    if (s.filter.kind == "ncrkf" && s.stations[i].sensor.kind != "tdoa_range_difference") {
-      station_items[i].fail(
-          fmt::format("filter 'ncrkf' needs tdoa_range_difference receivers; station {} has {}",
-                      s.stations[i].id, s.stations[i].sensor.kind));
+    if (!filter_info.sensor.empty() && s.stations[i].sensor.kind != filter_info.sensor) {
+      station_items[i].fail(fmt::format("filter '{}' needs {} receivers; station {} has {}",
+                                        filter_info.kind, filter_info.sensor, s.stations[i].id,
+                                        s.stations[i].sensor.kind));
     }
-    // The IMM's modes each take the stations' sensor at their own dimension: one kind.
-    if (s.filter.kind == "imm" && s.stations[i].sensor.kind != s.stations[0].sensor.kind) {
+    // E.g. the IMM's modes each take the stations' sensor at their own dimension: one kind.
+    if (filter_info.one_sensor_kind && s.stations[i].sensor.kind != s.stations[0].sensor.kind) {
       station_items[i].fail(fmt::format(
-          "filter 'imm' needs every station to have the same sensor kind; station {} has {}, "
+          "filter '{}' needs every station to have the same sensor kind; station {} has {}, "
           "station {} has {}",
-          s.stations[0].id, s.stations[0].sensor.kind, s.stations[i].id,
+          filter_info.kind, s.stations[0].id, s.stations[0].sensor.kind, s.stations[i].id,
           s.stations[i].sensor.kind));
     }
     const SensorInfo sensor = *find_sensor(s.stations[i].sensor.kind);

@@ -5,9 +5,10 @@
 // an IMM scenario. Same interface as monte_carlo.cpp's RunStepper.
 //
 // What it records of the IMM: the mixture's [p; v; a] (the turn rate stays inside the modes);
-// the NEES of [p; v] only (kNeesDof), since the acceleration is a state of the CA mode alone and
-// the mixture's spread in it says nothing of the CT mode's centripetal acceleration; and as the
-// central NIS the modes' NIS of the stacked measurement weighed by the prior mode probabilities.
+// the NEES of [p; v] only (ImmFilterPart::kNeesDof), since the acceleration is a state of the CA
+// mode alone and the mixture's spread in it says nothing of the CT mode's centripetal acceleration;
+// and as the central NIS the modes' NIS of the stacked measurement weighed by the prior mode
+// probabilities.
 
 #include <fmt/format.h>
 
@@ -16,6 +17,7 @@
 
 #include "sim/run_setup.hpp"
 #include "skyfuse/experiments/network_imm.hpp"
+#include "skyfuse/filters/parts/imm_part.hpp"
 #include "skyfuse/metrics/nees.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
@@ -23,9 +25,6 @@
 #include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse {
-
-/// Degrees of freedom of an IMM run's NEES: [p; v].
-inline constexpr int kImmNeesDof = 6;
 
 template <template <int> class SensorOf>
 class ImmRunStepper {
@@ -36,6 +35,8 @@ class ImmRunStepper {
   using Sensor = SensorOf<ConstantAcceleration3D::kDim>;
   using Observation = StationObservation<Sensor>;
   using Measurement = Vector<Sensor::kMeasDim>;
+  /// Degrees of freedom of its NEES: [p; v], what every mode shares.
+  static constexpr int kNeesDof = ImmFilterPart::kNeesDof;
 
   ImmRunStepper(const Scenario& scenario, const TruthTrajectory& truth, int stations,
                 std::uint64_t run, const NisGate& gate)
@@ -81,10 +82,9 @@ class ImmRunStepper {
     const Vector3 p_central = central_estimate_.mean.head<3>();
     const Vector3 p_p2p = p2p_estimate_.mean.head<3>();
     run_setup::record_positions(trace_, k, p, p_central, p_p2p);
-    trace_.nees_p2p[k] =
-        nees<kImmNeesDof>(x.head<kImmNeesDof>(),
-                          {p2p_estimate_.mean.head<kImmNeesDof>(),
-                           p2p_estimate_.covariance.topLeftCorner<kImmNeesDof, kImmNeesDof>()});
+    trace_.nees_p2p[k] = nees<kNeesDof>(
+        x.head<kNeesDof>(), {p2p_estimate_.mean.head<kNeesDof>(),
+                             p2p_estimate_.covariance.topLeftCorner<kNeesDof, kNeesDof>()});
     trace_.nis_central[k] =
         contributors_.empty() ? 0.0 : prior_probabilities.dot(central_.mode_nis());
     if (observer) {

@@ -10,11 +10,11 @@
 #include <span>
 #include <thread>
 
-#include "sim/imm_run_stepper.hpp"
-#include "sim/ncrkf_run_stepper.hpp"
 #include "sim/run_setup.hpp"
+#include "sim/run_steppers.hpp"
 #include "skyfuse/models/state_position.hpp"
 #include "skyfuse/registry/dispatch.hpp"
+#include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
@@ -23,87 +23,6 @@
 namespace skyfuse {
 
 namespace {
-
-// One station count's pair of trackers stepping through one run. Measurements come from
-// outside, indexed like scenario.stations, so that several station counts can share one
-// simulation of them: station i's draw does not depend on how many stations run.
-template <typename Model, template <int> class SensorOf>
-class RunStepper {
- public:
-  static constexpr int kDim = Model::kDim;
-  // One sensor type, or a SensorPack when the stations' sensors differ.
-  using Sensor = SensorOf<kDim>;
-  using Observation = ObservationFor<Sensor>;
-  /// Room for any station's measurement; a station's own is its first entries.
-  using Measurement = Vector<max_measurement_dim<Sensor>()>;
-  using Increment = InformationIncrement<kDim>;
-
-  RunStepper(const Scenario& scenario, const TruthTrajectory& truth, int stations,
-             std::uint64_t run, const NisGate& gate)
-      : motion_(make_motion_model<Model>(scenario)),
-        central_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
-        peers_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
-        gate_(gate),
-        order_(run_setup::ascending(scenario, stations)),
-        observations_(run_setup::checked_observations<Sensor>(scenario, order_, run)),
-        peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_)),
-        central_round_(order_.size()),
-        trace_(run_setup::sized_trace(scenario.steps)) {
-    // Everything sized once per run: the step loop allocates nothing. Slots are in ascending
-    // station id, the order of every round.
-    increments_.resize(order_.size());
-  }
-
-  // Updates both trackers with step k's measurements (z[i] belongs to scenario.stations[i]) by
-  // the round rule, records, then predicts to k + 1.
-  void step(std::size_t k, const Vector<9>& x, std::span<const Measurement> z,
-            const StepObserver& observer) {
-    for (std::size_t j = 0; j < order_.size(); ++j) {
-      with_observation(observations_[j], [&](auto& obs) {
-        constexpr int kMeasDim = std::decay_t<decltype(obs.z)>::RowsAtCompileTime;
-        obs.z = z[order_[j]].template head<kMeasDim>();
-        const OwnContribution own = contribute(peers_.estimate(), obs, gate_, increments_[j]);
-        if (own.status != NumericalStatus::kOk) {
-          throw NumericalError(fmt::format("p2p: step {}, station {}: increment failed: {}", k,
-                                           obs.station_id, to_string(own.status)));
-        }
-        if (own.refused) ++trace_.refused_p2p;
-      });
-    }
-    const UpdateReport central_report = central_round_.update(
-        central_, observations_.size(), [&](std::size_t j) { return &observations_[j]; }, gate_,
-        [&](int, DropKind) { ++trace_.refused_central; });
-    if (central_report.status != NumericalStatus::kOk) {
-      throw NumericalError(fmt::format("central: step {}: stacked update failed: {}", k,
-                                       to_string(central_report.status)));
-    }
-    const RoundFusion fused = peer_round_.fuse(peers_, [&](std::size_t j) {
-      return PeerSlot<kDim>{&increments_[j], &peers_.estimate()};
-    });
-    if (fused.status != NumericalStatus::kOk) {
-      throw NumericalError(
-          fmt::format("p2p: step {}: fusion failed: {}", k, to_string(fused.status)));
-    }
-
-    run_setup::record_step(trace_, k, x, central_.estimate(), peers_, central_report.nis, observer);
-    central_.predict();
-    peers_.predict();
-  }
-
-  RunTrace take_trace() { return std::move(trace_); }
-
- private:
-  Model motion_;
-  CentralTracker<Model, Sensor> central_;
-  PeerTracker<Model> peers_;
-  NisGate gate_;
-  std::vector<std::size_t> order_;         // ascending id -> scenario index
-  std::vector<Observation> observations_;  // ascending station id
-  std::vector<Increment> increments_;      // ascending station id
-  PeerRound<Model> peer_round_;
-  CentralRound<Model, Sensor> central_round_;
-  RunTrace trace_;
-};
 
 // One run for each of `station_counts`, all fed from one simulation of the measurements of the
 // largest count's stations; a RunStepper or an ImmRunStepper steps each.
@@ -155,32 +74,18 @@ std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
       scenario, most,
       [&]<typename Model, template <int> class SensorOf>(std::type_identity<Model>,
                                                          SensorTemplate<SensorOf>) {
-        if (scenario.filter.kind == "ncrkf") {
-          // The loader allows the NCRKF only over its model and sensor.
-          if constexpr (std::is_same_v<Model, TdoaRelativeMotion> &&
-                        std::is_same_v<SensorOf<9>, RangeDifferenceSensor<9>>) {
-            traces = simulate_runs<NcrkfRunStepper, SensorOf>(scenario, truth, station_counts, run,
-                                                              gate, observer);
+        visit_filter_kind<FilterParts>(scenario.filter.kind, [&]<typename Filter>(
+                                                                 std::type_identity<Filter>) {
+          // The loader allows a filter only on what it runs on.
+          if constexpr (filter_runs_on<Filter, Model, SensorOf<Model::kDim>>()) {
+            using Stepper = typename RunStepperOf<Filter, Model, SensorOf>::type;
+            traces = simulate_runs<Stepper, SensorOf>(scenario, truth, station_counts, run, gate,
+                                                      observer);
           } else {
-            throw std::logic_error(
-                "filter ncrkf: needs tdoa_relative_constant_acceleration and "
-                "tdoa_range_difference");
+            throw std::logic_error(fmt::format("filter {} does not run on {} with these sensors",
+                                               Filter::kKind, Model::kKind));
           }
-          return;
-        }
-        if (scenario.filter.kind != "imm") {
-          traces = simulate_runs<RunStepper<Model, SensorOf>, SensorOf>(
-              scenario, truth, station_counts, run, gate, observer);
-          return;
-        }
-        // The loader allows an IMM only over CA and one sensor kind.
-        if constexpr (std::is_same_v<Model, ConstantAcceleration3D> &&
-                      !IsSensorPack<SensorOf<9>>::value) {
-          traces = simulate_runs<ImmRunStepper<SensorOf>, SensorOf>(scenario, truth, station_counts,
-                                                                    run, gate, observer);
-        } else {
-          throw std::logic_error("filter imm: needs constant_acceleration_3d and one sensor kind");
-        }
+        });
       });
   return traces;
 }
@@ -192,9 +97,9 @@ struct Dof {
   int measurement = 0;
 };
 Dof dof_of(const Scenario& scenario, int stations) {
-  Dof dof{scenario.filter.kind == "imm"
-              ? kImmNeesDof
-              : find_motion_model(scenario.filter.motion_model.kind)->state_dim,
+  const int filter_dof = find_filter(scenario.filter.kind)->nees_dof;
+  Dof dof{filter_dof != 0 ? filter_dof
+                          : find_motion_model(scenario.filter.motion_model.kind)->state_dim,
           0};
   for (int i = 0; i < stations; ++i) {
     dof.measurement +=

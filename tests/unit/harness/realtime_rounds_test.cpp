@@ -11,10 +11,12 @@ namespace {
 const std::vector<int> kStations{2, 5};
 
 ReceivedTrack track_fused_from(std::vector<int> contributors, double mean_x = 0.0) {
+  // Any state dimension will do: the rounds only move tracks. A 6-entry one, [p; v].
+  constexpr int kStateDim = 6;
   ReceivedTrack t;
-  t.estimate.mean.setZero();
+  t.estimate.mean = Eigen::VectorXd::Zero(kStateDim);
   t.estimate.mean(0) = mean_x;
-  t.estimate.covariance.setIdentity();
+  t.estimate.covariance = Eigen::MatrixXd::Identity(kStateDim, kStateDim);
   t.contributors = std::move(contributors);
   return t;
 }

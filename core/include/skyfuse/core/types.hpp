@@ -26,6 +26,13 @@ using Jacobian = Eigen::Matrix<double, M, N>;
 using Vector3 = Vector<3>;
 using Matrix3 = Matrix<3, 3>;
 
+/// A Gaussian belief over a state whose dimension is known only at run time: what the harness
+/// records of a run of any motion model.
+struct DynamicGaussianState {
+  Eigen::VectorXd mean;
+  Eigen::MatrixXd covariance;
+};
+
 /// Mean and covariance of a Gaussian belief over a state of dimension N.
 template <int N>
 struct GaussianState {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse {
 
@@ -21,6 +22,20 @@ Model make_motion_model(const Scenario& scenario) {
   std::copy(values.begin(), values.end(), noise_std.begin());
   return Model(scenario.time_step_s, noise_std);
 }
+
+namespace detail {
+template <typename Sensor, int M>
+struct AtStateDim;
+template <template <int> class Sensor, int N, int M>
+struct AtStateDim<Sensor<N>, M> {
+  using type = Sensor<M>;
+};
+}  // namespace detail
+
+/// The same sensor as it measures the truth's kinematics (truth.hpp): what simulates a station's
+/// measurements, whatever state the filter keeps.
+template <typename Sensor>
+using TruthSensorOf = typename detail::AtStateDim<Sensor, kKinematicsDim>::type;
 
 template <typename Sensor>
 Sensor make_sensor(const StationConfig& station) {

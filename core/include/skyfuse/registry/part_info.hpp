@@ -31,12 +31,6 @@ struct SensorInfo {
   std::vector<std::string_view> components;
 };
 
-/// Filters a scenario can name. "ekf": the extended Kalman filter, which is the Kalman filter
-/// itself when the model and sensor are linear. "imm": an IMM of 3-D CV, CA (the scenario's
-/// motion model) and CT modes (scenario.hpp, ImmConfig). "ncrkf": paper 002's noise-correlation
-/// robust KF on tdoa_range_difference receivers and the tdoa_relative_constant_acceleration model.
-inline constexpr std::string_view kFilterKinds[] = {"ekf", "imm", "ncrkf"};
-
 std::vector<MotionModelInfo> motion_model_infos();
 std::vector<SensorInfo> sensor_infos();
 std::optional<MotionModelInfo> find_motion_model(std::string_view kind);

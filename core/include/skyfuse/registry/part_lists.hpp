@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// Compile-time lists of motion models and sensors, and the calls that turn a scenario's name
-/// for a part into its type. The lists themselves are in registry.hpp.
+/// Compile-time lists of motion models, sensors and filters, and the calls that turn a scenario's
+/// name for a part into its type. The lists themselves are in registry.hpp.
 
 #include <string_view>
 #include <type_traits>
@@ -54,6 +54,21 @@ bool visit_sensor_kind_in(SensorList<Sensors...> /*list*/, std::string_view kind
 template <typename List, int N, typename F>
 bool visit_sensor_kind(std::string_view kind, F&& f) {
   return visit_sensor_kind_in<N>(List{}, kind, f);
+}
+
+template <typename... Filters>
+struct FilterList {};
+
+template <typename... Filters, typename F>
+bool visit_filter_kind_in(FilterList<Filters...> /*list*/, std::string_view kind, F& f) {
+  return ((Filters::kKind == kind ? (f(std::type_identity<Filters>{}), true) : false) || ...);
+}
+
+/// Calls f(std::type_identity<Filter>{}) for the filter part of `List` whose kKind is `kind`;
+/// false, and f not called, when there is none. The one place a filter's name is compared.
+template <typename List, typename F>
+bool visit_filter_kind(std::string_view kind, F&& f) {
+  return visit_filter_kind_in(List{}, kind, f);
 }
 
 }  // namespace skyfuse

@@ -1,17 +1,21 @@
 #pragma once
 /// \file
 /// The parts a scenario can name, and the types that implement them. This file is the one place
-/// where a new motion model or sensor becomes known to the scenario loader, the measurement
-/// simulation, the sample checks, the in-process Monte Carlo and the processes: add its header
-/// below and its type to the list.
+/// where a new motion model, sensor or filter becomes known to the scenario loader, the
+/// measurement simulation, the sample checks, the in-process Monte Carlo and the processes: add
+/// its header below and its type to the list.
 ///
 /// A motion model is a class with kKind, kDim, kNoiseFields, NoiseStd, from_kinematics(),
 /// propagate(), jacobian() (or propagate_covariance()) and process_noise(). A sensor is a class
 /// template over the state dimension with kKind, kMeasDim, kJacobianCols, kNeedsSite,
 /// kComponents, predict(), jacobian(), residual(), to_reported() and check_reported(). Every
 /// 3-D model keeps the position in state entries 0-2 and the velocity in 3-5, which is what the
-/// sensors read. See docs/extending.md.
+/// sensors read. A filter part (filters/parts/) states the models and sensors it runs on and
+/// the options it refuses. See docs/extending.md.
 
+#include "skyfuse/filters/parts/ekf_part.hpp"
+#include "skyfuse/filters/parts/imm_part.hpp"
+#include "skyfuse/filters/parts/ncrkf_part.hpp"
 #include "skyfuse/models/constant_acceleration.hpp"
 #include "skyfuse/models/constant_velocity.hpp"
 #include "skyfuse/models/position_velocity.hpp"
@@ -26,8 +30,22 @@ namespace skyfuse {
 using MotionModels = ModelList<ConstantAcceleration3D, ConstantVelocity3D, TdoaRelativeMotion>;
 using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity, RangeDifferenceSensor>;
 
+using FilterParts = FilterList<EkfFilterPart, ImmFilterPart, NcrkfFilterPart>;
+
 /// Stations with different sensors in one run: any registered sensor, for an N-entry state.
 template <int N>
 using AnySensor = typename PackOfList<N, Sensors>::type;
+
+/// Whether filter part `Filter` runs on `Model` with stations of `Sensor` (one sensor type, or a
+/// SensorPack when their kinds differ), by what the part states of itself.
+template <typename Filter, typename Model, typename Sensor>
+constexpr bool filter_runs_on() {
+  if (!Filter::kMotionModel.empty() && Filter::kMotionModel != Model::kKind) return false;
+  if constexpr (IsSensorPack<Sensor>::value) {
+    return !Filter::kOneSensorKind && Filter::kSensor.empty();
+  } else {
+    return Filter::kSensor.empty() || Filter::kSensor == Sensor::kKind;
+  }
+}
 
 }  // namespace skyfuse

@@ -91,7 +91,7 @@ struct ImmConfig {
 };
 
 struct FilterConfig {
-  /// One of kFilterKinds (registry/part_info.hpp).
+  /// A registered filter part (registry/filter_info.hpp, filters/parts/).
   std::string kind = "ekf";
   /// The model of kind "ekf"; the CA mode of kind "imm".
   MotionModelConfig motion_model;

@@ -11,6 +11,10 @@
 
 namespace skyfuse {
 
+/// Entries of the target's true kinematics [p; v; a], which every sensor measures whatever
+/// state a filter keeps of it.
+inline constexpr int kKinematicsDim = 9;
+
 /// states[k] = [p; v; a] at time k * dt for k = 0..steps (steps + 1 entries); a is the
 /// acceleration acting over the step that starts at k.
 struct TruthTrajectory {

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "skyfuse/models/constant_acceleration.hpp"
 #include "skyfuse/tracking/imm_network.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 
@@ -54,13 +55,14 @@ std::optional<ImmModeSample<N, kModes>> mode_from_wire(const wire::InformationIn
                                   *probabilities};
 }
 
-/// The track of an IMM: the mixture's first WireModel::kDim components ([p; v; a]; the turn
-/// rate stays inside the modes) and the mode probabilities.
+/// The track of an IMM: the mixture's first ConstantAcceleration3D::kDim components ([p; v; a],
+/// the state of its CA mode, the scenario's model; the turn rate stays inside the modes) and
+/// the mode probabilities.
 template <typename Filter>
 wire::TrackEstimate imm_track(const Filter& imm, std::uint64_t run_id, std::uint64_t step,
                               int source_id, wire::TrackSource source,
                               std::span<const int> contributors) {
-  constexpr int N = WireModel::kDim;
+  constexpr int N = ConstantAcceleration3D::kDim;
   const auto mixture = imm.estimate();
   wire::TrackEstimate track =
       to_wire(GaussianState<N>{mixture.mean.template head<N>(),

@@ -20,7 +20,6 @@
 #include "skyfuse/registry/sensor_pack.hpp"
 #include "skyfuse/tracking/peer_contribution.hpp"
 #include "skyfuse/transport/topics.hpp"
-#include "skyfuse/transport/wire_configuration.hpp"
 
 namespace skyfuse::transport {
 
@@ -158,6 +157,26 @@ std::optional<GaussianState<N>> estimate_from_wire(const wire::TrackEstimate& sa
   const auto p = unpack_upper<N>(sample.covariance());
   if (!x || !p) return std::nullopt;
   return GaussianState<N>{*x, *p};
+}
+
+/// The track's estimate as an n-entry state, n known only at run time (the run's motion model's);
+/// nothing if its lengths are not n's.
+inline std::optional<DynamicGaussianState> estimate_from_wire(const wire::TrackEstimate& sample,
+                                                              int n) {
+  const auto size = static_cast<std::size_t>(n);
+  if (n < 1 || sample.x().size() != size || sample.covariance().size() != size * (size + 1) / 2) {
+    return std::nullopt;
+  }
+  DynamicGaussianState state{Eigen::Map<const Eigen::VectorXd>(sample.x().data(), n),
+                             Eigen::MatrixXd(n, n)};
+  std::size_t next = 0;
+  for (int r = 0; r < n; ++r) {
+    for (int c = r; c < n; ++c) {
+      state.covariance(r, c) = sample.covariance()[next++];
+      state.covariance(c, r) = state.covariance(r, c);
+    }
+  }
+  return state;
 }
 
 }  // namespace skyfuse::transport

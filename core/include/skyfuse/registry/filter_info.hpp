@@ -1,0 +1,48 @@
+#pragma once
+/// \file
+/// What the scenario loader, the command line and the harness need to know of each registered
+/// filter, without its types: its name, the parts it runs on, the options it refuses, what its
+/// tracks carry. Each filter part states these once (filters/parts/); the registry describes
+/// them here. Like part_info.hpp, cheap to include.
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace skyfuse {
+
+struct FilterInfo {
+  std::string_view kind;
+  std::string_view summary;
+  /// The only motion model it runs on; empty: any registered model.
+  std::string_view motion_model;
+  /// The only sensor kind its stations may have; empty: any registered sensor.
+  std::string_view sensor;
+  /// Whether every station of a run must have the same sensor kind.
+  bool one_sensor_kind = false;
+  /// Whether it takes a fixed-lag re-fusion (`--refusion-lag`).
+  bool takes_refusion_lag = true;
+  /// Whether it takes a chi^2 gate on measurements (`--nis-gate`): only a filter with an
+  /// innovation to gate does.
+  bool takes_nis_gate = true;
+  /// Its modes, in the order of every probability vector it reports; empty: one model. A
+  /// scenario configures the modes under `filter.imm` only for a filter that has them.
+  std::vector<std::string_view> mode_names;
+  /// Degrees of freedom of its NEES: the leading state entries every estimate of it shares
+  /// (0: the motion model's whole state).
+  int nees_dof = 0;
+};
+
+std::vector<FilterInfo> filter_infos();
+std::optional<FilterInfo> find_filter(std::string_view kind);
+/// "a, b, c": the registered names, for error messages.
+std::string filter_kinds();
+
+/// Why `filter` cannot run with these node options (a re-fusion lag, a NIS gate), in words that
+/// name the option; nothing if it can.
+std::optional<std::string> filter_option_refusal(const FilterInfo& filter, std::size_t refusion_lag,
+                                                 bool nis_gate);
+
+}  // namespace skyfuse

@@ -1,0 +1,22 @@
+#include "skyfuse/options/filter_options.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "skyfuse/registry/filter_info.hpp"
+
+namespace skyfuse::options {
+
+void require_filter_takes(const Scenario& scenario, const NodeOptions& node) {
+  const auto filter = find_filter(scenario.filter.kind);
+  if (!filter) {  // the loader refuses an unknown filter: this is a programming error
+    throw std::logic_error("unregistered filter " + scenario.filter.kind);
+  }
+  if (const auto why =
+          filter_option_refusal(*filter, node.refusion_lag, node.nis_gate().enabled())) {
+    throw std::invalid_argument(fmt::format("scenario '{}': {}", scenario.name, *why));
+  }
+}
+
+}  // namespace skyfuse::options
