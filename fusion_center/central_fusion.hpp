@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "skyfuse/core/sorted_ids.hpp"
-#include "skyfuse/experiments/network_imm.hpp"
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/tracking/network_imm.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/tdoa_round.hpp"
 #include "skyfuse/transport/imm_wire.hpp"

@@ -14,8 +14,8 @@
 #include <utility>
 #include <vector>
 
-#include "skyfuse/experiments/network_imm.hpp"
 #include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/tracking/network_imm.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/imm_wire.hpp"
 #include "skyfuse/transport/source_binding.hpp"

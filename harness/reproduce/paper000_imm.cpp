@@ -2,6 +2,8 @@
 // run, against the paper's CA filter: RMSE and ANEES through the turn, the mode probabilities,
 // and the peers' fused IMM against the central stacked one. The paper has no IMM; the claims
 // are this project's (docs/imm.md).
+#include "skyfuse/experiments/paper000_imm.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 
 #include "report/output_files.hpp"
 #include "reproduce/papers.hpp"
-#include "skyfuse/experiments/network_imm.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 
 namespace skyfuse::harness {

@@ -16,12 +16,12 @@
 #include <vector>
 
 #include "sim/run_setup.hpp"
-#include "skyfuse/experiments/network_imm.hpp"
 #include "skyfuse/filters/parts/imm_part.hpp"
 #include "skyfuse/metrics/nees.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
+#include "skyfuse/tracking/network_imm.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse {

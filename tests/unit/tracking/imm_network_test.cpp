@@ -6,11 +6,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "skyfuse/experiments/network_imm.hpp"
+#include "skyfuse/experiments/paper000_imm.hpp"
 #include "skyfuse/fusion/fused_likelihood.hpp"
 #include "skyfuse/fusion/stacked_likelihood.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/tracking/network_imm.hpp"
 #include "skyfuse/validation/nis_gate.hpp"
 
 namespace skyfuse {

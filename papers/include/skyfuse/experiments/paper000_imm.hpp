@@ -1,9 +1,9 @@
 #pragma once
 /// \file
-/// The station network's IMM of 3-D CV, CA and CT modes on paper 000's scenario: the central
-/// stacked IMM against the peers' fused one on the same measurements, and the IMM against the
-/// paper's CA filter through the turn (RMSE and ANEES per step over Monte-Carlo runs). The IMM's
-/// modes are the scenario's (FilterConfig::imm), whatever its filter kind.
+/// Paper 000's IMM experiment: the network IMM (tracking/network_imm.hpp) on paper 000's
+/// scenario, the central stacked IMM against the peers' fused one on the same measurements, and
+/// the IMM against the paper's CA filter through the turn (RMSE and ANEES per step over
+/// Monte-Carlo runs).
 ///
 /// Each step k: every station measures the truth at k, the filters update, then predict. The
 /// CA filter is the paper's (the scenario's process noise), which is also the IMM's CA mode.
@@ -12,26 +12,10 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
-#include "skyfuse/models/constant_acceleration.hpp"
-#include "skyfuse/models/constant_velocity.hpp"
-#include "skyfuse/models/coordinated_turn_3d.hpp"
-#include "skyfuse/models/kinematic_state.hpp"
 #include "skyfuse/scenario/scenario.hpp"
-#include "skyfuse/tracking/imm_network.hpp"
+#include "skyfuse/tracking/network_imm.hpp"
 
 namespace skyfuse {
-
-using NetworkImmFilter =
-    Imm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
-/// The network's IMM as each peer and as the center runs it.
-using NetworkPeerImm =
-    PeerImm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
-using NetworkCentralImm =
-    CentralImm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D>;
-
-/// The IMM of `scenario` (its filter's CA model and ImmConfig) starting from `initial` (its
-/// [p; v; a] estimate and P0).
-NetworkImmFilter make_network_imm(const Scenario& scenario, const GaussianState<9>& initial);
 
 /// Central stacked IMM against `stations` peers, each computing its own contribution and fusing
 /// all of them, over one run.

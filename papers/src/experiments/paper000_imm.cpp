@@ -1,4 +1,4 @@
-#include "skyfuse/experiments/network_imm.hpp"
+#include "skyfuse/experiments/paper000_imm.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,26 +18,6 @@ using Radar = RangeAzimuthElevation<9>;
 using Peers = NetworkPeerImm;
 using Central = NetworkCentralImm;
 using CaOnly = PeerImm<KinematicState, ConstantAcceleration3D>;
-
-ConstantAcceleration3D scenario_model(const Scenario& scenario) {
-  const Eigen::VectorXd& q = scenario.filter.motion_model.process_noise_std;
-  if (scenario.filter.motion_model.kind != ConstantAcceleration3D::kKind || q.size() != 3) {
-    throw std::invalid_argument(
-        "network IMM: the scenario's filter must be constant_acceleration_3d");
-  }
-  return ConstantAcceleration3D(scenario.time_step_s, {q(0), q(1), q(2)});
-}
-
-Imm<KinematicState, ConstantAcceleration3D>::CommonState common_start(
-    const GaussianState<9>& initial, double turn_rate_variance) {
-  Imm<KinematicState, ConstantAcceleration3D>::CommonState out;
-  out.mean.setZero();
-  out.mean.head<9>() = initial.mean;
-  out.covariance.setZero();
-  out.covariance.topLeftCorner<9, 9>() = initial.covariance;
-  out.covariance(KinematicState::kTurnRate, KinematicState::kTurnRate) = turn_rate_variance;
-  return out;
-}
 
 // The network's measurements of one step: one observation per station, ascending id.
 struct Network {
@@ -105,18 +85,6 @@ bool same_bits(const Filter& a, const Filter& b) {
 
 }  // namespace
 
-NetworkImmFilter make_network_imm(const Scenario& scenario, const GaussianState<9>& initial) {
-  const ImmConfig& modes = scenario.filter.imm;
-  const double dt = scenario.time_step_s;
-  const double switch_probability = (1.0 - modes.stay_probability) / 2.0;
-  Matrix<3, 3> switching = Matrix<3, 3>::Constant(switch_probability);
-  switching.diagonal().setConstant(modes.stay_probability);
-  return NetworkImmFilter({ConstantVelocity3D(dt, modes.constant_velocity),
-                           scenario_model(scenario), CoordinatedTurn3D(dt, modes.coordinated_turn)},
-                          switching, Vector3::Constant(1.0 / 3.0),
-                          common_start(initial, modes.initial_turn_rate_variance));
-}
-
 CentralPeerComparison compare_central_and_peers(const Scenario& scenario, double speed_mps,
                                                 int stations, std::uint64_t run, int steps) {
   const TruthTrajectory truth =
@@ -175,8 +143,8 @@ TurnComparison imm_against_ca(const Scenario& scenario, double speed_mps, int st
         initial_estimate<ConstantAcceleration3D>(scenario, truth.states[0], run);
     std::vector<Peers> imm{Peers(make_network_imm(scenario, start))};
     std::vector<CaOnly> ca{
-        CaOnly(CaOnly::Filter({scenario_model(scenario)}, Matrix<1, 1>::Identity(),
-                              Vector<1>::Ones(), common_start(start, 1.0)))};
+        CaOnly(CaOnly::Filter({network_imm_ca_model(scenario)}, Matrix<1, 1>::Identity(),
+                              Vector<1>::Ones(), network_imm_start(start, 1.0)))};
     Network network(scenario, stations, run);
     for (std::size_t k = 0; k < steps; ++k) {
       network.measure(scenario, truth.states[k], run, k);
