@@ -75,8 +75,8 @@ inline void record_positions(RunTrace& trace, std::size_t k, const Vector3& trut
 }
 
 /// Records step k of a run whose peers hold a PeerTracker (truth x, the center's estimate, the
-/// central NIS) and tells the observer. P^-1 for the NEES is the fused information matrix the
-/// peers hold anyway: e^T Y e.
+/// central NIS) and tells the observer. The NEES is against the peers' current covariance
+/// (PeerTracker::normalized_squared_error: the fused information when the round fused).
 template <typename Model>
 void record_step(RunTrace& trace, std::size_t k, const Vector<9>& x,
                  const GaussianState<Model::kDim>& central, const PeerTracker<Model>& peers,
@@ -85,7 +85,7 @@ void record_step(RunTrace& trace, std::size_t k, const Vector<9>& x,
   const Vector3 p_p2p = state_position<Model>(peers.estimate().mean);
   record_positions(trace, k, state_position<Model>(Model::from_kinematics(x)), p_central, p_p2p);
   const Vector<Model::kDim> error = Model::from_kinematics(x) - peers.estimate().mean;
-  trace.nees_p2p[k] = error.dot(peers.information() * error);
+  trace.nees_p2p[k] = peers.normalized_squared_error(error);
   trace.nis_central[k] = nis_central;
   if (observer) {
     observer({static_cast<int>(k), x, EstimateView::of(central), EstimateView::of(peers.estimate()),

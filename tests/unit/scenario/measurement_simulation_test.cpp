@@ -5,6 +5,9 @@
 #include <numbers>
 
 #include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse {
 namespace {
@@ -55,6 +58,26 @@ TEST(SimulatedMeasurement, ElevationBelowTheZenithIsTheTruthPlusTheDrawnNoise) {
   }
   EXPECT_NEAR(sum / kDraws, 0.0, 4.0 * 0.01 / std::sqrt(kDraws));
   EXPECT_NEAR(std::sqrt(sum_sq / kDraws), 0.01, 0.0005);
+}
+
+// Paper 002's relative state carries the range d_t1 = |dp| as an entry of its own. SEEDS.md
+// starts the estimate at d0_hat = |dp0_hat|: its range, the range's rate and acceleration follow
+// from its own position, velocity and acceleration, not from draws of their own, which would
+// start it with d_hat != |dp_hat| (by 300 m, one sigma); dx, dy, their rates and accelerations
+// keep their draws.
+TEST(InitialEstimate, Paper002sRangeFollowsTheEstimatesOwnPosition) {
+  const Scenario s = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002.yaml");
+  const Vector<9> x0 =
+      generate_truth(s.target, s.target.speeds_mps.front(), s.time_step_s, 1).states.front();
+  for (std::uint64_t run = 0; run < 5; ++run) {
+    const Vector<9> mean = initial_estimate<TdoaRelativeMotion>(s, x0, run).mean;
+    const Vector<9> drawn = TdoaRelativeMotion::from_kinematics(x0) + initial_state_error(s, run);
+    for (int i : {0, 1, 3, 4, 6, 7}) EXPECT_EQ(mean(i), drawn(i)) << "run " << run << ", " << i;
+    const Vector<2> p = mean.segment<2>(0);
+    const Vector<2> v = mean.segment<2>(3);
+    EXPECT_NEAR(mean(2), p.norm(), 1e-9 * p.norm()) << "run " << run;
+    EXPECT_NEAR(mean(5), p.dot(v) / p.norm(), 1e-9 * v.norm()) << "run " << run;
+  }
 }
 
 }  // namespace

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <cmath>
+#include <vector>
 
+#include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 
 namespace skyfuse {
@@ -61,6 +64,35 @@ TEST(MonteCarlo, AnNcrkfScenarioRunsCentralAndPeerToPeerAlike) {
   double late_two = 0.0;
   for (std::size_t k = 2500; k < 5000; ++k) late_two += two.sq_error_p2p[k];
   EXPECT_GT(std::sqrt(late_two / 2500.0), 3.0 * std::sqrt(late / 2500.0));
+}
+
+// The NEES scores an estimate's error against that estimate's covariance. With one TDOA
+// receiver the NCRKF's rounds fuse nothing (its increment is indefinite and the fused
+// information would not be positive definite, so the round rule refuses it): the estimate is the
+// predicted one, and the information of the last fusion, from before that prediction (or the
+// identity the tracker starts with, when none has fused yet), would score it against the wrong
+// covariance (the sweep's ANEES at M = 1 was 187 071 that way, 3.85 against P).
+TEST(MonteCarlo, TheNeesOfARoundThatFusedNothingIsAgainstThePredictedCovariance) {
+  const Scenario s = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002.yaml");
+  const TruthTrajectory truth =
+      generate_truth(s.target, s.target.speeds_mps.front(), s.time_step_s, s.steps);
+  std::vector<double> expected;
+  const RunTrace one = simulate_run(s, truth, 1, 0, [&](const StepRecord& r) {
+    const Vector<9> error = TdoaRelativeMotion::from_kinematics(r.truth) - r.decentralised.mean;
+    const Covariance<9> p = r.decentralised.covariance;
+    expected.push_back(error.dot(p.ldlt().solve(error)));
+  });
+  ASSERT_GT(one.refused_p2p, 0) << "no round fused nothing: the test shows nothing";
+  ASSERT_EQ(expected.size(), one.nees_p2p.size());
+  int off = 0;
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    if (std::abs(one.nees_p2p[k] - expected[k]) > 1e-4 * expected[k]) {
+      if (off++ == 0) {
+        ADD_FAILURE() << "step " << k << ": " << one.nees_p2p[k] << " vs " << expected[k];
+      }
+    }
+  }
+  EXPECT_EQ(off, 0) << "of " << one.refused_p2p << " rounds that fused nothing";
 }
 
 TEST(MonteCarlo, ReproducesThePapersRmseBoundForThreeOrMoreStations) {

@@ -50,6 +50,9 @@ typename Sensor::Measurement simulate_measurement(const Sensor& sensor, const Ve
 Eigen::VectorXd initial_state_error(const Scenario& scenario, std::uint64_t run);
 
 /// The filter's start x0_hat = x0 + e, P0, with x0 the model's state of the true kinematics.
+/// A model whose state carries a range derived from its position (paper 002's relative state,
+/// d_t1 = |dp|) derives the estimate's from the estimate's own position, rates and
+/// accelerations: e's entries for it are not used.
 template <typename Model>
 GaussianState<Model::kDim> initial_estimate(const Scenario& scenario,
                                             const Vector<9>& true_initial_state,
@@ -58,6 +61,9 @@ GaussianState<Model::kDim> initial_estimate(const Scenario& scenario,
   estimate.covariance = scenario.filter.initial_covariance_diag.asDiagonal();
   estimate.mean = Model::from_kinematics(true_initial_state);
   estimate.mean += initial_state_error(scenario, run);
+  if constexpr (requires { Model::with_derived_range(estimate.mean); }) {
+    estimate.mean = Model::with_derived_range(estimate.mean);
+  }
   return estimate;
 }
 

@@ -37,6 +37,18 @@ class TdoaRelativeMotion : public BlockConstantAcceleration<3> {
     x << p, d, v, d_rate, a, (v.squaredNorm() + p.dot(a) - d_rate * d_rate) / d;
     return x;
   }
+
+  /// `x` with its range entries d, d' and d'' derived from its own [dx, dy], rates and
+  /// accelerations, as from_kinematics() derives the truth's. initial_estimate() applies it, so
+  /// that an initial estimate starts with d = |dp| (SEEDS.md, paper 002: d0_hat = |dp0_hat|)
+  /// rather than with a range error drawn apart from the position's.
+  static State with_derived_range(const State& x) {
+    Vector<9> kinematics = Vector<9>::Zero();
+    kinematics.segment<2>(0) = x.segment<2>(kPosition);
+    kinematics.segment<2>(3) = x.segment<2>(kVelocity);
+    kinematics.segment<2>(6) = x.segment<2>(kAcceleration);
+    return from_kinematics(kinematics);
+  }
 };
 
 }  // namespace skyfuse
