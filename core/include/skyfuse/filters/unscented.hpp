@@ -1,0 +1,136 @@
+#pragma once
+/// \file
+/// The unscented information filter's measurement step, in the form the station network sums.
+///
+/// Sigma points of the common prior (x^, P), the scaled symmetric set with
+/// lambda = alpha^2 (N + kappa) - N:
+///
+///   chi_0 = x^,   chi_j = x^ + sqrt(N + lambda) L e_j,   chi_{N+j} = x^ - sqrt(N + lambda) L e_j
+///   Wm_0 = lambda / (N + lambda),  Wc_0 = Wm_0 + 1 - alpha^2 + beta,  W_j = 1 / (2 (N + lambda))
+///
+/// with P = L L^T. Station i pushes them through its sensor, z^_i = sum Wm_j h_i(chi_j) and
+/// P_xz,i = sum Wc_j (chi_j - x^)(h_i(chi_j) - z^_i)^T, and regresses h_i on the state:
+///
+///   H~_i = (P^-1 P_xz,i)^T,   nu_i = z_i - z^_i (angles wrapped),
+///   dQ_i = H~_i^T R_i^-1 H~_i,   dy_i = H~_i^T R_i^-1 (nu_i + H~_i x^).
+///
+/// These have the EKF increment's form with H~_i for H_i, so peers sum them exactly as the EKF's
+/// (fusion/increment_fusion.hpp), and the center's update on the stacked measurement, whose
+/// regression is the stack of the H~_i, is their sum. For a linear sensor H~_i = H_i and the
+/// increment is the EKF's.
+
+#include <Eigen/Cholesky>
+#include <array>
+#include <cmath>
+
+#include "skyfuse/core/small_cholesky.hpp"
+#include "skyfuse/core/status.hpp"
+#include "skyfuse/core/types.hpp"
+#include "skyfuse/fusion/information_increment.hpp"
+
+namespace skyfuse {
+
+/// The sigma points' spread (alpha), prior knowledge of the distribution (beta: 2 for a
+/// Gaussian) and secondary scaling (kappa). alpha = 1, kappa = 0 puts the points at sqrt(N)
+/// standard deviations with a zero centre weight.
+struct UnscentedParameters {
+  double alpha = 1.0;
+  double beta = 2.0;
+  double kappa = 0.0;
+};
+
+/// The 2N + 1 sigma points of a prior and the factor of its covariance, computed once per round
+/// and shared by every sensor that linearises about that prior.
+template <int N>
+class SigmaPoints {
+ public:
+  static constexpr int kCount = 2 * N + 1;
+
+  /// False, and nothing usable, if P is not positive definite.
+  bool compute(const GaussianState<N>& prior, const UnscentedParameters& p) {
+    factor_.compute(prior.covariance);
+    if (factor_.info() != Eigen::Success) return false;
+    const double lambda = p.alpha * p.alpha * (N + p.kappa) - N;
+    const double spread = std::sqrt(N + lambda);
+    const Covariance<N> l = factor_.matrixL();
+    mean_ = prior.mean;
+    points_[0] = prior.mean;
+    for (int j = 0; j < N; ++j) {
+      points_[1 + j] = prior.mean + spread * l.col(j);
+      points_[1 + N + j] = prior.mean - spread * l.col(j);
+    }
+    mean_weight_0_ = lambda / (N + lambda);
+    covariance_weight_0_ = mean_weight_0_ + 1.0 - p.alpha * p.alpha + p.beta;
+    weight_ = 1.0 / (2.0 * (N + lambda));
+    return true;
+  }
+
+  const Vector<N>& point(int j) const { return points_[static_cast<std::size_t>(j)]; }
+  const Vector<N>& mean() const { return mean_; }
+  double mean_weight(int j) const { return j == 0 ? mean_weight_0_ : weight_; }
+  double covariance_weight(int j) const { return j == 0 ? covariance_weight_0_ : weight_; }
+  /// The Cholesky factor of the prior's P, for P^-1 P_xz.
+  const Eigen::LLT<Covariance<N>>& prior_factor() const { return factor_; }
+
+ private:
+  Eigen::LLT<Covariance<N>> factor_;
+  std::array<Vector<N>, kCount> points_{};
+  Vector<N> mean_ = Vector<N>::Zero();
+  double mean_weight_0_ = 0.0;
+  double covariance_weight_0_ = 0.0;
+  double weight_ = 0.0;
+};
+
+/// A sensor's statistical linearisation about the sigma points' prior: the predicted
+/// measurement z^ and the regression H~ = (P^-1 P_xz)^T.
+template <int M, int N>
+struct StatisticalLinearisation {
+  Vector<M> predicted = Vector<M>::Zero();
+  Matrix<M, N> regression = Matrix<M, N>::Zero();
+};
+
+/// z^ and H~ of `sensor` over `sigma`. Each point's prediction is taken relative to the centre
+/// point's through the sensor's residual, so that angles near +-pi average where they lie.
+template <int N, typename Sensor>
+StatisticalLinearisation<Sensor::kMeasDim, N> linearise(const SigmaPoints<N>& sigma,
+                                                        const Sensor& sensor) {
+  constexpr int M = Sensor::kMeasDim;
+  std::array<Vector<M>, SigmaPoints<N>::kCount> z;
+  const Vector<M> centre = sensor.predict(sigma.point(0));
+  StatisticalLinearisation<M, N> out;
+  for (int j = 0; j < SigmaPoints<N>::kCount; ++j) {
+    z[static_cast<std::size_t>(j)] =
+        centre + Sensor::residual(sensor.predict(sigma.point(j)), centre);
+    out.predicted += sigma.mean_weight(j) * z[static_cast<std::size_t>(j)];
+  }
+  Matrix<N, M> cross = Matrix<N, M>::Zero();  // P_xz
+  for (int j = 0; j < SigmaPoints<N>::kCount; ++j) {
+    cross += sigma.covariance_weight(j) * (sigma.point(j) - sigma.mean()) *
+             (z[static_cast<std::size_t>(j)] - out.predicted).transpose();
+  }
+  out.regression = sigma.prior_factor().solve(cross).transpose();
+  return out;
+}
+
+/// Station `station_id`'s unscented information increment for measurement z (noise R) against
+/// the prior of `sigma`, into `out`. Fails only if R is not positive definite.
+template <int N, typename Sensor>
+NumericalStatus compute_unscented_increment(int station_id, const SigmaPoints<N>& sigma,
+                                            const Sensor& sensor, const Vector<Sensor::kMeasDim>& z,
+                                            const Covariance<Sensor::kMeasDim>& noise,
+                                            InformationIncrement<N>& out) {
+  constexpr int M = Sensor::kMeasDim;
+  SmallCholesky<M> r_factor;
+  if (!r_factor.compute(noise)) return NumericalStatus::kNotPositiveDefinite;
+  const StatisticalLinearisation<M, N> lin = linearise(sigma, sensor);
+  const Vector<M> innovation = Sensor::residual(z, lin.predicted);
+  Matrix<M, N> r_inv_h;  // R^-1 H~
+  for (int c = 0; c < N; ++c) r_inv_h.col(c) = r_factor.solve(lin.regression.col(c));
+  out.station_id = station_id;
+  out.delta_information = lin.regression.transpose().lazyProduct(r_inv_h);
+  symmetrize(out.delta_information);
+  out.delta_vector = r_inv_h.transpose() * (innovation + lin.regression * sigma.mean());
+  return NumericalStatus::kOk;
+}
+
+}  // namespace skyfuse
