@@ -1,5 +1,7 @@
 // Cost of the per-step work of each architecture:
 //   StationStep      one station's predict + measurement model + information increment
+//   UnscentedStationStep   the same with the unscented filter's increment (sigma points of the
+//                    prior, each through the sensor, the regression H~)
 //   FuseIncrements   one peer fusing M increments into the common prior
 //   StackedEkf       the fusion center's stacked update over M measurements
 //   CheckIncrement / CheckObservation   a receiver's checks of one sample before fusing it
@@ -16,6 +18,7 @@
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/truth.hpp"
+#include "skyfuse/tracking/increment_rules.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 
@@ -70,6 +73,22 @@ void StationStep(benchmark::State& state) {
   }
 }
 BENCHMARK(StationStep);
+
+void UnscentedStationStep(benchmark::State& state) {
+  const Snapshot s = make_snapshot(1);
+  const Scenario scenario = load_default_scenario();
+  const auto motion = make_motion_model<ConstantAcceleration3D>(scenario);
+  PeerTracker tracker(motion, s.prior);
+  const auto& obs = s.observations.front();
+  InformationIncrement<9> increment;
+  for (auto _ : state) {
+    tracker.predict();
+    benchmark::DoNotOptimize(
+        UnscentedIncrementRule::contribute(tracker.estimate(), obs, NisGate{}, increment));
+    benchmark::DoNotOptimize(increment);
+  }
+}
+BENCHMARK(UnscentedStationStep);
 
 void CheckIncrement(benchmark::State& state) {
   const Snapshot s = make_snapshot(1);

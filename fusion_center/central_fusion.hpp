@@ -12,6 +12,7 @@
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/tracking/increment_rules.hpp"
 #include "skyfuse/tracking/network_imm.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/tracking/tdoa_round.hpp"
@@ -145,6 +146,54 @@ class NcrkfCenter
   GaussianState<kDim> prior_;
 };
 
+/// The unscented information filter on the stacked measurement: the center computes each
+/// station's unscented increment from its raw measurement against the center's own prior, as
+/// the station does, and fuses them onto that prior by the round rule. The stacked regression
+/// is the stack of the stations', so this is the stacked update (filters/unscented.hpp).
+template <typename Model, typename Sensor>
+class UnscentedCenter : public TrackedCenter<PeerTracker<Model>, PeerRound<Model>> {
+  static constexpr int kDim = Model::kDim;
+
+ public:
+  using Observation = StationObservation<Sensor>;
+
+  explicit UnscentedCenter(const RunPlan& plan)
+      : UnscentedCenter(plan, sorted_ascending(plan.participant_ids())) {}
+
+  /// observation_at(i): the i-th of `count` participants' observation (ascending id) or null;
+  /// on_refused(station_id, why) for each screened out. No NIS gate (the part refuses one).
+  template <typename ObservationAt, typename OnRefused>
+  NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& /*gate*/,
+                         OnRefused on_refused) {
+    prior_ = this->tracker_.estimate();
+    for (std::size_t i = 0; i < count; ++i) {
+      const Observation* o = observation_at(i);
+      if (o == nullptr) continue;
+      const OwnContribution own =
+          UnscentedIncrementRule::contribute(prior_, *o, NisGate{}, increments_[i]);
+      if (own.status != NumericalStatus::kOk) return own.status;
+      if (own.refused) on_refused(o->station_id, *own.refused);
+    }
+    return this->round_
+        .fuse(this->tracker_,
+              [&](std::size_t i) {
+                return observation_at(i) != nullptr ? PeerSlot<kDim>{&increments_[i], &prior_}
+                                                    : PeerSlot<kDim>{};
+              })
+        .status;
+  }
+
+ private:
+  UnscentedCenter(const RunPlan& plan, std::vector<int> ascending_ids)
+      : UnscentedCenter::TrackedCenter(
+            {plan.motion_model<Model>(), plan.initial_estimate<Model>()},
+            PeerRound<Model>(ascending_ids, plan.weights_of(ascending_ids))),
+        increments_(ascending_ids.size()) {}
+
+  std::vector<InformationIncrement<kDim>> increments_;  // the round's, by participant
+  GaussianState<kDim> prior_;
+};
+
 /// What the center runs for each registered filter part: one line per filter.
 template <typename Model, typename Sensor>
 struct CenterFusionOf<EkfFilterPart, Model, Sensor> {
@@ -157,6 +206,10 @@ struct CenterFusionOf<ImmFilterPart, Model, Sensor> {
 template <typename Model, typename Sensor>
 struct CenterFusionOf<NcrkfFilterPart, Model, Sensor> {
   using type = NcrkfCenter;
+};
+template <typename Model, typename Sensor>
+struct CenterFusionOf<UkfFilterPart, Model, Sensor> {
+  using type = UnscentedCenter<Model, Sensor>;
 };
 
 }  // namespace skyfuse::center

@@ -10,11 +10,14 @@
 #include <utility>
 
 #include "increment_round.hpp"
+#include "skyfuse/tracking/increment_rules.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse::station {
 
-template <typename Model, typename Sensor>
+/// `Rule` makes this station's increment (tracking/increment_rules.hpp): the EKF's, or the
+/// unscented filter's.
+template <typename Model, typename Sensor, typename Rule = EkfIncrementRule>
 class SingleModelFusion : public IncrementRound<Model> {
   using Base = IncrementRound<Model>;
 
@@ -32,7 +35,7 @@ class SingleModelFusion : public IncrementRound<Model> {
     if (result.status != NumericalStatus::kOk) return result;
     Contribution own;
     own.prior = this->chain_.tracker().estimate();
-    result = skyfuse::contribute(own.prior, observation, gate, own.increment);
+    result = Rule::contribute(own.prior, observation, gate, own.increment);
     if (result.status != NumericalStatus::kOk) return result;
     this->publish(k, observation.station_id, own, run_id, write);
     return result;

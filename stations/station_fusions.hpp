@@ -25,5 +25,9 @@ template <typename Model, typename Sensor>
 struct StationFusionOf<NcrkfFilterPart, Model, Sensor> {
   using type = NcrkfFusion;
 };
+template <typename Model, typename Sensor>
+struct StationFusionOf<UkfFilterPart, Model, Sensor> {
+  using type = SingleModelFusion<Model, Sensor, UnscentedIncrementRule>;
+};
 
 }  // namespace skyfuse::station

@@ -6,6 +6,7 @@
 #include "sim/ekf_run_stepper.hpp"
 #include "sim/imm_run_stepper.hpp"
 #include "sim/ncrkf_run_stepper.hpp"
+#include "sim/ukf_run_stepper.hpp"
 #include "skyfuse/registry/registry.hpp"
 
 namespace skyfuse {
@@ -24,6 +25,10 @@ struct RunStepperOf<ImmFilterPart, Model, SensorOf> {
 template <typename Model, template <int> class SensorOf>
 struct RunStepperOf<NcrkfFilterPart, Model, SensorOf> {
   using type = NcrkfRunStepper;
+};
+template <typename Model, template <int> class SensorOf>
+struct RunStepperOf<UkfFilterPart, Model, SensorOf> {
+  using type = UkfRunStepper<Model, SensorOf>;
 };
 
 }  // namespace skyfuse

@@ -236,7 +236,7 @@ TEST(ScenarioLoader, RefusesAnUnknownPart) {
       << model;
   EXPECT_EQ(
       rejection(default_with("kind: ekf", "kind: particle")),
-      "test.yaml: filter.kind: unknown filter 'particle' (registered: ekf, imm, ncrkf) (line 57)");
+      "test.yaml: filter.kind: unknown filter 'particle' (registered: ekf, imm, ncrkf, ukf) (line 57)");
 }
 
 TEST(ScenarioLoader, RefusesFieldsThatDoNotFitThePart) {

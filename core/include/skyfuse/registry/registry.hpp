@@ -16,6 +16,7 @@
 #include "skyfuse/filters/parts/ekf_part.hpp"
 #include "skyfuse/filters/parts/imm_part.hpp"
 #include "skyfuse/filters/parts/ncrkf_part.hpp"
+#include "skyfuse/filters/parts/ukf_part.hpp"
 #include "skyfuse/models/constant_acceleration.hpp"
 #include "skyfuse/models/constant_velocity.hpp"
 #include "skyfuse/models/position_velocity.hpp"
@@ -30,7 +31,7 @@ namespace skyfuse {
 using MotionModels = ModelList<ConstantAcceleration3D, ConstantVelocity3D, TdoaRelativeMotion>;
 using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity, RangeDifferenceSensor>;
 
-using FilterParts = FilterList<EkfFilterPart, ImmFilterPart, NcrkfFilterPart>;
+using FilterParts = FilterList<EkfFilterPart, ImmFilterPart, NcrkfFilterPart, UkfFilterPart>;
 
 /// Stations with different sensors in one run: any registered sensor, for an N-entry state.
 template <int N>
