@@ -6,7 +6,8 @@ doubles. The output is committed; run this again only to change the seeds:
 
 Layouts (see fuzz/fuzz_input.hpp and the targets): every double is 8 bytes, little endian;
 a symmetric matrix is its upper triangle, row by row.
-  increment_check:   mode byte (even: raw dQ; odd: dQ = G^T G), dQ (45) or G (27), dy (9)
+  increment_check:   mode byte (even: raw dQ; odd: dQ = G^T G; byte / 2: the registered motion
+                     model, 0 = constant_acceleration_3d, N = 9), dQ (45) or G (27), dy (9)
   observation_check: z (3), R upper triangle (6), station position (3)
 """
 
