@@ -166,11 +166,13 @@ class UnscentedCenter : public TrackedCenter<PeerTracker<Model>, PeerRound<Model
   NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& /*gate*/,
                          OnRefused on_refused) {
     prior_ = this->tracker_.estimate();
+    if (!sigma_.compute(prior_, UnscentedParameters{})) {
+      return NumericalStatus::kNotPositiveDefinite;
+    }
     for (std::size_t i = 0; i < count; ++i) {
       const Observation* o = observation_at(i);
       if (o == nullptr) continue;
-      const OwnContribution own =
-          UnscentedIncrementRule::contribute(prior_, *o, NisGate{}, increments_[i]);
+      const OwnContribution own = UnscentedIncrementRule::contribute(sigma_, *o, increments_[i]);
       if (own.status != NumericalStatus::kOk) return own.status;
       if (own.refused) on_refused(o->station_id, *own.refused);
     }
@@ -192,6 +194,7 @@ class UnscentedCenter : public TrackedCenter<PeerTracker<Model>, PeerRound<Model
 
   std::vector<InformationIncrement<kDim>> increments_;  // the round's, by participant
   GaussianState<kDim> prior_;
+  SigmaPoints<kDim> sigma_;  // the prior's, made once a round for every station
 };
 
 /// What the center runs for each registered filter part: one line per filter.

@@ -47,9 +47,7 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
     own.prior = chain_.tracker().estimate();
     result.refused = Sensor::check_reported(observation.z);
     if (result.refused) {
-      own.increment.station_id = observation.station_id;
-      own.increment.delta_information.setZero();
-      own.increment.delta_vector.setZero();
+      own.increment.set_zero(observation.station_id);
     } else {
       own.increment = tdoa_contribution(observation);
     }

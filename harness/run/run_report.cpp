@@ -68,19 +68,18 @@ RunRecorder::RunRecorder(const RunPlan& plan, std::vector<int> station_ids,
       station_ids_(std::move(station_ids)),
       restarts_(std::move(restarts)),
       truth_(plan.truth()),
-      position_dim_(find_motion_model(plan.scenario.filter.motion_model.kind)->position_dim),
-      state_dim_(find_motion_model(plan.scenario.filter.motion_model.kind)->state_dim),
+      model_(*find_motion_model(plan.scenario.filter.motion_model.kind)),
       mode_names_(find_filter(plan.scenario.filter.kind)->mode_names) {
   std::sort(station_ids_.begin(), station_ids_.end());
   rounds_.reserve(static_cast<std::size_t>(plan.scenario.steps));
 }
 
 Vector3 RunRecorder::position_of(const ReceivedTrack& track) const {
-  return state_position(track.estimate.mean, position_dim_);
+  return state_position(track.estimate.mean, model_.position_dim);
 }
 
 Vector3 RunRecorder::truth_position(std::uint64_t step) const {
-  return state_position(truth_.states[step], position_dim_);
+  return state_position(truth_.states[step], model_.position_dim);
 }
 
 std::optional<SettledFigures> RunRecorder::summarise_settled(
@@ -227,7 +226,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
       "step,time_s,truth_x,truth_y,truth_z,central_x,central_y,central_z,p2p_x,p2p_y,p2p_z,"
       "error_central_m,error_p2p_m,central_minus_p2p_m,peer_spread\n";
   std::string tracks = "step,source";
-  for (int i = 0; i < state_dim_; ++i) tracks += fmt::format(",x{}", i);
+  for (int i = 0; i < model_.state_dim; ++i) tracks += fmt::format(",x{}", i);
   tracks += '\n';
   std::string measurements = measurements_header();
   std::string rounds = "step,latency_us\n";

@@ -20,6 +20,7 @@
 
 #include "run/lockstep_driver.hpp"
 #include "skyfuse/random/link_loss.hpp"
+#include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
@@ -110,8 +111,9 @@ class RunRecorder {
   std::vector<int> station_ids_;
   std::vector<StationEvent> restarts_;
   TruthTrajectory truth_;
-  int position_dim_;  // leading state entries that are the position (models/state_position.hpp)
-  int state_dim_;     // entries of every track's state: the run's motion model's
+  // The run's motion model: every track's state dimension, and its leading entries that are the
+  // position (models/state_position.hpp).
+  MotionModelInfo model_;
   std::vector<std::string_view> mode_names_;  // the filter's modes (none: one model)
   std::vector<RoundRecord> rounds_;
 

@@ -88,7 +88,7 @@ std::optional<std::string> filter_option_refusal(const FilterInfo& filter, std::
                        filter.kind);
   }
   if (nis_gate && !filter.takes_nis_gate) {
-    return fmt::format("--nis-gate: filter {} has no innovation to gate", filter.kind);
+    return fmt::format("--nis-gate: filter {} takes no NIS gate ({})", filter.kind, filter.summary);
   }
   return std::nullopt;
 }

@@ -62,9 +62,13 @@ class UkfRunStepper {
   // were screened out.
   int fuse(PeerTracker<Model>& tracker, PeerRound<Model>& round, std::size_t k, const char* who) {
     int refused = 0;
+    if (!sigma_.compute(tracker.estimate(), UnscentedParameters{})) {
+      throw NumericalError(
+          fmt::format("{} UKF: step {}: prior covariance not positive definite", who, k));
+    }
     for (std::size_t j = 0; j < order_.size(); ++j) {
-      const OwnContribution own = UnscentedIncrementRule::contribute(
-          tracker.estimate(), observations_[j], NisGate{}, increments_[j]);
+      const OwnContribution own =
+          UnscentedIncrementRule::contribute(sigma_, observations_[j], increments_[j]);
       if (own.status != NumericalStatus::kOk) {
         throw NumericalError(fmt::format("{} UKF: step {}, station {}: increment failed: {}", who,
                                          k, observations_[j].station_id, to_string(own.status)));
@@ -87,6 +91,7 @@ class UkfRunStepper {
   std::vector<std::size_t> order_;  // ascending id -> scenario index
   std::vector<Observation> observations_;
   std::vector<InformationIncrement<kDim>> increments_;
+  SigmaPoints<kDim> sigma_;  // of the prior being updated, made once a round for every station
   PeerRound<Model> central_round_;
   PeerRound<Model> peer_round_;
   RunTrace trace_;

@@ -234,9 +234,9 @@ TEST(ScenarioLoader, RefusesAnUnknownPart) {
                         0),
             0U)
       << model;
-  EXPECT_EQ(
-      rejection(default_with("kind: ekf", "kind: particle")),
-      "test.yaml: filter.kind: unknown filter 'particle' (registered: ekf, imm, ncrkf, ukf) (line 57)");
+  EXPECT_EQ(rejection(default_with("kind: ekf", "kind: particle")),
+            "test.yaml: filter.kind: unknown filter 'particle' (registered: ekf, imm, ncrkf, ukf) "
+            "(line 57)");
 }
 
 TEST(ScenarioLoader, RefusesFieldsThatDoNotFitThePart) {

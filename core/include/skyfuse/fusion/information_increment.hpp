@@ -21,6 +21,14 @@ struct InformationIncrement {
   int station_id = 0;
   Covariance<N> delta_information = Covariance<N>::Zero();  ///< dQ_i
   Vector<N> delta_vector = Vector<N>::Zero();               ///< dy_i
+
+  /// What a station sends for a measurement screened out: an increment that adds nothing, so
+  /// that its peers need not wait for one.
+  void set_zero(int station) {
+    station_id = station;
+    delta_information.setZero();
+    delta_vector.setZero();
+  }
 };
 
 /// What a station sends beside its increment so that its peers can form the likelihood of the

@@ -111,9 +111,7 @@ class PeerImm {
       auto& mode = std::get<I>(out.modes);
       mode.prior = imm_.template mode_state<I>();
       if (result.refused) {
-        mode.increment.station_id = observation.station_id;
-        mode.increment.delta_information.setZero();
-        mode.increment.delta_vector.setZero();
+        mode.increment.set_zero(observation.station_id);
         out.terms[I] = {};
         return;
       }

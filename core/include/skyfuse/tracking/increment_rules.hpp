@@ -25,26 +25,35 @@ struct EkfIncrementRule {
 /// The unscented information filter's increment, screened by the sensor's checks. Its part
 /// takes no NIS gate: a gate would need the unscented innovation covariance, not the EKF's.
 struct UnscentedIncrementRule {
+  /// A station's own increment: it makes the prior's sigma points for its one measurement.
   template <int N, typename Sensor>
   static OwnContribution contribute(const GaussianState<N>& prior,
                                     const StationObservation<Sensor>& observation,
                                     const NisGate& /*gate*/, InformationIncrement<N>& out) {
-    OwnContribution result;
-    result.refused = Sensor::check_reported(observation.z);
-    if (result.refused) {
-      out.station_id = observation.station_id;
-      out.delta_information.setZero();
-      out.delta_vector.setZero();
-      return result;
+    if (const auto why = Sensor::check_reported(observation.z)) {
+      out.set_zero(observation.station_id);
+      return {why, NumericalStatus::kOk};
     }
     SigmaPoints<N> sigma;
     if (!sigma.compute(prior, UnscentedParameters{})) {
-      result.status = NumericalStatus::kNotPositiveDefinite;
-      return result;
+      return {std::nullopt, NumericalStatus::kNotPositiveDefinite};
     }
-    result.status = compute_unscented_increment(observation.station_id, sigma, observation.sensor,
-                                                observation.z, observation.noise, out);
-    return result;
+    return contribute(sigma, observation, out);
+  }
+
+  /// The same against sigma points made once for the round: a center or an in-process twin
+  /// computes every station's increment against one prior.
+  template <int N, typename Sensor>
+  static OwnContribution contribute(const SigmaPoints<N>& sigma,
+                                    const StationObservation<Sensor>& observation,
+                                    InformationIncrement<N>& out) {
+    if (const auto why = Sensor::check_reported(observation.z)) {
+      out.set_zero(observation.station_id);
+      return {why, NumericalStatus::kOk};
+    }
+    return {std::nullopt,
+            compute_unscented_increment(observation.station_id, sigma, observation.sensor,
+                                        observation.z, observation.noise, out)};
   }
 };
 

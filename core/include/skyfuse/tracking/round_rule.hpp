@@ -55,9 +55,7 @@ OwnContribution contribute(const GaussianState<N>& prior,
   OwnContribution result;
   result.refused = screen_observation(prior, observation, gate);
   if (result.refused) {
-    out.station_id = observation.station_id;
-    out.delta_information.setZero();
-    out.delta_vector.setZero();
+    out.set_zero(observation.station_id);
     return result;
   }
   result.status = compute_increment(observation.station_id, prior, observation.sensor,
