@@ -58,7 +58,9 @@ class Center {
       return *end;
     }
     spdlog::info("joined run {} with {} stations", options_.run_id, m);
-    return loop_.run(*this, 0, static_cast<std::uint64_t>(plan_.scenario.steps), tracks_);
+    const int code = loop_.run(*this, 0, static_cast<std::uint64_t>(plan_.scenario.steps), tracks_);
+    if constexpr (requires { chain_.fusion().report(); }) chain_.fusion().report();
+    return code;
   }
 
   // What the round loop asks of the center (transport::NodeProcess).

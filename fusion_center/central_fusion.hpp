@@ -1,10 +1,16 @@
 #pragma once
 // What the center runs on the measurements of a round, by the run's filter kind: the stacked
-// EKF (SingleModelCenter), the network IMM's stacked form (ImmCenter), or paper 002's stacked
-// NCRKF (NcrkfCenter). Each takes the round's measurements by the round rule, updates, and makes
-// the track; the center process (center_process.cpp) moves the samples.
+// EKF (SingleModelCenter), the network IMM's stacked form (ImmCenter), paper 002's stacked
+// NCRKF (NcrkfCenter), or the sum of any other part's increments (IncrementCenter). Each takes the
+// round's measurements by the round rule, updates, and makes the track; the center process
+// (center_process.cpp) moves the samples.
 
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
 #include <cstdint>
+#include <span>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -20,9 +26,6 @@
 #include "skyfuse/transport/wire_conversion.hpp"
 
 namespace skyfuse::center {
-
-template <typename Filter, typename Model, typename Sensor>
-struct CenterFusionOf;
 
 /// What a single-model center holds and how its track is made, whatever updates it: the tracker
 /// and the round that names the stations fused. SingleModelCenter and NcrkfCenter derive from it.
@@ -146,58 +149,120 @@ class NcrkfCenter
   GaussianState<kDim> prior_;
 };
 
-/// The unscented information filter on the stacked measurement: the center computes each
-/// station's unscented increment from its raw measurement against the center's own prior, as
-/// the station does, and fuses them onto that prior by the round rule. The stacked regression
-/// is the stack of the stations', so this is the stacked update (filters/unscented.hpp).
-template <typename Model, typename Sensor>
-class UnscentedCenter : public TrackedCenter<PeerTracker<Model>, PeerRound<Model>> {
+/// How far a reference update of each round's prior lies from the center's: the part's rule
+/// names one (the unscented rule: the covariance-form UKF on the stacked measurement).
+class ReferenceDistance {
+ public:
+  template <int N>
+  void add(const GaussianState<N>& fused, const GaussianState<N>& reference) {
+    const double d = (reference.mean.template head<3>() - fused.mean.template head<3>()).norm();
+    ++updates_;
+    sum_m_ += d;
+    max_m_ = std::max(max_m_, d);
+    variance_ratio_sum_ += reference.covariance.template topLeftCorner<3, 3>().trace() /
+                           fused.covariance.template topLeftCorner<3, 3>().trace();
+  }
+  /// Logged when the run ends.
+  void report(std::string_view reference) const {
+    if (updates_ == 0) return;
+    const auto n = static_cast<double>(updates_);
+    spdlog::info(
+        "{} on the same priors and measurements, over {} updates: position {:.3e} m apart on "
+        "average, {:.3e} m at most; its position variance {:.6f} times the center's on average",
+        reference, updates_, sum_m_ / n, max_m_, variance_ratio_sum_ / n);
+  }
+
+ private:
+  std::uint64_t updates_ = 0;
+  double sum_m_ = 0.0;
+  double max_m_ = 0.0;
+  double variance_ratio_sum_ = 0.0;
+};
+
+/// The filter of a part with an increment rule (the unscented filter; any new one) on the
+/// stacked measurement: the center computes each station's increment from its raw measurement
+/// against its own prior, as the station does, and fuses them onto that prior by the round rule.
+/// For an increment-form filter the stacked update is the sum of the stations' increments. When
+/// the rule names a reference update, the center also measures how far it lies.
+template <typename Model, typename Sensor, typename Rule>
+class IncrementCenter : public TrackedCenter<PeerTracker<Model>, PeerRound<Model>> {
   static constexpr int kDim = Model::kDim;
+  using RoundPrior = typename Rule::template RoundPrior<kDim>;
+  static constexpr bool kHasReference = requires(const RoundPrior& p, GaussianState<kDim>& x) {
+    p.reference_update(x, std::span<const StationObservation<Sensor>* const>{}, x);
+  };
 
  public:
   using Observation = StationObservation<Sensor>;
 
-  explicit UnscentedCenter(const RunPlan& plan)
-      : UnscentedCenter(plan, sorted_ascending(plan.participant_ids())) {}
+  explicit IncrementCenter(const RunPlan& plan)
+      : IncrementCenter(plan, sorted_ascending(plan.participant_ids())) {}
 
   /// observation_at(i): the i-th of `count` participants' observation (ascending id) or null;
-  /// on_refused(station_id, why) for each screened out. No NIS gate (the part refuses one).
+  /// on_refused(station_id, why) for each screened out.
   template <typename ObservationAt, typename OnRefused>
-  NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& /*gate*/,
+  NumericalStatus update(std::size_t count, ObservationAt observation_at, const NisGate& gate,
                          OnRefused on_refused) {
     prior_ = this->tracker_.estimate();
-    if (!sigma_.compute(prior_, UnscentedParameters{})) {
-      return NumericalStatus::kNotPositiveDefinite;
-    }
+    if (!round_prior_.prepare(prior_)) return NumericalStatus::kNotPositiveDefinite;
+    passed_.clear();
     for (std::size_t i = 0; i < count; ++i) {
       const Observation* o = observation_at(i);
       if (o == nullptr) continue;
-      const OwnContribution own = UnscentedIncrementRule::contribute(sigma_, *o, increments_[i]);
+      const OwnContribution own = round_prior_.contribute(*o, gate, increments_[i]);
       if (own.status != NumericalStatus::kOk) return own.status;
-      if (own.refused) on_refused(o->station_id, *own.refused);
+      if (own.refused) {
+        on_refused(o->station_id, *own.refused);
+      } else {
+        passed_.push_back(o);
+      }
     }
-    return this->round_
-        .fuse(this->tracker_,
-              [&](std::size_t i) {
-                return observation_at(i) != nullptr ? PeerSlot<kDim>{&increments_[i], &prior_}
-                                                    : PeerSlot<kDim>{};
-              })
-        .status;
+    const NumericalStatus status = this->round_
+                                       .fuse(this->tracker_,
+                                             [&](std::size_t i) {
+                                               return observation_at(i) != nullptr
+                                                          ? PeerSlot<kDim>{&increments_[i], &prior_}
+                                                          : PeerSlot<kDim>{};
+                                             })
+                                       .status;
+    if constexpr (kHasReference) {
+      if (status == NumericalStatus::kOk && !passed_.empty() &&
+          round_prior_.reference_update(prior_, std::span<const Observation* const>(passed_),
+                                        reference_) == NumericalStatus::kOk) {
+        distance_.add(this->tracker_.estimate(), reference_);
+      }
+    }
+    return status;
+  }
+
+  /// At the end of the run: how far the rule's reference update lay.
+  void report() const {
+    if constexpr (kHasReference) distance_.report(RoundPrior::kReferenceName);
   }
 
  private:
-  UnscentedCenter(const RunPlan& plan, std::vector<int> ascending_ids)
-      : UnscentedCenter::TrackedCenter(
+  IncrementCenter(const RunPlan& plan, std::vector<int> ascending_ids)
+      : IncrementCenter::TrackedCenter(
             {plan.motion_model<Model>(), plan.initial_estimate<Model>()},
             PeerRound<Model>(ascending_ids, plan.weights_of(ascending_ids))),
-        increments_(ascending_ids.size()) {}
+        increments_(ascending_ids.size()) {
+    passed_.reserve(ascending_ids.size());
+  }
 
   std::vector<InformationIncrement<kDim>> increments_;  // the round's, by participant
   GaussianState<kDim> prior_;
-  SigmaPoints<kDim> sigma_;  // the prior's, made once a round for every station
+  RoundPrior round_prior_;                  // the prior prepared once a round for every station
+  std::vector<const Observation*> passed_;  // the round's observations that passed screening
+  GaussianState<kDim> reference_;
+  ReferenceDistance distance_;
 };
 
-/// What the center runs for each registered filter part: one line per filter.
+/// What the center runs for each registered filter part: a part with an increment rule needs
+/// no line (IncrementCenter); the EKF's stacked update, the IMM and the NCRKF have their own.
+template <typename Filter, typename Model, typename Sensor>
+struct CenterFusionOf {
+  using type = IncrementCenter<Model, Sensor, typename Filter::IncrementRule>;
+};
 template <typename Model, typename Sensor>
 struct CenterFusionOf<EkfFilterPart, Model, Sensor> {
   using type = SingleModelCenter<Model, Sensor>;
@@ -209,10 +274,6 @@ struct CenterFusionOf<ImmFilterPart, Model, Sensor> {
 template <typename Model, typename Sensor>
 struct CenterFusionOf<NcrkfFilterPart, Model, Sensor> {
   using type = NcrkfCenter;
-};
-template <typename Model, typename Sensor>
-struct CenterFusionOf<UkfFilterPart, Model, Sensor> {
-  using type = UnscentedCenter<Model, Sensor>;
 };
 
 }  // namespace skyfuse::center

@@ -1,6 +1,7 @@
 #pragma once
-// What a station fuses when the run's filter is the EKF on one motion model (any registered one):
-// one increment per station and round, fused onto the lowest-id contribution's prior
+// What a station fuses when the run's filter part has an increment rule (the EKF, the unscented
+// filter) on one motion model (any registered one): one increment per station and round, fused
+// onto the lowest-id contribution's prior
 // (tracking/round_rule.hpp). The station process (station_process.cpp) moves the samples; this
 // decides what they mean. ImmFusion (imm_fusion.hpp) and NcrkfFusion (ncrkf_fusion.hpp) have the
 // same interface.
@@ -10,14 +11,13 @@
 #include <utility>
 
 #include "increment_round.hpp"
-#include "skyfuse/tracking/increment_rules.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse::station {
 
-/// `Rule` makes this station's increment (tracking/increment_rules.hpp): the EKF's, or the
-/// unscented filter's.
-template <typename Model, typename Sensor, typename Rule = EkfIncrementRule>
+/// `Rule` makes this station's increment: the filter part's increment rule
+/// (tracking/increment_rules.hpp).
+template <typename Model, typename Sensor, typename Rule>
 class SingleModelFusion : public IncrementRound<Model> {
   using Base = IncrementRound<Model>;
 

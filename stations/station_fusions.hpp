@@ -1,21 +1,20 @@
 #pragma once
-// What a station fuses for each registered filter part: one line per filter. Each fusion takes
-// the station's own measurement to its contribution, checks its peers' samples and fuses a
-// round (station_process.cpp moves the samples).
+// What a station fuses for each registered filter part. Each fusion takes the station's own
+// measurement to its contribution, checks its peers' samples and fuses a round
+// (station_process.cpp's round loop moves the samples). A part with an increment rule needs no
+// line here: SingleModelFusion sums its increments. The IMM and the NCRKF have their own.
 
 #include "imm_fusion.hpp"
 #include "ncrkf_fusion.hpp"
 #include "single_model_fusion.hpp"
 #include "skyfuse/registry/registry.hpp"
+#include "skyfuse/tracking/increment_rules.hpp"
 
 namespace skyfuse::station {
 
 template <typename Filter, typename Model, typename Sensor>
-struct StationFusionOf;
-
-template <typename Model, typename Sensor>
-struct StationFusionOf<EkfFilterPart, Model, Sensor> {
-  using type = SingleModelFusion<Model, Sensor>;
+struct StationFusionOf {
+  using type = SingleModelFusion<Model, Sensor, typename Filter::IncrementRule>;
 };
 template <typename Model, typename Sensor>
 struct StationFusionOf<ImmFilterPart, Model, Sensor> {
@@ -24,10 +23,6 @@ struct StationFusionOf<ImmFilterPart, Model, Sensor> {
 template <typename Model, typename Sensor>
 struct StationFusionOf<NcrkfFilterPart, Model, Sensor> {
   using type = NcrkfFusion;
-};
-template <typename Model, typename Sensor>
-struct StationFusionOf<UkfFilterPart, Model, Sensor> {
-  using type = SingleModelFusion<Model, Sensor, UnscentedIncrementRule>;
 };
 
 }  // namespace skyfuse::station

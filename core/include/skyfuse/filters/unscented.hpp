@@ -22,6 +22,7 @@
 #include <Eigen/Cholesky>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/core/status.hpp"
@@ -82,10 +83,12 @@ class SigmaPoints {
 };
 
 /// A sensor's statistical linearisation about the sigma points' prior: the predicted
-/// measurement z^ and the regression H~ = (P^-1 P_xz)^T.
+/// measurement z^, its spread P_zz = sum Wc_j (h(chi_j) - z^)(h(chi_j) - z^)^T, and the
+/// regression H~ = (P^-1 P_xz)^T.
 template <int M, int N>
 struct StatisticalLinearisation {
   Vector<M> predicted = Vector<M>::Zero();
+  Covariance<M> predicted_covariance = Covariance<M>::Zero();
   Matrix<M, N> regression = Matrix<M, N>::Zero();
 };
 
@@ -105,24 +108,36 @@ StatisticalLinearisation<Sensor::kMeasDim, N> linearise(const SigmaPoints<N>& si
   }
   Matrix<N, M> cross = Matrix<N, M>::Zero();  // P_xz
   for (int j = 0; j < SigmaPoints<N>::kCount; ++j) {
-    cross += sigma.covariance_weight(j) * (sigma.point(j) - sigma.mean()) *
-             (z[static_cast<std::size_t>(j)] - out.predicted).transpose();
+    const Vector<M> spread = z[static_cast<std::size_t>(j)] - out.predicted;
+    cross += sigma.covariance_weight(j) * (sigma.point(j) - sigma.mean()) * spread.transpose();
+    out.predicted_covariance += sigma.covariance_weight(j) * spread * spread.transpose();
   }
   out.regression = sigma.prior_factor().solve(cross).transpose();
   return out;
 }
 
+/// The unscented innovation's NIS, nu^T (P_zz + R)^-1 nu, of measurement z (noise R) against
+/// `lin`; nothing if P_zz + R is not positive definite. What the NIS gate screens with.
+template <int M, int N, typename Sensor>
+std::optional<double> unscented_nis(const StatisticalLinearisation<M, N>& lin, const Sensor&,
+                                    const Vector<M>& z, const Covariance<M>& noise) {
+  SmallCholesky<M> s_factor;
+  if (!s_factor.compute(lin.predicted_covariance + noise)) return std::nullopt;
+  const Vector<M> innovation = Sensor::residual(z, lin.predicted);
+  return innovation.dot(s_factor.solve(innovation));
+}
+
 /// Station `station_id`'s unscented information increment for measurement z (noise R) against
-/// the prior of `sigma`, into `out`. Fails only if R is not positive definite.
+/// the prior of `sigma`, linearised as `lin`, into `out`. Fails only if R is not positive
+/// definite.
 template <int N, typename Sensor>
-NumericalStatus compute_unscented_increment(int station_id, const SigmaPoints<N>& sigma,
-                                            const Sensor& sensor, const Vector<Sensor::kMeasDim>& z,
-                                            const Covariance<Sensor::kMeasDim>& noise,
-                                            InformationIncrement<N>& out) {
+NumericalStatus compute_unscented_increment(
+    int station_id, const SigmaPoints<N>& sigma,
+    const StatisticalLinearisation<Sensor::kMeasDim, N>& lin, const Vector<Sensor::kMeasDim>& z,
+    const Covariance<Sensor::kMeasDim>& noise, InformationIncrement<N>& out) {
   constexpr int M = Sensor::kMeasDim;
   SmallCholesky<M> r_factor;
   if (!r_factor.compute(noise)) return NumericalStatus::kNotPositiveDefinite;
-  const StatisticalLinearisation<M, N> lin = linearise(sigma, sensor);
   const Vector<M> innovation = Sensor::residual(z, lin.predicted);
   Matrix<M, N> r_inv_h;  // R^-1 H~
   for (int c = 0; c < N; ++c) r_inv_h.col(c) = r_factor.solve(lin.regression.col(c));
@@ -131,6 +146,16 @@ NumericalStatus compute_unscented_increment(int station_id, const SigmaPoints<N>
   symmetrize(out.delta_information);
   out.delta_vector = r_inv_h.transpose() * (innovation + lin.regression * sigma.mean());
   return NumericalStatus::kOk;
+}
+
+/// The same, linearising `sensor` over `sigma` first.
+template <int N, typename Sensor>
+NumericalStatus compute_unscented_increment(int station_id, const SigmaPoints<N>& sigma,
+                                            const Sensor& sensor, const Vector<Sensor::kMeasDim>& z,
+                                            const Covariance<Sensor::kMeasDim>& noise,
+                                            InformationIncrement<N>& out) {
+  return compute_unscented_increment<N, Sensor>(station_id, sigma, linearise(sigma, sensor), z,
+                                                noise, out);
 }
 
 }  // namespace skyfuse

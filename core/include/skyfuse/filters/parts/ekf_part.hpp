@@ -11,6 +11,8 @@
 
 namespace skyfuse {
 
+struct EkfIncrementRule;  // tracking/ekf_increment_rule.hpp
+
 struct EkfFilterPart {
   static constexpr std::string_view kKind = "ekf";
   static constexpr std::string_view kSummary =
@@ -22,6 +24,9 @@ struct EkfFilterPart {
   static constexpr bool kTakesNisGate = true;
   static constexpr std::array<std::string_view, 0> kModeNames = {};
   static constexpr int kNeesDof = 0;  // the model's state
+  /// A station's increment. (The center stacks the raw measurements instead: its own line in
+  /// fusion_center/central_fusion.hpp and core/src/sim/run_steppers.hpp.)
+  using IncrementRule = EkfIncrementRule;
 };
 
 }  // namespace skyfuse

@@ -7,14 +7,18 @@
 /// increments from the raw measurements and sums them onto its own prior: the unscented filter
 /// on the stacked measurement, whose regression is the stack of the stations'.
 ///
-/// It runs on any registered model with stations of one sensor kind, takes a fixed-lag
-/// re-fusion, and takes no NIS gate yet (the gate would need the unscented innovation
-/// covariance).
+/// It runs on any registered model with stations of one sensor kind and takes every option: a
+/// fixed-lag re-fusion, and a NIS gate on the unscented innovation covariance P_zz + R. Its
+/// rule (tracking/unscented_increment_rule.hpp) is all the station, the center and the
+/// in-process twin need of it; the center also reports how far the covariance-form UKF on the
+/// stacked measurement lies from its update.
 
 #include <array>
 #include <string_view>
 
 namespace skyfuse {
+
+struct UnscentedIncrementRule;  // tracking/unscented_increment_rule.hpp
 
 struct UkfFilterPart {
   static constexpr std::string_view kKind = "ukf";
@@ -24,9 +28,10 @@ struct UkfFilterPart {
   static constexpr std::string_view kSensor = {};
   static constexpr bool kOneSensorKind = true;
   static constexpr bool kTakesRefusionLag = true;
-  static constexpr bool kTakesNisGate = false;
+  static constexpr bool kTakesNisGate = true;
   static constexpr std::array<std::string_view, 0> kModeNames = {};
   static constexpr int kNeesDof = 0;
+  using IncrementRule = UnscentedIncrementRule;
 };
 
 }  // namespace skyfuse
