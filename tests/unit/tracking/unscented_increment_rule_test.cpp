@@ -50,7 +50,7 @@ TEST(UnscentedIncrementRule, ALinearSensorsNisIsTheEkfs) {
     const Covariance<6> noise = Covariance<6>::Identity() * 0.25;
     SigmaPoints<9> sigma;
     ASSERT_TRUE(sigma.compute(prior, {}));
-    const auto unscented = unscented_nis(linearise(sigma, gps), gps, z, noise);
+    const auto unscented = unscented_nis(linearise(sigma, gps, Spread::kForm), gps, z, noise);
     const auto ekf = measurement_nis(prior, gps, z, noise);
     ASSERT_TRUE(unscented && ekf);
     EXPECT_NEAR(*unscented, *ekf, 1e-9 * *ekf) << "trial " << trial;

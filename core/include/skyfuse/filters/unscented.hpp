@@ -83,8 +83,8 @@ class SigmaPoints {
 };
 
 /// A sensor's statistical linearisation about the sigma points' prior: the predicted
-/// measurement z^, its spread P_zz = sum Wc_j (h(chi_j) - z^)(h(chi_j) - z^)^T, and the
-/// regression H~ = (P^-1 P_xz)^T.
+/// measurement z^, the regression H~ = (P^-1 P_xz)^T and, when asked for (a NIS gate needs
+/// it), the spread P_zz = sum Wc_j (h(chi_j) - z^)(h(chi_j) - z^)^T.
 template <int M, int N>
 struct StatisticalLinearisation {
   Vector<M> predicted = Vector<M>::Zero();
@@ -92,11 +92,17 @@ struct StatisticalLinearisation {
   Matrix<M, N> regression = Matrix<M, N>::Zero();
 };
 
-/// z^ and H~ of `sensor` over `sigma`. Each point's prediction is taken relative to the centre
-/// point's through the sensor's residual, so that angles near +-pi average where they lie.
+/// Whether linearise() also forms P_zz: M x M more per sigma point, about a tenth of a radar
+/// station's unscented step, needed only to screen with a NIS gate.
+enum class Spread { kLeaveOut, kForm };
+
+/// z^ and H~ of `sensor` over `sigma` (and P_zz with Spread::kForm). Each point's prediction is
+/// taken relative to the centre point's through the sensor's residual, so that angles near +-pi
+/// average where they lie.
 template <int N, typename Sensor>
 StatisticalLinearisation<Sensor::kMeasDim, N> linearise(const SigmaPoints<N>& sigma,
-                                                        const Sensor& sensor) {
+                                                        const Sensor& sensor,
+                                                        Spread spread_too = Spread::kLeaveOut) {
   constexpr int M = Sensor::kMeasDim;
   std::array<Vector<M>, SigmaPoints<N>::kCount> z;
   const Vector<M> centre = sensor.predict(sigma.point(0));
@@ -108,16 +114,22 @@ StatisticalLinearisation<Sensor::kMeasDim, N> linearise(const SigmaPoints<N>& si
   }
   Matrix<N, M> cross = Matrix<N, M>::Zero();  // P_xz
   for (int j = 0; j < SigmaPoints<N>::kCount; ++j) {
-    const Vector<M> spread = z[static_cast<std::size_t>(j)] - out.predicted;
-    cross += sigma.covariance_weight(j) * (sigma.point(j) - sigma.mean()) * spread.transpose();
-    out.predicted_covariance += sigma.covariance_weight(j) * spread * spread.transpose();
+    cross += sigma.covariance_weight(j) * (sigma.point(j) - sigma.mean()) *
+             (z[static_cast<std::size_t>(j)] - out.predicted).transpose();
+  }
+  if (spread_too == Spread::kForm) {  // a loop of its own: the one above stays as tight
+    for (int j = 0; j < SigmaPoints<N>::kCount; ++j) {
+      const Vector<M> spread = z[static_cast<std::size_t>(j)] - out.predicted;
+      out.predicted_covariance += sigma.covariance_weight(j) * spread * spread.transpose();
+    }
   }
   out.regression = sigma.prior_factor().solve(cross).transpose();
   return out;
 }
 
 /// The unscented innovation's NIS, nu^T (P_zz + R)^-1 nu, of measurement z (noise R) against
-/// `lin`; nothing if P_zz + R is not positive definite. What the NIS gate screens with.
+/// `lin` (linearised with Spread::kForm); nothing if P_zz + R is not positive definite. What the
+/// NIS gate screens with.
 template <int M, int N, typename Sensor>
 std::optional<double> unscented_nis(const StatisticalLinearisation<M, N>& lin, const Sensor&,
                                     const Vector<M>& z, const Covariance<M>& noise) {

@@ -36,7 +36,8 @@ struct UnscentedIncrementRule {
         out.set_zero(observation.station_id);
         return {why, NumericalStatus::kOk};
       }
-      const StatisticalLinearisation<M, N> lin = linearise(sigma_, observation.sensor);
+      const StatisticalLinearisation<M, N> lin =
+          linearise(sigma_, observation.sensor, gate.enabled() ? Spread::kForm : Spread::kLeaveOut);
       if (gate.enabled()) {
         const auto nis = unscented_nis(lin, observation.sensor, observation.z, observation.noise);
         if (!nis || *nis > gate.threshold(M)) {
