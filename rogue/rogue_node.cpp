@@ -32,6 +32,7 @@
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
@@ -95,7 +96,7 @@ wire::Measurement measurement_for(const Attack& a, const Victim& victim) {
   s.station_position() = {victim.site.x(), victim.site.y(), victim.site.z()};
   if (a.kind == DropKind::kWrongSite) s.station_position()[0] += 10.0;
   if (victim.tdoa) {
-    s.sensor(std::string(RangeDifferenceSensor<9>::kKind));
+    s.sensor(std::string(RangeDifferenceSensor<kKinematicsDim>::kKind));
     s.z() = {150.0};
     s.noise() = {0.16};
     if (a.kind == DropKind::kNonFinite) s.z()[0] = std::numeric_limits<double>::infinity();
@@ -103,7 +104,7 @@ wire::Measurement measurement_for(const Attack& a, const Victim& victim) {
     if (a.kind == DropKind::kOutOfRange) s.z()[0] = 2.0 * kMaxRangeM;
     return s;
   }
-  s.sensor(std::string(RangeAzimuthElevation<9>::kKind));
+  s.sensor(std::string(RangeAzimuthElevation<kKinematicsDim>::kKind));
   s.z() = {1500.0, 0.5, 0.3};
   s.noise() = {1.0, 0.0, 0.0, 1e-4, 0.0, 1e-4};  // upper triangle of diag(1, 1e-4, 1e-4)
   if (a.kind == DropKind::kNonFinite) s.z()[1] = std::numeric_limits<double>::infinity();
@@ -155,7 +156,7 @@ int main(int argc, char** argv) {
     for (const StationConfig& s : scenario.stations) {
       if (s.id != victim) continue;
       victim_config.site = s.position_m;
-      victim_config.tdoa = s.sensor.kind == RangeDifferenceSensor<9>::kKind;
+      victim_config.tdoa = s.sensor.kind == RangeDifferenceSensor<kKinematicsDim>::kKind;
     }
     transport::NodeConfig config;
     config.domain_id = domain;

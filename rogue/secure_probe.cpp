@@ -12,6 +12,7 @@
 #include "forged_increment.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/options/node_options.hpp"
+#include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
@@ -30,7 +31,7 @@ wire::Measurement plausible_measurement(std::uint64_t run, std::uint32_t step, i
   s.run_id(run);
   s.step(step);
   s.station_id(station);
-  s.sensor(std::string(RangeAzimuthElevation<9>::kKind));
+  s.sensor(std::string(RangeAzimuthElevation<kKinematicsDim>::kKind));
   s.z() = {1200.0, 0.4, 0.2};
   s.noise() = {0.01, 0.0, 0.0, 1e-4, 0.0, 1e-4};
   s.station_position() = {0.0, 0.0, 0.0};

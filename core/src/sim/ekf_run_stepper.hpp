@@ -51,7 +51,7 @@ class EkfRunStepper {
 
   // Updates both trackers with step k's measurements (z[i] belongs to scenario.stations[i]) by
   // the round rule, records, then predicts to k + 1.
-  void step(std::size_t k, const Vector<9>& x, std::span<const Measurement> z,
+  void step(std::size_t k, const Vector<kKinematicsDim>& x, std::span<const Measurement> z,
             const StepObserver& observer) {
     for (std::size_t j = 0; j < order_.size(); ++j) {
       with_observation(observations_[j], [&](auto& obs) {

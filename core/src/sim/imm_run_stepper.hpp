@@ -51,7 +51,7 @@ class ImmRunStepper {
     for (auto& c : contributions_) contribution_order_.push_back(&c);
   }
 
-  void step(std::size_t k, const Vector<9>& x, std::span<const Measurement> z,
+  void step(std::size_t k, const Vector<kKinematicsDim>& x, std::span<const Measurement> z,
             const StepObserver& observer) {
     for (std::size_t j = 0; j < order_.size(); ++j) {
       observations_[j].z = z[order_[j]];
@@ -98,13 +98,15 @@ class ImmRunStepper {
   RunTrace take_trace() { return std::move(trace_); }
 
  private:
-  static GaussianState<9> start(const Scenario& scenario, const TruthTrajectory& truth,
-                                std::uint64_t run) {
+  static GaussianState<kKinematicsDim> start(const Scenario& scenario, const TruthTrajectory& truth,
+                                             std::uint64_t run) {
     return initial_estimate<ConstantAcceleration3D>(scenario, truth.states.front(), run);
   }
   // [p; v; a] of the mixture.
-  static GaussianState<9> kinematics(const GaussianState<KinematicState::kDim>& mixture) {
-    return {mixture.mean.head<9>(), mixture.covariance.topLeftCorner<9, 9>()};
+  static GaussianState<kKinematicsDim> kinematics(
+      const GaussianState<KinematicState::kDim>& mixture) {
+    return {mixture.mean.head<kKinematicsDim>(),
+            mixture.covariance.topLeftCorner<kKinematicsDim, kKinematicsDim>()};
   }
 
   Central central_;
@@ -116,8 +118,8 @@ class ImmRunStepper {
   std::vector<typename Peers::Contribution> contributions_;
   std::vector<const typename Peers::Contribution*> contribution_order_;
   std::vector<int> contributors_;
-  GaussianState<9> central_estimate_;
-  GaussianState<9> p2p_estimate_;
+  GaussianState<kKinematicsDim> central_estimate_;
+  GaussianState<kKinematicsDim> p2p_estimate_;
   RunTrace trace_;
 };
 

@@ -41,7 +41,7 @@ class IncrementRunStepper {
     increments_.resize(order_.size());
   }
 
-  void step(std::size_t k, const Vector<9>& x, std::span<const Measurement> z,
+  void step(std::size_t k, const Vector<kKinematicsDim>& x, std::span<const Measurement> z,
             const StepObserver& observer) {
     for (std::size_t j = 0; j < order_.size(); ++j) observations_[j].z = z[order_[j]];
     trace_.refused_central += fuse(central_, central_round_, k, "central");

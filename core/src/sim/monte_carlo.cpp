@@ -31,7 +31,7 @@ std::vector<RunTrace> simulate_runs(const Scenario& scenario, const TruthTraject
                                     std::span<const int> station_counts, std::uint64_t run,
                                     const NisGate& gate, const StepObserver& observer = {}) {
   // The sensors as they see the truth: the target's kinematics, whatever the filter's model.
-  using TruthSensor = SensorOf<9>;
+  using TruthSensor = SensorOf<kKinematicsDim>;
   std::vector<Stepper> steppers;
   steppers.reserve(station_counts.size());
   for (int m : station_counts) steppers.emplace_back(scenario, truth, m, run, gate);
@@ -46,7 +46,7 @@ std::vector<RunTrace> simulate_runs(const Scenario& scenario, const TruthTraject
 
   const auto steps = static_cast<std::size_t>(scenario.steps);
   for (std::size_t k = 0; k < steps; ++k) {
-    const Vector<9>& x = truth.states[k];
+    const Vector<kKinematicsDim>& x = truth.states[k];
     for (std::size_t i = 0; i < z.size(); ++i) {
       with_observation(truth_sensors[i], [&](const auto& o) {
         constexpr int kMeasDim = std::decay_t<decltype(o.z)>::RowsAtCompileTime;

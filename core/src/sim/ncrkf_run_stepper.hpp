@@ -46,7 +46,7 @@ class NcrkfRunStepper {
     usable_.assign(order_.size(), true);
   }
 
-  void step(std::size_t k, const Vector<9>& x, std::span<const Measurement> z,
+  void step(std::size_t k, const Vector<kKinematicsDim>& x, std::span<const Measurement> z,
             const StepObserver& observer) {
     for (std::size_t j = 0; j < order_.size(); ++j) {
       observations_[j].z = z[order_[j]];

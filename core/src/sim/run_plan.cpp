@@ -8,7 +8,7 @@
 
 namespace skyfuse {
 
-Vector<9> RunPlan::true_initial_state() const {
+Vector<kKinematicsDim> RunPlan::true_initial_state() const {
   // Only the first true state is needed: a trajectory of one step, not of the whole run.
   return generate_truth(scenario.target, speed_mps, scenario.time_step_s, 1).states.front();
 }

@@ -78,7 +78,7 @@ inline void record_positions(RunTrace& trace, std::size_t k, const Vector3& trut
 /// central NIS) and tells the observer. The NEES is against the peers' current covariance
 /// (PeerTracker::normalized_squared_error: the fused information when the round fused).
 template <typename Model>
-void record_step(RunTrace& trace, std::size_t k, const Vector<9>& x,
+void record_step(RunTrace& trace, std::size_t k, const Vector<kKinematicsDim>& x,
                  const GaussianState<Model::kDim>& central, const PeerTracker<Model>& peers,
                  double nis_central, const StepObserver& observer) {
   const Vector3 p_central = state_position<Model>(central.mean);

@@ -13,18 +13,20 @@ ConstantAcceleration3D network_imm_ca_model(const Scenario& scenario) {
   return ConstantAcceleration3D(scenario.time_step_s, {q(0), q(1), q(2)});
 }
 
-NetworkImmFilter::CommonState network_imm_start(const GaussianState<9>& initial,
-                                                double turn_rate_variance) {
+NetworkImmFilter::CommonState network_imm_start(
+    const GaussianState<ConstantAcceleration3D::kDim>& initial, double turn_rate_variance) {
   NetworkImmFilter::CommonState out;
   out.mean.setZero();
-  out.mean.head<9>() = initial.mean;
+  out.mean.head<ConstantAcceleration3D::kDim>() = initial.mean;
   out.covariance.setZero();
-  out.covariance.topLeftCorner<9, 9>() = initial.covariance;
+  out.covariance.topLeftCorner<ConstantAcceleration3D::kDim, ConstantAcceleration3D::kDim>() =
+      initial.covariance;
   out.covariance(KinematicState::kTurnRate, KinematicState::kTurnRate) = turn_rate_variance;
   return out;
 }
 
-NetworkImmFilter make_network_imm(const Scenario& scenario, const GaussianState<9>& initial) {
+NetworkImmFilter make_network_imm(const Scenario& scenario,
+                                  const GaussianState<ConstantAcceleration3D::kDim>& initial) {
   const ImmConfig& modes = scenario.filter.imm;
   const double dt = scenario.time_step_s;
   const double switch_probability = (1.0 - modes.stay_probability) / 2.0;

@@ -10,6 +10,7 @@
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/random/counter_rng.hpp"
 #include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse {
 
@@ -33,7 +34,8 @@ Covariance<M> station_noise_covariance(const Scenario& scenario, const StationCo
 /// angles wrapped). The sensor sees the target's true kinematics x = [p; v; a], so `Sensor` is
 /// a sensor of the 9-entry kinematic state whatever the filter's model.
 template <typename Sensor>
-typename Sensor::Measurement simulate_measurement(const Sensor& sensor, const Vector<9>& truth,
+typename Sensor::Measurement simulate_measurement(const Sensor& sensor,
+                                                  const Vector<kKinematicsDim>& truth,
                                                   const Covariance<Sensor::kMeasDim>& noise,
                                                   std::uint64_t seed, std::uint64_t run,
                                                   int station_id, std::uint64_t step) {
@@ -55,7 +57,7 @@ Eigen::VectorXd initial_state_error(const Scenario& scenario, std::uint64_t run)
 /// accelerations: e's entries for it are not used.
 template <typename Model>
 GaussianState<Model::kDim> initial_estimate(const Scenario& scenario,
-                                            const Vector<9>& true_initial_state,
+                                            const Vector<kKinematicsDim>& true_initial_state,
                                             std::uint64_t run) {
   GaussianState<Model::kDim> estimate;
   estimate.covariance = scenario.filter.initial_covariance_diag.asDiagonal();

@@ -18,7 +18,7 @@ inline constexpr int kKinematicsDim = 9;
 /// states[k] = [p; v; a] at time k * dt for k = 0..steps (steps + 1 entries); a is the
 /// acceleration acting over the step that starts at k.
 struct TruthTrajectory {
-  std::vector<Vector<9>> states;
+  std::vector<Vector<kKinematicsDim>> states;
 
   Vector3 position(std::size_t step) const { return states[step].head<3>(); }
 };

@@ -38,7 +38,7 @@ struct EstimateView {
 /// What one step of one run produced, for callers that want more than the summary.
 struct StepRecord {
   int step;
-  const Vector<9>& truth;  ///< true kinematics [p; v; a]
+  const Vector<kKinematicsDim>& truth;  ///< true kinematics [p; v; a]
   EstimateView central;
   EstimateView decentralised;
   double nis_central;

@@ -37,7 +37,7 @@ struct RunPlan {
     return generate_truth(scenario.target, speed_mps, scenario.time_step_s, scenario.steps);
   }
   /// The target's true kinematics [p; v; a] at step 0.
-  Vector<9> true_initial_state() const;
+  Vector<kKinematicsDim> true_initial_state() const;
   /// The filter's motion model (the scenario's, as type `Model`) and its start x0_hat for this
   /// run: what the center and every station begin from, so that they begin from the same bits.
   template <typename Model>

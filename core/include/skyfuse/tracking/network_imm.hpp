@@ -25,7 +25,8 @@ using NetworkCentralImm =
 
 /// The IMM of `scenario` (its filter's CA model and ImmConfig) starting from `initial` (its
 /// [p; v; a] estimate and P0).
-NetworkImmFilter make_network_imm(const Scenario& scenario, const GaussianState<9>& initial);
+NetworkImmFilter make_network_imm(const Scenario& scenario,
+                                  const GaussianState<ConstantAcceleration3D::kDim>& initial);
 
 /// The scenario's CA model (its filter's process noise), the IMM's CA mode. Throws
 /// std::invalid_argument when the scenario's filter is not constant_acceleration_3d.
@@ -33,7 +34,7 @@ ConstantAcceleration3D network_imm_ca_model(const Scenario& scenario);
 
 /// `initial` ([p; v; a] and P0) in the IMM's common state: turn rate 0 with variance
 /// `turn_rate_variance`, uncorrelated with the rest.
-NetworkImmFilter::CommonState network_imm_start(const GaussianState<9>& initial,
-                                                double turn_rate_variance);
+NetworkImmFilter::CommonState network_imm_start(
+    const GaussianState<ConstantAcceleration3D::kDim>& initial, double turn_rate_variance);
 
 }  // namespace skyfuse
