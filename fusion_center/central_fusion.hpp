@@ -183,7 +183,8 @@ class ReferenceDistance {
 /// stacked measurement: the center computes each station's increment from its raw measurement
 /// against its own prior, as the station does, and fuses them onto that prior by the round rule.
 /// For an increment-form filter the stacked update is the sum of the stations' increments. When
-/// the rule names a reference update, the center also measures how far it lies.
+/// the rule names a reference update and the center logs at info level (`-v`), it also measures
+/// how far that update lies; otherwise nobody would read the figure, so it is not computed.
 template <typename Model, typename Sensor, typename Rule>
 class IncrementCenter : public TrackedCenter<PeerTracker<Model>, PeerRound<Model>> {
   static constexpr int kDim = Model::kDim;
@@ -226,7 +227,7 @@ class IncrementCenter : public TrackedCenter<PeerTracker<Model>, PeerRound<Model
                                              })
                                        .status;
     if constexpr (kHasReference) {
-      if (status == NumericalStatus::kOk && !passed_.empty() &&
+      if (measure_reference_ && status == NumericalStatus::kOk && !passed_.empty() &&
           round_prior_.reference_update(prior_, std::span<const Observation* const>(passed_),
                                         reference_) == NumericalStatus::kOk) {
         distance_.add(this->tracker_.estimate(), reference_);
@@ -245,7 +246,8 @@ class IncrementCenter : public TrackedCenter<PeerTracker<Model>, PeerRound<Model
       : IncrementCenter::TrackedCenter(
             {plan.motion_model<Model>(), plan.initial_estimate<Model>()},
             PeerRound<Model>(ascending_ids, plan.weights_of(ascending_ids))),
-        increments_(ascending_ids.size()) {
+        increments_(ascending_ids.size()),
+        measure_reference_(spdlog::should_log(spdlog::level::info)) {
     passed_.reserve(ascending_ids.size());
   }
 
@@ -253,6 +255,7 @@ class IncrementCenter : public TrackedCenter<PeerTracker<Model>, PeerRound<Model
   GaussianState<kDim> prior_;
   RoundPrior round_prior_;                  // the prior prepared once a round for every station
   std::vector<const Observation*> passed_;  // the round's observations that passed screening
+  bool measure_reference_;                  // only when report() would be seen
   GaussianState<kDim> reference_;
   ReferenceDistance distance_;
 };

@@ -1,4 +1,4 @@
-// skyfuse-center: the fusion center; stacked-measurement EKF over every station's measurement.
+// skyfuse-center: the fusion center; the run's filter on every station's raw measurement.
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -8,7 +8,7 @@
 
 int main(int argc, char** argv) {
   using namespace skyfuse;
-  CLI::App app{"skyfuse-center: the fusion center; one stacked EKF over all measurements"};
+  CLI::App app{"skyfuse-center: the fusion center; the run's filter on all stations' measurements"};
   options::NodeOptions options;
   options::add_node_options(app, options);
   CLI11_PARSE(app, argc, argv);

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <system_error>
+#include <utility>
 
 namespace skyfuse::options {
 namespace {
@@ -33,48 +34,41 @@ std::optional<double> real(const std::string& text) {
   return value;
 }
 
+// A check that `parse` reads the text and `accept` takes the value; else "must be <wanted>".
+template <typename Parse, typename Accept>
+CLI::Validator number_check(Parse parse, Accept accept, std::string wanted, std::string name) {
+  return CLI::Validator(
+      [parse, accept, wanted = std::move(wanted)](std::string& text) -> std::string {
+        const auto value = parse(text);
+        if (value && accept(*value)) return {};
+        return fmt::format("must be {}, got {}", wanted, text);
+      },
+      std::move(name));
+}
+
 }  // namespace
 
 CLI::Validator whole_number_at_least(std::int64_t low) {
-  const std::string wanted = fmt::format("a whole number >= {}", low);
-  return CLI::Validator(
-      [wanted, low](std::string& text) -> std::string {
-        const auto value = whole(text);
-        if (value && *value >= low) return {};
-        return fmt::format("must be {}, got {}", wanted, text);
-      },
+  return number_check(
+      whole, [low](std::int64_t v) { return v >= low; }, fmt::format("a whole number >= {}", low),
       fmt::format("INT>={}", low));
 }
 
 CLI::Validator whole_number_in(std::int64_t low, std::int64_t high) {
-  const std::string wanted = fmt::format("a whole number from {} to {}", low, high);
-  return CLI::Validator(
-      [wanted, low, high](std::string& text) -> std::string {
-        const auto value = whole(text);
-        if (value && *value >= low && *value <= high) return {};
-        return fmt::format("must be {}, got {}", wanted, text);
-      },
+  return number_check(
+      whole, [low, high](std::int64_t v) { return v >= low && v <= high; },
+      fmt::format("a whole number from {} to {}", low, high),
       fmt::format("INT in [{}, {}]", low, high));
 }
 
 CLI::Validator positive_number() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        const auto value = real(text);
-        if (value && *value > 0.0) return {};
-        return fmt::format("must be a number > 0, got {}", text);
-      },
-      "POSITIVE");
+  return number_check(
+      real, [](double v) { return v > 0.0; }, "a number > 0", "POSITIVE");
 }
 
 CLI::Validator non_negative_number() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        const auto value = real(text);
-        if (value && *value >= 0.0) return {};
-        return fmt::format("must be a number >= 0, got {}", text);
-      },
-      "NONNEGATIVE");
+  return number_check(
+      real, [](double v) { return v >= 0.0; }, "a number >= 0", "NONNEGATIVE");
 }
 
 }  // namespace skyfuse::options

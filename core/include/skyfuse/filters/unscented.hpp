@@ -54,7 +54,6 @@ class SigmaPoints {
     const double lambda = p.alpha * p.alpha * (N + p.kappa) - N;
     const double spread = std::sqrt(N + lambda);
     const Covariance<N> l = factor_.matrixL();
-    mean_ = prior.mean;
     points_[0] = prior.mean;
     for (int j = 0; j < N; ++j) {
       points_[1 + j] = prior.mean + spread * l.col(j);
@@ -67,7 +66,8 @@ class SigmaPoints {
   }
 
   const Vector<N>& point(int j) const { return points_[static_cast<std::size_t>(j)]; }
-  const Vector<N>& mean() const { return mean_; }
+  /// The prior's mean: the centre point.
+  const Vector<N>& mean() const { return points_[0]; }
   double mean_weight(int j) const { return j == 0 ? mean_weight_0_ : weight_; }
   double covariance_weight(int j) const { return j == 0 ? covariance_weight_0_ : weight_; }
   /// The Cholesky factor of the prior's P, for P^-1 P_xz.
@@ -76,7 +76,6 @@ class SigmaPoints {
  private:
   Eigen::LLT<Covariance<N>> factor_;
   std::array<Vector<N>, kCount> points_{};
-  Vector<N> mean_ = Vector<N>::Zero();
   double mean_weight_0_ = 0.0;
   double covariance_weight_0_ = 0.0;
   double weight_ = 0.0;
@@ -96,22 +95,39 @@ struct StatisticalLinearisation {
 /// station's unscented step, needed only to screen with a NIS gate.
 enum class Spread { kLeaveOut, kForm };
 
-/// z^ and H~ of `sensor` over `sigma` (and P_zz with Spread::kForm). Each point's prediction is
-/// taken relative to the centre point's through the sensor's residual, so that angles near +-pi
-/// average where they lie.
+/// Each sigma point's predicted measurement h(chi_j), taken relative to the centre point's
+/// through the sensor's residual so that angles near +-pi average where they lie, and their
+/// weighted mean z^. What the information form (linearise()) and the covariance form
+/// (unscented_covariance_update.hpp) both start from.
+template <int M, int N>
+struct SigmaPredictions {
+  std::array<Vector<M>, SigmaPoints<N>::kCount> points;
+  Vector<M> mean = Vector<M>::Zero();
+};
+
+template <int N, typename Sensor>
+SigmaPredictions<Sensor::kMeasDim, N> predict_sigma_points(const SigmaPoints<N>& sigma,
+                                                           const Sensor& sensor) {
+  SigmaPredictions<Sensor::kMeasDim, N> out;
+  const Vector<Sensor::kMeasDim> centre = sensor.predict(sigma.point(0));
+  for (int j = 0; j < SigmaPoints<N>::kCount; ++j) {
+    const auto i = static_cast<std::size_t>(j);
+    out.points[i] = centre + Sensor::residual(sensor.predict(sigma.point(j)), centre);
+    out.mean += sigma.mean_weight(j) * out.points[i];
+  }
+  return out;
+}
+
+/// z^ and H~ of `sensor` over `sigma` (and P_zz with Spread::kForm).
 template <int N, typename Sensor>
 StatisticalLinearisation<Sensor::kMeasDim, N> linearise(const SigmaPoints<N>& sigma,
                                                         const Sensor& sensor,
                                                         Spread spread_too = Spread::kLeaveOut) {
   constexpr int M = Sensor::kMeasDim;
-  std::array<Vector<M>, SigmaPoints<N>::kCount> z;
-  const Vector<M> centre = sensor.predict(sigma.point(0));
+  const SigmaPredictions<M, N> predictions = predict_sigma_points(sigma, sensor);
+  const auto& z = predictions.points;
   StatisticalLinearisation<M, N> out;
-  for (int j = 0; j < SigmaPoints<N>::kCount; ++j) {
-    z[static_cast<std::size_t>(j)] =
-        centre + Sensor::residual(sensor.predict(sigma.point(j)), centre);
-    out.predicted += sigma.mean_weight(j) * z[static_cast<std::size_t>(j)];
-  }
+  out.predicted = predictions.mean;
   Matrix<N, M> cross = Matrix<N, M>::Zero();  // P_xz
   for (int j = 0; j < SigmaPoints<N>::kCount; ++j) {
     cross += sigma.covariance_weight(j) * (sigma.point(j) - sigma.mean()) *

@@ -44,14 +44,11 @@ NumericalStatus covariance_form_unscented_update(const SigmaPoints<N>& sigma,
   for (std::size_t i = 0; i < stacked.size(); ++i) {
     const Observation& o = *stacked[i];
     const Eigen::Index row = static_cast<Eigen::Index>(M * i);
-    // Each point's prediction relative to the centre point's, so angles average where they lie.
-    const Vector<M> centre = o.sensor.predict(sigma.point(0));
-    Vector<M> mean = Vector<M>::Zero();
+    const SigmaPredictions<M, N> predictions = predict_sigma_points(sigma, o.sensor);
     for (int j = 0; j < kPoints; ++j) {
-      const Vector<M> z = centre + Sensor::residual(o.sensor.predict(sigma.point(j)), centre);
-      z_points.block<M, 1>(row, j) = z;
-      mean += sigma.mean_weight(j) * z;
+      z_points.block<M, 1>(row, j) = predictions.points[static_cast<std::size_t>(j)];
     }
+    const Vector<M>& mean = predictions.mean;
     predicted.segment<M>(row) = mean;
     innovation.segment<M>(row) = Sensor::residual(o.z, mean);
     s.block<M, M>(row, row) = o.noise;

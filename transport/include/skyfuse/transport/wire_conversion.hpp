@@ -13,6 +13,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
@@ -23,24 +24,29 @@
 
 namespace skyfuse::transport {
 
-/// Row-major upper triangle of a symmetric N x N matrix, N (N + 1) / 2 values.
+/// Row-major upper triangle of a symmetric n x n matrix, n (n + 1) / 2 values (n = N, or the
+/// matrix's size with N = Eigen::Dynamic).
 template <int N>
 std::vector<double> pack_upper(const Covariance<N>& m) {
+  const auto n = static_cast<int>(m.rows());
   std::vector<double> out;
-  out.reserve(static_cast<std::size_t>(N * (N + 1) / 2));
-  for (int r = 0; r < N; ++r) {
-    for (int c = r; c < N; ++c) out.push_back(m(r, c));
+  out.reserve(static_cast<std::size_t>(n * (n + 1) / 2));
+  for (int r = 0; r < n; ++r) {
+    for (int c = r; c < n; ++c) out.push_back(m(r, c));
   }
   return out;
 }
-/// The symmetric matrix of an upper triangle; nothing unless it has N (N + 1) / 2 values.
+/// The symmetric n x n matrix of an upper triangle; nothing unless it has n (n + 1) / 2 values.
+/// n is N, or given at run time with N = Eigen::Dynamic.
 template <int N>
-std::optional<Covariance<N>> unpack_upper(const std::vector<double>& in) {
-  if (in.size() != static_cast<std::size_t>(N * (N + 1) / 2)) return std::nullopt;
+std::optional<Covariance<N>> unpack_upper(const std::vector<double>& in, int n = N) {
+  const auto size = static_cast<std::size_t>(n);
+  if (n < 1 || in.size() != size * (size + 1) / 2) return std::nullopt;
   Covariance<N> m;
+  m.resize(n, n);
   std::size_t k = 0;
-  for (int r = 0; r < N; ++r) {
-    for (int c = r; c < N; ++c) m(r, c) = m(c, r) = in[k++];
+  for (int r = 0; r < n; ++r) {
+    for (int c = r; c < n; ++c) m(r, c) = m(c, r) = in[k++];
   }
   return m;
 }
@@ -48,11 +54,12 @@ template <int N>
 std::vector<double> pack_vector(const Vector<N>& v) {
   return std::vector<double>(v.data(), v.data() + N);
 }
-/// The vector of N values; nothing unless there are N.
+/// The vector of n values; nothing unless there are n. n is N, or given at run time with
+/// N = Eigen::Dynamic.
 template <int N>
-std::optional<Vector<N>> unpack_vector(const std::vector<double>& in) {
-  if (in.size() != static_cast<std::size_t>(N)) return std::nullopt;
-  return Vector<N>(Eigen::Map<const Vector<N>>(in.data()));
+std::optional<Vector<N>> unpack_vector(const std::vector<double>& in, int n = N) {
+  if (n < 1 || in.size() != static_cast<std::size_t>(n)) return std::nullopt;
+  return Vector<N>(Eigen::Map<const Vector<N>>(in.data(), n));
 }
 
 template <typename Sensor>
@@ -163,20 +170,10 @@ std::optional<GaussianState<N>> estimate_from_wire(const wire::TrackEstimate& sa
 /// nothing if its lengths are not n's.
 inline std::optional<DynamicGaussianState> estimate_from_wire(const wire::TrackEstimate& sample,
                                                               int n) {
-  const auto size = static_cast<std::size_t>(n);
-  if (n < 1 || sample.x().size() != size || sample.covariance().size() != size * (size + 1) / 2) {
-    return std::nullopt;
-  }
-  DynamicGaussianState state{Eigen::Map<const Eigen::VectorXd>(sample.x().data(), n),
-                             Eigen::MatrixXd(n, n)};
-  std::size_t next = 0;
-  for (int r = 0; r < n; ++r) {
-    for (int c = r; c < n; ++c) {
-      state.covariance(r, c) = sample.covariance()[next++];
-      state.covariance(c, r) = state.covariance(r, c);
-    }
-  }
-  return state;
+  auto x = unpack_vector<Eigen::Dynamic>(sample.x(), n);
+  auto p = unpack_upper<Eigen::Dynamic>(sample.covariance(), n);
+  if (!x || !p) return std::nullopt;
+  return DynamicGaussianState{std::move(*x), std::move(*p)};
 }
 
 }  // namespace skyfuse::transport
