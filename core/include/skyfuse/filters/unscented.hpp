@@ -91,8 +91,9 @@ struct StatisticalLinearisation {
   Matrix<M, N> regression = Matrix<M, N>::Zero();
 };
 
-/// Whether linearise() also forms P_zz: M x M more per sigma point, about a tenth of a radar
-/// station's unscented step, needed only to screen with a NIS gate.
+/// Whether linearise() also forms P_zz: M x M more per sigma point, needed only to screen with
+/// a NIS gate (formed always, inside the P_xz loop, a radar station's unscented step measured
+/// 1.98-2.00 us against 1.72-1.79 us without).
 enum class Spread { kLeaveOut, kForm };
 
 /// Each sigma point's predicted measurement h(chi_j), taken relative to the centre point's
