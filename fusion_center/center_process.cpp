@@ -161,18 +161,17 @@ int run_center(const options::NodeOptions& options) {
       [&]<typename Model, template <int> class SensorOf>(std::type_identity<Model>,
                                                          SensorTemplate<SensorOf>) {
         using Sensor = SensorOf<Model::kDim>;
-        visit_filter_kind<FilterParts>(
-            plan.scenario.filter.kind, [&]<typename Filter>(std::type_identity<Filter>) {
-              // The loader gives a filter only the models and stations it runs on.
-              if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
-                Center<Sensor, typename CenterFusionOf<Filter, Model, Sensor>::type> center(options,
-                                                                                            plan);
-                code = center.run();
-              } else {
-                throw std::logic_error(fmt::format("filter {} on {} with these stations",
-                                                   Filter::kKind, Model::kKind));
-              }
-            });
+        visit_filter(plan.scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
+          // The loader gives a filter only the models and stations it runs on.
+          if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
+            Center<Sensor, typename CenterFusionOf<Filter, Model, Sensor>::type> center(options,
+                                                                                        plan);
+            code = center.run();
+          } else {
+            throw std::logic_error(
+                fmt::format("filter {} on {} with these stations", Filter::kKind, Model::kKind));
+          }
+        });
       });
   return code;
 }

@@ -73,14 +73,16 @@ class SingleModelCenter
   }
 };
 
-/// The network IMM with every mode on the stacked measurement, for stations of one `Sensor`.
-template <typename Sensor>
+/// The network IMM of `ModeSet` with every mode on the stacked measurement, for stations of one
+/// `Sensor`.
+template <typename ModeSet, typename Sensor>
 class ImmCenter {
  public:
   using Observation = StationObservation<Sensor>;
 
   explicit ImmCenter(const RunPlan& plan)
-      : imm_(make_network_imm(plan.scenario, plan.initial_estimate<ConstantAcceleration3D>())) {
+      : imm_(NetworkImm<ModeSet>::make(plan.scenario,
+                                       plan.initial_estimate<ConstantAcceleration3D>())) {
     contributors_.reserve(static_cast<std::size_t>(plan.stations));
   }
 
@@ -99,7 +101,7 @@ class ImmCenter {
   static constexpr bool kRefuses = false;
 
  private:
-  NetworkCentralImm imm_;
+  typename NetworkImm<ModeSet>::Central imm_;
   std::vector<int> contributors_;
 };
 
@@ -270,9 +272,9 @@ template <typename Model, typename Sensor>
 struct CenterFusionOf<EkfFilterPart, Model, Sensor> {
   using type = SingleModelCenter<Model, Sensor>;
 };
-template <typename Model, typename Sensor>
-struct CenterFusionOf<ImmFilterPart, Model, Sensor> {
-  using type = ImmCenter<Sensor>;
+template <typename ModeSet, typename Model, typename Sensor>
+struct CenterFusionOf<ImmFilterPart<ModeSet>, Model, Sensor> {
+  using type = ImmCenter<ModeSet, Sensor>;
 };
 template <typename Model, typename Sensor>
 struct CenterFusionOf<NcrkfFilterPart, Model, Sensor> {

@@ -1,5 +1,6 @@
 #pragma once
-// What a station fuses when the run's filter is the network IMM (kind imm): per round, one
+// What a station fuses when the run's filter is the network IMM of `ModeSet` (kind imm): per
+// round, one
 // sample per mode from each station (its increment against that mode's prior, the likelihood
 // terms, the prior's mode probabilities), collected by (station, mode). A station counts as
 // arrived when all its modes have; the round is fused by PeerImm::fuse_round in ascending
@@ -23,10 +24,10 @@
 
 namespace skyfuse::station {
 
-template <typename Sensor>
+template <typename ModeSet, typename Sensor>
 class ImmFusion {
  public:
-  using Peers = NetworkPeerImm;
+  using Peers = typename NetworkImm<ModeSet>::Peer;
   using Contribution = typename Peers::Contribution;
   static constexpr int kModes = Peers::kModes;
   template <int I>
@@ -36,7 +37,8 @@ class ImmFusion {
 
   /// No re-fusion lag for the IMM (load_plan refuses one).
   ImmFusion(const RunPlan& plan, std::size_t /*lag*/)
-      : peers_(make_network_imm(plan.scenario, plan.initial_estimate<ConstantAcceleration3D>())),
+      : peers_(NetworkImm<ModeSet>::make(plan.scenario,
+                                         plan.initial_estimate<ConstantAcceleration3D>())),
         collectors_(make_collectors(plan.participant_ids(), std::make_index_sequence<kModes>{})),
         weights_(plan.weights_of(station_ids())),
         assembled_(station_ids().size()) {

@@ -16,9 +16,9 @@ template <typename Filter, typename Model, typename Sensor>
 struct StationFusionOf {
   using type = SingleModelFusion<Model, Sensor, typename Filter::IncrementRule>;
 };
-template <typename Model, typename Sensor>
-struct StationFusionOf<ImmFilterPart, Model, Sensor> {
-  using type = ImmFusion<Sensor>;
+template <typename ModeSet, typename Model, typename Sensor>
+struct StationFusionOf<ImmFilterPart<ModeSet>, Model, Sensor> {
+  using type = ImmFusion<ModeSet, Sensor>;
 };
 template <typename Model, typename Sensor>
 struct StationFusionOf<NcrkfFilterPart, Model, Sensor> {

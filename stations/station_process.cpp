@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/node_loop.hpp"
@@ -194,18 +195,17 @@ int run_with_sensor(const StationOptions& options, const RunPlan& plan, const St
         fmt::format("station {}: its noise or site is unusable: {}", me.id, to_string(*why)));
   }
   int code = options::kExitError;
-  visit_filter_kind<FilterParts>(
-      plan.scenario.filter.kind, [&]<typename Filter>(std::type_identity<Filter>) {
-        // The loader gives a filter only the models and stations it runs on.
-        if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
-          Station<Sensor, typename StationFusionOf<Filter, Model, Sensor>::type> station(
-              options, plan, me, std::move(source));
-          code = station.run();
-        } else {
-          throw std::logic_error(fmt::format("filter {} on {} with a station of sensor kind {}",
-                                             Filter::kKind, Model::kKind, me.sensor.kind));
-        }
-      });
+  visit_filter(plan.scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
+    // The loader gives a filter only the models and stations it runs on.
+    if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
+      Station<Sensor, typename StationFusionOf<Filter, Model, Sensor>::type> station(
+          options, plan, me, std::move(source));
+      code = station.run();
+    } else {
+      throw std::logic_error(fmt::format("filter {} on {} with a station of sensor kind {}",
+                                         Filter::kKind, Model::kKind, me.sensor.kind));
+    }
+  });
   return code;
 }
 

@@ -215,7 +215,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     config.security = transport::SecurityConfig{*o.node.secure_dir, transport::kHarnessIdentity};
   }
   const TrackShape shape{find_motion_model(plan.scenario.filter.motion_model.kind)->state_dim,
-                         find_filter(plan.scenario.filter.kind)->mode_names.size()};
+                         find_filter(plan.scenario.filter)->mode_names.size()};
   LockstepDriver driver(config, run_id, plan.participants(), shape, check);
 
   try {

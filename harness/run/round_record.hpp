@@ -19,7 +19,7 @@ inline constexpr int kCenterNodeId = 0;
 struct ReceivedTrack {
   DynamicGaussianState estimate;
   std::vector<int> contributors;  ///< ascending station id
-  /// An IMM run's mode probabilities (ImmConfig::kModeNames order); empty otherwise.
+  /// An IMM run's mode probabilities (the scenario's filter.imm.modes order); empty otherwise.
   Eigen::VectorXd mode_probabilities;
 };
 

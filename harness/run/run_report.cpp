@@ -69,7 +69,7 @@ RunRecorder::RunRecorder(const RunPlan& plan, std::vector<int> station_ids,
       restarts_(std::move(restarts)),
       truth_(plan.truth()),
       model_(*find_motion_model(plan.scenario.filter.motion_model.kind)),
-      mode_names_(find_filter(plan.scenario.filter.kind)->mode_names) {
+      mode_names_(find_filter(plan.scenario.filter)->mode_names) {
   std::sort(station_ids_.begin(), station_ids_.end());
   rounds_.reserve(static_cast<std::size_t>(plan.scenario.steps));
 }

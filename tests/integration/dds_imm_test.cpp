@@ -30,24 +30,37 @@ std::vector<std::string> imm_run(int domain, const std::filesystem::path& out, i
   return args;
 }
 
-// modes.csv as (step, source) -> [CV, CA, CT].
-std::map<std::pair<int, int>, std::array<double, 3>> read_modes(const std::filesystem::path& csv) {
+// modes.csv as (step, source) -> the mode probabilities, in the order `modes` names them.
+std::map<std::pair<int, int>, std::vector<double>> read_modes(const std::filesystem::path& csv,
+                                                              const std::string& modes) {
   std::istringstream in(read_file(csv));
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "step,source,constant_velocity,constant_acceleration,coordinated_turn");
-  std::map<std::pair<int, int>, std::array<double, 3>> rows;
+  EXPECT_EQ(line, "step,source," + modes);
+  std::map<std::pair<int, int>, std::vector<double>> rows;
   while (std::getline(in, line)) {
-    std::array<double, 5> v{};
+    std::vector<double> v;
     std::istringstream fields(line);
     std::string field;
-    for (double& x : v) {
-      std::getline(fields, field, ',');
-      x = std::stod(field);
-    }
-    rows[{static_cast<int>(v[0]), static_cast<int>(v[1])}] = {v[2], v[3], v[4]};
+    while (std::getline(fields, field, ',')) v.push_back(std::stod(field));
+    rows[{static_cast<int>(v[0]), static_cast<int>(v[1])}] = {v.begin() + 2, v.end()};
   }
   return rows;
+}
+
+const std::string kThreeModes = "constant_velocity,constant_acceleration,coordinated_turn";
+
+// Every row sums to 1 and every peer's equals station 1's.
+void expect_peers_hold_the_same_probabilities(
+    const std::map<std::pair<int, int>, std::vector<double>>& modes) {
+  for (const auto& [key, p] : modes) {
+    double sum = 0.0;
+    for (double x : p) sum += x;
+    ASSERT_NEAR(sum, 1.0, 1e-12) << "step " << key.first;
+    if (key.second != 0) {
+      ASSERT_EQ(p, modes.at({key.first, 1})) << "peers differ at step " << key.first;
+    }
+  }
 }
 
 TEST(DdsImm, PeersEqualTheCentralStackedImmAndTheInProcessRunBitForBit) {
@@ -71,16 +84,38 @@ TEST(DdsImm, PeersEqualTheCentralStackedImmAndTheInProcessRunBitForBit) {
   }
 
   // It is an IMM that switches: CV leads on the straight before the turn, CT in it.
-  const auto modes = read_modes(dir / "out" / "modes.csv");
+  const auto modes = read_modes(dir / "out" / "modes.csv", kThreeModes);
   ASSERT_EQ(modes.size(), static_cast<std::size_t>(kSteps * 5));
-  for (const auto& [key, p] : modes) {
-    ASSERT_NEAR(p[0] + p[1] + p[2], 1.0, 1e-12) << "step " << key.first;
-    if (key.second != 0) {
-      ASSERT_EQ(p, modes.at({key.first, 1})) << "peers differ at step " << key.first;
-    }
-  }
+  expect_peers_hold_the_same_probabilities(modes);
   EXPECT_GT(modes.at({400, 1})[0], 0.5);  // 8 s
   EXPECT_GT(modes.at({750, 1})[2], 0.8);  // 15 s
+}
+
+// The IMM's modes are the scenario's: CV and CT only (scenarios/paper000-imm-cv-ct.yaml), run by
+// the same station and center processes, bit for bit the in-process run, switching into the turn.
+TEST(DdsImm, AnImmOfTheScenariosTwoModesEqualsTheInProcessRunBitForBit) {
+  constexpr int kSteps = 2000;
+  const auto dir = test_dir();
+  const std::string scenario = bin("scenarios/paper000-imm-cv-ct.yaml");
+  std::vector<std::string> args = imm_run(205, dir / "out", kSteps);
+  args[3] = scenario;
+  const Completed run = run_to_completion(args, dir / "out.log", 180s);
+  ASSERT_TRUE(run.status.exited && run.status.code == 0) << run.output;
+
+  const RunPlan plan = make_run_plan(load_scenario_file(scenario), {4, kSteps, {}, 0});
+  const auto tracks = read_tracks(dir / "out" / "tracks.csv");
+  ASSERT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * 5));
+  EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_EQ(summary.at("max_abs_diff_between_peers"), 0.0);
+  EXPECT_LT(summary.at("max_abs_diff_central_vs_p2p").get<double>(), 1e-9);
+  EXPECT_LT(summary.at("max_abs_diff_mode_probability_central_vs_p2p").get<double>(), 1e-9);
+
+  const auto modes = read_modes(dir / "out" / "modes.csv", "constant_velocity,coordinated_turn");
+  ASSERT_EQ(modes.size(), static_cast<std::size_t>(kSteps * 5));
+  expect_peers_hold_the_same_probabilities(modes);
+  EXPECT_GT(modes.at({400, 1})[0], 0.5);  // 8 s, straight
+  EXPECT_GT(modes.at({750, 1})[1], 0.8);  // 15 s, in the turn
 }
 
 TEST(DdsImm, PeersThatLostDifferentSamplesAgreeAgainAfterTheLossStops) {
@@ -100,7 +135,7 @@ TEST(DdsImm, PeersThatLostDifferentSamplesAgreeAgainAfterTheLossStops) {
   }
   EXPECT_GT(resyncs, 0);
   // After the loss every peer holds the same mode probabilities again.
-  const auto modes = read_modes(dir / "out" / "modes.csv");
+  const auto modes = read_modes(dir / "out" / "modes.csv", kThreeModes);
   for (int k = 202; k < 300; ++k) {
     for (int id : {2, 3, 4}) EXPECT_EQ(modes.at({k, id}), modes.at({k, 1})) << k;
   }

@@ -1,10 +1,14 @@
 #include "skyfuse/registry/part_info.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
 
 #include "skyfuse/models/state_position.hpp"
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/registry.hpp"
+#include "skyfuse/scenario/scenario.hpp"
 
 namespace skyfuse {
 namespace {
@@ -37,11 +41,14 @@ std::vector<FilterInfo> describe(FilterList<Filters...> /*list*/) {
       Filters::kNeesDof}...};
 }
 
+// Each kind once, in registry order.
 template <typename Info>
 std::string kinds_of(const std::vector<Info>& infos) {
-  std::string out;
-  for (const Info& info : infos) out += (out.empty() ? "" : ", ") + std::string(info.kind);
-  return out;
+  std::vector<std::string_view> kinds;
+  for (const Info& info : infos) {
+    if (std::ranges::find(kinds, info.kind) == kinds.end()) kinds.push_back(info.kind);
+  }
+  return fmt::format("{}", fmt::join(kinds, ", "));
 }
 
 template <typename Info>
@@ -75,6 +82,23 @@ std::vector<FilterInfo> filter_infos() {
 
 std::optional<FilterInfo> find_filter(std::string_view kind) {
   return find_kind(filter_infos(), kind);
+}
+
+std::optional<FilterInfo> find_filter(const FilterConfig& filter) {
+  std::optional<FilterInfo> found;
+  visit_filter_part<FilterParts>(filter.kind, filter.imm.modes,
+                                 [&]<typename Filter>(std::type_identity<Filter>) {
+                                   found = describe(FilterList<Filter>{}).front();
+                                 });
+  return found;
+}
+
+std::string filter_mode_sets(std::string_view kind) {
+  std::vector<std::string> sets;
+  for (const FilterInfo& info : filter_infos()) {
+    if (info.kind == kind) sets.push_back(fmt::format("[{}]", fmt::join(info.mode_names, ", ")));
+  }
+  return fmt::format("{}", fmt::join(sets, ", "));
 }
 
 std::string filter_kinds() {

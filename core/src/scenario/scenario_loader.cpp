@@ -251,9 +251,20 @@ std::array<double, N> read_mode_noise(const YamlField& field, std::string_view m
 }
 
 ImmConfig read_imm(const YamlField& field) {
-  field.allow_only(
-      {"constant_velocity", "coordinated_turn", "stay_probability", "initial_turn_rate_variance"});
+  field.allow_only({"modes", "constant_velocity", "coordinated_turn", "stay_probability",
+                    "initial_turn_rate_variance"});
   ImmConfig imm;
+  if (const auto modes = field.optional("modes")) {
+    if (!modes->is_sequence()) modes->fail("expected a list of mode names");
+    imm.modes.clear();
+    for (const YamlField& mode : modes->sequence()) {
+      std::string name = mode.string();
+      if (std::ranges::find(imm.modes, name) != imm.modes.end()) {
+        mode.fail(fmt::format("mode '{}' is named twice", name));
+      }
+      imm.modes.push_back(std::move(name));
+    }
+  }
   if (const auto cv = field.optional("constant_velocity")) {
     imm.constant_velocity =
         read_mode_noise<2>(*cv, "constant_velocity", {"position_m", "velocity_mps"});
@@ -312,12 +323,21 @@ FilterConfig read_filter(const YamlField& field) {
     if (info->mode_names.empty()) {
       std::vector<std::string_view> with_modes;
       for (const FilterInfo& f : filter_infos()) {
-        if (!f.mode_names.empty()) with_modes.push_back(f.kind);
+        if (!f.mode_names.empty() && std::ranges::find(with_modes, f.kind) == with_modes.end()) {
+          with_modes.push_back(f.kind);
+        }
       }
       imm->fail(fmt::format("only a filter of kind '{}' has modes; this one is '{}'",
                             fmt::join(with_modes, "' or '"), filter.kind));
     }
     filter.imm = read_imm(*imm);
+    if (!find_filter(filter)) {
+      const auto modes = imm->optional("modes");
+      (modes ? *modes : *imm)
+          .fail(fmt::format("no filter '{}' is registered with modes [{}]; registered: {}",
+                            filter.kind, fmt::join(filter.imm.modes, ", "),
+                            filter_mode_sets(filter.kind)));
+    }
   }
   const int dim = find_motion_model(filter.motion_model.kind)->state_dim;
   filter.initial_covariance_diag = read_diagonal(field.required("initial_covariance_diag"), dim);

@@ -1,8 +1,8 @@
 #pragma once
-// One run of filter kind "imm" stepping through its measurements: the central stacked IMM and
-// the peers' fused one (tracking/imm_network.hpp), by the same round rule the station and
-// center processes follow, so that this is the in-process twin of a lock-step `skyfuse run` of
-// an IMM scenario. Same interface as monte_carlo.cpp's RunStepper.
+// One run of filter kind "imm" (its modes `ModeSet`) stepping through its measurements: the central
+// stacked IMM and the peers' fused one (tracking/imm_network.hpp), by the same round rule the
+// station and center processes follow, so that this is the in-process twin of a lock-step `skyfuse
+// run` of an IMM scenario. Same interface as monte_carlo.cpp's RunStepper.
 //
 // What it records of the IMM: the mixture's [p; v; a] (the turn rate stays inside the modes);
 // the NEES of [p; v] only (ImmFilterPart::kNeesDof), since the acceleration is a state of the CA
@@ -26,22 +26,22 @@
 
 namespace skyfuse {
 
-template <template <int> class SensorOf>
+template <typename ModeSet, template <int> class SensorOf>
 class ImmRunStepper {
  public:
-  using Peers = NetworkPeerImm;
-  using Central = NetworkCentralImm;
+  using Peers = typename NetworkImm<ModeSet>::Peer;
+  using Central = typename NetworkImm<ModeSet>::Central;
   /// The stations' sensor at the CA mode's dimension; each mode reads it at its own.
   using Sensor = SensorOf<ConstantAcceleration3D::kDim>;
   using Observation = StationObservation<Sensor>;
   using Measurement = Vector<Sensor::kMeasDim>;
   /// Degrees of freedom of its NEES: [p; v], what every mode shares.
-  static constexpr int kNeesDof = ImmFilterPart::kNeesDof;
+  static constexpr int kNeesDof = ImmFilterPart<ModeSet>::kNeesDof;
 
   ImmRunStepper(const Scenario& scenario, const TruthTrajectory& truth, int stations,
                 std::uint64_t run, const NisGate& gate)
-      : central_(make_network_imm(scenario, start(scenario, truth, run))),
-        peers_(make_network_imm(scenario, start(scenario, truth, run))),
+      : central_(NetworkImm<ModeSet>::make(scenario, start(scenario, truth, run))),
+        peers_(NetworkImm<ModeSet>::make(scenario, start(scenario, truth, run))),
         gate_(gate),
         order_(run_setup::ascending(scenario, stations)),
         weights_(run_setup::weights(scenario, order_)),
@@ -62,7 +62,7 @@ class ImmRunStepper {
       }
       if (own.refused) ++trace_.refused_p2p;
     }
-    const Vector3 prior_probabilities = central_.filter().mode_probabilities();
+    const auto prior_probabilities = central_.filter().mode_probabilities();
     const NumericalStatus central = central_.template update<Observation>(
         observations_.size(), [&](std::size_t j) { return &observations_[j]; }, gate_,
         [&](int, DropKind) { ++trace_.refused_central; }, contributors_);

@@ -74,8 +74,7 @@ std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
       scenario, most,
       [&]<typename Model, template <int> class SensorOf>(std::type_identity<Model>,
                                                          SensorTemplate<SensorOf>) {
-        visit_filter_kind<FilterParts>(scenario.filter.kind, [&]<typename Filter>(
-                                                                 std::type_identity<Filter>) {
+        visit_filter(scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
           // The loader allows a filter only on what it runs on.
           if constexpr (filter_runs_on<Filter, Model, SensorOf<Model::kDim>>()) {
             using Stepper = typename RunStepperOf<Filter, Model, SensorOf>::type;
@@ -97,7 +96,7 @@ struct Dof {
   int measurement = 0;
 };
 Dof dof_of(const Scenario& scenario, int stations) {
-  const int filter_dof = find_filter(scenario.filter.kind)->nees_dof;
+  const int filter_dof = find_filter(scenario.filter)->nees_dof;
   Dof dof{filter_dof != 0 ? filter_dof
                           : find_motion_model(scenario.filter.motion_model.kind)->state_dim,
           0};

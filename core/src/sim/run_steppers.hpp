@@ -21,9 +21,9 @@ template <typename Model, template <int> class SensorOf>
 struct RunStepperOf<EkfFilterPart, Model, SensorOf> {
   using type = EkfRunStepper<Model, SensorOf>;
 };
-template <typename Model, template <int> class SensorOf>
-struct RunStepperOf<ImmFilterPart, Model, SensorOf> {
-  using type = ImmRunStepper<SensorOf>;
+template <typename ModeSet, typename Model, template <int> class SensorOf>
+struct RunStepperOf<ImmFilterPart<ModeSet>, Model, SensorOf> {
+  using type = ImmRunStepper<ModeSet, SensorOf>;
 };
 template <typename Model, template <int> class SensorOf>
 struct RunStepperOf<NcrkfFilterPart, Model, SensorOf> {

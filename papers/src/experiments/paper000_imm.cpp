@@ -91,9 +91,9 @@ CentralPeerComparison compare_central_and_peers(const Scenario& scenario, double
       generate_truth(scenario.target, speed_mps, scenario.time_step_s, steps);
   const GaussianState<9> start =
       initial_estimate<ConstantAcceleration3D>(scenario, truth.states[0], run);
-  Central central(make_network_imm(scenario, start));
+  Central central(NetworkImm<DefaultImmModes>::make(scenario, start));
   std::vector<Peers> peers(static_cast<std::size_t>(stations),
-                           Peers(make_network_imm(scenario, start)));
+                           Peers(NetworkImm<DefaultImmModes>::make(scenario, start)));
   Network network(scenario, stations, run);
 
   CentralPeerComparison out;
@@ -141,7 +141,7 @@ TurnComparison imm_against_ca(const Scenario& scenario, double speed_mps, int st
     const auto run = static_cast<std::uint64_t>(r);
     const GaussianState<9> start =
         initial_estimate<ConstantAcceleration3D>(scenario, truth.states[0], run);
-    std::vector<Peers> imm{Peers(make_network_imm(scenario, start))};
+    std::vector<Peers> imm{Peers(NetworkImm<DefaultImmModes>::make(scenario, start))};
     std::vector<CaOnly> ca{
         CaOnly(CaOnly::Filter({network_imm_ca_model(scenario)}, Matrix<1, 1>::Identity(),
                               Vector<1>::Ones(), network_imm_start(start, 1.0)))};

@@ -273,6 +273,44 @@ TEST(ScenarioLoader, ReadsTheImmsModesAndKeepsTheDefaultsItOmits) {
   EXPECT_EQ(s.filter.motion_model.kind, "constant_acceleration_3d");  // the CA mode
 }
 
+TEST(ScenarioLoader, ReadsTheImmsModeSetInItsOrder) {
+  EXPECT_EQ(
+      ImmConfig{}.modes,
+      (std::vector<std::string>{"constant_velocity", "constant_acceleration", "coordinated_turn"}));
+  const Scenario s = parse_scenario(
+      default_with("  kind: ekf\n",
+                   "  kind: imm\n  imm: {modes: [constant_velocity, coordinated_turn]}\n"),
+      "test.yaml");
+  EXPECT_EQ(s.filter.imm.modes,
+            (std::vector<std::string>{"constant_velocity", "coordinated_turn"}));
+  const Scenario shipped =
+      load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper000-imm-cv-ct.yaml");
+  EXPECT_EQ(shipped.filter.imm.modes, s.filter.imm.modes);
+}
+
+TEST(ScenarioLoader, RefusesAnImmModeSetTheRegistryDoesNotCompile) {
+  const std::string registered =
+      "registered: [constant_velocity, constant_acceleration, coordinated_turn], "
+      "[constant_velocity, coordinated_turn], [constant_velocity, constant_acceleration]";
+  EXPECT_EQ(
+      rejection(default_with(
+          "  kind: ekf\n", "  kind: imm\n  imm: {modes: [coordinated_turn, constant_velocity]}\n")),
+      "test.yaml: filter.imm.modes: no filter 'imm' is registered with modes "
+      "[coordinated_turn, constant_velocity]; " +
+          registered + " (line 58)");
+  EXPECT_EQ(rejection(default_with("  kind: ekf\n",
+                                   "  kind: imm\n  imm: {modes: [constant_velocity, singer]}\n")),
+            "test.yaml: filter.imm.modes: no filter 'imm' is registered with modes "
+            "[constant_velocity, singer]; " +
+                registered + " (line 58)");
+  EXPECT_EQ(rejection(default_with(
+                "  kind: ekf\n",
+                "  kind: imm\n  imm: {modes: [constant_velocity, constant_velocity]}\n")),
+            "test.yaml: filter.imm.modes[1]: mode 'constant_velocity' is named twice (line 58)");
+  EXPECT_EQ(rejection(default_with("  kind: ekf\n", "  kind: imm\n  imm: {modes: cv}\n")),
+            "test.yaml: filter.imm.modes: expected a list of mode names (line 58)");
+}
+
 TEST(ScenarioLoader, RefusesImmSettingsThatCannotWork) {
   EXPECT_EQ(rejection(default_with("  initial_covariance_diag: 1.0",
                                    "  imm: {stay_probability: 0.9}\n"

@@ -93,8 +93,8 @@ struct TwoPeers {
   GaussianState<9> start{
       (Vector<9>() << 0.0, 0.0, 400.0, 80.0, 10.0, 0.0, 0.0, 0.0, 0.0).finished(),
       Covariance<9>::Identity()};
-  Peers a{make_network_imm(scenario, start)};
-  Peers b{make_network_imm(scenario, start)};
+  Peers a{NetworkImm<DefaultImmModes>::make(scenario, start)};
+  Peers b{NetworkImm<DefaultImmModes>::make(scenario, start)};
   std::vector<StationObservation<Radar>> observations;
 
   TwoPeers() {
@@ -162,7 +162,7 @@ TEST(PeerImm, AScreenedOutMeasurementMovesNoModeStateAndNoProbability) {
 
   // The center screens the same measurement out against its own (equal) prior.
   CentralImm<KinematicState, ConstantVelocity3D, ConstantAcceleration3D, CoordinatedTurn3D> central(
-      make_network_imm(t.scenario, t.start));
+      NetworkImm<DefaultImmModes>::make(t.scenario, t.start));
   const std::array<const StationObservation<TwoPeers::Radar>*, 2> arrived = {&wild,
                                                                              &t.observations[1]};
   std::vector<int> refused;

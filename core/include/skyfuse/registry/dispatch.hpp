@@ -41,4 +41,14 @@ void dispatch_configuration(const Scenario& scenario, int stations, F&& f) {
   }
 }
 
+/// Calls f(std::type_identity<Filter>{}) for the registered filter part that runs `filter`: its
+/// kind and, for a filter with modes, its modes. The loader has checked that one does, so none
+/// here is a programming error and throws std::logic_error.
+template <typename F>
+void visit_filter(const FilterConfig& filter, F&& f) {
+  if (!visit_filter_part<FilterParts>(filter.kind, filter.imm.modes, f)) {
+    throw std::logic_error("no registered filter part '" + filter.kind + "' with these modes");
+  }
+}
+
 }  // namespace skyfuse

@@ -35,10 +35,18 @@ struct FilterInfo {
   int nees_dof = 0;
 };
 
+struct FilterConfig;
+
+/// Every registered filter part; a filter with modes has one part per set of modes.
 std::vector<FilterInfo> filter_infos();
+/// The first part of kind `kind`: what every part of a kind shares (all but the mode names).
 std::optional<FilterInfo> find_filter(std::string_view kind);
+/// The part that runs `filter`: its kind and, for a filter with modes, its modes in order.
+std::optional<FilterInfo> find_filter(const FilterConfig& filter);
 /// "a, b, c": the registered names, for error messages.
 std::string filter_kinds();
+/// "[a, b], [a, c]": the sets of modes registered for filter `kind`, for error messages.
+std::string filter_mode_sets(std::string_view kind);
 
 /// Why `filter` cannot run with these node options (a re-fusion lag, a NIS gate), in words that
 /// name the option; nothing if it can.

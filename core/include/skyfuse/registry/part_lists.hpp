@@ -3,6 +3,7 @@
 /// Compile-time lists of motion models, sensors and filters, and the calls that turn a scenario's
 /// name for a part into its type. The lists themselves are in registry.hpp.
 
+#include <algorithm>
 #include <string_view>
 #include <type_traits>
 
@@ -59,16 +60,31 @@ bool visit_sensor_kind(std::string_view kind, F&& f) {
 template <typename... Filters>
 struct FilterList {};
 
-template <typename... Filters, typename F>
-bool visit_filter_kind_in(FilterList<Filters...> /*list*/, std::string_view kind, F& f) {
-  return ((Filters::kKind == kind ? (f(std::type_identity<Filters>{}), true) : false) || ...);
+/// Whether filter part `Filter` is the one named by `kind` and, for a filter with modes, by
+/// `modes` (its mode names in order).
+template <typename Filter, typename ModeNames>
+bool filter_part_is(std::string_view kind, const ModeNames& modes) {
+  if (Filter::kKind != kind) return false;
+  return Filter::kModeNames.empty() ||
+         std::ranges::equal(Filter::kModeNames, modes, [](std::string_view a, const auto& b) {
+           return a == std::string_view(b);
+         });
 }
 
-/// Calls f(std::type_identity<Filter>{}) for the filter part of `List` whose kKind is `kind`;
-/// false, and f not called, when there is none. The one place a filter's name is compared.
-template <typename List, typename F>
-bool visit_filter_kind(std::string_view kind, F&& f) {
-  return visit_filter_kind_in(List{}, kind, f);
+template <typename... Filters, typename ModeNames, typename F>
+bool visit_filter_part_in(FilterList<Filters...> /*list*/, std::string_view kind,
+                          const ModeNames& modes, F& f) {
+  return (
+      (filter_part_is<Filters>(kind, modes) ? (f(std::type_identity<Filters>{}), true) : false) ||
+      ...);
+}
+
+/// Calls f(std::type_identity<Filter>{}) for the filter part of `List` named by `kind` and
+/// `modes` (filter_part_is); false, and f not called, when there is none. The one place a
+/// filter's name is compared (dispatch.hpp's visit_filter takes them from a scenario).
+template <typename List, typename ModeNames, typename F>
+bool visit_filter_part(std::string_view kind, const ModeNames& modes, F&& f) {
+  return visit_filter_part_in(List{}, kind, modes, f);
 }
 
 }  // namespace skyfuse

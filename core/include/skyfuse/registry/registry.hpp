@@ -25,13 +25,20 @@
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/registry/part_lists.hpp"
 #include "skyfuse/registry/sensor_pack.hpp"
+#include "skyfuse/tracking/imm_modes.hpp"
 
 namespace skyfuse {
 
 using MotionModels = ModelList<ConstantAcceleration3D, ConstantVelocity3D, TdoaRelativeMotion>;
 using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity, RangeDifferenceSensor>;
 
-using FilterParts = FilterList<EkfFilterPart, ImmFilterPart, NcrkfFilterPart, UkfFilterPart>;
+/// The IMM is one part per set of modes it is compiled for (tracking/imm_modes.hpp); a scenario
+/// picks one by its filter.imm.modes.
+using FilterParts =
+    FilterList<EkfFilterPart, ImmFilterPart<DefaultImmModes>,
+               ImmFilterPart<ImmModeSet<ConstantVelocity3D, CoordinatedTurn3D>>,
+               ImmFilterPart<ImmModeSet<ConstantVelocity3D, ConstantAcceleration3D>>,
+               NcrkfFilterPart, UkfFilterPart>;
 
 /// Stations with different sensors in one run: any registered sensor, for an N-entry state.
 template <int N>

@@ -70,15 +70,16 @@ struct MotionModelConfig {
   Eigen::VectorXd process_noise_std;
 };
 
-/// Filter kind "imm": the station network's IMM of 3-D modes, constant velocity (CV),
-/// the scenario's constant-acceleration model (CA) and a coordinated turn (CT), mixed in
-/// [p; v; a; omega] (models/kinematic_state.hpp). Defaults are this project's choice (docs/imm.md):
+/// Filter kind "imm": the station network's IMM of 3-D modes, mixed in [p; v; a; omega]
+/// (models/kinematic_state.hpp): by default constant velocity (CV), the scenario's
+/// constant-acceleration model (CA) and a coordinated turn (CT); `modes` may name another set the
+/// registry compiles (tracking/imm_modes.hpp). Defaults are this project's choice (docs/imm.md):
 /// the CV and CT modes are kept tight, since the paper's 0.5 m per step of position noise would
 /// let every mode explain every step equally well and the probabilities would never move.
 struct ImmConfig {
   /// The modes, in the order every probability vector and wire sample uses.
-  static constexpr std::array<std::string_view, 3> kModeNames = {
-      "constant_velocity", "constant_acceleration", "coordinated_turn"};
+  std::vector<std::string> modes = {"constant_velocity", "constant_acceleration",
+                                    "coordinated_turn"};
   /// Per-step standard deviations: CV [position m, velocity m/s]; CT [position m, velocity m/s,
   /// turn rate rad/s].
   std::array<double, 2> constant_velocity{0.01, 0.05};
