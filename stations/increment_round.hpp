@@ -104,7 +104,7 @@ class IncrementRound {
  private:
   IncrementRound(const RunPlan& plan, const std::vector<int>& ascending_ids, std::size_t lag)
       : chain_(plan.motion_model<Model>(), plan.initial_estimate<Model>(), ascending_ids,
-               plan.weights_of(ascending_ids), lag) {}
+               plan.weights_of(ascending_ids), lag, plan.scenario.exchange.round_fanout()) {}
 };
 
 }  // namespace skyfuse::station

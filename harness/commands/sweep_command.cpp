@@ -8,6 +8,7 @@
 
 #include "report/sweep_report.hpp"
 #include "report/sweep_runner.hpp"
+#include "skyfuse/options/node_options.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -32,12 +33,14 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
       ->check(options::whole_number_in(1, 100000000));
   cmd->add_option("--threads", options.threads, "Worker threads (default: one per core)")
       ->check(options::whole_number_in(0, 1024));
+  options::add_exchange_options(*cmd, options.exchange, options.fanout);
   cmd->add_flag("!--no-plot", options.plot, "Skip the PNG plot");
 }
 
 int run_sweep(const SweepOptions& options) {
   Scenario scenario = load_scenario_or_default(options.scenario_path);
   if (options.seed) scenario.seed = *options.seed;
+  apply_exchange_overrides(scenario, options.exchange, options.fanout);
   if (options.steps) {
     scenario.steps = *options.steps;
     validate_scenario(scenario, "--steps");

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "skyfuse/scenario/scenario.hpp"
+
 namespace skyfuse::harness {
 
 struct SweepOptions {
@@ -16,6 +18,8 @@ struct SweepOptions {
   std::string out_dir = "results/sweep";
   std::optional<std::uint64_t> seed;
   std::optional<int> steps;
+  std::optional<ExchangeConfig::Kind> exchange;  ///< default: the scenario's
+  std::optional<int> fanout;
   int threads = 0;  ///< 0: one per core
   bool plot = true;
 };

@@ -17,6 +17,12 @@ void require_filter_takes(const Scenario& scenario, const NodeOptions& node) {
           filter_option_refusal(*filter, node.refusion_lag, node.nis_gate().enabled())) {
     throw std::invalid_argument(fmt::format("scenario '{}': {}", scenario.name, *why));
   }
+  if (scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
+    // The in-process sweep sums in clusters already; the nodes do not publish partial sums yet.
+    throw std::invalid_argument(
+        "--exchange tree: the station processes exchange flat only so far; the in-process "
+        "`skyfuse sweep` runs the tree");
+  }
 }
 
 }  // namespace skyfuse::options

@@ -45,6 +45,21 @@ void add_plan_options(CLI::App& app, RunOverrides& overrides) {
   app.add_option("--mc-run", overrides.mc_run,
                  "Monte-Carlo run index; selects the noise realisation")
       ->capture_default_str();
+  add_exchange_options(app, overrides.exchange, overrides.fanout);
+}
+
+void add_exchange_options(CLI::App& app, std::optional<ExchangeConfig::Kind>& exchange,
+                          std::optional<int>& fanout) {
+  app.add_option_function<std::string>(
+         "--exchange",
+         [&exchange](const std::string& name) { exchange = parse_exchange_kind(name); },
+         "How peers exchange increments: flat (every station hears every station) or tree "
+         "(clusters of --fanout summed by an aggregator each; default: the scenario's)")
+      ->check(CLI::IsMember({"flat", "tree"}));
+  app.add_option("--fanout", fanout,
+                 "Tree exchange: stations per cluster (default: the scenario's, 8 if it gives "
+                 "none)")
+      ->check(whole_number_in(2, ExchangeConfig::kMaxFanout));
 }
 
 void add_domain_option(CLI::App& app, int& domain) {
@@ -118,6 +133,8 @@ std::vector<std::string> to_arguments(const NodeOptions& o) {
   if (o.overrides.steps) add("--steps", std::to_string(*o.overrides.steps));
   if (o.overrides.speed_kmh) add("--speed-kmh", fmt::format("{}", *o.overrides.speed_kmh));
   add("--mc-run", std::to_string(o.overrides.mc_run));
+  if (o.overrides.exchange) add("--exchange", std::string(to_string(*o.overrides.exchange)));
+  if (o.overrides.fanout) add("--fanout", std::to_string(*o.overrides.fanout));
   if (o.qos_file) add("--qos", *o.qos_file);
   if (o.secure_dir) add("--secure", *o.secure_dir);
   add("--discovery-timeout", fmt::format("{}", o.discovery_timeout_s));

@@ -355,9 +355,28 @@ FilterConfig read_filter(const YamlField& field) {
   return filter;
 }
 
+ExchangeConfig read_network(const YamlField& field) {
+  field.allow_only({"exchange", "fanout"});
+  ExchangeConfig exchange;
+  if (const auto kind = field.optional("exchange")) {
+    const auto parsed = parse_exchange_kind(kind->string());
+    if (!parsed) kind->fail(fmt::format("expected flat or tree, got '{}'", kind->text()));
+    exchange.kind = *parsed;
+  }
+  if (const auto fanout = field.optional("fanout")) {
+    const std::int64_t k = fanout->integer();
+    if (k < 2 || k > ExchangeConfig::kMaxFanout) {
+      fanout->fail(fmt::format("must be an integer in [2, {}], got {}", ExchangeConfig::kMaxFanout,
+                               fanout->text()));
+    }
+    exchange.fanout = static_cast<int>(k);
+  }
+  return exchange;
+}
+
 Scenario read_scenario(const YamlField& root) {
   root.allow_only({"name", "description", "seed", "time_step_s", "steps", "target", "stations",
-                   "measurement_noise", "filter"});
+                   "measurement_noise", "filter", "network"});
   Scenario s;
   s.name = root.required("name").string();
   if (const auto description = root.optional("description")) s.description = description->string();
@@ -393,6 +412,14 @@ Scenario read_scenario(const YamlField& root) {
   }
   const YamlField filter = root.required("filter");
   s.filter = read_filter(filter);
+  if (const auto network = root.optional("network")) {
+    s.exchange = read_network(*network);
+    const FilterInfo info = *find_filter(s.filter.kind);
+    if (s.exchange.kind == ExchangeConfig::Kind::kTree && !info.takes_tree_exchange) {
+      network->required("exchange")
+          .fail(fmt::format("filter '{}' has no tree exchange yet; use flat", s.filter.kind));
+    }
+  }
   const MotionModelInfo model = *find_motion_model(s.filter.motion_model.kind);
   const FilterInfo filter_info = *find_filter(s.filter.kind);
   for (std::size_t i = 0; i < s.stations.size(); ++i) {

@@ -41,7 +41,8 @@ class EkfRunStepper {
         gate_(gate),
         order_(run_setup::ascending(scenario, stations)),
         observations_(run_setup::checked_observations<Sensor>(scenario, order_, run)),
-        peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_)),
+        peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_),
+                    scenario.exchange.round_fanout()),
         central_round_(order_.size()),
         trace_(run_setup::sized_trace(scenario.steps)) {
     // Everything sized once per run: the step loop allocates nothing. Slots are in ascending

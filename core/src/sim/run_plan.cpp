@@ -58,6 +58,7 @@ RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
     plan.speed_mps = scenario.target.speeds_mps.front();
     scenario.target.speeds_mps = {plan.speed_mps};
   }
+  apply_exchange_overrides(scenario, overrides.exchange, overrides.fanout);
   validate_scenario(scenario, "run options");
   plan.mc_run = overrides.mc_run;
   plan.scenario = std::move(scenario);

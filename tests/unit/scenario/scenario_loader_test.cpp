@@ -311,6 +311,24 @@ TEST(ScenarioLoader, RefusesAnImmModeSetTheRegistryDoesNotCompile) {
             "test.yaml: filter.imm.modes: expected a list of mode names (line 58)");
 }
 
+TEST(ScenarioLoader, ReadsTheNetworksExchangeAndRefusesWhatCannotRun) {
+  EXPECT_EQ(
+      parse_scenario(default_with("  kind: ekf\n", "  kind: ekf\n"), "test.yaml").exchange.kind,
+      ExchangeConfig::Kind::kFlat);
+  const std::string tree = "network: {exchange: tree, fanout: 4}\n";
+  const Scenario s = parse_scenario(default_with("filter:\n", tree + "filter:\n"), "test.yaml");
+  EXPECT_EQ(s.exchange.kind, ExchangeConfig::Kind::kTree);
+  EXPECT_EQ(s.exchange.fanout, 4);
+  EXPECT_EQ(s.exchange.round_fanout(), 4u);
+  EXPECT_EQ(rejection(default_with("filter:\n", "network: {exchange: star}\nfilter:\n")),
+            "test.yaml: network.exchange: expected flat or tree, got 'star' (line 56)");
+  EXPECT_EQ(rejection(default_with("filter:\n", "network: {fanout: 1}\nfilter:\n")),
+            "test.yaml: network.fanout: must be an integer in [2, 256], got 1 (line 56)");
+  EXPECT_EQ(rejection(default_with("filter:\n  kind: ekf\n", tree + "filter:\n  kind: imm\n")),
+            "test.yaml: network.exchange: filter 'imm' has no tree exchange yet; use flat "
+            "(line 56)");
+}
+
 TEST(ScenarioLoader, RefusesImmSettingsThatCannotWork) {
   EXPECT_EQ(rejection(default_with("  initial_covariance_diag: 1.0",
                                    "  imm: {stay_probability: 0.9}\n"

@@ -104,6 +104,26 @@ struct FilterConfig {
   std::optional<Eigen::VectorXd> initial_state_error;
 };
 
+/// How peers exchange a round's increments (scenario `network: {exchange, fanout}`).
+struct ExchangeConfig {
+  /// The largest fanout: a cluster's members all reach its aggregator.
+  static constexpr int kMaxFanout = 256;
+  enum class Kind {
+    kFlat,  ///< every station hears every other's increment: M (M - 1) receptions a round
+    kTree,  ///< clusters of `fanout` by ascending id, summed by an aggregator each
+  };
+  Kind kind = Kind::kFlat;
+  /// The tree's stations per cluster, >= 2 (the flat exchange ignores it).
+  int fanout = 8;
+  /// What PeerRound takes: 0 for the flat exchange, the fanout for the tree.
+  std::size_t round_fanout() const {
+    return kind == Kind::kTree ? static_cast<std::size_t>(fanout) : 0;
+  }
+};
+/// "flat" or "tree"; and back (nothing for another name).
+std::string_view to_string(ExchangeConfig::Kind kind);
+std::optional<ExchangeConfig::Kind> parse_exchange_kind(std::string_view name);
+
 struct Scenario {
   std::string name;
   std::string description;
@@ -114,6 +134,12 @@ struct Scenario {
   std::vector<StationConfig> stations;
   NoiseScaleConfig noise_scale;
   FilterConfig filter;
+  ExchangeConfig exchange;
 };
+
+/// Applies `--exchange` and `--fanout` to `scenario`; throws std::invalid_argument naming the
+/// option when the fanout is out of range or the scenario's filter has no tree exchange.
+void apply_exchange_overrides(Scenario& scenario, std::optional<ExchangeConfig::Kind> kind,
+                              std::optional<int> fanout);
 
 }  // namespace skyfuse

@@ -55,6 +55,8 @@ struct RunOverrides {
   std::optional<int> steps;         ///< default: the scenario's
   std::optional<double> speed_kmh;  ///< default: the first speed the scenario lists
   std::uint64_t mc_run = 0;
+  std::optional<ExchangeConfig::Kind> exchange;  ///< default: the scenario's network.exchange
+  std::optional<int> fanout;                     ///< default: the scenario's network.fanout
 };
 
 /// Applies the overrides; throws std::invalid_argument naming the option and the value.

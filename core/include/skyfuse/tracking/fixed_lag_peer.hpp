@@ -38,12 +38,13 @@ class FixedLagPeer {
   using State = GaussianState<kDim>;
   using Contribution = PeerContribution<kDim>;
 
-  /// `ids` the participants, ascending, with their fusion `weights` in that order.
+  /// `ids` the participants, ascending, with their fusion `weights` in that order; `fanout`
+  /// as PeerRound takes it (0: the flat exchange).
   FixedLagPeer(const Model& motion, const State& initial, std::span<const int> ids,
-               std::span<const double> weights, std::size_t lag)
+               std::span<const double> weights, std::size_t lag, std::size_t fanout = 0)
       : tracker_(motion, initial),
         collector_(ids, lag),
-        round_(collector_.station_ids(), weights),
+        round_(collector_.station_ids(), weights, fanout),
         priors_(lag + 1, initial),
         posteriors_(lag + 1, initial),
         contributors_(lag + 1) {

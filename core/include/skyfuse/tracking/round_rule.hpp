@@ -20,7 +20,9 @@
 #include <vector>
 
 #include "skyfuse/core/indirect_view.hpp"
+#include "skyfuse/fusion/partial_sum.hpp"
 #include "skyfuse/tracking/central_tracker.hpp"
+#include "skyfuse/tracking/cluster_layout.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/validation/nis_gate.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
@@ -72,17 +74,28 @@ struct PeerSlot {
 
 /// The peers' side of a round for a tracker over `Model`. Holds its buffers: no allocation per
 /// round.
+///
+/// With the flat exchange the increments are fused one by one onto the reference. With the tree
+/// exchange (a `fanout`) they are summed per cluster (fusion/partial_sum.hpp, the aggregators'
+/// sums), the clusters' sums into the round's total, and the total fused: the order a tree run's
+/// peers sum in, so that the in-process twin of such a run holds its bits.
 template <typename Model>
 class PeerRound {
  public:
   static constexpr int kDim = Model::kDim;
 
-  /// `weights[i]` belongs to the i-th participant in ascending station id `ids`.
-  PeerRound(std::span<const int> ids, std::span<const double> weights)
+  /// `weights[i]` belongs to the i-th participant in ascending station id `ids`. `fanout` 0:
+  /// the flat exchange; k >= 1: the tree exchange's clusters of k.
+  PeerRound(std::span<const int> ids, std::span<const double> weights, std::size_t fanout = 0)
       : ids_(ids.begin(), ids.end()), weights_(weights.begin(), weights.end()) {
     increments_.reserve(ids_.size());
     round_weights_.reserve(ids_.size());
     contributors_.reserve(ids_.size());
+    if (fanout != 0) {
+      layout_.emplace(ids_, fanout);
+      cluster_.contributors.reserve(fanout);
+      total_.contributors.reserve(ids_.size());
+    }
   }
 
   /// Fuses the round into `tracker`: slot_at(i) is the i-th participant's slot (ascending id).
@@ -90,6 +103,7 @@ class PeerRound {
   /// fused, arrived() false.
   template <typename SlotAt>
   RoundFusion fuse(PeerTracker<Model>& tracker, SlotAt slot_at) {
+    if (layout_) return fuse_by_clusters(tracker, slot_at);
     increments_.clear();
     round_weights_.clear();
     contributors_.clear();
@@ -107,17 +121,52 @@ class PeerRound {
                               round_weights_);
   }
 
+  /// Fuses a round's total (the sum of its clusters' sums) onto its reference: what a peer of
+  /// a tree exchange does with the total its aggregator sends. An empty total fuses nothing.
+  RoundFusion fuse_total(PeerTracker<Model>& tracker, const PartialSum<kDim>& total) {
+    contributors_.assign(total.contributors.begin(), total.contributors.end());
+    if (total.empty()) return {};
+    constexpr double kOne = 1.0;  // the weights are inside the sums
+    return tracker.fuse_round(total.reference, std::span(&total.sum, 1), std::span(&kOne, 1));
+  }
+
+  /// Cluster c's sum of the slots that arrived (slot_at as for fuse()), into `out`: what the
+  /// cluster's aggregator publishes.
+  template <typename SlotAt>
+  void sum_cluster(std::size_t c, SlotAt slot_at, PartialSum<kDim>& out) const {
+    out.clear();
+    for (std::size_t i = layout_->first_index(c); i < layout_->end_index(c); ++i) {
+      const PeerSlot<kDim> slot = slot_at(i);
+      if (slot.increment != nullptr) out.add(ids_[i], weights_[i], *slot.increment, *slot.prior);
+    }
+  }
+
+  /// The tree exchange's clusters; none with the flat exchange.
+  const std::optional<ClusterLayout>& layout() const { return layout_; }
   /// Whether anything arrived in the last fuse().
   bool arrived() const { return !contributors_.empty(); }
   /// The stations fused in the last fuse(), ascending.
   std::span<const int> contributors() const { return contributors_; }
 
  private:
+  template <typename SlotAt>
+  RoundFusion fuse_by_clusters(PeerTracker<Model>& tracker, SlotAt slot_at) {
+    total_.clear();
+    for (std::size_t c = 0; c < layout_->clusters(); ++c) {
+      sum_cluster(c, slot_at, cluster_);
+      total_.add(cluster_);
+    }
+    return fuse_total(tracker, total_);
+  }
+
   std::vector<int> ids_;
   std::vector<double> weights_;
   std::vector<const InformationIncrement<kDim>*> increments_;
   std::vector<double> round_weights_;
   std::vector<int> contributors_;
+  std::optional<ClusterLayout> layout_;
+  PartialSum<kDim> cluster_;  // the tree exchange's sums, kept for their buffers
+  PartialSum<kDim> total_;
 };
 
 /// The center's side of a round for a tracker over `Model` with stations of `Sensor`. Holds its

@@ -10,7 +10,7 @@
 namespace skyfuse::options {
 
 /// Throws std::invalid_argument, naming the option and the filter, for a re-fusion lag or a NIS
-/// gate that the scenario's filter does not take.
+/// gate that the scenario's filter does not take, and for an exchange the nodes do not run.
 void require_filter_takes(const Scenario& scenario, const NodeOptions& node);
 
 }  // namespace skyfuse::options

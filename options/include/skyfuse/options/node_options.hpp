@@ -89,6 +89,10 @@ std::vector<std::string> to_arguments(const NodeOptions& options);
 /// RunPlan of the scenario, shared by the nodes and `skyfuse run`, which passes them on.
 void add_plan_options(CLI::App& app, RunOverrides& overrides);
 
+/// `--exchange flat|tree` and `--fanout K`: the scenario's network block, overridden.
+void add_exchange_options(CLI::App& app, std::optional<ExchangeConfig::Kind>& exchange,
+                          std::optional<int>& fanout);
+
 /// `--loss P`, `--loss-steps A:B`, `--loss-seed S` and `--best-effort` into `loss` and
 /// `best_effort`: shared by the nodes and `skyfuse run`, which passes them on.
 void add_loss_options(CLI::App& app, LinkLoss& loss, bool& best_effort);
