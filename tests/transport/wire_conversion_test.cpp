@@ -12,6 +12,7 @@
 #include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/transport/imm_wire.hpp"
+#include "skyfuse/transport/partial_wire.hpp"
 #include "support/random_problems.hpp"
 
 namespace skyfuse::transport {
@@ -88,6 +89,43 @@ TEST(WireConversion, IncrementsOfAnyStateDimensionArriveAsSent) {
   // A 6-state increment is not a 9-state one.
   PeerContribution<6> six;
   EXPECT_FALSE(contribution_from_wire<9>(to_wire(six, 1, 1)).has_value());
+}
+
+// A tree exchange's sum: its contributors, sums and reference cross bit for bit; a sum that
+// counts nobody carries no reference; other lengths than the state's are not a sum of it.
+TEST(WireConversion, PartialSumsArriveAsSent) {
+  std::mt19937 rng(5);
+  PartialSum<9> sent;
+  sent.clear();
+  for (int id : {4, 7, 9}) {
+    InformationIncrement<9> increment;
+    increment.station_id = id;
+    increment.delta_information = test::random_spd<9>(rng, 0.0, 10.0);
+    increment.delta_vector = random_state<9>(rng).mean;
+    sent.add(id, 0.75, increment, random_state<9>(rng));
+  }
+  const wire::PartialSum sample = to_wire(sent, {5, 6, 2, true, 4});
+  EXPECT_EQ(sample.cluster(), 2u);
+  EXPECT_TRUE(sample.total());
+  EXPECT_EQ(sample.aggregator_id(), 4);
+  const auto back = partial_sum_from_wire<9>(sample);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->contributors, sent.contributors);
+  EXPECT_EQ(back->sum.station_id, 4);
+  EXPECT_EQ(back->sum.delta_information, sent.sum.delta_information);
+  EXPECT_EQ(back->sum.delta_vector, sent.sum.delta_vector);
+  EXPECT_EQ(back->reference.mean, sent.reference.mean);
+  EXPECT_EQ(back->reference.covariance, sent.reference.covariance);
+
+  PartialSum<9> nobody;
+  nobody.clear();
+  const auto empty = partial_sum_from_wire<9>(to_wire(nobody, {5, 6, 0, false, 1}));
+  ASSERT_TRUE(empty.has_value());
+  EXPECT_TRUE(empty->empty());
+  wire::PartialSum forged = to_wire(nobody, {5, 6, 0, false, 1});
+  forged.prior_x(std::vector<double>(9, 0.0));
+  EXPECT_FALSE(partial_sum_from_wire<9>(forged).has_value()) << "a reference counting nobody";
+  EXPECT_FALSE(partial_sum_from_wire<6>(sample).has_value());
 }
 
 TEST(WireConversion, TracksOfAnyStateDimensionArriveAsSent) {

@@ -223,6 +223,7 @@ TEST(DropKind, NamesAreDistinctSnakeCase) {
   }
   EXPECT_EQ(to_string(DropKind::kNisGate), "nis_gate");
   EXPECT_EQ(to_string(DropKind::kWrongSite), "wrong_site");
+  EXPECT_EQ(to_string(DropKind::kOverlap), "overlap");
 }
 
 TEST(SampleChecks, ImmLikelihoodTermsMustBeARealMeasurementsOrAllZero) {

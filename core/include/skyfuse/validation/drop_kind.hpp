@@ -23,14 +23,17 @@ enum class DropKind : std::uint8_t {
   kOutOfRange,      ///< a measurement outside what the sensor can report
   kNisGate,         ///< innovation beyond the chi-square gate
   kWrongSite,       ///< a measurement whose station position is not the scenario's for that id
+  kWrongCluster,    ///< a tree exchange's sum counting a station outside its cluster
+  kOverlap,         ///< a tree exchange's sum counting a station twice, or one already counted
 };
-inline constexpr std::size_t kDropKinds = 10;
+inline constexpr std::size_t kDropKinds = 12;
 
 /// snake_case name, as used in logs and in summary.json.
 constexpr std::string_view to_string(DropKind kind) {
   constexpr std::array<std::string_view, kDropKinds> kNames = {
-      "wrong_run",  "stale_step",   "future_step",  "unknown_station", "duplicate",
-      "non_finite", "not_positive", "out_of_range", "nis_gate",        "wrong_site"};
+      "wrong_run", "stale_step", "future_step",   "unknown_station",
+      "duplicate", "non_finite", "not_positive",  "out_of_range",
+      "nis_gate",  "wrong_site", "wrong_cluster", "overlap"};
   return kNames[static_cast<std::size_t>(kind)];
 }
 

@@ -27,6 +27,11 @@ struct TopicTraits<wire::InformationIncrement> {
   static constexpr const char* kName = "skyfuse_increment";
 };
 template <>
+struct TopicTraits<wire::PartialSum> {
+  using PubSubType = wire::PartialSumPubSubType;
+  static constexpr const char* kName = "skyfuse_partial";
+};
+template <>
 struct TopicTraits<wire::TrackEstimate> {
   using PubSubType = wire::TrackEstimatePubSubType;
   static constexpr const char* kName = "skyfuse_track";

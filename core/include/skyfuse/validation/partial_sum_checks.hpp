@@ -1,0 +1,78 @@
+#pragma once
+/// \file
+/// What a node checks of a tree exchange's sum before it adds it or fuses it
+/// (fusion/partial_sum.hpp): a cluster's sum from the cluster's aggregator, or a round's total.
+/// Nothing may be counted twice and nothing forged: the contributors strictly ascending (no
+/// station twice), every one a member of the cluster the sum claims (wrong_cluster), none already
+/// counted in the sums a receiver holds (overlap); the sum itself as an increment (finite,
+/// bounded, positive semi-definite, since a sum of such is such) and its reference as a prior.
+
+#include <algorithm>
+#include <optional>
+#include <span>
+
+#include "skyfuse/fusion/partial_sum.hpp"
+#include "skyfuse/tracking/cluster_layout.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
+
+namespace skyfuse {
+
+/// Contributors strictly ascending and each inside `allowed` (ascending ids): why not, if not
+/// (a station twice: overlap; out of order: out_of_range).
+inline std::optional<DropKind> check_contributor_set(std::span<const int> contributors,
+                                                     std::span<const int> allowed) {
+  for (std::size_t i = 0; i < contributors.size(); ++i) {
+    if (i > 0 && contributors[i] == contributors[i - 1]) return DropKind::kOverlap;
+    if (i > 0 && contributors[i] < contributors[i - 1]) return DropKind::kOutOfRange;
+    if (!std::binary_search(allowed.begin(), allowed.end(), contributors[i])) {
+      return DropKind::kWrongCluster;
+    }
+  }
+  return std::nullopt;
+}
+
+/// Whether two ascending contributor sets share a station.
+inline bool contributors_overlap(std::span<const int> a, std::span<const int> b) {
+  std::size_t i = 0;
+  std::size_t j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (a[i] == b[j]) return true;
+    a[i] < b[j] ? ++i : ++j;
+  }
+  return false;
+}
+
+/// The numbers of a sum: its increment as check_increment(), its reference as check_estimate()
+/// (an empty sum has no reference to check), and its station id its lowest contributor's.
+template <int N>
+std::optional<DropKind> check_sum_values(const PartialSum<N>& sum) {
+  if (const auto why = check_increment(sum.sum)) return why;
+  if (sum.empty()) {
+    const bool zero = sum.sum.delta_information.isZero(0.0) && sum.sum.delta_vector.isZero(0.0);
+    return zero ? std::nullopt : std::optional(DropKind::kOutOfRange);
+  }
+  if (sum.sum.station_id != sum.contributors.front()) return DropKind::kOutOfRange;
+  return check_estimate(sum.reference);
+}
+
+/// Cluster `cluster`'s sum as its aggregator sends it: contributors inside the cluster, then
+/// its numbers.
+template <int N>
+std::optional<DropKind> check_cluster_sum(const PartialSum<N>& sum, const ClusterLayout& layout,
+                                          std::size_t cluster) {
+  if (cluster >= layout.clusters()) return DropKind::kWrongCluster;
+  if (const auto why = check_contributor_set(sum.contributors, layout.members(cluster))) {
+    return why;
+  }
+  return check_sum_values(sum);
+}
+
+/// A round's total: contributors among the run's `participants` (ascending), then its numbers.
+template <int N>
+std::optional<DropKind> check_round_total(const PartialSum<N>& total,
+                                          std::span<const int> participants) {
+  if (const auto why = check_contributor_set(total.contributors, participants)) return why;
+  return check_sum_values(total);
+}
+
+}  // namespace skyfuse

@@ -1,0 +1,69 @@
+#pragma once
+/// \file
+/// A tree exchange's sum on the wire (skyfuse_wire.idl's PartialSum), and back. Values cross bit
+/// for bit, as in wire_conversion.hpp, so a total fused by a member holds the bits its
+/// aggregator formed.
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "skyfuse/fusion/partial_sum.hpp"
+#include "skyfuse/transport/wire_conversion.hpp"
+
+namespace skyfuse::transport {
+
+/// Where a sum sits in a round: the cluster it sums (or, for a total, its sender's), whether it
+/// is the round's total, and who formed it.
+struct SumHeader {
+  std::uint64_t run_id = 0;
+  std::uint32_t step = 0;
+  std::uint32_t cluster = 0;
+  bool total = false;
+  int aggregator_id = 0;
+};
+
+template <int N>
+wire::PartialSum to_wire(const PartialSum<N>& sum, const SumHeader& header) {
+  wire::PartialSum sample;
+  sample.run_id(header.run_id);
+  sample.step(header.step);
+  sample.cluster(header.cluster);
+  sample.total(header.total);
+  sample.aggregator_id(header.aggregator_id);
+  sample.contributors(std::vector<std::int32_t>(sum.contributors.begin(), sum.contributors.end()));
+  sample.delta_information(pack_upper<N>(sum.sum.delta_information));
+  sample.delta_vector(pack_vector<N>(sum.sum.delta_vector));
+  if (!sum.empty()) {
+    sample.prior_x(pack_vector<N>(sum.reference.mean));
+    sample.prior_covariance(pack_upper<N>(sum.reference.covariance));
+  }
+  return sample;
+}
+
+/// The sum a sample carries for an N-state; nothing if its lengths are not N's (a sum that
+/// counts nobody carries no reference, any other one). Its contents are the receiver's to
+/// check (validation/partial_sum_checks.hpp).
+template <int N>
+std::optional<PartialSum<N>> partial_sum_from_wire(const wire::PartialSum& sample) {
+  const auto dq = unpack_upper<N>(sample.delta_information());
+  const auto dy = unpack_vector<N>(sample.delta_vector());
+  if (!dq || !dy) return std::nullopt;
+  PartialSum<N> sum;
+  sum.contributors.assign(sample.contributors().begin(), sample.contributors().end());
+  sum.sum.station_id = sum.empty() ? 0 : sum.contributors.front();
+  sum.sum.delta_information = *dq;
+  sum.sum.delta_vector = *dy;
+  if (sum.empty()) {
+    if (!sample.prior_x().empty() || !sample.prior_covariance().empty()) return std::nullopt;
+    return sum;
+  }
+  const auto x = unpack_vector<N>(sample.prior_x());
+  const auto p = unpack_upper<N>(sample.prior_covariance());
+  if (!x || !p) return std::nullopt;
+  sum.reference.mean = *x;
+  sum.reference.covariance = *p;
+  return sum;
+}
+
+}  // namespace skyfuse::transport
