@@ -104,10 +104,10 @@ TEST(WireConversion, PartialSumsArriveAsSent) {
     increment.delta_vector = random_state<9>(rng).mean;
     sent.add(id, 0.75, increment, random_state<9>(rng));
   }
-  const wire::PartialSum sample = to_wire(sent, {5, 6, 2, true, 4});
+  const wire::PartialSum sample = to_wire(sent, {5, 6, 4, wire::ROUND_TOTAL, 2});
   EXPECT_EQ(sample.cluster(), 2u);
-  EXPECT_TRUE(sample.total());
-  EXPECT_EQ(sample.aggregator_id(), 4);
+  EXPECT_EQ(sample.kind(), wire::ROUND_TOTAL);
+  EXPECT_EQ(sample.station_id(), 4);
   const auto back = partial_sum_from_wire<9>(sample);
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->contributors, sent.contributors);
@@ -119,10 +119,10 @@ TEST(WireConversion, PartialSumsArriveAsSent) {
 
   PartialSum<9> nobody;
   nobody.clear();
-  const auto empty = partial_sum_from_wire<9>(to_wire(nobody, {5, 6, 0, false, 1}));
+  const auto empty = partial_sum_from_wire<9>(to_wire(nobody, {5, 6, 1, wire::CLUSTER_SUM, 0}));
   ASSERT_TRUE(empty.has_value());
   EXPECT_TRUE(empty->empty());
-  wire::PartialSum forged = to_wire(nobody, {5, 6, 0, false, 1});
+  wire::PartialSum forged = to_wire(nobody, {5, 6, 1, wire::CLUSTER_SUM, 0});
   forged.prior_x(std::vector<double>(9, 0.0));
   EXPECT_FALSE(partial_sum_from_wire<9>(forged).has_value()) << "a reference counting nobody";
   EXPECT_FALSE(partial_sum_from_wire<6>(sample).has_value());

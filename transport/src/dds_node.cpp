@@ -35,6 +35,25 @@ DdsNode::DdsNode(const NodeConfig& config)
   }
 }
 
+dds::Publisher* DdsNode::publisher_in(const std::vector<std::string>& partitions) {
+  dds::PublisherQos qos = dds::PUBLISHER_QOS_DEFAULT;
+  for (const std::string& name : partitions) qos.partition().push_back(name.c_str());
+  dds::Publisher* publisher = participant_->create_publisher(qos);
+  if (publisher == nullptr)
+    throw DdsError("cannot create a publisher in partition " + partitions[0]);
+  return publisher;
+}
+
+dds::Subscriber* DdsNode::subscriber_in(const std::vector<std::string>& partitions) {
+  dds::SubscriberQos qos = dds::SUBSCRIBER_QOS_DEFAULT;
+  for (const std::string& name : partitions) qos.partition().push_back(name.c_str());
+  dds::Subscriber* subscriber = participant_->create_subscriber(qos);
+  if (subscriber == nullptr) {
+    throw DdsError("cannot create a subscriber in partition " + partitions[0]);
+  }
+  return subscriber;
+}
+
 DdsNode::~DdsNode() {
   if (participant_ == nullptr) return;
   participant_->delete_contained_entities();

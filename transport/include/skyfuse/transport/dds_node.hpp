@@ -24,6 +24,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "skyfuse/transport/node_config.hpp"
 #include "skyfuse/transport/qos.hpp"
@@ -125,21 +126,27 @@ class DdsNode {
   DdsNode(const DdsNode&) = delete;
   DdsNode& operator=(const DdsNode&) = delete;
 
+  /// A writer of T's topic. With `partitions` (DDS partition names), its own publisher in them:
+  /// it matches only readers in one of them, and the others never receive its samples (the
+  /// tree exchange's clusters). Without, the node's publisher, in the default partition.
   template <typename T>
-  Writer<T> make_writer() {
+  Writer<T> make_writer(const std::vector<std::string>& partitions = {}) {
     dds::Topic* topic = topic_for<T>();
+    dds::Publisher* publisher = partitions.empty() ? publisher_ : publisher_in(partitions);
     dds::DataWriter* writer =
-        publisher_->create_datawriter(topic, qos_.writer(*publisher_, TopicTraits<T>::kName));
+        publisher->create_datawriter(topic, qos_.writer(*publisher, TopicTraits<T>::kName));
     if (writer == nullptr)
       throw DdsError(std::string("cannot create writer for ") + topic->get_name());
     return Writer<T>(writer);
   }
 
+  /// A reader of T's topic; with `partitions`, its own subscriber in them (as make_writer).
   template <typename T>
-  Reader<T> make_reader() {
+  Reader<T> make_reader(const std::vector<std::string>& partitions = {}) {
     dds::Topic* topic = topic_for<T>();
+    dds::Subscriber* subscriber = partitions.empty() ? subscriber_ : subscriber_in(partitions);
     dds::DataReader* reader =
-        subscriber_->create_datareader(topic, qos_.reader(*subscriber_, TopicTraits<T>::kName));
+        subscriber->create_datareader(topic, qos_.reader(*subscriber, TopicTraits<T>::kName));
     if (reader == nullptr)
       throw DdsError(std::string("cannot create reader for ") + topic->get_name());
     return Reader<T>(reader);
@@ -160,6 +167,10 @@ class DdsNode {
     topics_.emplace(name, topic);
     return topic;
   }
+
+  // A publisher / subscriber of its own in `partitions`, deleted with the participant.
+  dds::Publisher* publisher_in(const std::vector<std::string>& partitions);
+  dds::Subscriber* subscriber_in(const std::vector<std::string>& partitions);
 
   QosProfiles qos_;
   dds::DomainParticipant* participant_ = nullptr;

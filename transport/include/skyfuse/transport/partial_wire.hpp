@@ -13,14 +13,14 @@
 
 namespace skyfuse::transport {
 
-/// Where a sum sits in a round: the cluster it sums (or, for a total, its sender's), whether it
-/// is the round's total, and who formed it.
+/// Where a sum sits in a round: who sent it, what it is, and the cluster it sums (for a total,
+/// its sender's).
 struct SumHeader {
   std::uint64_t run_id = 0;
   std::uint32_t step = 0;
+  int station_id = 0;
+  wire::SumKind kind = wire::CONTRIBUTION;
   std::uint32_t cluster = 0;
-  bool total = false;
-  int aggregator_id = 0;
 };
 
 template <int N>
@@ -28,9 +28,9 @@ wire::PartialSum to_wire(const PartialSum<N>& sum, const SumHeader& header) {
   wire::PartialSum sample;
   sample.run_id(header.run_id);
   sample.step(header.step);
+  sample.station_id(header.station_id);
+  sample.kind(header.kind);
   sample.cluster(header.cluster);
-  sample.total(header.total);
-  sample.aggregator_id(header.aggregator_id);
   sample.contributors(std::vector<std::int32_t>(sum.contributors.begin(), sum.contributors.end()));
   sample.delta_information(pack_upper<N>(sum.sum.delta_information));
   sample.delta_vector(pack_vector<N>(sum.sum.delta_vector));

@@ -1,0 +1,68 @@
+// DDS partitions, as the tree exchange uses them to keep a cluster's traffic inside it: a
+// writer in a partition matches the readers in that partition and no other, so a station of
+// another cluster (or one in the default partition) never receives its samples, while a reader
+// may listen in several partitions at once (an aggregator: its cluster's and the aggregators').
+#include <gtest/gtest.h>
+
+#include <thread>
+
+#include "skyfuse/transport/dds_node.hpp"
+#include "support/process.hpp"
+
+namespace skyfuse::transport {
+namespace {
+
+using namespace std::chrono_literals;
+using test::eventually;
+
+NodeConfig config_of(const char* name) {
+  NodeConfig config;
+  config.domain_id = 207;
+  config.name = name;
+  return config;
+}
+
+wire::PartialSum sum_for(std::uint32_t cluster) {
+  wire::PartialSum sample;
+  sample.run_id(207);
+  sample.step(3);
+  sample.cluster(cluster);
+  return sample;
+}
+
+TEST(Partitions, AWriterReachesTheReadersOfItsPartitionAndNoOther) {
+  DdsNode sender(config_of("partition-sender"));
+  DdsNode receivers(config_of("partition-receivers"));
+  auto to_cluster_0 = sender.make_writer<wire::PartialSum>({"cluster-0"});
+  auto to_aggregators = sender.make_writer<wire::PartialSum>({"aggregators"});
+  auto in_cluster_0 = receivers.make_reader<wire::PartialSum>({"cluster-0"});
+  auto in_cluster_1 = receivers.make_reader<wire::PartialSum>({"cluster-1"});
+  auto aggregator = receivers.make_reader<wire::PartialSum>({"cluster-1", "aggregators"});
+  auto unpartitioned = receivers.make_reader<wire::PartialSum>();
+
+  ASSERT_TRUE(eventually(
+      [&] {
+        return to_cluster_0.matched() == 1 && to_aggregators.matched() == 1 &&
+               in_cluster_0.matched() == 1 && aggregator.matched() == 1;
+      },
+      20s));
+  std::this_thread::sleep_for(200ms);  // let any wrong match show itself too
+  EXPECT_EQ(in_cluster_1.matched(), 0);
+  EXPECT_EQ(unpartitioned.matched(), 0);
+  EXPECT_EQ(to_cluster_0.matched(), 1) << "only cluster 0's reader";
+
+  to_cluster_0.write(sum_for(0));
+  to_aggregators.write(sum_for(7));
+  wire::PartialSum got;
+  ASSERT_TRUE(eventually([&] { return in_cluster_0.take(got); }, 5s));
+  EXPECT_EQ(got.cluster(), 0u);
+  ASSERT_TRUE(eventually([&] { return aggregator.take(got); }, 5s));
+  EXPECT_EQ(got.cluster(), 7u) << "the aggregators' partition, not cluster 0's";
+  std::this_thread::sleep_for(200ms);
+  EXPECT_FALSE(in_cluster_1.take(got));
+  EXPECT_FALSE(unpartitioned.take(got));
+  EXPECT_FALSE(aggregator.take(got)) << "one sample, from the aggregators' partition";
+}
+
+}  // namespace
+}  // namespace skyfuse::transport
