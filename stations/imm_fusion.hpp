@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/tracking/network_imm.hpp"
 #include "skyfuse/tracking/step_collector.hpp"
@@ -38,7 +39,8 @@ class ImmFusion {
   /// No re-fusion lag for the IMM (load_plan refuses one).
   ImmFusion(const RunPlan& plan, std::size_t /*lag*/)
       : peers_(NetworkImm<ModeSet>::make(plan.scenario,
-                                         plan.initial_estimate<ConstantAcceleration3D>())),
+                                         plan.initial_estimate<ConstantAcceleration3D>()),
+               sorted_ascending(plan.participant_ids()), plan.scenario.exchange.round_fanout()),
         collectors_(make_collectors(plan.participant_ids(), std::make_index_sequence<kModes>{})),
         weights_(plan.weights_of(station_ids())),
         assembled_(station_ids().size()) {

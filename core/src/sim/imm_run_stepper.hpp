@@ -41,7 +41,9 @@ class ImmRunStepper {
   ImmRunStepper(const Scenario& scenario, const TruthTrajectory& truth, int stations,
                 std::uint64_t run, const NisGate& gate)
       : central_(NetworkImm<ModeSet>::make(scenario, start(scenario, truth, run))),
-        peers_(NetworkImm<ModeSet>::make(scenario, start(scenario, truth, run))),
+        peers_(NetworkImm<ModeSet>::make(scenario, start(scenario, truth, run)),
+               run_setup::ids(scenario, run_setup::ascending(scenario, stations)),
+               scenario.exchange.round_fanout()),
         gate_(gate),
         order_(run_setup::ascending(scenario, stations)),
         weights_(run_setup::weights(scenario, order_)),

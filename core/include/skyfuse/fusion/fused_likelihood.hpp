@@ -25,6 +25,15 @@
 
 namespace skyfuse {
 
+/// Adds station terms `t` of fusion weight `w` to `sum`: a station weighted by w counts as one
+/// with noise R / w (nu^T (R/w)^-1 nu = w nu^T R^-1 nu, log det (R/w) = log det R - m log w).
+/// Sums of terms add, so a tree exchange's cluster sums them too (fusion/partial_sum.hpp).
+inline void add_weighted_terms(LikelihoodTerms& sum, const LikelihoodTerms& t, double w) {
+  sum.weighted_innovation += w * t.weighted_innovation;
+  sum.log_det_noise += t.log_det_noise - t.measurement_dim * std::log(w);
+  sum.measurement_dim += t.measurement_dim;
+}
+
 /// fuse_increments() onto `prior`, and the log-likelihood of the stacked measurement the
 /// increments stand for: the report's nis is nu^T S^-1 nu, its log_det_innovation log det S,
 /// and log_likelihood(measurement_dim) with the returned dimension gives log N(nu; 0, S).
@@ -39,16 +48,11 @@ UpdateReport fuse_increments_with_likelihood(const GaussianState<N>& prior,
   const NumericalStatus status = fuse_increments(prior, increments, weights, fused, &information);
   if (status != NumericalStatus::kOk) return {status};
 
-  double weighted_innovation = 0.0;
-  double log_det_noise = 0.0;
-  measurement_dim = 0;
-  for (std::size_t i = 0; i < increments.size(); ++i) {
-    const double w = weights[i];
-    const LikelihoodTerms& t = terms[i];
-    weighted_innovation += w * t.weighted_innovation;
-    log_det_noise += t.log_det_noise - t.measurement_dim * std::log(w);
-    measurement_dim += t.measurement_dim;
-  }
+  LikelihoodTerms sum;
+  for (std::size_t i = 0; i < increments.size(); ++i) add_weighted_terms(sum, terms[i], weights[i]);
+  const double weighted_innovation = sum.weighted_innovation;
+  const double log_det_noise = sum.log_det_noise;
+  measurement_dim = sum.measurement_dim;
   // fuse_increments factorised P- and Y+ already, inside; these two factorisations repeat that
   // work for the determinants (the IMM's path only, not the single-model one).
   SmallCholesky<N> prior_factor;

@@ -31,8 +31,10 @@
 #include "skyfuse/filters/imm.hpp"
 #include "skyfuse/fusion/fused_likelihood.hpp"
 #include "skyfuse/fusion/information_increment.hpp"
+#include "skyfuse/fusion/partial_sum.hpp"
 #include "skyfuse/fusion/stacked_likelihood.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
+#include "skyfuse/tracking/cluster_layout.hpp"
 #include "skyfuse/tracking/peer_contribution.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
@@ -82,7 +84,12 @@ class PeerImm {
   using Contribution = ImmContribution<Modes...>;
   static constexpr int kModes = sizeof...(Modes);
 
-  explicit PeerImm(Filter imm) : imm_(std::move(imm)) {}
+  /// `ids` (ascending) and `fanout` >= 1: the tree exchange's clusters, whose order of
+  /// summation fuse_round() then follows; none: the flat exchange.
+  explicit PeerImm(Filter imm, std::span<const int> ids = {}, std::size_t fanout = 0)
+      : imm_(std::move(imm)) {
+    if (fanout != 0) layout_.emplace(ids, fanout);
+  }
 
   /// fn(std::integral_constant<int, I>{}) for every mode I, in order.
   template <typename Fn>
@@ -154,8 +161,10 @@ class PeerImm {
         return c.terms[I];
       });
       int measurement_dim = 0;
-      const UpdateReport report = fuse_increments_with_likelihood(state, increments, terms, weights,
-                                                                  state, measurement_dim);
+      const UpdateReport report =
+          layout_ ? fuse_mode_by_clusters(state, increments, terms, weights, measurement_dim)
+                  : fuse_increments_with_likelihood(state, increments, terms, weights, state,
+                                                    measurement_dim);
       return ModeUpdate{report.status, report.log_likelihood(measurement_dim)};
     });
     if (status != NumericalStatus::kOk && before) imm_ = *before;
@@ -165,7 +174,42 @@ class PeerImm {
   const Filter& filter() const { return imm_; }
 
  private:
+  // One mode's round in the tree exchange's order (fusion/partial_sum.hpp): each cluster's
+  // weighted increments and terms summed from zero, the clusters' sums added in cluster order,
+  // and the total fused with weight 1 (which changes no bit of it).
+  template <int N, typename Increments, typename Terms>
+  UpdateReport fuse_mode_by_clusters(GaussianState<N>& state, const Increments& increments,
+                                     const Terms& terms, std::span<const double> weights,
+                                     int& measurement_dim) const {
+    PartialSum<N> total;
+    PartialSum<N> cluster;
+    total.clear();
+    cluster.clear();
+    LikelihoodTerms total_terms;
+    LikelihoodTerms cluster_terms;
+    std::size_t current = 0;
+    for (std::size_t i = 0; i < increments.size(); ++i) {
+      const std::size_t c = layout_->cluster_of_id(increments[i].station_id);
+      if (i > 0 && c != current) {
+        total.add(cluster);
+        add_weighted_terms(total_terms, cluster_terms, 1.0);
+        cluster.clear();
+        cluster_terms = {};
+      }
+      current = c;
+      cluster.add(increments[i].station_id, weights[i], increments[i], state);
+      add_weighted_terms(cluster_terms, terms[i], weights[i]);
+    }
+    total.add(cluster);
+    add_weighted_terms(total_terms, cluster_terms, 1.0);
+    constexpr double kOne = 1.0;
+    return fuse_increments_with_likelihood(state, std::span(&total.sum, 1),
+                                           std::span(&total_terms, 1), std::span(&kOne, 1), state,
+                                           measurement_dim);
+  }
+
   Filter imm_;
+  std::optional<ClusterLayout> layout_;
 };
 
 template <typename Common, typename... Modes>

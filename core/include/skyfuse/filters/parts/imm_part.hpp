@@ -28,8 +28,7 @@ struct ImmFilterPart {
   static constexpr bool kOneSensorKind = true;
   static constexpr bool kTakesRefusionLag = false;
   static constexpr bool kTakesNisGate = true;
-  // per-mode sums: not yet
-  static constexpr bool kTakesTreeExchange = false;
+  static constexpr bool kTakesTreeExchange = true;
   static constexpr auto kModeNames = Modes::kNames;
   static constexpr int kNeesDof = 6;
 };
