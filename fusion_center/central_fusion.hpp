@@ -107,7 +107,9 @@ class ImmCenter {
 
 /// Paper 002's stacked NCRKF: the center computes each receiver's bias-compensated increment
 /// from its raw measurement, as the receiver does, and fuses them onto its own prior by the TDOA
-/// round rule, exactly as a peer does (tracking/tdoa_round.hpp).
+/// round rule, exactly as a peer does (tracking/tdoa_round.hpp), in the peers' order of
+/// summation (the tree exchange's, if the run has it): its compensated increments are nearly
+/// singular, and another order alone moves the track by 4e-8 m on paper 002.
 class NcrkfCenter
     : public TrackedCenter<PeerTracker<TdoaRelativeMotion>, PeerRound<TdoaRelativeMotion>> {
  public:
@@ -142,7 +144,8 @@ class NcrkfCenter
  private:
   NcrkfCenter(const RunPlan& plan, std::vector<int> ascending_ids)
       : TrackedCenter({plan.motion_model<Model>(), plan.initial_estimate<Model>()},
-                      PeerRound<Model>(ascending_ids, plan.weights_of(ascending_ids))),
+                      PeerRound<Model>(ascending_ids, plan.weights_of(ascending_ids),
+                                       plan.scenario.exchange.round_fanout())),
         ids_(std::move(ascending_ids)),
         increments_(ids_.size()) {}
 

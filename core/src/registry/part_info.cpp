@@ -37,7 +37,6 @@ std::vector<FilterInfo> describe(FilterList<Filters...> /*list*/) {
   return {FilterInfo{
       Filters::kKind, Filters::kSummary, Filters::kMotionModel, Filters::kSensor,
       Filters::kOneSensorKind, Filters::kTakesRefusionLag, Filters::kTakesNisGate,
-      Filters::kTakesTreeExchange,
       std::vector<std::string_view>(Filters::kModeNames.begin(), Filters::kModeNames.end()),
       Filters::kNeesDof}...};
 }

@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 
 namespace skyfuse {
@@ -26,11 +25,6 @@ void apply_exchange_overrides(Scenario& scenario, std::optional<ExchangeConfig::
           fmt::format("--fanout: must be in [2, {}], got {}", ExchangeConfig::kMaxFanout, *fanout));
     }
     scenario.exchange.fanout = *fanout;
-  }
-  if (scenario.exchange.kind == ExchangeConfig::Kind::kTree &&
-      !find_filter(scenario.filter)->takes_tree_exchange) {
-    throw std::invalid_argument(fmt::format(
-        "--exchange tree: filter '{}' has no tree exchange yet; use flat", scenario.filter.kind));
   }
 }
 

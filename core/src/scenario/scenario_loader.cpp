@@ -412,14 +412,8 @@ Scenario read_scenario(const YamlField& root) {
   }
   const YamlField filter = root.required("filter");
   s.filter = read_filter(filter);
-  if (const auto network = root.optional("network")) {
-    s.exchange = read_network(*network);
-    const FilterInfo info = *find_filter(s.filter.kind);
-    if (s.exchange.kind == ExchangeConfig::Kind::kTree && !info.takes_tree_exchange) {
-      network->required("exchange")
-          .fail(fmt::format("filter '{}' has no tree exchange yet; use flat", s.filter.kind));
-    }
-  }
+  if (const auto network = root.optional("network")) s.exchange = read_network(*network);
+
   const MotionModelInfo model = *find_motion_model(s.filter.motion_model.kind);
   const FilterInfo filter_info = *find_filter(s.filter.kind);
   for (std::size_t i = 0; i < s.stations.size(); ++i) {

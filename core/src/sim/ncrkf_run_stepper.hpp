@@ -34,8 +34,11 @@ class NcrkfRunStepper {
         peers_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
         order_(run_setup::ascending(scenario, stations)),
         observations_(run_setup::checked_observations<Sensor>(scenario, order_, run)),
-        central_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_)),
-        peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_)),
+        // The center sums in the peers' order too, as fusion_center's NcrkfCenter does.
+        central_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_),
+                       scenario.exchange.round_fanout()),
+        peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_),
+                    scenario.exchange.round_fanout()),
         trace_(run_setup::sized_trace(scenario.steps)) {
     if (gate.enabled()) {
       throw std::invalid_argument(

@@ -4,7 +4,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <numbers>
 #include <string>
 
@@ -329,13 +328,6 @@ TEST(ScenarioLoader, ReadsTheNetworksExchangeAndRefusesWhatCannotRun) {
                            "test.yaml")
                 .exchange.kind,
             ExchangeConfig::Kind::kTree);
-  // Paper 002's NCRKF sums by its TDOA round rule, which has no tree yet.
-  std::ifstream paper002(SKYFUSE_SOURCE_DIR "/scenarios/paper002.yaml");
-  const std::string ncrkf((std::istreambuf_iterator<char>(paper002)), {});
-  const std::string refused = rejection(ncrkf + "network: {exchange: tree}\n");
-  EXPECT_NE(refused.find("network.exchange: filter 'ncrkf' has no tree exchange yet; use flat"),
-            std::string::npos)
-      << refused;
 }
 
 TEST(ScenarioLoader, RefusesImmSettingsThatCannotWork) {

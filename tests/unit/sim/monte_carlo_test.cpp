@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -27,7 +28,7 @@ TEST(MonteCarlo, CentralAndPeerToPeerAgreeAtEveryStepWithUnitWeights) {
   }
 }
 
-// The largest distance, over one run of M = 10 stations, of the tree exchange's peers (clusters
+// The largest distance, over one run of up to 10 stations, of the tree exchange's peers (clusters
 // of `fanout`) from the central filter and from the flat exchange's peers.
 struct TreeDistances {
   double from_central = 0.0;
@@ -39,11 +40,12 @@ TreeDistances tree_against_flat(const Scenario& flat, int fanout) {
   const TruthTrajectory truth =
       generate_truth(flat.target, flat.target.speeds_mps.front(), flat.time_step_s, flat.steps);
   std::vector<Vector3> flat_p2p;
-  simulate_run(flat, truth, 10, 0,
+  const int m = std::min(10, static_cast<int>(flat.stations.size()));
+  simulate_run(flat, truth, m, 0,
                [&](const StepRecord& r) { flat_p2p.push_back(r.decentralised.mean.head<3>()); });
   TreeDistances d;
   std::size_t k = 0;
-  simulate_run(tree, truth, 10, 0, [&](const StepRecord& r) {
+  simulate_run(tree, truth, m, 0, [&](const StepRecord& r) {
     const Vector3 p = r.decentralised.mean.head<3>();
     d.from_central = std::max(d.from_central, (r.central.mean.head<3>() - p).norm());
     d.from_flat = std::max(d.from_flat, (flat_p2p.at(k++) - p).norm());
@@ -54,15 +56,20 @@ TreeDistances tree_against_flat(const Scenario& flat, int fanout) {
 
 // The tree exchange: the peers sum in clusters, then the clusters' sums. The same fused filter in
 // another order of summation: within 1e-9 m of the central filter and of the flat exchange's
-// peers at every step, for the EKF and the unscented filter (clusters of 4) and for the IMM
-// (clusters of 3: each mode's increments and likelihood terms).
+// peers at every step, for the EKF and the unscented filter (clusters of 4), the IMM (clusters
+// of 3: each mode's increments and likelihood terms) and paper 002's NCRKF (3 receivers in
+// clusters of 2, by its TDOA round rule).
 TEST(MonteCarlo, TheTreeExchangesPeersFollowTheCentralFilterAsTheFlatOnesDo) {
   for (const char* file : {"/scenarios/paper000.yaml", "/scenarios/paper000-ukf.yaml",
-                           "/scenarios/paper000-imm.yaml"}) {
+                           "/scenarios/paper000-imm.yaml", "/scenarios/paper002.yaml"}) {
     const Scenario flat = load_scenario_file(std::string(SKYFUSE_SOURCE_DIR) + file);
-    const TreeDistances d = tree_against_flat(flat, flat.filter.kind == "imm" ? 3 : 4);
+    const int fanout = flat.filter.kind == "imm" ? 3 : flat.filter.kind == "ncrkf" ? 2 : 4;
+    const TreeDistances d = tree_against_flat(flat, fanout);
     EXPECT_LT(d.from_central, 1e-9) << file;
-    EXPECT_LT(d.from_flat, 1e-9) << file;
+    // The NCRKF's compensated increments are nearly singular: another order of summation alone
+    // moves its track by about 4e-8 m over paper 002's 5 000 steps (its center sums in the
+    // peers' order, so central and peer-to-peer stay together).
+    EXPECT_LT(d.from_flat, flat.filter.kind == "ncrkf" ? 1e-7 : 1e-9) << file;
     EXPECT_GT(d.from_flat, 0.0) << file << ": another order of summation, not the flat bits";
   }
 }

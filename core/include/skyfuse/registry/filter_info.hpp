@@ -27,8 +27,6 @@ struct FilterInfo {
   /// Whether it takes a chi^2 gate on measurements (`--nis-gate`): only a filter with an
   /// innovation to gate does.
   bool takes_nis_gate = true;
-  /// Whether its peers can sum a round in clusters (scenario `network: {exchange: tree}`).
-  bool takes_tree_exchange = false;
   /// Its modes, in the order of every probability vector it reports; empty: one model. A
   /// scenario configures the modes under `filter.imm` only for a filter that has them.
   std::vector<std::string_view> mode_names;

@@ -138,7 +138,7 @@ struct Scenario {
 };
 
 /// Applies `--exchange` and `--fanout` to `scenario`; throws std::invalid_argument naming the
-/// option when the fanout is out of range or the scenario's filter has no tree exchange.
+/// option when the fanout is out of range.
 void apply_exchange_overrides(Scenario& scenario, std::optional<ExchangeConfig::Kind> kind,
                               std::optional<int> fanout);
 

@@ -22,7 +22,6 @@ struct EkfFilterPart {
   static constexpr bool kOneSensorKind = false;
   static constexpr bool kTakesRefusionLag = true;
   static constexpr bool kTakesNisGate = true;
-  static constexpr bool kTakesTreeExchange = true;
   static constexpr std::array<std::string_view, 0> kModeNames = {};
   static constexpr int kNeesDof = 0;  // the model's state
   /// A station's increment. (The center stacks the raw measurements instead: its own line in

@@ -28,7 +28,6 @@ struct ImmFilterPart {
   static constexpr bool kOneSensorKind = true;
   static constexpr bool kTakesRefusionLag = false;
   static constexpr bool kTakesNisGate = true;
-  static constexpr bool kTakesTreeExchange = true;
   static constexpr auto kModeNames = Modes::kNames;
   static constexpr int kNeesDof = 6;
 };

@@ -22,8 +22,6 @@ struct NcrkfFilterPart {
   static constexpr bool kOneSensorKind = true;
   static constexpr bool kTakesRefusionLag = true;
   static constexpr bool kTakesNisGate = false;
-  // its TDOA round rule: not yet
-  static constexpr bool kTakesTreeExchange = false;
   static constexpr std::array<std::string_view, 0> kModeNames = {};
   static constexpr int kNeesDof = 0;
 };

@@ -29,7 +29,6 @@ struct UkfFilterPart {
   static constexpr bool kOneSensorKind = true;
   static constexpr bool kTakesRefusionLag = true;
   static constexpr bool kTakesNisGate = true;
-  static constexpr bool kTakesTreeExchange = true;
   static constexpr std::array<std::string_view, 0> kModeNames = {};
   static constexpr int kNeesDof = 0;
   using IncrementRule = UnscentedIncrementRule;
