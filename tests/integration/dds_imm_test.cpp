@@ -19,9 +19,10 @@ using namespace std::chrono_literals;
 const std::string kScenario = bin("scenarios/paper000-imm.yaml");
 
 std::vector<std::string> imm_run(int domain, const std::filesystem::path& out, int steps,
-                                 std::vector<std::string> extra = {}) {
+                                 std::vector<std::string> extra = {},
+                                 const std::string& scenario = kScenario) {
   std::vector<std::string> args = {bin("skyfuse"), "run",
-                                   "--scenario",   kScenario,
+                                   "--scenario",   scenario,
                                    "--stations",   "4",
                                    "--steps",      std::to_string(steps),
                                    "--domain",     std::to_string(domain),
@@ -63,30 +64,44 @@ void expect_peers_hold_the_same_probabilities(
   }
 }
 
-TEST(DdsImm, PeersEqualTheCentralStackedImmAndTheInProcessRunBitForBit) {
+// The whole flight of `scenario` over DDS with 4 stations: every track the in-process run's bit
+// for bit, every peer the same bits, central and peer-to-peer within 1e-9 (mode probabilities
+// too). `modes` gets modes.csv (its header `mode_header`), `summary` summary.json.
+void expect_whole_flight_equals_twin(const std::string& scenario, int domain,
+                                     const std::string& mode_header,
+                                     std::map<std::pair<int, int>, std::vector<double>>& modes,
+                                     nlohmann::json& summary) {
   constexpr int kSteps = 2000;  // the whole flight: the turn is 10-18 s
   const auto dir = test_dir();
-  const Completed run = run_to_completion(imm_run(181, dir / "out", kSteps), dir / "out.log", 180s);
+  const Completed run =
+      run_to_completion(imm_run(domain, dir / "out", kSteps, {}, scenario), dir / "out.log", 180s);
   ASSERT_TRUE(run.status.exited && run.status.code == 0) << run.output;
 
-  const RunPlan plan = make_run_plan(load_scenario_file(kScenario), {4, kSteps, {}, 0});
+  const RunPlan plan = make_run_plan(load_scenario_file(scenario), {4, kSteps, {}, 0});
   const auto tracks = read_tracks(dir / "out" / "tracks.csv");
   ASSERT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * 5));
   EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);
 
-  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
-  EXPECT_EQ(summary.at("filter"), "imm");
+  summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   EXPECT_EQ(summary.at("max_abs_diff_between_peers"), 0.0);  // mode probabilities included
   EXPECT_LT(summary.at("max_abs_diff_central_vs_p2p").get<double>(), 1e-9);
   EXPECT_LT(summary.at("max_abs_diff_mode_probability_central_vs_p2p").get<double>(), 1e-9);
+
+  modes = read_modes(dir / "out" / "modes.csv", mode_header);
+  ASSERT_EQ(modes.size(), static_cast<std::size_t>(kSteps * 5));
+  expect_peers_hold_the_same_probabilities(modes);
+}
+
+TEST(DdsImm, PeersEqualTheCentralStackedImmAndTheInProcessRunBitForBit) {
+  std::map<std::pair<int, int>, std::vector<double>> modes;
+  nlohmann::json summary;
+  expect_whole_flight_equals_twin(kScenario, 181, kThreeModes, modes, summary);
+  if (HasFatalFailure()) return;
+  EXPECT_EQ(summary.at("filter"), "imm");
   for (const auto& [kind, count] : summary.at("dropped_by_kind").items()) {
     EXPECT_EQ(count.get<int>(), 0) << kind;
   }
-
   // It is an IMM that switches: CV leads on the straight before the turn, CT in it.
-  const auto modes = read_modes(dir / "out" / "modes.csv", kThreeModes);
-  ASSERT_EQ(modes.size(), static_cast<std::size_t>(kSteps * 5));
-  expect_peers_hold_the_same_probabilities(modes);
   EXPECT_GT(modes.at({400, 1})[0], 0.5);  // 8 s
   EXPECT_GT(modes.at({750, 1})[2], 0.8);  // 15 s
 }
@@ -94,26 +109,11 @@ TEST(DdsImm, PeersEqualTheCentralStackedImmAndTheInProcessRunBitForBit) {
 // The IMM's modes are the scenario's: CV and CT only (scenarios/paper000-imm-cv-ct.yaml), run by
 // the same station and center processes, bit for bit the in-process run, switching into the turn.
 TEST(DdsImm, AnImmOfTheScenariosTwoModesEqualsTheInProcessRunBitForBit) {
-  constexpr int kSteps = 2000;
-  const auto dir = test_dir();
-  const std::string scenario = bin("scenarios/paper000-imm-cv-ct.yaml");
-  std::vector<std::string> args = imm_run(205, dir / "out", kSteps);
-  args[3] = scenario;
-  const Completed run = run_to_completion(args, dir / "out.log", 180s);
-  ASSERT_TRUE(run.status.exited && run.status.code == 0) << run.output;
-
-  const RunPlan plan = make_run_plan(load_scenario_file(scenario), {4, kSteps, {}, 0});
-  const auto tracks = read_tracks(dir / "out" / "tracks.csv");
-  ASSERT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * 5));
-  EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);
-  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
-  EXPECT_EQ(summary.at("max_abs_diff_between_peers"), 0.0);
-  EXPECT_LT(summary.at("max_abs_diff_central_vs_p2p").get<double>(), 1e-9);
-  EXPECT_LT(summary.at("max_abs_diff_mode_probability_central_vs_p2p").get<double>(), 1e-9);
-
-  const auto modes = read_modes(dir / "out" / "modes.csv", "constant_velocity,coordinated_turn");
-  ASSERT_EQ(modes.size(), static_cast<std::size_t>(kSteps * 5));
-  expect_peers_hold_the_same_probabilities(modes);
+  std::map<std::pair<int, int>, std::vector<double>> modes;
+  nlohmann::json summary;
+  expect_whole_flight_equals_twin(bin("scenarios/paper000-imm-cv-ct.yaml"), 205,
+                                  "constant_velocity,coordinated_turn", modes, summary);
+  if (HasFatalFailure()) return;
   EXPECT_GT(modes.at({400, 1})[0], 0.5);  // 8 s, straight
   EXPECT_GT(modes.at({750, 1})[1], 0.8);  // 15 s, in the turn
 }

@@ -34,6 +34,13 @@ inline void add_weighted_terms(LikelihoodTerms& sum, const LikelihoodTerms& t, d
   sum.measurement_dim += t.measurement_dim;
 }
 
+/// Adds a later cluster's summed terms to `sum` (their weights are inside already).
+inline void add_terms(LikelihoodTerms& sum, const LikelihoodTerms& later) {
+  sum.weighted_innovation += later.weighted_innovation;
+  sum.log_det_noise += later.log_det_noise;
+  sum.measurement_dim += later.measurement_dim;
+}
+
 /// fuse_increments() onto `prior`, and the log-likelihood of the stacked measurement the
 /// increments stand for: the report's nis is nu^T S^-1 nu, its log_det_innovation log det S,
 /// and log_likelihood(measurement_dim) with the returned dimension gives log N(nu; 0, S).
@@ -50,8 +57,6 @@ UpdateReport fuse_increments_with_likelihood(const GaussianState<N>& prior,
 
   LikelihoodTerms sum;
   for (std::size_t i = 0; i < increments.size(); ++i) add_weighted_terms(sum, terms[i], weights[i]);
-  const double weighted_innovation = sum.weighted_innovation;
-  const double log_det_noise = sum.log_det_noise;
   measurement_dim = sum.measurement_dim;
   // fuse_increments factorised P- and Y+ already, inside; these two factorisations repeat that
   // work for the determinants (the IMM's path only, not the single-model one).
@@ -62,9 +67,9 @@ UpdateReport fuse_increments_with_likelihood(const GaussianState<N>& prior,
   const Vector<N> step = fused.mean - prior.mean;
 
   UpdateReport report;
-  report.nis = weighted_innovation - step.dot(information * step);
+  report.nis = sum.weighted_innovation - step.dot(information * step);
   report.log_det_innovation =
-      log_det_noise + fused_factor.log_determinant() + prior_factor.log_determinant();
+      sum.log_det_noise + fused_factor.log_determinant() + prior_factor.log_determinant();
   posterior = fused;
   return report;
 }

@@ -19,6 +19,22 @@
 
 namespace skyfuse {
 
+/// sum += w dQ, w dy: one station's term of a sum. Every sum of the tree exchange adds its
+/// stations this way, so an IMM's per-mode sums and an aggregator's form the same bits.
+template <int N>
+void add_weighted_increment(InformationIncrement<N>& sum, double weight,
+                            const InformationIncrement<N>& increment) {
+  sum.delta_information.noalias() += weight * increment.delta_information;
+  sum.delta_vector.noalias() += weight * increment.delta_vector;
+}
+
+/// sum += a later cluster's sum.
+template <int N>
+void add_increment_sum(InformationIncrement<N>& sum, const InformationIncrement<N>& later) {
+  sum.delta_information += later.delta_information;
+  sum.delta_vector += later.delta_vector;
+}
+
 template <int N>
 struct PartialSum {
   /// sum of w_i dQ_i and of w_i dy_i; station_id is the lowest contributor's.
@@ -42,8 +58,7 @@ struct PartialSum {
       sum.station_id = id;
       reference = prior;
     }
-    sum.delta_information.noalias() += weight * increment.delta_information;
-    sum.delta_vector.noalias() += weight * increment.delta_vector;
+    add_weighted_increment(sum, weight, increment);
     contributors.push_back(id);
   }
 
@@ -54,8 +69,7 @@ struct PartialSum {
       sum.station_id = later.sum.station_id;
       reference = later.reference;
     }
-    sum.delta_information += later.sum.delta_information;
-    sum.delta_vector += later.sum.delta_vector;
+    add_increment_sum(sum, later.sum);
     contributors.insert(contributors.end(), later.contributors.begin(), later.contributors.end());
   }
 };

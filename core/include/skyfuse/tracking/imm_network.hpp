@@ -176,36 +176,35 @@ class PeerImm {
  private:
   // One mode's round in the tree exchange's order (fusion/partial_sum.hpp): each cluster's
   // weighted increments and terms summed from zero, the clusters' sums added in cluster order,
-  // and the total fused with weight 1 (which changes no bit of it).
+  // and the total fused with weight 1 (which changes no bit of it). Fixed-size sums only: no
+  // allocation, and no prior copied (the mode's prior is the reference).
   template <int N, typename Increments, typename Terms>
   UpdateReport fuse_mode_by_clusters(GaussianState<N>& state, const Increments& increments,
                                      const Terms& terms, std::span<const double> weights,
                                      int& measurement_dim) const {
-    PartialSum<N> total;
-    PartialSum<N> cluster;
-    total.clear();
-    cluster.clear();
+    InformationIncrement<N> total;
+    InformationIncrement<N> cluster;
     LikelihoodTerms total_terms;
     LikelihoodTerms cluster_terms;
     std::size_t current = 0;
     for (std::size_t i = 0; i < increments.size(); ++i) {
       const std::size_t c = layout_->cluster_of_id(increments[i].station_id);
+      if (i == 0) total.station_id = increments[i].station_id;
       if (i > 0 && c != current) {
-        total.add(cluster);
-        add_weighted_terms(total_terms, cluster_terms, 1.0);
-        cluster.clear();
+        add_increment_sum(total, cluster);
+        add_terms(total_terms, cluster_terms);
+        cluster.set_zero(0);
         cluster_terms = {};
       }
       current = c;
-      cluster.add(increments[i].station_id, weights[i], increments[i], state);
+      add_weighted_increment(cluster, weights[i], increments[i]);
       add_weighted_terms(cluster_terms, terms[i], weights[i]);
     }
-    total.add(cluster);
-    add_weighted_terms(total_terms, cluster_terms, 1.0);
+    add_increment_sum(total, cluster);
+    add_terms(total_terms, cluster_terms);
     constexpr double kOne = 1.0;
-    return fuse_increments_with_likelihood(state, std::span(&total.sum, 1),
-                                           std::span(&total_terms, 1), std::span(&kOne, 1), state,
-                                           measurement_dim);
+    return fuse_increments_with_likelihood(state, std::span(&total, 1), std::span(&total_terms, 1),
+                                           std::span(&kOne, 1), state, measurement_dim);
   }
 
   Filter imm_;
