@@ -58,6 +58,25 @@ class IncrementRound {
   void predict() { chain_.predict(); }
   void advance() { chain_.advance(); }
 
+  // The tree exchange (tree_exchange.hpp), which has no lag.
+
+  /// The tree's clusters of this run (none with the flat exchange).
+  const std::optional<ClusterLayout>& layout() const { return chain_.round().layout(); }
+  /// The contribution of `station_id` kept for the current round (this station's own, once
+  /// contribute() made it), or null.
+  const Contribution* kept_contribution(int station_id) const {
+    const auto& collector = chain_.collector();
+    const auto index = position_of(collector.station_ids(), station_id);
+    if (!index || !collector.filled(*index)) return nullptr;
+    return &collector.payloads()[*index];
+  }
+  /// Cluster c's sum of the current round's contributions.
+  void sum_cluster(std::size_t c, PartialSum<kDim>& out) const {
+    chain_.sum_cluster_current(c, out);
+  }
+  /// Fuses the current round's total; arrived() then says whether it counted anyone.
+  RoundFusion fuse_total(const PartialSum<kDim>& total) { return chain_.fuse_total_current(total); }
+
  protected:
   /// Writes this station's own contribution (write(sample)) and keeps it for round k.
   template <typename Write>
@@ -84,17 +103,18 @@ class IncrementRound {
     const auto contribution = contribution_of(sample);
     if (!contribution) return DropKind::kOutOfRange;  // not the run's filter or dimension
     if (const auto why = check(*contribution)) return why;
-    return keep(sample, writer, sources, *contribution);
+    return keep(sample.step(), static_cast<int>(sample.station_id()), writer, sources,
+                *contribution);
   }
 
- private:
-  /// Keeps a checked contribution, or says why not: its step, its station, its writer.
-  std::optional<DropKind> keep(const wire::InformationIncrement& sample,
+  /// Keeps a checked contribution of `station_id` for `step`, or says why not: its step, its
+  /// station, its writer.
+  std::optional<DropKind> keep(std::uint64_t step, int station_id,
                                const transport::WriterId& writer, transport::SourceBinding& sources,
                                const Contribution& contribution) {
-    const auto why = transport::admit(chain_.collector(), sources, sample.step(),
-                                      sample.station_id(), writer, contribution);
-    if (!why) chain_.kept(sample.step());
+    const auto why =
+        transport::admit(chain_.collector(), sources, step, station_id, writer, contribution);
+    if (!why) chain_.kept(step);
     return why;
   }
 

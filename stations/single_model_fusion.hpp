@@ -50,6 +50,16 @@ class SingleModelFusion : public IncrementRound<Model> {
     });
   }
 
+  /// Checks a peer's contribution to `step` that came another way than its own sample (a tree
+  /// exchange's member to its aggregator) and keeps it; why not if it did not.
+  std::optional<DropKind> admit_contribution(std::uint64_t step, int station_id,
+                                             const Contribution& contribution,
+                                             const transport::WriterId& writer,
+                                             transport::SourceBinding& sources) {
+    if (const auto why = check_contribution(contribution)) return why;
+    return this->keep(step, station_id, writer, sources, contribution);
+  }
+
   /// Fuses what arrived; arrived() then says whether anything did. Refuses nothing at fusion
   /// (on_refused(station_id, why) is never called): every sample was checked on arrival.
   template <typename OnRefused>

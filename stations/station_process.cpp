@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "flat_exchange.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -18,6 +19,7 @@
 #include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 #include "station_fusions.hpp"
+#include "tree_exchange.hpp"
 
 namespace skyfuse::station {
 namespace {
@@ -25,13 +27,16 @@ namespace {
 using transport::RunEnd;
 
 // A station with a `Sensor` of the run's motion model's state (a radar, the aircraft's GPS, a
-// TDOA receiver), whose rounds `Fusion` fuses: the fusion of the run's filter part
+// TDOA receiver), whose rounds `Exchange` carries and its fusion fuses: the flat or the tree
+// exchange (flat_exchange.hpp, tree_exchange.hpp) of the run's filter part's fusion
 // (station_fusions.hpp). The round loop (transport/node_loop.hpp) moves the samples; this is
 // what a station adds to it.
-template <typename Sensor, typename Fusion>
+template <typename Sensor, typename Exchange>
 class Station {
  public:
-  // The endpoints are made in a fixed order: the loop's tick and increment readers first.
+  using Sample = typename Exchange::Sample;
+
+  // The endpoints are made in a fixed order: the loop's tick and input readers first.
   Station(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
           std::unique_ptr<SensorSource<Sensor>> source)
       : options_(options),
@@ -39,50 +44,50 @@ class Station {
         me_(me),
         source_(std::move(source)),
         node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", me.id))),
-        loop_(node_, options.node, me.id, fmt::format("station {}", me.id), "increment",
-              plan.scenario.time_step_s),
-        increments_out_(node_.make_writer<wire::InformationIncrement>()),
+        loop_(node_, options.node, me.id, fmt::format("station {}", me.id), Exchange::kInputName,
+              plan.scenario.time_step_s, Exchange::input_partitions(plan, me.id)),
+        exchange_(node_, plan, me.id, options.node, options.rejoin_step.has_value()),
         measurements_(node_.make_writer<wire::Measurement>()),
         tracks_(node_.make_writer<wire::TrackEstimate>()),
-        fusion_(plan, options.node.refusion_lag),
         sensor_(make_sensor<Sensor>(me)),
         noise_(station_noise_covariance<Sensor::kMeasDim>(plan.scenario, me, plan.mc_run)),
         syncing_(options.rejoin_step.has_value()) {
-    sources_.bind(me_.id, increments_out_.id());
-    loop_.skip_own(me_.id, increments_out_.id());
+    if (const auto own = exchange_.own_writer()) loop_.skip_own(me_.id, *own);
   }
 
   int run() {
-    const int m = plan_.stations;
-    // Matched counts include this participant's own endpoints: M increment writers (every
-    // station, this one too); the measurement goes to the center and the harness's recorder.
-    auto& increments_in = loop_.inputs();
+    // Matched counts include this participant's own endpoints; the measurement goes to the
+    // center and the harness's recorder.
+    auto& inputs = loop_.inputs();
     auto& ticks = loop_.ticks();
     if (const RunEnd end = loop_.join(
             [&] {
-              return increments_in.matched() >= m && increments_out_.matched() >= m &&
-                     ticks.matched() >= 1 && measurements_.matched() >= 2 && tracks_.matched() >= 1;
+              return exchange_.matched(inputs) && ticks.matched() >= 1 &&
+                     measurements_.matched() >= 2 && tracks_.matched() >= 1;
             },
             [&] {
               return fmt::format(
-                  "increment writers {}/{}, increment readers {}/{}, tick writer {}/1, "
-                  "measurement readers {}/2 (center, harness), track readers {}/1 (harness)",
-                  increments_in.matched(), m, increments_out_.matched(), m, ticks.matched(),
-                  measurements_.matched(), tracks_.matched());
+                  "{}, tick writer {}/1, measurement readers {}/2 (center, harness), track "
+                  "readers {}/1 (harness)",
+                  exchange_.describe_matched(inputs), ticks.matched(), measurements_.matched(),
+                  tracks_.matched());
             })) {
       return *end;
     }
-    spdlog::info("joined run {} with {} stations; waiting for ticks", options_.node.run_id, m);
+    spdlog::info("joined run {} with {} stations; waiting for ticks", options_.node.run_id,
+                 plan_.stations);
     const std::uint64_t first = options_.rejoin_step.value_or(0);
-    fusion_.start_at(first);
+    exchange_.start_at(first);
     return loop_.run(*this, first, static_cast<std::uint64_t>(plan_.scenario.steps), tracks_);
   }
 
   // What the round loop asks of a station (transport::NodeProcess).
 
-  // Publishes this station's measurement (for the center) and its increment (for the peers).
+  // Publishes this station's measurement (for the center) and its contribution (for the
+  // exchange).
   RunEnd open_round(std::uint64_t k) {
     const auto step = static_cast<std::uint32_t>(k);
+    exchange_.open(k, options_.node.run_id);
     const StationObservation<Sensor> observation{me_.id, sensor_, source_->measurement(k), noise_};
     measurements_.write(transport::to_wire(observation, options_.node.run_id, step));
     if (syncing_) return std::nullopt;  // no prior yet: nothing to compute an increment against
@@ -91,8 +96,7 @@ class Station {
     // measurements; screened out, it still yields a zero increment that tells the peers not to
     // wait for one.
     const OwnContribution result =
-        fusion_.contribute(k, observation, options_.node.nis_gate(), options_.node.run_id,
-                           [&](const wire::InformationIncrement& s) { increments_out_.write(s); });
+        exchange_.contribute(k, observation, options_.node.nis_gate(), options_.node.run_id);
     if (result.refused) {
       loop_.count_drop(*result.refused, "own measurement", me_.id, k);
     } else if (result.status != NumericalStatus::kOk) {
@@ -102,26 +106,26 @@ class Station {
     return std::nullopt;
   }
 
-  // Checks a peer's increment (garbage whoever sent it; then who it claims to be and when;
-  // then whether the writer really speaks for that station) and keeps it.
-  std::optional<DropKind> receive(const wire::InformationIncrement& sample,
-                                  const transport::WriterId& writer) {
-    return fusion_.admit(sample, writer, sources_);
+  // Checks a sample of the exchange (garbage whoever sent it; then who it claims to be and
+  // when; then whether the writer really speaks for that station) and keeps it.
+  std::optional<DropKind> receive(const Sample& sample, const transport::WriterId& writer) {
+    return exchange_.receive(sample, writer);
   }
 
-  // Every station's increment is in (all but this one's own while it resynchronises).
-  bool round_complete() const {
-    return fusion_.arrived_count() == fusion_.station_ids().size() - (syncing_ ? 1 : 0);
-  }
+  // Everything the round waits for is in.
+  bool round_complete() { return exchange_.round_complete(syncing_); }
+  // When the exchange's current stage of the round ends (the tree's aggregator has stages).
+  std::optional<typename Exchange::SystemTime> wake_at() const { return exchange_.wake_at(); }
 
   // Fuses what arrived (everything, in a healthy lock-step round) by the round rule and
-  // publishes the track, which names exactly these stations.
+  // publishes the track, which names exactly the stations fused.
   RunEnd close_round(std::uint64_t k) {
     const RoundFusion fused =
-        fusion_.fuse([&](int station_id, DropKind why) { loop_.count_drop(why, station_id, k); });
-    if (!fusion_.arrived()) {  // only while resynchronising: no peer's prior arrived this round
+        exchange_.fuse([&](int station_id, DropKind why) { loop_.count_drop(why, station_id, k); });
+    auto& fusion = exchange_.fusion();
+    if (!fusion.arrived()) {  // only while resynchronising: no peer's prior arrived this round
       spdlog::warn("step {}: no peer increment arrived; still without a prior", k);
-      fusion_.advance();
+      exchange_.advance();
       return std::nullopt;
     }
     if (fused.status != NumericalStatus::kOk) {
@@ -134,12 +138,12 @@ class Station {
         spdlog::info("step {}: took the peers' prior; contributing from step {}", k, k + 1);
     }
     syncing_ = false;
-    tracks_.write(fusion_.track(options_.node.run_id, k, me_.id));
-    if (const auto settled = fusion_.settled_round()) {  // leaves the lag: final now
-      tracks_.write(fusion_.settled_track(options_.node.run_id, *settled, me_.id));
+    tracks_.write(fusion.track(options_.node.run_id, k, me_.id));
+    if (const auto settled = fusion.settled_round()) {  // leaves the lag: final now
+      tracks_.write(fusion.settled_track(options_.node.run_id, *settled, me_.id));
     }
-    fusion_.predict();
-    fusion_.advance();
+    fusion.predict();
+    exchange_.advance();
     return std::nullopt;
   }
 
@@ -147,17 +151,18 @@ class Station {
   // what came late, and their final tracks.
   RunEnd settle(std::uint64_t /*steps*/) {
     NumericalStatus status = NumericalStatus::kOk;
-    const auto [from, to] = fusion_.settle(status);
+    auto& fusion = exchange_.fusion();
+    const auto [from, to] = fusion.settle(status);
     if (status != NumericalStatus::kOk) {
       throw std::runtime_error(fmt::format("settling the last rounds: {}", to_string(status)));
     }
     for (std::uint64_t s = from; s < to; ++s) {
-      tracks_.write(fusion_.settled_track(options_.node.run_id, s, me_.id));
+      tracks_.write(fusion.settled_track(options_.node.run_id, s, me_.id));
     }
     return std::nullopt;
   }
 
-  transport::ProcessCounts counts() const { return {resyncs_, fusion_.late_used()}; }
+  transport::ProcessCounts counts() const { return {resyncs_, exchange_.fusion().late_used()}; }
 
  private:
   const StationOptions& options_;
@@ -165,17 +170,32 @@ class Station {
   const StationConfig& me_;
   std::unique_ptr<SensorSource<Sensor>> source_;
   transport::DdsNode node_;
-  transport::NodeLoop<wire::InformationIncrement> loop_;
-  transport::Writer<wire::InformationIncrement> increments_out_;
+  transport::NodeLoop<Sample> loop_;
+  Exchange exchange_;
   transport::Writer<wire::Measurement> measurements_;
   transport::Writer<wire::TrackEstimate> tracks_;
-  Fusion fusion_;
   Sensor sensor_;
   Covariance<Sensor::kMeasDim> noise_;
   bool syncing_;               // restarted, and no peer's prior taken yet
   std::uint32_t resyncs_ = 0;  // rounds fused onto another station's prior
-  transport::SourceBinding sources_;
 };
+
+// Runs `station` of the run's exchange over `Fusion`; the exit code.
+template <typename Sensor, typename Fusion>
+int run_station_of(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
+                   std::unique_ptr<SensorSource<Sensor>> source) {
+  if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
+    // load_plan refuses the tree for a filter whose fusion cannot sum partial sums yet.
+    if constexpr (requires { &Fusion::admit_contribution; }) {
+      Station<Sensor, TreeExchange<Fusion>> station(options, plan, me, std::move(source));
+      return station.run();
+    } else {
+      throw std::logic_error("the tree exchange for a fusion without partial sums");
+    }
+  }
+  Station<Sensor, FlatExchange<Fusion>> station(options, plan, me, std::move(source));
+  return station.run();
+}
 
 // Runs station `me` with its sensor of type Sensor, on the run's motion model and filter.
 template <typename Model, typename Sensor>
@@ -198,9 +218,8 @@ int run_with_sensor(const StationOptions& options, const RunPlan& plan, const St
   visit_filter(plan.scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
     // The loader gives a filter only the models and stations it runs on.
     if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
-      Station<Sensor, typename StationFusionOf<Filter, Model, Sensor>::type> station(
+      code = run_station_of<Sensor, typename StationFusionOf<Filter, Model, Sensor>::type>(
           options, plan, me, std::move(source));
-      code = station.run();
     } else {
       throw std::logic_error(fmt::format("filter {} on {} with a station of sensor kind {}",
                                          Filter::kKind, Model::kKind, me.sensor.kind));

@@ -21,6 +21,7 @@ AccessGrant access_grant(const std::string& identity) {
   const std::string tick = topic<wire::Tick>();
   const std::string measurement = topic<wire::Measurement>();
   const std::string increment = topic<wire::InformationIncrement>();
+  const std::string partial = topic<wire::PartialSum>();
   const std::string track = topic<wire::TrackEstimate>();
   const std::string status = topic<wire::StationStatus>();
 
@@ -32,7 +33,9 @@ AccessGrant access_grant(const std::string& identity) {
   }
   if (identity == transport::kObserverIdentity) return {identity, {}, {tick, track, status}};
   if (transport::is_station_identity(identity)) {
-    return {identity, {increment, measurement, track, status}, {tick, increment, status}};
+    return {identity,
+            {increment, partial, measurement, track, status},
+            {tick, increment, partial, status}};
   }
   throw std::invalid_argument("no access grant defined for identity '" + identity + "'");
 }

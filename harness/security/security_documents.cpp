@@ -55,8 +55,11 @@ std::string xml_time(std::chrono::system_clock::time_point t) {
 
 std::vector<std::string> skyfuse_topics() {
   using transport::TopicTraits;
-  return {TopicTraits<wire::Tick>::kName, TopicTraits<wire::Measurement>::kName,
-          TopicTraits<wire::InformationIncrement>::kName, TopicTraits<wire::TrackEstimate>::kName,
+  return {TopicTraits<wire::Tick>::kName,
+          TopicTraits<wire::Measurement>::kName,
+          TopicTraits<wire::InformationIncrement>::kName,
+          TopicTraits<wire::PartialSum>::kName,
+          TopicTraits<wire::TrackEstimate>::kName,
           TopicTraits<wire::StationStatus>::kName};
 }
 

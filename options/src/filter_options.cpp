@@ -17,11 +17,17 @@ void require_filter_takes(const Scenario& scenario, const NodeOptions& node) {
           filter_option_refusal(*filter, node.refusion_lag, node.nis_gate().enabled())) {
     throw std::invalid_argument(fmt::format("scenario '{}': {}", scenario.name, *why));
   }
-  if (scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
-    // The in-process sweep sums in clusters already; the nodes do not publish partial sums yet.
+  if (scenario.exchange.kind != ExchangeConfig::Kind::kTree) return;
+  if (!filter->nodes_take_tree) {
+    throw std::invalid_argument(fmt::format(
+        "--exchange tree: the station processes of filter {} exchange flat only so far; the "
+        "in-process `skyfuse sweep` runs the tree for it",
+        filter->kind));
+  }
+  if (node.refusion_lag != 0) {
     throw std::invalid_argument(
-        "--exchange tree: the station processes exchange flat only so far; the in-process "
-        "`skyfuse sweep` runs the tree");
+        "--refusion-lag with --exchange tree: the tree exchange fuses each round once; leave "
+        "the lag at 0");
   }
 }
 

@@ -42,6 +42,15 @@ elseif(CASE STREQUAL "run_secure_discovery_server")
   set(args run --secure ${WORK}/certs --discovery-server 127.0.0.1:11899 --out ${WORK}/secure_ds)
   set(expect "--secure with a discovery server")
   set(untouched ${WORK}/secure_ds)
+elseif(CASE STREQUAL "run_tree_imm")
+  # The IMM's stations exchange flat only so far: refused before anything starts.
+  set(args run --scenario ${SOURCE}/scenarios/paper000-imm.yaml --exchange tree --out ${WORK}/tree_imm)
+  set(expect "--exchange tree: the station processes of filter imm exchange flat only so far")
+  set(untouched ${WORK}/tree_imm)
+elseif(CASE STREQUAL "run_tree_refusion_lag")
+  set(args run --exchange tree --refusion-lag 2 --out ${WORK}/tree_lag)
+  set(expect "--refusion-lag with --exchange tree: the tree exchange fuses each round once")
+  set(untouched ${WORK}/tree_lag)
 elseif(CASE STREQUAL "station_replay_out_of_range")
   # No receiver would take an elevation past the zenith: refused when the file is read, with
   # its line, not fused by the station alone.

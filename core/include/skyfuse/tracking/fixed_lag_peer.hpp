@@ -94,6 +94,23 @@ class FixedLagPeer {
   RoundFusion fuse_current(FuseRound fuse_round) {
     return fuse_rounds(collector_.current_step(), fuse_round);
   }
+  /// The tree exchange (no lag): cluster c's sum of the current round's contributions, each
+  /// with its own prior (PeerRound::sum_cluster): what the cluster's aggregator publishes.
+  void sum_cluster_current(std::size_t c, PartialSum<kDim>& out) const {
+    const std::uint64_t q = collector_.current_step();
+    round_.sum_cluster(
+        c,
+        [&](std::size_t i) -> PeerSlot<kDim> {
+          if (!collector_.filled_at(q, i)) return {};
+          const Contribution& contribution = collector_.payload_at(q, i);
+          return {&contribution.increment, &contribution.prior};
+        },
+        out);
+  }
+  /// The tree exchange (no lag): fuses the current round's total onto its reference.
+  RoundFusion fuse_total_current(const PartialSum<kDim>& total) {
+    return round_.fuse_total(tracker_, total);
+  }
   /// Whether round `step` is the one being closed, not one fused again.
   bool is_current(std::uint64_t step) const { return step == collector_.current_step(); }
 

@@ -20,6 +20,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -49,6 +50,10 @@ struct ProcessCounts {
 /// - `settle(steps)`: with a re-fusion lag, after the last round: the rounds still in the lag,
 ///   fused again and published as final;
 /// - `counts()`: its share of the last status.
+///
+/// A process whose round has stages of its own (a tree exchange's aggregator closes its
+/// cluster's sum before the round's deadline) may also have `wake_at()`: the system-clock time
+/// by which the loop must next ask `round_complete()`, if any.
 template <typename P, typename Sample>
 concept NodeProcess = requires(P& p, const Sample& sample, const WriterId& writer,
                                std::uint64_t k) {
@@ -63,11 +68,15 @@ concept NodeProcess = requires(P& p, const Sample& sample, const WriterId& write
 template <typename Sample>
 class NodeLoop {
  public:
+  using SystemTime = std::chrono::system_clock::time_point;
+
   /// `self_id`: this node's id on the simulated links (a station's id, or kCenterSourceId);
   /// `who`: its name in messages ("station 3"); `input`: its input's name in drop counts
-  /// ("increment"). The tick and input readers are made here, first of the node's endpoints.
+  /// ("increment"); `input_partitions`: the DDS partitions its input reader is in (none: the
+  /// default one). The tick and input readers are made here, first of the node's endpoints.
   NodeLoop(DdsNode& node, const options::NodeOptions& options, int self_id, std::string who,
-           std::string input, double time_step_s)
+           std::string input, double time_step_s,
+           const std::vector<std::string>& input_partitions = {})
       : options_(options),
         self_id_(self_id),
         who_(std::move(who)),
@@ -75,7 +84,7 @@ class NodeLoop {
         time_step_s_(time_step_s),
         presence_(node, options.run_id, self_id),
         ticks_(node.make_reader<wire::Tick>()),
-        inputs_(node.make_reader<Sample>()) {
+        inputs_(node.make_reader<Sample>(input_partitions)) {
     wait_set_.attach(ticks_);
     wait_set_.attach(inputs_);
   }
@@ -143,7 +152,6 @@ class NodeLoop {
   }
 
  private:
-  using SystemTime = std::chrono::system_clock::time_point;
   static constexpr std::chrono::microseconds kPollSlice{50'000};
 
   struct Own {
@@ -190,16 +198,23 @@ class NodeLoop {
     return std::nullopt;
   }
 
-  // Takes samples until `done()` or `close` passes (either is fine).
+  // Takes samples until `done()` or `close` passes (either is fine); wakes by the process's
+  // wake_at() too, if it has one.
   template <typename Process, typename Done>
   RunEnd wait_until(Process& process, std::uint64_t k, SystemTime close, Done done) {
     while (true) {
       if (const RunEnd end = drain(process, k)) return end;
       if (done()) return std::nullopt;
       if (shutdown_requested()) return 128 + shutdown_signal();
-      const auto left =
-          std::chrono::ceil<std::chrono::microseconds>(close - std::chrono::system_clock::now());
-      if (left <= std::chrono::microseconds::zero()) return std::nullopt;
+      const SystemTime now = std::chrono::system_clock::now();
+      if (close <= now) return std::nullopt;
+      SystemTime wake = close;
+      if constexpr (requires { process.wake_at(); }) {
+        if (const std::optional<SystemTime> stage = process.wake_at()) {
+          wake = std::clamp(*stage, now, close);
+        }
+      }
+      const auto left = std::chrono::ceil<std::chrono::microseconds>(wake - now);
       wait_set_.wait(wait_slice(std::min(left, kPollSlice)));
     }
   }
