@@ -7,10 +7,15 @@
 //    to its aggregator (DDS partition cluster-<c>-up, transport/tree_partitions.hpp);
 //  - the aggregator sums its cluster's contributions that arrived, weighted, in ascending id
 //    (PartialSum::add), and publishes the cluster's sum to every aggregator (partition
-//    aggregators): when all its members' are in, or at a third of the round's deadline;
+//    aggregators): when all its members' are in, or at half the round's deadline;
 //  - every aggregator adds the clusters' sums in cluster order into the round's total, when all
-//    are in or at two thirds of the deadline, sends it to its members (cluster-<c>-down) and
-//    fuses it onto the total's reference; a member fuses the total it receives.
+//    are in or at three quarters of the deadline, sends it to its members (cluster-<c>-down)
+//    and fuses it onto the total's reference; a member fuses the total it receives.
+//
+// The stages' deadlines bind only when a sample is late. Measured at M = 64, k = 8, real time
+// with a 15 ms deadline: nearly every incomplete round is a member whose total came after its
+// deadline (the whole chain late), not a closed stage; thirds (5 / 10 ms) gave 66-96 % of
+// rounds complete, half and three quarters 94-99 %.
 //
 // So a round costs M - C + C (C - 1) + M - C receptions for C clusters instead of M (M - 1).
 // Every aggregator adds the same bytes in the same order, and every member fuses the bytes its
@@ -148,8 +153,8 @@ class TreeExchange {
     step_ = k;
     run_id_ = run_id;
     const SystemTime now = std::chrono::system_clock::now();
-    collect_by_ = now + round_span_ / 3;
-    sums_by_ = now + 2 * (round_span_ / 3);
+    collect_by_ = now + round_span_ / 2;
+    sums_by_ = now + 3 * (round_span_ / 4);
     stage_ = aggregates() ? Stage::kCollecting : Stage::kDone;
   }
 
@@ -183,8 +188,8 @@ class TreeExchange {
   }
 
   /// A member: its total is in. An aggregator: its cluster's sum was published (when its
-  /// members' contributions were in, or at a third of the deadline), then every cluster's sum
-  /// is in or two thirds of the deadline passed.
+  /// members' contributions were in, or at half the deadline), then every cluster's sum is in
+  /// or three quarters of the deadline passed.
   bool round_complete(bool /*syncing*/) {
     if (!aggregates()) return totals_.count() == 1;
     const SystemTime now = std::chrono::system_clock::now();
