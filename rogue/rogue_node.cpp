@@ -14,17 +14,27 @@
 //   wrong_site    the victim's id from another station position (measurements only)
 // Every other measurement claims the victim's own site and sensor kind (from the scenario,
 // --scenario: a radar's three components, or a TDOA receiver's one), so that it is refused for
-// its one fault. It prints how many samples of each kind it sent, one line per topic and kind.
+// its one fault. Against a run of the tree exchange (--tree K: its fanout) it sends partial
+// sums instead of increments, on each of the exchange's channels (forged_partial.hpp), and adds
+// the partial sums' own kinds:
+//   wrong_cluster a contribution from another cluster, a sum counting a station of another
+//                 cluster, a total from a member that does not aggregate
+//   overlap       a sum counting one station twice
+// It prints how many samples of each kind it sent, one line per topic and kind.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #include <limits>
+#include <map>
+#include <optional>
 #include <set>
 
 #include "forged_increment.hpp"
+#include "forged_partial.hpp"
 #include "secure_probe.hpp"
+#include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/models/tdoa/range_difference_sensor.hpp"
 #include "skyfuse/options/node_options.hpp"
@@ -33,6 +43,7 @@
 #include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/truth.hpp"
+#include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
@@ -131,6 +142,11 @@ int main(int argc, char** argv) {
   app.add_option("--victim", victim, "A real station id to impersonate");
   app.add_option("--at-steps", steps, "Steps (>= 1) at which to attack")->capture_default_str();
   app.add_option("--timeout", timeout_s, "Seconds to wait for the run's ticks");
+  int tree_fanout = 0;
+  app.add_option("--tree", tree_fanout,
+                 "The run exchanges in a tree of this fanout: attack its partial sums instead of "
+                 "increments")
+      ->check(skyfuse::options::whole_number_at_least(2));
   std::string scenario_path;
   options::add_scenario_option(app, scenario_path);
   rogue::ProbeOptions probe;
@@ -167,9 +183,35 @@ int main(int argc, char** argv) {
     auto ticks = node.make_reader<wire::Tick>();
     auto increments = node.make_writer<wire::InformationIncrement>();
     auto measurements = node.make_writer<wire::Measurement>();
+    // Against a tree: cluster 0's and cluster 1's channels, as the run's stations derive them.
+    std::optional<ClusterLayout> layout;
+    std::map<std::string, transport::Writer<wire::PartialSum>> partials;
+    if (tree_fanout != 0) {
+      RunOverrides overrides;
+      overrides.stations = stations;
+      layout.emplace(sorted_ascending(make_run_plan(scenario, overrides).participant_ids()),
+                     static_cast<std::size_t>(tree_fanout));
+      if (layout->clusters() < 2) {
+        spdlog::error("--tree {}: {} stations make one cluster; the attacks need two", tree_fanout,
+                      stations);
+        return options::kExitUsage;
+      }
+      for (const std::string& partition : rogue::partial_attack_partitions()) {
+        partials.emplace(partition, node.make_writer<wire::PartialSum>({partition}));
+      }
+    }
+    auto all_matched = [&] {
+      if (measurements.matched() < 1) return false;
+      if (!layout) return increments.matched() >= stations;
+      for (const auto& [partition, writer] : partials) {
+        if (writer.matched() < rogue::receivers_of(partition, *layout)) return false;
+      }
+      return true;
+    };
     transport::ReaderWaitSet wait_set;
     wait_set.attach(ticks);
     DropCounts sent_increments{};
+    DropCounts sent_partials{};
     DropCounts sent_measurements{};
     const auto give_up =
         std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
@@ -192,14 +234,21 @@ int main(int argc, char** argv) {
       if (newest && !left.empty() && *left.begin() <= *newest) {
         left.erase(left.begin());
         // Every reader must be matched, or a sample could miss one and the counts not add up.
-        if (increments.matched() < stations || measurements.matched() < 1) {
-          spdlog::warn("step {}: only {} increment and {} measurement readers matched; skipped",
-                       *newest, increments.matched(), measurements.matched());
+        if (!all_matched()) {
+          spdlog::warn("step {}: not every reader matched yet ({} measurement readers); skipped",
+                       *newest, measurements.matched());
           continue;
+        }
+        if (layout) {
+          for (rogue::PartialAttack& a :
+               rogue::partial_attacks_at(run_id, *newest, *layout, state_dim)) {
+            partials.at(a.partition).write(a.sample);
+            ++sent_partials[static_cast<std::size_t>(a.kind)];
+          }
         }
         for (const Attack& a : attacks_at(run_id, *newest, victim)) {
           const auto kind = static_cast<std::size_t>(a.kind);
-          if (!measurement_only(a.kind, victim_config)) {
+          if (!layout && !measurement_only(a.kind, victim_config)) {
             increments.write(increment_for(a, victim_config));
             ++sent_increments[kind];
           }
@@ -210,10 +259,12 @@ int main(int argc, char** argv) {
       wait_set.wait(std::chrono::milliseconds(20));
     }
     increments.wait_acknowledged(std::chrono::seconds(5));
+    for (auto& [partition, writer] : partials) writer.wait_acknowledged(std::chrono::seconds(5));
     measurements.wait_acknowledged(std::chrono::seconds(5));
     for (std::size_t i = 0; i < kDropKinds; ++i) {
       const auto kind = to_string(static_cast<DropKind>(i));
       if (sent_increments[i] != 0) fmt::print("sent increment {} {}\n", kind, sent_increments[i]);
+      if (sent_partials[i] != 0) fmt::print("sent partial sum {} {}\n", kind, sent_partials[i]);
       if (sent_measurements[i] != 0) {
         fmt::print("sent measurement {} {}\n", kind, sent_measurements[i]);
       }

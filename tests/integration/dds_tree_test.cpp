@@ -1,8 +1,10 @@
 // The tree exchange over DDS: station processes in clusters, each cluster's aggregator summing
 // its members' contributions, the aggregators exchanging their sums, every member fusing the
 // round's total its aggregator sends.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "integration/run_fixture.hpp"
@@ -51,6 +53,71 @@ TEST(DdsTree, SixteenStationsInClustersOfFourEqualTheInProcessTreeBitForBit) {
   EXPECT_EQ(summary.at("rounds_closed_incomplete"), 0);
   for (const auto& [kind, count] : summary.at("dropped_by_kind").items()) {
     EXPECT_EQ(count.get<int>(), 0) << kind;
+  }
+}
+
+std::vector<std::string> tree_run_args(int domain, const std::filesystem::path& out) {
+  return {bin("skyfuse"), "run",
+          "--stations",   "8",
+          "--steps",      "60",
+          "--exchange",   "tree",
+          "--fanout",     "4",
+          "--run-id",     "8087",
+          "--domain",     std::to_string(domain),
+          "--out",        out.string()};
+}
+
+// A rogue inside the domain sends, at three steps, a partial sum of every malformed kind on each
+// of the tree's channels: to cluster 0's aggregator (station 1) as its member 2, to both
+// aggregators (1 and 5) as cluster 1's aggregator, to cluster 0's members (2, 3, 4) as their
+// aggregator; and its malformed measurements to the center and the harness. Nothing it sends
+// is fused - the tracks are the clean run's bytes - and every receiver counts each kind.
+TEST(DdsTree, RoguePartialSumsAreRefusedAndCountedByKind) {
+  const auto dir = test_dir();
+  constexpr int kDomain = 209;
+  const Completed clean =
+      run_to_completion(tree_run_args(kDomain, dir / "clean"), dir / "clean.log", 120s);
+  ASSERT_EQ(clean.status.code, 0) << clean.output;
+
+  Process attacked(tree_run_args(kDomain, dir / "attacked"), dir / "attacked.log");
+  const Completed rogue =
+      run_to_completion({bin("skyfuse-rogue"), "--domain", std::to_string(kDomain), "--run-id",
+                         "8087", "--stations", "8", "--victim", "1", "--tree", "4"},
+                        dir / "rogue.log", 120s);
+  const std::optional<ExitStatus> status = attacked.wait(120s);
+  ASSERT_TRUE(status.has_value()) << attacked.output();
+  ASSERT_EQ(status->code, 0) << attacked.output();
+  ASSERT_EQ(rogue.status.code, 0) << rogue.output;
+  // Seven kinds on three channels, overlap on two, at three steps.
+  EXPECT_THAT(rogue.output, ::testing::HasSubstr("sent partial sum non_finite 9"));
+  EXPECT_THAT(rogue.output, ::testing::HasSubstr("sent partial sum wrong_cluster 9"));
+  EXPECT_THAT(rogue.output, ::testing::HasSubstr("sent partial sum overlap 6"));
+
+  EXPECT_EQ(read_file(dir / "attacked" / "tracks.csv"), read_file(dir / "clean" / "tracks.csv"));
+  const auto clean_summary = nlohmann::json::parse(read_file(dir / "clean" / "summary.json"));
+  for (const auto& [kind, count] : clean_summary["dropped_by_kind"].items()) {
+    EXPECT_EQ(count.get<int>(), 0) << kind;
+  }
+  const auto summary = nlohmann::json::parse(read_file(dir / "attacked" / "summary.json"));
+  const auto& by_kind = summary["dropped_by_kind"];
+  constexpr int kSteps = 3;
+  // Receivers: 1 on the way up, 2 aggregators, 3 members on the way down; the measurements' 2.
+  for (const char* kind : {"wrong_run", "future_step", "non_finite", "not_positive"}) {
+    EXPECT_EQ(by_kind[kind].get<int>(), kSteps * (1 + 2 + 3 + 2)) << kind;
+  }
+  EXPECT_EQ(by_kind["wrong_cluster"].get<int>(), kSteps * (1 + 2 + 3));
+  EXPECT_EQ(by_kind["overlap"].get<int>(), kSteps * (2 + 3));
+  EXPECT_EQ(by_kind["unknown_station"].get<int>(), kSteps * 2);
+  // Each channel's impersonation (its sender's well-formed sample for step k + 1 from the
+  // rogue's writer) and its stale sample are one each of duplicate and stale_step per receiver
+  // and step, whichever of the two the impersonation turned out (see dds_rogue_test.cpp).
+  const std::map<std::string, int> channels_heard = {
+      {"1", 2}, {"2", 1}, {"3", 1}, {"4", 1},      {"5", 1},
+      {"6", 0}, {"7", 0}, {"8", 0}, {"center", 1}, {"harness", 1}};
+  for (const auto& [node, channels] : channels_heard) {
+    const auto& counts = summary["dropped_by_node"].at(node);  // empty if nothing was refused
+    EXPECT_EQ(counts.value("duplicate", 0) + counts.value("stale_step", 0), 2 * kSteps * channels)
+        << node;
   }
 }
 
