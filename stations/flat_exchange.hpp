@@ -35,8 +35,8 @@ class FlatExchange {
   static constexpr const char* kInputName = "increment";
 
   /// `syncing`: the station rejoins and has no prior yet.
-  FlatExchange(transport::DdsNode& node, const RunPlan& plan, int id,
-               const options::NodeOptions& options, bool /*syncing*/)
+  FlatExchange(transport::DdsNode& node, transport::Reader<Sample>& /*inputs*/, const RunPlan& plan,
+               int id, const options::NodeOptions& options, bool /*syncing*/)
       : fusion_(plan, options.refusion_lag),
         out_(node.make_writer<Sample>()),
         stations_(plan.stations) {

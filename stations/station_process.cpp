@@ -46,7 +46,8 @@ class Station {
         node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", me.id))),
         loop_(node_, options.node, me.id, fmt::format("station {}", me.id), Exchange::kInputName,
               plan.scenario.time_step_s, Exchange::input_partitions(plan, me.id)),
-        exchange_(node_, plan, me.id, options.node, options.rejoin_step.has_value()),
+        exchange_(node_, loop_.inputs(), plan, me.id, options.node,
+                  options.rejoin_step.has_value()),
         measurements_(node_.make_writer<wire::Measurement>()),
         tracks_(node_.make_writer<wire::TrackEstimate>()),
         sensor_(make_sensor<Sensor>(me)),
@@ -125,7 +126,7 @@ class Station {
     auto& fusion = exchange_.fusion();
     if (!fusion.arrived()) {  // only while resynchronising: no peer's prior arrived this round
       spdlog::warn("step {}: no peer increment arrived; still without a prior", k);
-      exchange_.advance();
+      advance();
       return std::nullopt;
     }
     if (fused.status != NumericalStatus::kOk) {
@@ -143,7 +144,7 @@ class Station {
       tracks_.write(fusion.settled_track(options_.node.run_id, *settled, me_.id));
     }
     fusion.predict();
-    exchange_.advance();
+    advance();
     return std::nullopt;
   }
 
@@ -160,6 +161,13 @@ class Station {
       tracks_.write(fusion.settled_track(options_.node.run_id, s, me_.id));
     }
     return std::nullopt;
+  }
+
+  // Closes the round in the exchange; a station that took over its cluster has a writer of
+  // sums now, whose samples its own reader hears.
+  void advance() {
+    exchange_.advance();
+    if (const auto own = exchange_.own_writer()) loop_.skip_own(me_.id, *own);
   }
 
   transport::ProcessCounts counts() const { return {resyncs_, exchange_.fusion().late_used()}; }

@@ -64,5 +64,32 @@ TEST(Partitions, AWriterReachesTheReadersOfItsPartitionAndNoOther) {
   EXPECT_FALSE(aggregator.take(got)) << "one sample, from the aggregators' partition";
 }
 
+// A tree exchange's deputy takes over its cluster by moving its endpoints into the
+// aggregator's partitions, and gives it back by moving them out again.
+TEST(Partitions, AnEndpointMovedToAnotherPartitionMatchesThereAndNoLongerWhereItWas) {
+  DdsNode sender(config_of("partition-mover"));
+  DdsNode receivers(config_of("partition-stayers"));
+  auto writer = sender.make_writer<wire::PartialSum>({"standby"});
+  auto in_aggregators = receivers.make_reader<wire::PartialSum>({"aggregators"});
+  auto in_standby = receivers.make_reader<wire::PartialSum>({"standby"});
+  ASSERT_TRUE(eventually([&] { return in_standby.matched() == 1; }, 20s));
+  EXPECT_EQ(in_aggregators.matched(), 0);
+
+  writer.set_partitions({"aggregators"});
+  ASSERT_TRUE(
+      eventually([&] { return in_aggregators.matched() == 1 && in_standby.matched() == 0; }, 20s));
+  writer.write(sum_for(4));
+  wire::PartialSum got;
+  ASSERT_TRUE(eventually([&] { return in_aggregators.take(got); }, 5s));
+  EXPECT_EQ(got.cluster(), 4u);
+
+  // And a reader moved to where the writer is now.
+  in_standby.set_partitions({"aggregators"});
+  ASSERT_TRUE(eventually([&] { return in_standby.matched() == 1; }, 20s));
+  writer.write(sum_for(5));
+  ASSERT_TRUE(eventually([&] { return in_standby.take(got); }, 5s));
+  EXPECT_EQ(got.cluster(), 5u);
+}
+
 }  // namespace
 }  // namespace skyfuse::transport

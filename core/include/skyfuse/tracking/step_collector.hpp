@@ -78,6 +78,17 @@ class StepCollector {
     return std::nullopt;
   }
 
+  /// Overwrites the kept sample of (step, station_id), which must be in the window and filled
+  /// (check() said kDuplicate): for a receiver that prefers one sender's sample to another's.
+  void replace(std::uint64_t step, int station_id, const Payload& payload) {
+    Row& row = rows_[step % rows_.size()];
+    const std::size_t index = *index_of(station_id);
+    if (row.step != step || !row.filled[index]) {
+      throw std::logic_error("StepCollector::replace: no kept sample to replace");
+    }
+    row.payloads[index] = payload;
+  }
+
   bool complete() const { return current().count == ids_.size(); }
   std::size_t count() const { return current().count; }
   /// Whether the i-th station (ascending id) has delivered for the current step.

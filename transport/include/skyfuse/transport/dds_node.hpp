@@ -48,6 +48,17 @@ inline eprosima::fastrtps::Duration_t to_dds_duration(std::chrono::microseconds 
   return {static_cast<int32_t>(seconds.count()), static_cast<uint32_t>(nanos.count())};
 }
 
+/// Moves a publisher or a subscriber, and with it its endpoints, to other DDS partitions.
+template <typename Group>
+void move_group(Group* group, const std::vector<std::string>& partitions, const char* what) {
+  auto qos = group->get_qos();
+  qos.partition().clear();
+  for (const std::string& name : partitions) qos.partition().push_back(name.c_str());
+  if (group->set_qos(qos) != ReturnCode_t::RETCODE_OK) {
+    throw DdsError(std::string("cannot move a ") + what + " to partition " + partitions.front());
+  }
+}
+
 template <typename T>
 class Writer {
  public:
@@ -66,6 +77,13 @@ class Writer {
   }
   /// What a reader's take() reports as this writer's id.
   WriterId id() const { return to_writer_id(writer_->get_instance_handle()); }
+  /// Moves the writer to other DDS partitions (one made with partitions has a publisher of its
+  /// own): it leaves the readers it matched there and matches those of the new ones, as
+  /// discovery tells the others. Throws DdsError if Fast DDS refuses.
+  void set_partitions(const std::vector<std::string>& partitions) {
+    // Fast DDS 2.9 hands out only a const pointer to an endpoint's publisher.
+    move_group(const_cast<dds::Publisher*>(writer_->get_publisher()), partitions, "writer");
+  }
   /// Remote readers currently matched (this participant's own matching reader included).
   int matched() const {
     dds::PublicationMatchedStatus status;
@@ -100,6 +118,10 @@ class Reader {
     return status.current_count;
   }
   dds::StatusCondition& condition() { return reader_->get_statuscondition(); }
+  /// Moves the reader to other DDS partitions, as Writer::set_partitions.
+  void set_partitions(const std::vector<std::string>& partitions) {
+    move_group(const_cast<dds::Subscriber*>(reader_->get_subscriber()), partitions, "reader");
+  }
 
  private:
   dds::DataReader* reader_;
