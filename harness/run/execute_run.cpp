@@ -313,8 +313,8 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     }
     children.terminate_all(std::chrono::seconds(2));
     // A node that fails during the run ends it (check() above), so these exits came after
-    // every round was recorded: at M = 64, Fast DDS sometimes aborts a station while 64
-    // participants leave at once (README, "Lock-step rounds over DDS").
+    // every round was recorded (nodes leave without their participant's goodbye so that
+    // Fast DDS's teardown race cannot abort them: transport/node_presence.hpp).
     for (const ChildExit& e : children.exited()) {
       if (!e.success())
         spdlog::warn("{} after the last round; every round is recorded", e.describe());

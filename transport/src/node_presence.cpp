@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <thread>
 
@@ -91,6 +93,12 @@ JoinResult join_run(NodePresence& presence, const std::function<bool()>& all_mat
   }
   presence.announce(wire::READY);
   return {JoinOutcome::kJoined, {}};
+}
+
+void leave_without_goodbye(int code) {
+  spdlog::shutdown();  // flushes every sink
+  std::fflush(nullptr);
+  std::_Exit(code);
 }
 
 std::optional<int> exit_code_if_duplicate(NodePresence& presence, const std::string& who,

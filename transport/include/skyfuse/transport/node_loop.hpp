@@ -122,7 +122,8 @@ class NodeLoop {
   }
 
   /// Runs rounds [first, steps), settles the lag, announces FINISHED and waits for the
-  /// harness's release; `tracks` is the writer the process publishes on. The exit code.
+  /// harness's release; `tracks` is the writer the process publishes on. A released node
+  /// exits here (leave_without_goodbye); otherwise returns the exit code.
   template <NodeProcess<Sample> Process>
   int run(Process& process, std::uint64_t first, std::uint64_t steps,
           Writer<wire::TrackEstimate>& tracks) {
@@ -143,11 +144,13 @@ class NodeLoop {
     presence_.set_drops(drops_.counts());
     presence_.set_link_counts(lost_, counts.resyncs, counts.late_used);
     presence_.announce(wire::FINISHED, static_cast<std::uint32_t>(steps));
-    finish_when_released(ticks_, options_.run_id, presence_, tracks, std::chrono::seconds(5));
+    const bool released =
+        finish_when_released(ticks_, options_.run_id, presence_, tracks, std::chrono::seconds(5));
     spdlog::info(
         "finished {} steps ({} rounds resynchronised, {} samples lost to --loss, {} late ones "
         "re-fused)",
         steps - first, counts.resyncs, lost_, counts.late_used);
+    if (released) leave_without_goodbye(options::kExitOk);
     return options::kExitOk;
   }
 

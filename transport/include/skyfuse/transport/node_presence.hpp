@@ -62,20 +62,31 @@ class NodePresence {
 /// if none comes within `timeout`, until its last samples are acknowledged. Waiting for the
 /// release rather than for acknowledgements matters after a crash: a killed peer's readers
 /// stay matched until their lease expires, and would never acknowledge anything.
+/// True if the harness released the node.
 template <typename TrackWriter>
-void finish_when_released(Reader<wire::Tick>& ticks, std::uint64_t run_id, NodePresence& presence,
+bool finish_when_released(Reader<wire::Tick>& ticks, std::uint64_t run_id, NodePresence& presence,
                           TrackWriter& tracks, std::chrono::milliseconds timeout) {
   const auto give_up = std::chrono::steady_clock::now() + timeout;
   wire::Tick tick;
   while (std::chrono::steady_clock::now() < give_up) {
     while (ticks.take(tick)) {
-      if (tick.run_id() == run_id && tick.stop()) return;
+      if (tick.run_id() == run_id && tick.stop()) return true;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   tracks.wait_acknowledged(std::chrono::seconds(2));
   presence.wait_delivered(std::chrono::seconds(2));
+  return false;
 }
+
+/// Ends a node the harness has released, with `code`, without deleting its DDS participant.
+/// Deleting it sends every other participant a goodbye, and a process that handles one while
+/// its lease timer for the same participant fires aborts in Debian's Fast DDS 2.9 (the
+/// `PDP::check_remote_participant_liveliness` assertion): at M = 64 every node receives 65
+/// goodbyes at once. Without them the others drop the node at their own exit or when its lease
+/// expires. Nothing is lost: the transport is UDP only (no shared-memory segment to leave
+/// behind), logs are flushed here, and the harness holds every sample the node owed it.
+[[noreturn]] void leave_without_goodbye(int code);
 
 }  // namespace skyfuse::transport
 
