@@ -88,9 +88,11 @@ std::vector<PartialAttack> partial_attacks_at(std::uint64_t run, std::uint32_t k
     auto forge = [&](DropKind kind, std::int64_t offset) {
       const bool wrong = kind == DropKind::kWrongCluster;
       const int sender = wrong ? c.wrong_sender : c.sender;
-      std::vector<std::int32_t> contributors =
-          wrong && !c.wrong_contributors.empty() ? c.wrong_contributors : c.contributors;
-      if (wrong && c.wrong_contributors.empty()) contributors = {sender};
+      std::vector<std::int32_t> contributors = c.contributors;
+      if (wrong) {
+        contributors =
+            c.wrong_contributors.empty() ? std::vector<std::int32_t>{sender} : c.wrong_contributors;
+      }
       if (kind == DropKind::kOverlap) contributors = {c.contributors[0], c.contributors[0]};
       const std::uint64_t run_id = kind == DropKind::kWrongRun ? run ^ 0x5a5a5a5aULL : run;
       const auto step = static_cast<std::uint32_t>(static_cast<std::int64_t>(k) + offset);

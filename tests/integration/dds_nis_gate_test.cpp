@@ -49,14 +49,7 @@ std::string with_outlier(const std::string& csv, double offset_m) {
 
 // Error of the peer-to-peer track at `step`, from steps.csv.
 double p2p_error_at(const std::filesystem::path& steps_csv, int step) {
-  std::istringstream in(read_file(steps_csv));
-  std::string line;
-  std::getline(in, line);
-  for (int k = 0; k <= step; ++k) std::getline(in, line);
-  std::vector<std::string> fields;
-  std::istringstream row(line);
-  for (std::string f; std::getline(row, f, ',');) fields.push_back(f);
-  return std::stod(fields.at(12));  // error_p2p_m
+  return steps_column(steps_csv, "error_p2p_m").at(static_cast<std::size_t>(step));
 }
 
 TEST(DdsNisGate, AnOutlierIsRefusedByItsStationAndTheCenterAndCounted) {

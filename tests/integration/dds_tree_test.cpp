@@ -6,7 +6,6 @@
 
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "integration/run_fixture.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -55,25 +54,6 @@ TEST(DdsTree, SixteenStationsInClustersOfFourEqualTheInProcessTreeBitForBit) {
   for (const auto& [kind, count] : summary.at("dropped_by_kind").items()) {
     EXPECT_EQ(count.get<int>(), 0) << kind;
   }
-}
-
-// steps.csv's column `name`, by step.
-std::vector<double> steps_column(const std::filesystem::path& csv, const std::string& name) {
-  std::istringstream in(read_file(csv));
-  std::string line;
-  std::getline(in, line);
-  std::size_t column = 0;
-  for (std::size_t at = 0, next = 0; next != std::string::npos; at = next + 1, ++column) {
-    next = line.find(',', at);
-    if (line.substr(at, next - at) == name) break;
-  }
-  std::vector<double> values;
-  while (std::getline(in, line)) {
-    std::size_t at = 0;
-    for (std::size_t c = 0; c < column; ++c) at = line.find(',', at) + 1;
-    values.push_back(std::stod(line.substr(at, line.find(',', at) - at)));
-  }
-  return values;
 }
 
 // Cluster 0's aggregator (station 1) killed before round 100 and started again before round

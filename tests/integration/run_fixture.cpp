@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "skyfuse/scenario/scenario_loader.hpp"
 
@@ -29,16 +30,27 @@ TrackRows read_tracks(const std::filesystem::path& csv) {
   return tracks;
 }
 
-// steps.csv's peer_spread column, by step.
-std::vector<double> peer_spread(const std::filesystem::path& steps_csv) {
+std::vector<double> steps_column(const std::filesystem::path& steps_csv, const std::string& name) {
   std::ifstream in(steps_csv);
   std::string line;
   std::getline(in, line);
-  std::vector<double> spread;
-  while (std::getline(in, line)) {
-    spread.push_back(std::strtod(line.substr(line.rfind(',') + 1).c_str(), nullptr));
-  }
-  return spread;
+  const auto split = [](const std::string& row) {
+    std::vector<std::string> fields;
+    std::istringstream fields_in(row);
+    for (std::string f; std::getline(fields_in, f, ',');) fields.push_back(f);
+    return fields;
+  };
+  const std::vector<std::string> header = split(line);
+  const auto it = std::find(header.begin(), header.end(), name);
+  if (it == header.end()) throw std::runtime_error(steps_csv.string() + ": no column " + name);
+  const auto column = static_cast<std::size_t>(it - header.begin());
+  std::vector<double> values;
+  while (std::getline(in, line)) values.push_back(std::stod(split(line).at(column)));
+  return values;
+}
+
+std::vector<double> peer_spread(const std::filesystem::path& steps_csv) {
+  return steps_column(steps_csv, "peer_spread");
 }
 
 void expect_peers_differ_only_around_the_loss(const std::filesystem::path& steps_csv, int steps,

@@ -41,6 +41,8 @@ using TrackRows = std::map<std::pair<int, int>, StateRow>;
 /// tracks.csv as (step, source) -> state; %.17g in the file makes the values exact.
 TrackRows read_tracks(const std::filesystem::path& csv);
 
+/// The column of steps.csv named `name`, by step; throws if there is none.
+std::vector<double> steps_column(const std::filesystem::path& steps_csv, const std::string& name);
 /// steps.csv's peer_spread column, by step.
 std::vector<double> peer_spread(const std::filesystem::path& steps_csv);
 

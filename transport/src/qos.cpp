@@ -192,8 +192,8 @@ dds::DomainParticipantQos QosProfiles::participant(const std::string& name) cons
   discovery.leaseDuration = Duration_t(10, 0);
   // Every participant announces itself to every other one each period: M^2 datagrams. At
   // M = 64 and 1 s that was 4 300 receptions a second, a sixth of a tree round's; at 3 s (Fast
-  // DDS's default) a third of that. Lock-step M = 64, tree exchange, best effort: 69 -> 85
-  // rounds/s.
+  // DDS's default) a third of that. Lock-step M = 64, tree exchange, best effort: 69 -> 68-85
+  // rounds/s (several runs; the spread between runs is as large as the gain).
   discovery.leaseDuration_announcementperiod = Duration_t(3, 0);
   // Announce quickly at start so that all-matched is reached in tenths of a second.
   discovery.initial_announcements.count = 10;
