@@ -15,9 +15,11 @@ namespace {
 using namespace std::chrono_literals;
 using test::eventually;
 
-NodeConfig config_of(const char* name) {
+// Each test has its own domain: ctest runs them as separate processes side by side, and in a
+// shared domain one test's readers match the other's writers (CI saw exactly that).
+NodeConfig config_of(const char* name, int domain_id) {
   NodeConfig config;
-  config.domain_id = 207;
+  config.domain_id = domain_id;
   config.name = name;
   return config;
 }
@@ -31,8 +33,8 @@ wire::PartialSum sum_for(std::uint32_t cluster) {
 }
 
 TEST(Partitions, AWriterReachesTheReadersOfItsPartitionAndNoOther) {
-  DdsNode sender(config_of("partition-sender"));
-  DdsNode receivers(config_of("partition-receivers"));
+  DdsNode sender(config_of("partition-sender", 207));
+  DdsNode receivers(config_of("partition-receivers", 207));
   auto to_cluster_0 = sender.make_writer<wire::PartialSum>({"cluster-0"});
   auto to_aggregators = sender.make_writer<wire::PartialSum>({"aggregators"});
   auto in_cluster_0 = receivers.make_reader<wire::PartialSum>({"cluster-0"});
@@ -67,8 +69,8 @@ TEST(Partitions, AWriterReachesTheReadersOfItsPartitionAndNoOther) {
 // A tree exchange's deputy takes over its cluster by moving its endpoints into the
 // aggregator's partitions, and gives it back by moving them out again.
 TEST(Partitions, AnEndpointMovedToAnotherPartitionMatchesThereAndNoLongerWhereItWas) {
-  DdsNode sender(config_of("partition-mover"));
-  DdsNode receivers(config_of("partition-stayers"));
+  DdsNode sender(config_of("partition-mover", 211));
+  DdsNode receivers(config_of("partition-stayers", 211));
   auto writer = sender.make_writer<wire::PartialSum>({"standby"});
   auto in_aggregators = receivers.make_reader<wire::PartialSum>({"aggregators"});
   auto in_standby = receivers.make_reader<wire::PartialSum>({"standby"});
