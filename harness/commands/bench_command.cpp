@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "commands/bench_scenario.hpp"
 #include "floors/echo_floor.hpp"
 #include "report/output_files.hpp"
 #include "run/execute_run.hpp"
@@ -148,20 +149,43 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
       ->check(options::whole_number_in(0, transport::kMaxDomainId))
       ->capture_default_str();
   cmd->add_flag("!--no-micro", o.micro, "Skip the micro-benchmarks");
+
+  cmd->add_flag("--scale", o.scale_requested,
+                "The scale benchmark instead: flat against tree exchange as M grows, lock-step "
+                "and real time (scale.json, scale.csv, scale.png in --out, default "
+                "results/scale; stations default 4 8 16 32 64, scenario ring256.yaml)");
+  cmd->add_option("--exchange", o.scale.exchanges, "--scale: the exchanges to compare")
+      ->check(CLI::IsMember({"flat", "tree"}))
+      ->capture_default_str();
+  cmd->add_option("--fanout", o.scale.fanout, "--scale: the tree's stations per cluster")
+      ->check(options::whole_number_in(2, ExchangeConfig::kMaxFanout))
+      ->capture_default_str();
+  cmd->add_option("--realtime-steps", o.scale.realtime_steps,
+                  "--scale: steps of each real-time run (0: none)")
+      ->check(options::whole_number_in(0, 1000000))
+      ->capture_default_str();
+  cmd->add_option("--realtime-deadline-ms", o.scale.realtime_deadline_ms,
+                  "--scale: the real-time runs' deadline")
+      ->check(options::positive_number())
+      ->capture_default_str();
+  cmd->add_flag("!--reliable", o.scale.best_effort,
+                "--scale: reliable increments, sums and measurements (default: best effort)");
+  // The options the two benchmarks share go to the scale benchmark only when given, so that
+  // each keeps its own defaults.
+  cmd->callback([cmd, &o] {
+    if (!o.scale_requested) return;
+    if (cmd->count("--out") > 0) o.scale.out_dir = o.out_dir;
+    if (cmd->count("--scenario") > 0) o.scale.scenario_path = o.scenario_path;
+    if (cmd->count("--stations") > 0) o.scale.stations = o.stations;
+    if (cmd->count("--rounds") > 0) o.scale.rounds = o.rounds;
+    o.scale.domain = o.domain;
+  });
 }
 
 int run_bench(const BenchOptions& o) {
-  const std::string scenario_path = o.scenario_path.empty()
-                                        ? (executable_dir() / "scenarios" / "ring64.yaml").string()
-                                        : o.scenario_path;
-  const Scenario scenario = load_scenario_file(scenario_path);
-  // Refused before anything runs: a bad count found midway would lose the rows measured so far.
-  for (int m : o.stations) {
-    if (m > static_cast<int>(scenario.stations.size())) {
-      throw std::invalid_argument(fmt::format("--stations: {} exceeds the {} stations of {}", m,
-                                              scenario.stations.size(), scenario_path));
-    }
-  }
+  if (o.scale_requested) return run_scale_bench(o.scale);
+  const auto [scenario_path, scenario] =
+      load_bench_scenario(o.scenario_path, "ring64.yaml", o.stations);
   const std::filesystem::path out(o.out_dir);
   std::filesystem::create_directories(out);
 

@@ -5,11 +5,14 @@
 //   2. for each station count M: the bare Fast DDS lock-step floor (one commander, M echo
 //      processes, the same participant setup and QoS) and then a real lock-step run with M
 //      station processes and the center, back to back so that both see the same machine load.
-// Writes bench.json and prints the table the README quotes.
+// Writes bench.json and prints the table the README quotes. With --scale, the scale benchmark
+// instead (scale_bench.hpp).
 
 #include <CLI/App.hpp>
 #include <string>
 #include <vector>
+
+#include "commands/scale_bench.hpp"
 
 namespace skyfuse::harness {
 
@@ -20,6 +23,10 @@ struct BenchOptions {
   int rounds = 300;
   int domain = 0;
   bool micro = true;
+  /// --scale: the scale benchmark, with --out, --scenario, --stations, --rounds and --domain
+  /// copied in when given.
+  bool scale_requested = false;
+  ScaleBenchOptions scale;
 };
 
 void add_bench_command(CLI::App& app, BenchOptions& options);

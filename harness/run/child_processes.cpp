@@ -107,4 +107,10 @@ void ChildProcesses::terminate_all(std::chrono::milliseconds grace) {
   wait_all(std::chrono::milliseconds(5000));
 }
 
+std::vector<pid_t> ChildProcesses::pids() const {
+  std::vector<pid_t> pids;
+  for (const Child& c : children_) pids.push_back(c.pid);
+  return pids;
+}
+
 }  // namespace skyfuse::harness

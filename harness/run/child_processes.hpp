@@ -45,6 +45,8 @@ class ChildProcesses {
   void terminate_all(std::chrono::milliseconds grace);
 
   std::size_t alive() const { return children_.size(); }
+  /// The live children's process ids.
+  std::vector<pid_t> pids() const;
   const std::vector<ChildExit>& exited() const { return exited_; }
 
  private:

@@ -3,15 +3,18 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
 
 #include "report/output_files.hpp"
 #include "report/progress.hpp"
 #include "run/child_processes.hpp"
+#include "run/kernel_counters.hpp"
 #include "run/lockstep_driver.hpp"
 #include "run/secure_start.hpp"
 #include "run/simulated_hosts.hpp"
@@ -219,6 +222,16 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
                          find_filter(plan.scenario.filter)->mode_names.size()};
   LockstepDriver driver(config, run_id, plan.participants(), shape, check);
 
+  // One process per network namespace, for the kernel's UDP counters (-1: the harness's own).
+  std::map<int, pid_t> namespace_members{{-1, getpid()}};
+  const auto kernel_snapshot = [&] {
+    std::vector<pid_t> processes = children.pids();
+    processes.push_back(getpid());
+    std::vector<pid_t> one_per_namespace;
+    for (const auto& [netns, pid] : namespace_members) one_per_namespace.push_back(pid);
+    return take_snapshot(processes, one_per_namespace);
+  };
+
   try {
     // Process 0 is the center, process 1 + j the j-th station in ascending id.
     const auto process_index = [&](int id) {
@@ -239,7 +252,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
         station.push_back("--rejoin-at-step");
         station.push_back(std::to_string(*rejoin_step));
       }
-      children.spawn(node_name(id), station, netns);
+      namespace_members.try_emplace(netns, children.spawn(node_name(id), station, netns));
     };
     if (!o.external) {
       const auto [network, netns] = placement.of(0);
@@ -247,7 +260,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
           node_arguments(o, plan, run_id, scenario_file, network);
       std::vector<std::string> center{(executable_dir() / "skyfuse-center").string()};
       center.insert(center.end(), common.begin(), common.end());
-      children.spawn(node_name(kCenterNodeId), center, netns);
+      namespace_members.try_emplace(netns, children.spawn(node_name(kCenterNodeId), center, netns));
       for (int id : ids) spawn_station(id, std::nullopt);
     }
     const auto discovery =
@@ -257,6 +270,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     Progress progress(fmt::format("run M={} {:.0f} km/h", plan.stations, plan.speed_mps * 3.6),
                       plan.scenario.steps);
     const auto round_timeout = seconds_to_ms(o.round_timeout_s);
+    const KernelSnapshot before_rounds = kernel_snapshot();
     const auto start = Clock::now();
     if (o.node.realtime_deadline_ms > 0.0) {
       // A little head start so that the start tick reaches every node before step 0 begins.
@@ -299,6 +313,11 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       }
     }
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    const KernelSnapshot after_rounds = kernel_snapshot();
+    std::uint64_t node_peak_kib = 0;
+    for (pid_t pid : children.pids()) {
+      node_peak_kib = std::max(node_peak_kib, peak_resident_kib(pid).value_or(0));
+    }
     progress.finish();
 
     // Nodes announce FINISHED after their last track and wait to be released; anything else
@@ -323,6 +342,15 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     RunSummary summary =
         recorder.summarise(std::chrono::duration<double>(discovery).count(), elapsed);
     summary.realtime_deadline_ms = o.node.realtime_deadline_ms;
+    const double station_rounds = static_cast<double>(plan.stations) * plan.scenario.steps;
+    if (before_rounds.udp_datagrams && after_rounds.udp_datagrams) {
+      summary.datagrams_per_round =
+          static_cast<double>(*after_rounds.udp_datagrams - *before_rounds.udp_datagrams) /
+          plan.scenario.steps;
+    }
+    summary.cpu_ms_per_station_round =
+        1e3 * (after_rounds.cpu_s - before_rounds.cpu_s) / station_rounds;
+    summary.node_peak_resident_mib = static_cast<double>(node_peak_kib) / 1024.0;
     summary.node_counts = driver.finished_counts();
     summary.round_deadline_ms = o.node.round_deadline_ms;
     summary.loss = o.node.loss;

@@ -440,6 +440,12 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
     }
     d.wait_set.wait(kPollSlice);
   }
+  if (rounds.tracks_lost() + rounds.measurements_lost() > 0) {
+    spdlog::warn(
+        "real time: {} track(s) and {} measurement(s) never reached the harness; their steps were "
+        "recorded without them once {} steps later had every track",
+        rounds.tracks_lost(), rounds.measurements_lost(), RealtimeRounds::kLostAfterSteps);
+  }
   return done;
 }
 

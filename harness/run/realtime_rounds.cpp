@@ -74,13 +74,27 @@ std::optional<DropKind> RealtimeRounds::offer_measurement(int station, std::uint
 
 std::uint64_t RealtimeRounds::hand_over(std::vector<RoundRecord>& done) {
   const std::size_t m = station_ids_.size();
-  for (auto first = pending_.begin(); first != pending_.end(); first = pending_.erase(first)) {
-    const Pending& p = first->second;
-    if (first->first != handed_over_ || p.tracks < m + 1 || p.measurements < m) break;
-    RoundRecord& r = first->second.record;
+  const auto overtaken = [&](std::uint64_t step) {
+    const auto later = pending_.find(step + kLostAfterSteps);
+    return later != pending_.end() && later->second.tracks == m + 1;
+  };
+  while (handed_over_ < steps_) {
+    const std::uint64_t step = handed_over_;
+    const auto it = pending_.find(step);
+    const bool complete =
+        it != pending_.end() && it->second.tracks == m + 1 && it->second.measurements == m;
+    if (!complete && !overtaken(step)) break;
+    // Given up on or complete: what is missing now is lost (a step nothing arrived for at all
+    // leaves empty).
+    Pending& p = pending_step(step);
+    RoundRecord r = std::move(p.record);
+    tracks_lost_ += m + 1 - p.tracks;
+    measurements_lost_ += m - p.measurements;
+    if (p.tracks < m + 1) r.all_inputs_in_time = false;
     const double oldest_us = *std::max_element(r.track_age_us.begin(), r.track_age_us.end());
     r.latency = std::chrono::nanoseconds(std::llround(1e3 * oldest_us));
     done.push_back(std::move(r));
+    pending_.erase(step);
     ++handed_over_;
   }
   return handed_over_;

@@ -1,8 +1,11 @@
 #pragma once
 // The bookkeeping of a real-time run. Nodes step on their own clocks, so the tracks and
 // measurements of several steps arrive interleaved; each step is held until every node's track
-// and every station's measurement is in, and complete steps leave in step order. No DDS: the
-// driver reads the samples and screens their content; this decides where each one goes.
+// and every station's measurement is in, and complete steps leave in step order. A sample can
+// be lost for good (best-effort measurements, a reliable writer's history overrun under load),
+// so a step also leaves, with what it has, once a step kLostAfterSteps later has every track:
+// what has not come by then is not coming. No DDS: the driver reads the samples and screens
+// their content; this decides where each one goes.
 
 #include <cstdint>
 #include <map>
@@ -16,6 +19,10 @@ namespace skyfuse::harness {
 
 class RealtimeRounds {
  public:
+  /// How far a later step must have got (every node's track in) before an incomplete step is
+  /// given up on: 1 s at 50 Hz, far beyond any deadline a node closes its rounds at.
+  static constexpr std::uint64_t kLostAfterSteps = 50;
+
   /// `station_ids` ascending; the run has steps 0 .. steps - 1.
   RealtimeRounds(std::vector<int> station_ids, std::uint64_t steps);
 
@@ -38,6 +45,11 @@ class RealtimeRounds {
   /// track; returns how many steps have been handed over in all.
   std::uint64_t hand_over(std::vector<RoundRecord>& done);
 
+  /// Samples given up on so far: tracks (a node's round that never reached the harness; its
+  /// step counts as not all inputs in time) and measurements.
+  std::uint64_t tracks_lost() const { return tracks_lost_; }
+  std::uint64_t measurements_lost() const { return measurements_lost_; }
+
  private:
   struct Pending {
     RoundRecord record;
@@ -53,6 +65,8 @@ class RealtimeRounds {
   std::uint64_t steps_;
   std::uint64_t handed_over_ = 0;
   std::map<std::uint64_t, Pending> pending_;
+  std::uint64_t tracks_lost_ = 0;
+  std::uint64_t measurements_lost_ = 0;
 };
 
 }  // namespace skyfuse::harness

@@ -300,6 +300,11 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
     full["max_abs_diff_mode_probability_central_vs_p2p"] =
         summary.max_abs_diff_mode_probability_central_vs_p2p;
   }
+  full["kernel"] = {{"datagrams_received_per_round",
+                     summary.datagrams_per_round ? nlohmann::json(*summary.datagrams_per_round)
+                                                 : nlohmann::json(nullptr)},
+                    {"cpu_ms_per_station_round", summary.cpu_ms_per_station_round},
+                    {"node_peak_resident_mib", summary.node_peak_resident_mib}};
   if (summary.realtime_deadline_ms > 0.0) {
     full["realtime"] = {{"deadline_ms", summary.realtime_deadline_ms},
                         {"rounds_all_inputs_in_time", summary.rounds_all_inputs_in_time},
@@ -395,6 +400,12 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
   fmt::print(out, "  round latency p50/p99/max {:.0f} / {:.0f} / {:.0f} us\n",
              s.round_latency_us_p50, s.round_latency_us_p99, s.round_latency_us_max);
   fmt::print(out, "  discovery                {:.2f} s\n", s.discovery_s);
+  if (s.datagrams_per_round) {
+    fmt::print(out, "  datagrams received/round {:.0f}  (kernel's count, every process)\n",
+               *s.datagrams_per_round);
+  }
+  fmt::print(out, "  CPU per station-round    {:.2f} ms  (stations, center and harness)\n",
+             s.cpu_ms_per_station_round);
   std::uint64_t dropped = 0;
   std::uint64_t lost = 0;
   for (const auto& [node, counts] : s.node_counts) {

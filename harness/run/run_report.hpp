@@ -71,6 +71,13 @@ struct RunSummary {
   double track_age_ms_p50 = 0.0;
   double track_age_ms_p99 = 0.0;
   double track_age_ms_max = 0.0;
+  /// Counted by the kernel over the rounds (run/kernel_counters.hpp): UDP datagrams received
+  /// per round by every process of the run (none when a count could not be read), CPU time
+  /// per station and round (stations, center and harness together), and the largest peak
+  /// resident memory of one node.
+  std::optional<double> datagrams_per_round;
+  double cpu_ms_per_station_round = 0.0;
+  double node_peak_resident_mib = 0.0;
   /// What each node reported when it finished (0: the center): samples refused by kind,
   /// samples lost to the simulated loss, rounds resynchronised.
   std::map<int, NodeCounts> node_counts;

@@ -49,6 +49,48 @@ TEST(RealtimeRounds, AStepLeavesOnlyWhenEveryTrackAndMeasurementIsIn) {
   EXPECT_EQ(*done[0].measurements[1], Vector3::Constant(5.0));
 }
 
+// A best-effort measurement lost on the way, a track lost under load: the step leaves with
+// what it has once a step kLostAfterSteps later has every track, and not before.
+TEST(RealtimeRounds, AStepMissingASampleLeavesOnceALaterStepHasEveryTrack) {
+  constexpr std::uint64_t kLater = RealtimeRounds::kLostAfterSteps;
+  RealtimeRounds rounds(kStations, kLater + 2);
+  std::vector<RoundRecord> done;
+  for (int node : {kCenterNodeId, 2, 5}) {
+    ASSERT_FALSE(rounds.offer_track(node, 0, track_fused_from({2, 5}), 10.0));
+  }
+  ASSERT_FALSE(rounds.offer_measurement(2, 0, Vector3::Constant(2.0)));  // 5's never comes
+  // Step 1: station 5's track never comes.
+  ASSERT_FALSE(rounds.offer_track(kCenterNodeId, 1, track_fused_from({2, 5}), 10.0));
+  ASSERT_FALSE(rounds.offer_track(2, 1, track_fused_from({2, 5}), 10.0));
+  for (int station : kStations) {
+    ASSERT_FALSE(rounds.offer_measurement(station, 1, Vector3::Constant(station)));
+  }
+  for (std::uint64_t step = 2; step < kLater; ++step) deliver_all(rounds, step);
+  EXPECT_EQ(rounds.hand_over(done), 0u) << "no step " << kLater << " steps later yet";
+
+  // Step kLater has every track but one measurement: enough to give up on step 0.
+  for (int node : {kCenterNodeId, 2, 5}) {
+    ASSERT_FALSE(rounds.offer_track(node, kLater, track_fused_from({2, 5}), 10.0));
+  }
+  EXPECT_EQ(rounds.hand_over(done), 1u) << "step 1 waits for step " << kLater + 1;
+  ASSERT_EQ(done.size(), 1u);
+  EXPECT_TRUE(done[0].measurements[0].has_value());
+  EXPECT_FALSE(done[0].measurements[1].has_value());
+  EXPECT_TRUE(done[0].all_inputs_in_time) << "every node fused both stations";
+  EXPECT_EQ(rounds.measurements_lost(), 1u);
+
+  deliver_all(rounds, kLater + 1);
+  for (int station : kStations) {
+    ASSERT_FALSE(rounds.offer_measurement(station, kLater, Vector3::Constant(station)));
+  }
+  EXPECT_EQ(rounds.hand_over(done), kLater + 2);
+  EXPECT_FALSE(done[1].peers[1].has_value());
+  EXPECT_FALSE(done[1].all_inputs_in_time) << "station 5's round is unknown";
+  EXPECT_EQ(rounds.tracks_lost(), 1u);
+  EXPECT_EQ(rounds.measurements_lost(), 1u);
+  EXPECT_EQ(rounds.offer_track(5, 1, track_fused_from({2, 5}), 10.0), DropKind::kStaleStep);
+}
+
 TEST(RealtimeRounds, StepsLeaveInOrderWhenALaterOneCompletesFirst) {
   RealtimeRounds rounds(kStations, 3);
   std::vector<RoundRecord> done;

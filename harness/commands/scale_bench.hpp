@@ -1,0 +1,32 @@
+#pragma once
+// `skyfuse bench --scale`: what a round costs as the station count grows, for the flat and the
+// tree exchange side by side. For each M and exchange, a lock-step run (rounds/s, latency, UDP
+// datagrams received per round as the kernel counts them against the data samples a round
+// must deliver, CPU per station-round, peak memory of a node, discovery time) and a real-time
+// run at the scenario's step (share of rounds with every input in time, track age). Counts
+// past what one host's ports hold run on simulated hosts (`skyfuse run --hosts`, root only).
+// Writes scale.json, scale.csv and scale.png.
+
+#include <string>
+#include <vector>
+
+#include "run/round_samples.hpp"
+
+namespace skyfuse::harness {
+
+struct ScaleBenchOptions {
+  std::string out_dir = "results/scale";
+  std::string scenario_path;  ///< default: scenarios/ring256.yaml beside the executable
+  std::vector<int> stations = {4, 8, 16, 32, 64};
+  std::vector<std::string> exchanges = {"flat", "tree"};
+  int fanout = 8;
+  int rounds = 300;          ///< lock-step rounds per run
+  int realtime_steps = 500;  ///< real-time steps per run; 0 skips the real-time runs
+  double realtime_deadline_ms = 15.0;
+  bool best_effort = true;  ///< increments, partial sums and measurements BEST_EFFORT
+  int domain = 0;
+};
+
+int run_scale_bench(const ScaleBenchOptions& options);
+
+}  // namespace skyfuse::harness
