@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "commands/bench_scenario.hpp"
+#include "run/bench_scenario.hpp"
 #include "floors/echo_floor.hpp"
 #include "report/output_files.hpp"
 #include "run/execute_run.hpp"

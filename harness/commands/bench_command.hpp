@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "commands/scale_bench.hpp"
+#include "scale/scale_bench.hpp"
 
 namespace skyfuse::harness {
 

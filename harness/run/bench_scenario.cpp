@@ -1,4 +1,4 @@
-#include "commands/bench_scenario.hpp"
+#include "run/bench_scenario.hpp"
 
 #include <fmt/format.h>
 

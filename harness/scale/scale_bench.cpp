@@ -1,4 +1,4 @@
-#include "commands/scale_bench.hpp"
+#include "scale/scale_bench.hpp"
 
 #include <fmt/format.h>
 
@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <thread>
 
-#include "commands/bench_scenario.hpp"
 #include "report/output_files.hpp"
+#include "run/bench_scenario.hpp"
 #include "run/execute_run.hpp"
 #include "run/simulated_hosts.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
