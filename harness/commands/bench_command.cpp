@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "run/bench_scenario.hpp"
 #include "floors/echo_floor.hpp"
 #include "report/output_files.hpp"
+#include "run/bench_scenario.hpp"
 #include "run/execute_run.hpp"
 #include "run/lockstep_driver.hpp"
 #include "skyfuse/options/number_checks.hpp"

@@ -52,6 +52,7 @@ int run_demo(const DemoOptions& d) {
     o.node.overrides.stations = d.stations;
     o.node.overrides.speed_kmh = speed * 3.6;
     o.out_dir = fmt::format("{}/{:.0f}kmh", out_dir, speed * 3.6);
+    o.record_path = o.out_dir + "/run.mcap";
     const RunPlan plan = make_run_plan(scenario, o.node.overrides);
     const RunSummary dds = execute_run(o, plan);
 

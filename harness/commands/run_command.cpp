@@ -70,6 +70,9 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Stations replay their measurements from this CSV (a measurements.csv of an "
                   "earlier run) instead of simulating them")
       ->check(CLI::ExistingFile);
+  cmd->add_option("--record", o.record_path,
+                  "Also write the run as an MCAP recording (Foxglove, Lichtblick, skyfuse view)")
+      ->type_name("FILE.mcap");
   cmd->add_option("--hosts", o.hosts,
                   "Place the center and the stations, round robin, on N simulated hosts: network "
                   "namespaces joined by a bridge, discovering through the harness (root only)")
@@ -85,6 +88,7 @@ int run_run(const RunOptions& o) {
   const RunSummary summary = execute_run(o, plan);
   print_run_table(summary, stdout);
   fmt::print("results in {}\n", o.out_dir);
+  if (!o.record_path.empty()) fmt::print("recording in {}\n", o.record_path);
   return 0;
 }
 

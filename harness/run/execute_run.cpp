@@ -13,6 +13,7 @@
 
 #include "report/output_files.hpp"
 #include "report/progress.hpp"
+#include "report/run_recording.hpp"
 #include "run/child_processes.hpp"
 #include "run/kernel_counters.hpp"
 #include "run/lockstep_driver.hpp"
@@ -272,6 +273,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     const auto round_timeout = seconds_to_ms(o.round_timeout_s);
     const KernelSnapshot before_rounds = kernel_snapshot();
     const auto start = Clock::now();
+    const auto wall_start = std::chrono::system_clock::now();
     if (o.node.realtime_deadline_ms > 0.0) {
       // A little head start so that the start tick reaches every node before step 0 begins.
       const auto epoch = std::chrono::system_clock::now() + std::chrono::milliseconds(300);
@@ -358,10 +360,18 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     summary.hosts = o.hosts;
     summary.refusion_lag = o.node.refusion_lag;
     summary.settled = recorder.summarise_settled(driver.settled_tracks());
+    recorder.set_settled(driver.settled_tracks());
     if (placement.harness.discovery_server) {
       summary.discovery_server = placement.harness.discovery_server->to_string();
     }
     recorder.write(out, summary, run_id);
+    if (!o.record_path.empty()) {
+      write_recording(
+          recorder, recorder.summary_json(summary, run_id), o.record_path,
+          static_cast<std::uint64_t>(
+              std::chrono::duration_cast<std::chrono::nanoseconds>(wall_start.time_since_epoch())
+                  .count()));
+    }
     return summary;
   } catch (...) {
     driver.stop();

@@ -25,7 +25,9 @@ struct RunOptions {
   std::vector<StationEvent> kills;            ///< SIGKILL a station before a step's round
   std::vector<StationEvent> restarts;  ///< start a killed station again before a step's round
   std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating
-  bool external = false;    ///< stations and center are started elsewhere (by hand, compose)
+  /// Also write the run as an MCAP recording here (report/run_recording.hpp); empty: none.
+  std::string record_path;
+  bool external = false;  ///< stations and center are started elsewhere (by hand, compose)
   int hosts = 0;  ///< > 0: place the processes on this many simulated hosts (simulated_hosts.hpp)
   bool verbose = false;
 };

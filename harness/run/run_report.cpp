@@ -82,6 +82,10 @@ Vector3 RunRecorder::truth_position(std::uint64_t step) const {
   return state_position(truth_.states[step], model_.position_dim);
 }
 
+void RunRecorder::set_settled(std::map<std::pair<std::uint64_t, int>, ReceivedTrack> settled) {
+  settled_ = std::move(settled);
+}
+
 std::optional<SettledFigures> RunRecorder::summarise_settled(
     const std::map<std::pair<std::uint64_t, int>, ReceivedTrack>& settled) const {
   if (settled.empty()) return std::nullopt;
@@ -225,9 +229,25 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
   std::string steps =
       "step,time_s,truth_x,truth_y,truth_z,central_x,central_y,central_z,p2p_x,p2p_y,p2p_z,"
       "error_central_m,error_p2p_m,central_minus_p2p_m,peer_spread\n";
+  // tracks.csv: the state, then the covariance's upper triangle row by row (p<i>_<j>, i <= j),
+  // then whether the row is a settled (re-fused) track rather than the live one.
   std::string tracks = "step,source";
   for (int i = 0; i < model_.state_dim; ++i) tracks += fmt::format(",x{}", i);
-  tracks += '\n';
+  for (int i = 0; i < model_.state_dim; ++i) {
+    for (int j = i; j < model_.state_dim; ++j) tracks += fmt::format(",p{}_{}", i, j);
+  }
+  tracks += ",settled\n";
+  const auto track_row = [&](std::uint64_t step, int source, const ReceivedTrack& track,
+                             bool settled) {
+    // %.17g round-trips a double exactly: the value read back is the value computed.
+    tracks += fmt::format("{},{}", step, source);
+    for (double v : track.estimate.mean) tracks += fmt::format(",{:.17g}", v);
+    const Eigen::MatrixXd& p = track.estimate.covariance;
+    for (Eigen::Index i = 0; i < p.rows(); ++i) {
+      for (Eigen::Index j = i; j < p.cols(); ++j) tracks += fmt::format(",{:.17g}", p(i, j));
+    }
+    tracks += settled ? ",1\n" : ",0\n";
+  };
   std::string measurements = measurements_header();
   std::string rounds = "step,latency_us\n";
   const bool imm = !mode_names_.empty();
@@ -247,10 +267,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
         peer ? peer_spread(r) : nan);
     const auto add_track = [&](int source, const std::optional<ReceivedTrack>& track) {
       if (!track) return;
-      // %.17g round-trips a double exactly: the value read back is the value computed.
-      tracks += fmt::format("{},{}", r.step, source);
-      for (double v : track->estimate.mean) tracks += fmt::format(",{:.17g}", v);
-      tracks += '\n';
+      track_row(r.step, source, *track, false);
       if (imm) {
         modes += fmt::format("{},{}", r.step, source);
         for (double mu : track->mode_probabilities) modes += fmt::format(",{:.17g}", mu);
@@ -269,12 +286,18 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
     rounds += fmt::format("{},{:.1f}\n", r.step,
                           std::chrono::duration<double, std::micro>(r.latency).count());
   }
+  for (const auto& [key, track] : settled_) track_row(key.first, key.second, track, true);
   write_file_atomically(dir / "steps.csv", steps);
   write_file_atomically(dir / "tracks.csv", tracks);
   write_file_atomically(dir / "measurements.csv", measurements);
   write_file_atomically(dir / "rounds.csv", rounds);
   if (imm) write_file_atomically(dir / "modes.csv", modes);
 
+  write_file_atomically(dir / "summary.json", summary_json(summary, run_id) + "\n");
+}
+
+std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t run_id) const {
+  const bool imm = !mode_names_.empty();
   const nlohmann::json json = {{"scenario", plan_.scenario.name},
                                {"seed", plan_.scenario.seed},
                                {"mc_run", plan_.mc_run},
@@ -370,7 +393,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
        summary.discovery_server.empty() ? "multicast" : "server " + summary.discovery_server}};
   full["dropped_by_kind"] = by_kind;
   full["dropped_by_node"] = by_node;
-  write_file_atomically(dir / "summary.json", full.dump(2) + "\n");
+  return full.dump(2);
 }
 
 void print_run_table(const RunSummary& s, std::FILE* out) {

@@ -110,8 +110,22 @@ class RunRecorder {
   /// The settled tracks' figures, none if there are none (by (step, source id)).
   std::optional<SettledFigures> summarise_settled(
       const std::map<std::pair<std::uint64_t, int>, ReceivedTrack>& settled) const;
+  /// The settled (re-fused) tracks of a run with --refusion-lag, by (step, source id):
+  /// tracks.csv lists them after the live ones.
+  void set_settled(std::map<std::pair<std::uint64_t, int>, ReceivedTrack> settled);
   void write(const std::filesystem::path& dir, const RunSummary& summary,
              std::uint64_t run_id) const;
+  /// summary.json's text.
+  std::string summary_json(const RunSummary& summary, std::uint64_t run_id) const;
+
+  // What a recording of the run reads (report/run_channels.hpp).
+  const RunPlan& plan() const { return plan_; }
+  const std::vector<int>& station_ids() const { return station_ids_; }  ///< ascending
+  const std::vector<RoundRecord>& rounds() const { return rounds_; }
+  const std::vector<std::string_view>& mode_names() const { return mode_names_; }
+  int position_dim() const { return model_.position_dim; }
+  Vector3 position_of(const ReceivedTrack& track) const;
+  Vector3 truth_position(std::uint64_t step) const;
 
  private:
   const RunPlan& plan_;
@@ -123,9 +137,7 @@ class RunRecorder {
   MotionModelInfo model_;
   std::vector<std::string_view> mode_names_;  // the filter's modes (none: one model)
   std::vector<RoundRecord> rounds_;
-
-  Vector3 position_of(const ReceivedTrack& track) const;
-  Vector3 truth_position(std::uint64_t step) const;
+  std::map<std::pair<std::uint64_t, int>, ReceivedTrack> settled_;
 
   // measurements.csv: `step,station_id,` and the sensor's components when every participant
   // has the same sensor (what --replay reads), else `step,station_id,sensor,z0,z1,...`.

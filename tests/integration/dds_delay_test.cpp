@@ -82,6 +82,15 @@ TEST(DdsRefusion, LateIncrementsAreFusedAndEveryPeerSettlesOnTheSameBits) {
   EXPECT_EQ(summary["settled"]["tracks"], 300 * 5)
       << "every round's, from 4 stations and the center";
   EXPECT_EQ(summary["settled"]["max_abs_diff_between_peers"], 0.0);
+  // tracks.csv lists the settled tracks after the live ones, the peers' the same bits.
+  const TrackRows settled = read_settled_tracks(dir / "run" / "tracks.csv");
+  ASSERT_EQ(settled.size(), 300u * 5u);
+  for (int k = 0; k < 300; ++k) {
+    for (int station = 2; station <= 4; ++station) {
+      ASSERT_EQ(settled.at({k, station}), settled.at({k, 1})) << "step " << k;
+    }
+  }
+  EXPECT_EQ(read_tracks(dir / "run" / "tracks.csv").size(), 300u * 5u) << "the live tracks too";
   // Every late measurement came within the lag, and the center updated again from its round:
   // its settled track is the track of the same run without delay.
   RunTrace twin;

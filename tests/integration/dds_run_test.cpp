@@ -1,6 +1,7 @@
 // The system over loopback DDS: station processes and the fusion center, driven by the harness.
 #include <gtest/gtest.h>
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <atomic>
 #include <nlohmann/json.hpp>
@@ -64,6 +65,26 @@ TEST_P(DdsRun, EveryPeerAgreesAndTheRunEqualsTheInProcessOneBitForBit) {
       distance_sq += (central[i] - first_peer[i]) * (central[i] - first_peer[i]);
     ASSERT_LT(std::sqrt(distance_sq), 1e-6) << "step " << k;
   }
+  // tracks.csv carries each track's covariance: the peers' the same bits, a positive definite
+  // matrix, close to the center's.
+  const TrackRows covariances = read_track_covariances(dir / "out" / "tracks.csv");
+  const int n = 9;
+  ASSERT_EQ(covariances.at({0, 0}).size(), static_cast<std::size_t>(n * (n + 1) / 2));
+  for (int k = 0; k < kSteps; ++k) {
+    const StateRow& first = covariances.at({k, plan.participants().front().id});
+    for (const StationConfig& s : plan.participants()) {
+      ASSERT_EQ(covariances.at({k, s.id}), first) << "step " << k << " station " << s.id;
+    }
+    Eigen::MatrixXd p(n, n);
+    for (int i = 0, at = 0; i < n; ++i) {
+      for (int j = i; j < n; ++j, ++at) p(i, j) = p(j, i) = first[static_cast<std::size_t>(at)];
+    }
+    ASSERT_EQ(p.llt().info(), Eigen::Success) << "step " << k;
+    const StateRow& central = covariances.at({k, 0});
+    for (std::size_t i = 0; i < central.size(); ++i) {
+      ASSERT_NEAR(central[i], first[i], 1e-9) << "step " << k << " entry " << i;
+    }
+  }
 
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   EXPECT_EQ(summary.at("stations"), m);
@@ -117,7 +138,9 @@ std::filesystem::path expect_run_equals_twin(const std::string& scenario_file, i
 TEST(DdsRunModels, AConstantVelocityRunEqualsTheInProcessRunBitForBit) {
   const auto out = expect_run_equals_twin("paper000-cv.yaml", 4, 203);
   const std::string tracks = read_file(out / "tracks.csv");
-  EXPECT_EQ(tracks.substr(0, tracks.find('\n')), "step,source,x0,x1,x2,x3,x4,x5");
+  EXPECT_EQ(tracks.substr(0, tracks.find('\n')),
+            "step,source,x0,x1,x2,x3,x4,x5,p0_0,p0_1,p0_2,p0_3,p0_4,p0_5,p1_1,p1_2,p1_3,p1_4,"
+            "p1_5,p2_2,p2_3,p2_4,p2_5,p3_3,p3_4,p3_5,p4_4,p4_5,p5_5,settled");
 }
 
 // The unscented information filter over DDS: each station's statistically linearised increment,

@@ -11,41 +11,62 @@
 
 namespace skyfuse::test {
 
-TrackRows read_tracks(const std::filesystem::path& csv) {
-  TrackRows tracks;
+namespace {
+
+std::vector<std::string> split_csv_row(const std::string& row) {
+  std::vector<std::string> fields;
+  std::istringstream in(row);
+  for (std::string f; std::getline(in, f, ',');) fields.push_back(f);
+  return fields;
+}
+
+// tracks.csv's rows, live or settled, keyed by (step, source): the x<i> columns, or the p<i>_<j>
+// columns filled into a symmetric matrix's entries row by row.
+TrackRows read_track_columns(const std::filesystem::path& csv, char prefix, bool settled) {
   std::ifstream in(csv);
   std::string line;
-  std::getline(in, line);  // header
+  std::getline(in, line);
+  const std::vector<std::string> header = split_csv_row(line);
+  const auto settled_at = std::find(header.begin(), header.end(), "settled") - header.begin();
+  std::vector<std::size_t> wanted;
+  for (std::size_t i = 2; i < header.size(); ++i) {
+    if (header[i][0] == prefix) wanted.push_back(i);
+  }
+  TrackRows tracks;
   while (std::getline(in, line)) {
-    std::istringstream fields(line);
-    std::string field;
-    std::getline(fields, field, ',');
-    const int step = std::stoi(field);
-    std::getline(fields, field, ',');
-    const int source = std::stoi(field);
+    const std::vector<std::string> fields = split_csv_row(line);
+    if ((fields.at(static_cast<std::size_t>(settled_at)) == "1") != settled) continue;
     StateRow row;
-    while (std::getline(fields, field, ',')) row.push_back(std::strtod(field.c_str(), nullptr));
-    tracks[{step, source}] = row;
+    for (std::size_t i : wanted) row.push_back(std::strtod(fields.at(i).c_str(), nullptr));
+    tracks[{std::stoi(fields[0]), std::stoi(fields[1])}] = row;
   }
   return tracks;
+}
+
+}  // namespace
+
+TrackRows read_tracks(const std::filesystem::path& csv) {
+  return read_track_columns(csv, 'x', false);
+}
+
+TrackRows read_settled_tracks(const std::filesystem::path& csv) {
+  return read_track_columns(csv, 'x', true);
+}
+
+TrackRows read_track_covariances(const std::filesystem::path& csv) {
+  return read_track_columns(csv, 'p', false);
 }
 
 std::vector<double> steps_column(const std::filesystem::path& steps_csv, const std::string& name) {
   std::ifstream in(steps_csv);
   std::string line;
   std::getline(in, line);
-  const auto split = [](const std::string& row) {
-    std::vector<std::string> fields;
-    std::istringstream fields_in(row);
-    for (std::string f; std::getline(fields_in, f, ',');) fields.push_back(f);
-    return fields;
-  };
-  const std::vector<std::string> header = split(line);
+  const std::vector<std::string> header = split_csv_row(line);
   const auto it = std::find(header.begin(), header.end(), name);
   if (it == header.end()) throw std::runtime_error(steps_csv.string() + ": no column " + name);
   const auto column = static_cast<std::size_t>(it - header.begin());
   std::vector<double> values;
-  while (std::getline(in, line)) values.push_back(std::stod(split(line).at(column)));
+  while (std::getline(in, line)) values.push_back(std::stod(split_csv_row(line).at(column)));
   return values;
 }
 

@@ -39,7 +39,10 @@ inline std::filesystem::path test_dir() {
 using StateRow = std::vector<double>;  // a track's state: as many entries as the run's model
 using TrackRows = std::map<std::pair<int, int>, StateRow>;
 /// tracks.csv as (step, source) -> state; %.17g in the file makes the values exact.
-TrackRows read_tracks(const std::filesystem::path& csv);
+TrackRows read_tracks(const std::filesystem::path& csv);          ///< the live tracks' states
+TrackRows read_settled_tracks(const std::filesystem::path& csv);  ///< the settled ones'
+/// The live tracks' covariances: the upper triangle, row by row.
+TrackRows read_track_covariances(const std::filesystem::path& csv);
 
 /// The column of steps.csv named `name`, by step; throws if there is none.
 std::vector<double> steps_column(const std::filesystem::path& steps_csv, const std::string& name);

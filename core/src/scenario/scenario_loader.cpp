@@ -374,9 +374,27 @@ ExchangeConfig read_network(const YamlField& field) {
   return exchange;
 }
 
+GeoAnchor read_anchor(const YamlField& field) {
+  field.allow_only({"latitude_deg", "longitude_deg", "altitude_m"});
+  GeoAnchor anchor;
+  const YamlField latitude = field.required("latitude_deg");
+  anchor.latitude_deg = latitude.number();
+  // Not at a pole: east and north are defined there only as limits.
+  if (!(std::abs(anchor.latitude_deg) < 89.0)) {
+    latitude.fail(fmt::format("must be within (-89, 89) degrees, got {}", latitude.text()));
+  }
+  const YamlField longitude = field.required("longitude_deg");
+  anchor.longitude_deg = longitude.number();
+  if (!(std::abs(anchor.longitude_deg) <= 180.0)) {
+    longitude.fail(fmt::format("must be within [-180, 180] degrees, got {}", longitude.text()));
+  }
+  if (const auto altitude = field.optional("altitude_m")) anchor.altitude_m = altitude->number();
+  return anchor;
+}
+
 Scenario read_scenario(const YamlField& root) {
   root.allow_only({"name", "description", "seed", "time_step_s", "steps", "target", "stations",
-                   "measurement_noise", "filter", "network"});
+                   "measurement_noise", "filter", "network", "anchor"});
   Scenario s;
   s.name = root.required("name").string();
   if (const auto description = root.optional("description")) s.description = description->string();
@@ -413,6 +431,7 @@ Scenario read_scenario(const YamlField& root) {
   const YamlField filter = root.required("filter");
   s.filter = read_filter(filter);
   if (const auto network = root.optional("network")) s.exchange = read_network(*network);
+  if (const auto anchor = root.optional("anchor")) s.anchor = read_anchor(*anchor);
 
   const MotionModelInfo model = *find_motion_model(s.filter.motion_model.kind);
   const FilterInfo filter_info = *find_filter(s.filter.kind);

@@ -330,6 +330,22 @@ TEST(ScenarioLoader, ReadsTheNetworksExchangeAndRefusesWhatCannotRun) {
             ExchangeConfig::Kind::kTree);
 }
 
+TEST(ScenarioLoader, ReadsTheMapAnchorAndRefusesOneOffTheGlobe) {
+  const GeoAnchor fallback;
+  const Scenario plain = parse_scenario(default_with("filter:\n", "filter:\n"), "test.yaml");
+  EXPECT_EQ(plain.anchor.latitude_deg, fallback.latitude_deg);
+  const std::string anchor = "anchor: {latitude_deg: -33.86, longitude_deg: 151.21}\n";
+  const Scenario s = parse_scenario(default_with("filter:\n", anchor + "filter:\n"), "test.yaml");
+  EXPECT_EQ(s.anchor.latitude_deg, -33.86);
+  EXPECT_EQ(s.anchor.longitude_deg, 151.21);
+  EXPECT_EQ(s.anchor.altitude_m, fallback.altitude_m);
+  EXPECT_EQ(rejection(default_with("filter:\n",
+                                   "anchor: {latitude_deg: 90, longitude_deg: 0}\nfilter:\n")),
+            "test.yaml: anchor.latitude_deg: must be within (-89, 89) degrees, got 90 (line 56)");
+  EXPECT_EQ(rejection(default_with("filter:\n", "anchor: {latitude_deg: 10}\nfilter:\n")),
+            "test.yaml: anchor: missing field 'longitude_deg' (line 56)");
+}
+
 TEST(ScenarioLoader, RefusesImmSettingsThatCannotWork) {
   EXPECT_EQ(rejection(default_with("  initial_covariance_diag: 1.0",
                                    "  imm: {stay_probability: 0.9}\n"

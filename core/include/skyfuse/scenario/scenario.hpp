@@ -124,6 +124,15 @@ struct ExchangeConfig {
 std::string_view to_string(ExchangeConfig::Kind kind);
 std::optional<ExchangeConfig::Kind> parse_exchange_kind(std::string_view name);
 
+/// Where the scenario's frame sits on the Earth, reading x as east, y as north and z as up (m):
+/// for maps only (a recording's foxglove.LocationFix); no filter uses it. The default, for a
+/// scenario without an `anchor`, is an open field near Munich.
+struct GeoAnchor {
+  double latitude_deg = 48.2400;
+  double longitude_deg = 11.6700;
+  double altitude_m = 480.0;
+};
+
 struct Scenario {
   std::string name;
   std::string description;
@@ -135,6 +144,7 @@ struct Scenario {
   NoiseScaleConfig noise_scale;
   FilterConfig filter;
   ExchangeConfig exchange;
+  GeoAnchor anchor;
 };
 
 /// Applies `--exchange` and `--fanout` to `scenario`; throws std::invalid_argument naming the

@@ -1,0 +1,76 @@
+#pragma once
+// What a run shows a person: each round as messages on the channels Foxglove, Lichtblick and
+// skyfuse's own page draw (docs/view.md) — the scene (stations, truth, the center's and every
+// peer's track with its covariance ellipsoid and trail), frames, map fixes, and skyfuse's own
+// round, error and mode-probability channels. JSON with JSON schemas: the foxglove.* schemas
+// are written here for the fields skyfuse fills, under the names the tools know.
+//
+// The recording (run_recording.hpp) writes every message; a live stream sends the same ones.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "run/run_report.hpp"
+
+namespace skyfuse::harness {
+
+/// A channel: topic, schema name and JSON schema text.
+struct ChannelSpec {
+  std::string topic;
+  std::string schema_name;
+  std::string schema;
+};
+
+/// One message for channel `channel` (an index into RunChannels::specs()).
+struct ChannelMessage {
+  std::size_t channel = 0;
+  std::uint64_t log_time_ns = 0;
+  std::string json;
+};
+
+class RunChannels {
+ public:
+  // Indices into specs(); kModes only when the filter has modes.
+  enum Channel : std::size_t {
+    kScene,
+    kStations,
+    kTransforms,
+    kCenterLocation,
+    kTruthLocation,
+    kRounds,
+    kTrackErrors,
+    kSummary,
+    kModes,
+  };
+
+  /// `epoch_ns`: the log time of step 0 (steps follow at the scenario's time step).
+  RunChannels(const RunRecorder& recorder, std::uint64_t epoch_ns);
+
+  const std::vector<ChannelSpec>& specs() const { return specs_; }
+
+  /// The messages of `round`, in channel order; a round's scene also carries the trails every
+  /// kTrailEvery steps, and the stations every kStationsEvery steps (and at its first round).
+  std::vector<ChannelMessage> round_messages(const RoundRecord& round);
+  /// The run's summary (summary.json's text) at the log time after the last step.
+  ChannelMessage summary_message(std::string summary_json) const;
+
+  std::uint64_t log_time_ns(std::uint64_t step) const;
+
+  static constexpr std::uint64_t kTrailEvery = 10;
+  static constexpr std::size_t kTrailPoints = 50;
+  static constexpr std::uint64_t kStationsEvery = 250;
+
+ private:
+  struct Trail {
+    std::vector<Vector3> points;
+  };
+  const RunRecorder& recorder_;
+  std::uint64_t epoch_ns_;
+  std::vector<ChannelSpec> specs_;
+  bool stations_sent_ = false;
+  std::vector<Trail> trails_;  ///< truth, center, then the stations in ascending id
+};
+
+}  // namespace skyfuse::harness
