@@ -64,18 +64,22 @@ static dds_time_t matched_at(struct match_times* m, dds_instance_handle_t writer
 struct options {
   int domain;
   const char* out_path;
-  const char* interface_address;
-  int latest_sources; /* 0: every track */
+  const char* interface_address; /* NULL: Cyclone's own choice (and CYCLONEDDS_URI) */
+  int latest_sources;            /* 0: every track */
   double timeout_s;
 };
 
 static void usage(const char* program) {
-  fprintf(stderr,
-          "usage: %s --domain D --out FILE [--interface ADDRESS] [--latest N] [--timeout-s S]\n"
-          "  Reads skyfuse_track with Cyclone DDS and writes every track to FILE as CSV.\n"
-          "  --latest N: join as a late viewer (KEEP_LAST 1) and stop once each of N sources\n"
-          "              has sent a track written after the first one received from it.\n",
-          program);
+  fprintf(
+      stderr,
+      "usage: %s --domain D --out FILE [--interface ADDRESS | --cyclone-defaults] [--latest N]\n"
+      "          [--timeout-s S]\n"
+      "  Reads skyfuse_track with Cyclone DDS and writes every track to FILE as CSV.\n"
+      "  --latest N: join as a late viewer (KEEP_LAST 1) and stop once each of N sources\n"
+      "              has sent a track written after the first one received from it.\n"
+      "  --cyclone-defaults: configure nothing; Cyclone picks its interface itself and\n"
+      "              reads CYCLONEDDS_URI if it is set (default: --interface 127.0.0.1).\n",
+      program);
 }
 
 static bool parse_options(int argc, char** argv, struct options* o) {
@@ -85,6 +89,10 @@ static bool parse_options(int argc, char** argv, struct options* o) {
   o->latest_sources = 0;
   o->timeout_s = 60.0;
   for (int i = 1; i < argc; ++i) {
+    if (strcmp(argv[i], "--cyclone-defaults") == 0) {
+      o->interface_address = NULL;
+      continue;
+    }
     const char* value = i + 1 < argc ? argv[i + 1] : NULL;
     if (value == NULL) return false;
     if (strcmp(argv[i], "--domain") == 0) {
@@ -110,6 +118,8 @@ static bool parse_options(int argc, char** argv, struct options* o) {
  * multicast. Loopback has no MULTICAST flag, so Cyclone must be told to use it for discovery;
  * data then goes unicast. */
 static dds_entity_t create_participant(const struct options* o) {
+  if (o->interface_address == NULL)
+    return dds_create_participant((dds_domainid_t)o->domain, NULL, NULL);
   char config[512];
   snprintf(config, sizeof config,
            "<CycloneDDS><Domain id=\"any\"><General><Interfaces>"

@@ -110,6 +110,11 @@ TEST(DdsInterop, ACycloneDdsReaderGetsEveryTrackAndALateJoinerEachSourcesLatestA
   Process early(
       {reader, "--domain", domain, "--out", (dir / "every.csv").string(), "--timeout-s", "120"},
       dir / "every.log");
+  // A reader given no configuration at all: Cyclone picks the interface (on these machines not
+  // loopback) and discovers the run anyway (docs/interop.md).
+  Process unconfigured({reader, "--domain", domain, "--cyclone-defaults", "--out",
+                        (dir / "unconfigured.csv").string(), "--timeout-s", "120"},
+                       dir / "unconfigured.log");
   Process run({bin("skyfuse"), "run", "--scenario", (dir / "slow.yaml").string(), "--stations",
                std::to_string(kStations), "--steps", std::to_string(kSteps), "--domain", domain,
                "--realtime-deadline-ms", "100", "--out", (dir / "run").string()},
@@ -128,20 +133,26 @@ TEST(DdsInterop, ACycloneDdsReaderGetsEveryTrackAndALateJoinerEachSourcesLatestA
   ASSERT_TRUE(late_status && late_status->code == 0) << late.output();
   const auto early_status = early.wait(60s);
   ASSERT_TRUE(early_status && early_status->code == 0) << early.output();
+  const auto unconfigured_status = unconfigured.wait(60s);
+  ASSERT_TRUE(unconfigured_status && unconfigured_status->code == 0) << unconfigured.output();
 
   const TrackRows csv = read_tracks(dir / "run" / "tracks.csv");
   ASSERT_EQ(csv.size(), static_cast<std::size_t>(kSources * kSteps));
 
-  // Every track, once, bit for bit.
-  const ReaderOutput every = read_reader_output(dir / "every.csv");
-  std::map<std::pair<int, int>, int> seen;
-  for (const ReceivedTrack& t : every.tracks) {
-    EXPECT_FALSE(t.settled);
-    EXPECT_EQ(difference_from_csv(t, csv), std::nullopt);
-    ++seen[{t.step, t.source}];
+  // Every track, once, bit for bit, whether the reader was pinned to loopback or not.
+  for (const char* file : {"every.csv", "unconfigured.csv"}) {
+    const ReaderOutput every = read_reader_output(dir / file);
+    std::map<std::pair<int, int>, int> seen;
+    for (const ReceivedTrack& t : every.tracks) {
+      EXPECT_FALSE(t.settled);
+      EXPECT_EQ(difference_from_csv(t, csv), std::nullopt) << file;
+      ++seen[{t.step, t.source}];
+    }
+    EXPECT_EQ(seen.size(), csv.size()) << file;
+    for (const auto& [key, count] : seen) {
+      EXPECT_EQ(count, 1) << file << " " << key.first << "," << key.second;
+    }
   }
-  EXPECT_EQ(seen.size(), csv.size());
-  for (const auto& [key, count] : seen) EXPECT_EQ(count, 1) << key.first << "," << key.second;
 
   // The late joiner. A track written before its writer matched the reader came from the
   // writer's history: a volatile writer would never send it. For each source, the newest such
