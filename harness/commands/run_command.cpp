@@ -1,8 +1,10 @@
 #include "commands/run_command.hpp"
 
+#include <arpa/inet.h>
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <limits>
 
 #include "run/simulated_hosts.hpp"
@@ -20,6 +22,31 @@ StationEvent parse_station_event(const std::string& option, const std::string& t
     throw CLI::ValidationError(option, "expected ID@STEP, e.g. 2@100, got " + text);
   }
   return {static_cast<int>(pair->first), pair->second};
+}
+
+// "[ADDRESS:]PORT" -> {ADDRESS or loopback, PORT}; whether the address is this machine's is
+// found when the server binds to it.
+LiveEndpoint parse_live_endpoint(const std::string& text) {
+  LiveEndpoint e;
+  const auto colon = text.rfind(':');
+  const std::string port = colon == std::string::npos ? text : text.substr(colon + 1);
+  if (colon != std::string::npos) e.address = text.substr(0, colon);
+  in6_addr any{};
+  if (inet_pton(AF_INET, e.address.c_str(), &any) != 1 &&
+      inet_pton(AF_INET6, e.address.c_str(), &any) != 1) {
+    throw CLI::ValidationError("--live", "'" + e.address + "' is not an IP address");
+  }
+  unsigned number = 0;
+  const auto [end, error] = std::from_chars(port.data(), port.data() + port.size(), number);
+  if (e.address.empty() || port.empty() || error != std::errc{} ||
+      end != port.data() + port.size() || number > 65535) {
+    throw CLI::ValidationError("--live",
+                               "expected [ADDRESS:]PORT with PORT in [0, 65535], e.g. "
+                               "8765 or 127.0.0.1:8765, got '" +
+                                   text + "'");
+  }
+  e.port = static_cast<std::uint16_t>(number);
+  return e;
 }
 
 }  // namespace
@@ -73,6 +100,19 @@ void add_run_command(CLI::App& app, RunOptions& o) {
   cmd->add_option("--record", o.record_path,
                   "Also write the run as an MCAP recording (Foxglove, Lichtblick, skyfuse view)")
       ->type_name("FILE.mcap");
+  CLI::Option* live =
+      cmd->add_option_function<std::string>(
+             "--live", [&o](const std::string& text) { o.live = parse_live_endpoint(text); },
+             "Stream the run while it goes on: a Foxglove WebSocket server, and skyfuse's page "
+             "over "
+             "HTTP, on [ADDRESS:]PORT (loopback unless ADDRESS is given; PORT 0: any free port)")
+          ->type_name("[ADDRESS:]PORT");
+  cmd->add_option("--live-scene-hz", o.live_scene_hz,
+                  "--live: scenes, frames and map fixes a second at most, skyfuse's own channels "
+                  "going out every round (0: everything every round)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str()
+      ->needs(live);
   cmd->add_option("--hosts", o.hosts,
                   "Place the center and the stations, round robin, on N simulated hosts: network "
                   "namespaces joined by a bridge, discovering through the harness (root only)")

@@ -309,24 +309,52 @@ std::uint64_t RunChannels::log_time_ns(std::uint64_t step) const {
   return epoch_ns_ + static_cast<std::uint64_t>(std::llround(static_cast<double>(step) * dt_ns));
 }
 
-std::vector<ChannelMessage> RunChannels::round_messages(const RoundRecord& round) {
+std::vector<ChannelMessage> RunChannels::round_messages(const RoundRecord& round, Detail detail) {
   const std::uint64_t ns = log_time_ns(round.step);
   const std::vector<int>& ids = recorder_.station_ids();
   const int pd = recorder_.position_dim();
   const Vector3 truth = recorder_.truth_position(round.step);
   std::vector<ChannelMessage> out;
-  const auto emit = [&](Channel channel, const json& message) {
-    out.push_back({channel, ns, message.dump()});
+  const Emit emit = [&](Channel channel, std::string message) {
+    out.push_back({channel, ns, std::move(message)});
   };
 
   // Every track of the round: (node, track), the center first.
-  std::vector<std::pair<int, const ReceivedTrack*>> tracks;
+  TrackList tracks;
   if (round.central) tracks.emplace_back(kCenterNodeId, &*round.central);
   for (std::size_t i = 0; i < round.peers.size(); ++i) {
     if (round.peers[i]) tracks.emplace_back(ids[i], &*round.peers[i]);
   }
 
-  // The scene: truth, and each track's position and ellipsoid; the trails every kTrailEvery.
+  // The trails take a point every kTrailEvery steps, drawn or not.
+  const bool trails_moved = round.step % kTrailEvery == 0;
+  if (trails_moved) {
+    const auto extend = [&](Trail& trail, const Vector3& p) {
+      trail.points.push_back(p);
+      if (trail.points.size() > kTrailPoints) trail.points.erase(trail.points.begin());
+    };
+    extend(trails_[0], truth);
+    if (round.central) extend(trails_[1], recorder_.position_of(*round.central));
+    for (std::size_t i = 0; i < round.peers.size(); ++i) {
+      if (round.peers[i]) extend(trails_[2 + i], recorder_.position_of(*round.peers[i]));
+    }
+  }
+  if (detail != Detail::kFiguresOnly) {
+    scene_messages(round, tracks, detail == Detail::kDisplayFrame || trails_moved || scenes_ == 0,
+                   emit);
+  }
+  figure_messages(round, tracks, emit);
+  return out;
+}
+
+void RunChannels::scene_messages(const RoundRecord& round, const TrackList& tracks,
+                                 bool with_trails, const Emit& to) {
+  const auto emit = [&](Channel channel, const json& message) { to(channel, message.dump()); };
+  const std::uint64_t ns = log_time_ns(round.step);
+  const std::vector<int>& ids = recorder_.station_ids();
+  const int pd = recorder_.position_dim();
+  const Vector3 truth = recorder_.truth_position(round.step);
+  // The scene: truth, and each track's position and ellipsoid, and the trails.
   json entities = json::array();
   {
     json e = entity(ns, "truth");
@@ -341,16 +369,7 @@ std::vector<ChannelMessage> RunChannels::round_messages(const RoundRecord& round
     e["spheres"].push_back(ellipsoid(at, position_covariance(*track, pd), c));
     entities.push_back(std::move(e));
   }
-  if (round.step % kTrailEvery == 0) {
-    const auto extend = [&](Trail& trail, const Vector3& p) {
-      trail.points.push_back(p);
-      if (trail.points.size() > kTrailPoints) trail.points.erase(trail.points.begin());
-    };
-    extend(trails_[0], truth);
-    if (round.central) extend(trails_[1], recorder_.position_of(*round.central));
-    for (std::size_t i = 0; i < round.peers.size(); ++i) {
-      if (round.peers[i]) extend(trails_[2 + i], recorder_.position_of(*round.peers[i]));
-    }
+  if (with_trails) {
     for (std::size_t t = 0; t < trails_.size(); ++t) {
       if (trails_[t].points.size() < 2) continue;
       const std::string id = t == 0   ? "trail/truth"
@@ -365,8 +384,7 @@ std::vector<ChannelMessage> RunChannels::round_messages(const RoundRecord& round
   }
   emit(kScene, {{"deletions", json::array()}, {"entities", std::move(entities)}});
 
-  if (!stations_sent_ || round.step % kStationsEvery == 0) {
-    stations_sent_ = true;
+  if (scenes_++ % kStationsEvery == 0) {
     json sites = json::array();
     for (int id : ids) {
       const StationConfig& s = *recorder_.plan().participant(id);
@@ -390,6 +408,15 @@ std::vector<ChannelMessage> RunChannels::round_messages(const RoundRecord& round
     emit(kCenterLocation, location_fix(ns, anchor, at, position_covariance(*round.central, pd)));
   }
   emit(kTruthLocation, location_fix(ns, anchor, truth, Eigen::Matrix3d::Zero()));
+}
+
+void RunChannels::figure_messages(const RoundRecord& round, const TrackList& tracks,
+                                  const Emit& to) {
+  const auto emit = [&](Channel channel, const json& message) { to(channel, message.dump()); };
+  const std::uint64_t ns = log_time_ns(round.step);
+  const std::vector<int>& ids = recorder_.station_ids();
+  const int pd = recorder_.position_dim();
+  const Vector3 truth = recorder_.truth_position(round.step);
 
   // Who contributed to each node's track, and who is missing from it.
   json nodes = json::array();
@@ -447,7 +474,6 @@ std::vector<ChannelMessage> RunChannels::round_messages(const RoundRecord& round
                   {"modes", std::move(names)},
                   {"tracks", std::move(probabilities)}});
   }
-  return out;
 }
 
 ChannelMessage RunChannels::summary_message(std::string summary_json) const {

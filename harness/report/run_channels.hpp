@@ -8,6 +8,7 @@
 // The recording (run_recording.hpp) writes every message; a live stream sends the same ones.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,9 +51,16 @@ class RunChannels {
 
   const std::vector<ChannelSpec>& specs() const { return specs_; }
 
-  /// The messages of `round`, in channel order; a round's scene also carries the trails every
-  /// kTrailEvery steps, and the stations every kStationsEvery steps (and at its first round).
-  std::vector<ChannelMessage> round_messages(const RoundRecord& round);
+  /// How much of a round to send. kEveryRound (a recording): every channel, the trails every
+  /// kTrailEvery steps. kDisplayFrame (a live stream's frame): every channel, the trails in
+  /// each scene. kFiguresOnly (a live stream between frames): skyfuse's own channels, without
+  /// the scene, frames and map fixes. The stations go in the first scene and every
+  /// kStationsEvery scenes after it.
+  enum class Detail { kEveryRound, kDisplayFrame, kFiguresOnly };
+
+  /// The messages of `round`, in channel order.
+  std::vector<ChannelMessage> round_messages(const RoundRecord& round,
+                                             Detail detail = Detail::kEveryRound);
   /// The run's summary (summary.json's text) at the log time after the last step.
   ChannelMessage summary_message(std::string summary_json) const;
 
@@ -66,10 +74,16 @@ class RunChannels {
   struct Trail {
     std::vector<Vector3> points;
   };
+  using TrackList = std::vector<std::pair<int, const ReceivedTrack*>>;  ///< (node, track)
+  using Emit = std::function<void(Channel, std::string)>;
+  void scene_messages(const RoundRecord& round, const TrackList& tracks, bool with_trails,
+                      const Emit& emit);
+  void figure_messages(const RoundRecord& round, const TrackList& tracks, const Emit& emit);
+
   const RunRecorder& recorder_;
   std::uint64_t epoch_ns_;
   std::vector<ChannelSpec> specs_;
-  bool stations_sent_ = false;
+  std::uint64_t scenes_ = 0;   ///< scenes sent so far
   std::vector<Trail> trails_;  ///< truth, center, then the stations in ascending id
 };
 

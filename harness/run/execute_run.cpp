@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 
+#include "report/live_feed.hpp"
 #include "report/output_files.hpp"
 #include "report/progress.hpp"
 #include "report/run_recording.hpp"
@@ -76,6 +77,13 @@ std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan
   child.log_level = o.verbose ? "info" : "warn";
   if (child.secure_dir) child.secure_dir = std::filesystem::absolute(*child.secure_dir).string();
   return options::to_arguments(child);
+}
+
+// Nanoseconds since the Unix epoch: a recording's and a live stream's log times.
+std::uint64_t wall_clock_ns(
+    std::chrono::system_clock::time_point t = std::chrono::system_clock::now()) {
+  return static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(t.time_since_epoch()).count());
 }
 
 std::chrono::milliseconds seconds_to_ms(double s) {
@@ -255,6 +263,24 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       }
       namespace_members.try_emplace(netns, children.spawn(node_name(id), station, netns));
     };
+    RunRecorder recorder(plan, ids, o.restarts);
+    // The live stream listens before the nodes start, so that a client can be there for the
+    // first round.
+    std::unique_ptr<LiveFeed> live;
+    if (o.live) {
+      live::LiveServer::Options server;
+      server.address = o.live->address;
+      server.port = o.live->port;
+      if (const auto site = executable_dir() / "view";
+          std::filesystem::exists(site / "index.html")) {
+        server.site_dir = site.string();
+      }
+      live =
+          std::make_unique<LiveFeed>(recorder, wall_clock_ns(), std::move(server), o.live_scene_hz);
+      fmt::print("live: ws://{0}:{1} (Foxglove), http://{0}:{1}/ (page)\n", o.live->address,
+                 live->port());
+      std::fflush(stdout);
+    }
     if (!o.external) {
       const auto [network, netns] = placement.of(0);
       const std::vector<std::string> common =
@@ -267,7 +293,6 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     const auto discovery =
         driver.wait_until_joined(seconds_to_ms(discovery_timeout_s(o, plan.stations)));
 
-    RunRecorder recorder(plan, ids, o.restarts);
     Progress progress(fmt::format("run M={} {:.0f} km/h", plan.stations, plan.speed_mps * 3.6),
                       plan.scenario.steps);
     const auto round_timeout = seconds_to_ms(o.round_timeout_s);
@@ -277,8 +302,11 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     if (o.node.realtime_deadline_ms > 0.0) {
       // A little head start so that the start tick reaches every node before step 0 begins.
       const auto epoch = std::chrono::system_clock::now() + std::chrono::milliseconds(300);
+      const auto stream = [&](const RoundRecord& r) {
+        if (live) live->offer(r);
+      };
       for (RoundRecord& r : driver.run_realtime(plan.scenario.steps, plan.scenario.time_step_s,
-                                                epoch, round_timeout)) {
+                                                epoch, round_timeout, stream)) {
         recorder.add(std::move(r));
       }
       progress.advance(plan.scenario.steps);
@@ -310,6 +338,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
             throw RunAborted("round 0 incomplete, the network is not fully connected: " + *missing);
           }
         }
+        if (live) live->offer(round);
         recorder.add(std::move(round));
         progress.advance();
       }
@@ -365,12 +394,19 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       summary.discovery_server = placement.harness.discovery_server->to_string();
     }
     recorder.write(out, summary, run_id);
+    if (live) {
+      live->finish(recorder.summary_json(summary, run_id));
+      if (const auto dropped = live->stats().clients_dropped; dropped > 0) {
+        fmt::print("live: {} client(s) dropped for falling behind\n", dropped);
+      }
+      if (live->rounds_dropped() > 0) {
+        spdlog::warn("live: {} round(s) not streamed: the stream fell more than {} rounds behind",
+                     live->rounds_dropped(), LiveFeed::kMaxWaitingRounds);
+      }
+    }
     if (!o.record_path.empty()) {
-      write_recording(
-          recorder, recorder.summary_json(summary, run_id), o.record_path,
-          static_cast<std::uint64_t>(
-              std::chrono::duration_cast<std::chrono::nanoseconds>(wall_start.time_since_epoch())
-                  .count()));
+      write_recording(recorder, recorder.summary_json(summary, run_id), o.record_path,
+                      wall_clock_ns(wall_start));
     }
     return summary;
   } catch (...) {

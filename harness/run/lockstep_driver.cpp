@@ -377,9 +377,9 @@ void LockstepDriver::wait_until_ready(int id, std::chrono::milliseconds timeout)
   }
 }
 
-std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_step_s,
-                                                      std::chrono::system_clock::time_point epoch,
-                                                      std::chrono::milliseconds timeout) {
+std::vector<RoundRecord> LockstepDriver::run_realtime(
+    int steps, double time_step_s, std::chrono::system_clock::time_point epoch,
+    std::chrono::milliseconds timeout, const std::function<void(const RoundRecord&)>& on_round) {
   Impl& d = *impl_;
   const auto epoch_ns = static_cast<std::uint64_t>(
       std::chrono::duration_cast<std::chrono::nanoseconds>(epoch.time_since_epoch()).count());
@@ -430,7 +430,11 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(int steps, double time_ste
       if (!why) why = rounds.offer_measurement(z.station_id(), z.step(), values);
       if (why) transport::count_drop(d.own_drops, *why, "measurement", z.station_id(), z.step());
     }
+    const std::size_t before = done.size();
     rounds.hand_over(done);
+    if (on_round) {
+      for (std::size_t i = before; i < done.size(); ++i) on_round(done[i]);
+    }
     if (done.size() == static_cast<std::size_t>(steps)) break;
     d.check();
     d.read_statuses();

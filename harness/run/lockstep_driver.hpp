@@ -85,10 +85,12 @@ class LockstepDriver {
   void wait_until_ready(int id, std::chrono::milliseconds timeout);
 
   /// Real-time mode: publishes the start tick (step 0 begins at `epoch`) and gathers every
-  /// node's track of every step as the nodes publish them on their own clocks.
-  std::vector<RoundRecord> run_realtime(int steps, double time_step_s,
-                                        std::chrono::system_clock::time_point epoch,
-                                        std::chrono::milliseconds timeout);
+  /// node's track of every step as the nodes publish them on their own clocks. `on_round`, if
+  /// given, sees each step as soon as it is complete (a live stream).
+  std::vector<RoundRecord> run_realtime(
+      int steps, double time_step_s, std::chrono::system_clock::time_point epoch,
+      std::chrono::milliseconds timeout,
+      const std::function<void(const RoundRecord&)>& on_round = nullptr);
 
   /// What every node that has announced FINISHED so far reported, by node id (0: center),
   /// and the harness's own drops under kHarnessNodeId.

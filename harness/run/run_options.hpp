@@ -12,6 +12,12 @@
 
 namespace skyfuse::harness {
 
+/// `--live [ADDRESS:]PORT`: where the live stream and the page are served.
+struct LiveEndpoint {
+  std::string address = "127.0.0.1";  ///< loopback unless another address is given
+  std::uint16_t port = 8765;          ///< 0: any free port, printed when the run starts
+};
+
 struct RunOptions {
   /// What every node of the run is given (scenario, plan, domain, QoS, security, deadlines,
   /// loss, NIS gate): one contract with the nodes, passed on by options::to_arguments. The
@@ -27,7 +33,10 @@ struct RunOptions {
   std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating
   /// Also write the run as an MCAP recording here (report/run_recording.hpp); empty: none.
   std::string record_path;
-  bool external = false;  ///< stations and center are started elsewhere (by hand, compose)
+  std::optional<LiveEndpoint> live;
+  double live_scene_hz = 30.0;  ///< live scenes a second at most; 0: one every round  ///< stream
+                                ///< the run while it goes on (report/live_feed.hpp)
+  bool external = false;        ///< stations and center are started elsewhere (by hand, compose)
   int hosts = 0;  ///< > 0: place the processes on this many simulated hosts (simulated_hosts.hpp)
   bool verbose = false;
 };

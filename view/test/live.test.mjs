@@ -1,0 +1,156 @@
+// A live run as Foxglove sees it: `skyfuse run --live` with a @foxglove/ws-protocol client that
+// subscribes to every channel while the run goes on, checks the schema names, validates every
+// foxglove.* payload against @foxglove/schemas and follows the run to its last round with one
+// scene per round. Beside it, a client that sends what the server does not serve (answered with
+// an error status and ignored) and a client that stops reading (dropped; the run goes on).
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { spawn } from "node:child_process";
+import { mkdtempSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join } from "node:path";
+import wsProtocol from "@foxglove/ws-protocol";
+const { FoxgloveClient } = wsProtocol;
+import WebSocket from "ws";
+import * as foxglove from "@foxglove/schemas/jsonschema.js";
+import Ajv from "ajv";
+
+const skyfuse = process.env.SKYFUSE_BIN;
+assert.ok(skyfuse, "SKYFUSE_BIN names the build's skyfuse");
+const domain = process.env.SKYFUSE_DOMAIN ?? "213";
+const steps = 1500;
+const ajv = new Ajv({ strict: false, allErrors: true });
+
+// Starts a run with --live on a free port; resolves with the process, its port and its exit.
+// `sceneHz` 0: a scene every round, as a recording has.
+function startLiveRun(dir, { runSteps = steps, sceneHz = 0 } = {}) {
+  const run = spawn(skyfuse, ["run", "--stations", "4", "--steps", String(runSteps), "--domain", domain,
+    "--out", join(dir, "out"), "--live", "127.0.0.1:0", "--live-scene-hz", String(sceneHz)],
+    { stdio: ["ignore", "pipe", "pipe"] });
+  let output = "";
+  const exited = new Promise((resolve) => run.on("exit", (code) => resolve({ code, output })));
+  const port = new Promise((resolve, reject) => {
+    run.stdout.on("data", (chunk) => {
+      output += chunk;
+      const m = /live: ws:\/\/127\.0\.0\.1:(\d+)/.exec(output);
+      if (m) resolve(Number(m[1]));
+    });
+    run.stderr.on("data", (chunk) => { output += chunk; });
+    exited.then(() => reject(new Error(`run ended before it listened:\n${output}`)));
+  });
+  return { run, port, exited };
+}
+
+function connect(port) {
+  return new WebSocket(`ws://127.0.0.1:${port}`, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]);
+}
+
+test("a live run streams every channel to its last round, and ignores what it does not serve", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "skyfuse-live-"));
+  try {
+    const { port, exited } = startLiveRun(dir);
+    const client = new FoxgloveClient({ ws: connect(await port) });
+    const channels = new Map();   // id -> channel
+    const bySubscription = new Map();
+    const payloads = new Map();   // topic -> parsed payloads
+    const statuses = [];
+    let serverInfo = null;
+    client.on("serverInfo", (info) => { serverInfo = info; });
+    client.on("status", (s) => statuses.push(s));
+    client.on("advertise", (advertised) => {
+      for (const c of advertised) {
+        channels.set(c.id, c);
+        payloads.set(c.topic, []);
+        bySubscription.set(client.subscribe(c.id), c);
+      }
+    });
+    const decoder = new TextDecoder();
+    client.on("message", ({ subscriptionId, timestamp, data }) => {
+      const c = bySubscription.get(subscriptionId);
+      const p = JSON.parse(decoder.decode(data));
+      p.__log_time = timestamp;
+      payloads.get(c.topic).push(p);
+    });
+    // What a publishing client would send, and garbage: each answered with an error status.
+    const rude = connect(await port);
+    await new Promise((resolve) => rude.on("open", resolve));
+    const answers = [];
+    rude.on("message", (data, binary) => { if (!binary) answers.push(JSON.parse(data.toString())); });
+    rude.send("this is not JSON");
+    rude.send(JSON.stringify({ op: "advertise", channels: [{ id: 1, topic: "/x", encoding: "json", schemaName: "x" }] }));
+    rude.send(JSON.stringify({ op: "getParameters", parameterNames: [] }));
+    rude.send(JSON.stringify({ op: "subscribe", subscriptions: [{ id: "one", channelId: 0 }] }));
+    rude.send(Buffer.from([0x01, 1, 0, 0, 0, 42]));
+
+    const { code, output } = await exited;
+    assert.equal(code, 0, output);
+    client.close();
+    rude.close();
+
+    assert.equal(serverInfo.name, "skyfuse");
+    assert.deepEqual(serverInfo.capabilities, [], "it only publishes");
+    const names = Object.fromEntries([...channels.values()].map((c) => [c.topic, c.schemaName]));
+    assert.equal(names["/scene"], "foxglove.SceneUpdate");
+    assert.equal(names["/stations"], "foxglove.SceneUpdate");
+    assert.equal(names["/tf"], "foxglove.FrameTransform");
+    assert.equal(names["/center/location"], "foxglove.LocationFix");
+    assert.equal(names["/skyfuse/round"], "skyfuse.Round");
+    for (const c of channels.values()) {
+      assert.equal(c.encoding, "json");
+      assert.equal(c.schemaEncoding, "jsonschema");
+      if (!c.schemaName.startsWith("foxglove.")) continue;
+      const check = ajv.compile(foxglove[c.schemaName.replace("foxglove.", "")]);
+      for (const p of payloads.get(c.topic)) {
+        const { __log_time, ...message } = p;
+        assert.ok(check(message), `${c.topic}: ${ajv.errorsText(check.errors)}`);
+      }
+    }
+
+    // Followed to the last round, with no round missing since the first one received, and one
+    // scene per round.
+    const rounds = payloads.get("/skyfuse/round").map((r) => r.step);
+    assert.ok(rounds.length > steps / 2, `only ${rounds.length} rounds streamed`);
+    assert.equal(rounds.at(-1), steps - 1);
+    for (let i = 1; i < rounds.length; ++i) assert.equal(rounds[i], rounds[i - 1] + 1);
+    assert.equal(payloads.get("/scene").length, rounds.length);
+    assert.equal(payloads.get("/skyfuse/track_error").length, rounds.length);
+    assert.equal(payloads.get("/skyfuse/summary").length, 1);
+    assert.equal(payloads.get("/skyfuse/summary")[0].steps, steps);
+    assert.equal(statuses.length, 0, "the well-behaved client got no status");
+
+    // Five messages, five error statuses; the run went on regardless.
+    assert.equal(answers.filter((a) => a.op === "status" && a.level === 2).length, 5,
+      JSON.stringify(answers.filter((a) => a.op === "status")));
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test("a client that stops reading is dropped and the run goes on to its end", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "skyfuse-live-slow-"));
+  try {
+    // About 30 MB of messages: more than the kernel's socket buffers and the server's 8 MiB.
+    const { port, exited } = startLiveRun(dir, { runSteps: 4000 });
+    const slow = connect(await port);
+    let closedWith = null;
+    slow.on("close", (code) => { closedWith = code; });
+    slow.on("message", (data, binary) => {
+      if (binary) return;
+      const m = JSON.parse(data.toString());
+      if (m.op !== "advertise") return;
+      slow.send(JSON.stringify({ op: "subscribe",
+        subscriptions: m.channels.map((c, i) => ({ id: i, channelId: c.id })) }));
+      // Then read nothing more: the kernel's buffers fill, then the server's.
+      slow._socket.pause();
+    });
+    const { code, output } = await exited;
+    assert.equal(code, 0, output);
+    assert.match(output, /live: 1 client\(s\) dropped for falling behind/);
+    assert.match(output, /rounds per second/, "the run finished and reported");
+    slow._socket.resume();
+    await new Promise((resolve) => setTimeout(resolve, 200));
+    assert.notEqual(closedWith, null, "the connection is closed");
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
