@@ -1,0 +1,246 @@
+// skyfuse's own view of a run: connects to the server that served this page (`skyfuse run
+// --live`) over the Foxglove WebSocket protocol, subscribes to every channel and draws the
+// scene top-down, each track's error against time, who contributed to each round, the IMM's
+// mode probabilities and the run's figures. Built with esbuild from locked npm packages; no CDN.
+import uPlot from "uplot";
+import "uplot/dist/uPlot.min.css";
+import "./page.css";
+
+const SUBPROTOCOL = "foxglove.websocket.v1";
+const COLORS = { truth: "#26b340", center: "#ff8c00", peer: "#3373e6", site: "#777777" };
+const STRIP_ROUNDS = 240;
+
+// What the page knows, also read by the browser test (window.skyfuseView).
+const view = {
+  round: null, rounds: 0, firstRoundAt: null, latencyMs: null,
+  sites: new Map(),          // id -> {x, y, label}
+  entities: new Map(),       // entity id -> {x, y, ellipse, color} or {trail, color}
+  series: new Map(),         // node -> {steps: [], errors: []}
+  strip: [],                 // per round: [state of the center, of each station]
+  modes: null, summary: null,
+};
+window.skyfuseView = view;
+
+function nodeName(node) { return node === 0 ? "center" : `station ${node}`; }
+
+// The 2-D ellipse of a sphere primitive scaled and turned into a 3-D ellipsoid: the top-left
+// 2 x 2 block of R diag(s/2)^2 R^T, as axes and angle.
+function topDownEllipse(sphere) {
+  const { x, y, z, w } = sphere.pose.orientation;
+  const r = [
+    [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+    [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+  ];
+  const s = [sphere.size.x / 2, sphere.size.y / 2, sphere.size.z / 2].map((v) => v * v);
+  const c = [[0, 0], [0, 0]];
+  for (let i = 0; i < 2; ++i) for (let j = 0; j < 2; ++j) for (let k = 0; k < 3; ++k) c[i][j] += r[i][k] * s[k] * r[j][k];
+  const tr = c[0][0] + c[1][1];
+  const det = c[0][0] * c[1][1] - c[0][1] * c[0][1];
+  const disc = Math.sqrt(Math.max(tr * tr / 4 - det, 0));
+  const l1 = tr / 2 + disc;
+  const l2 = Math.max(tr / 2 - disc, 0);
+  const angle = Math.abs(c[0][1]) > 1e-15 ? Math.atan2(l1 - c[0][0], c[0][1]) : (c[0][0] >= c[1][1] ? 0 : Math.PI / 2);
+  return { a: Math.sqrt(l1), b: Math.sqrt(l2), angle };
+}
+
+function onScene(update) {
+  for (const e of update.entities) {
+    // Peers below, the center above them, the truth on top: the tracks lie within decimetres
+    // of each other and of the truth, so each is drawn smaller than the one beneath.
+    const [color, layer] = e.id === "truth" || e.id === "trail/truth" ? [COLORS.truth, 2]
+      : e.id.includes("center") ? [COLORS.center, 1] : [COLORS.peer, 0];
+    if (e.lines.length > 0) {
+      view.entities.set(e.id, { trail: e.lines[0].points, color, layer });
+    } else if (e.spheres.length > 0) {
+      const p = e.spheres[0].pose.position;
+      view.entities.set(e.id, { x: p.x, y: p.y, color, layer,
+        ellipse: e.spheres.length > 1 ? topDownEllipse(e.spheres[1]) : null });
+    }
+  }
+}
+
+function onStations(update) {
+  for (const e of update.entities) {
+    const p = e.cubes[0].pose.position;
+    view.sites.set(e.id, { x: p.x, y: p.y, label: e.texts[0]?.text ?? e.id });
+  }
+}
+
+function onRound(round) {
+  view.round = round.step;
+  view.rounds += 1;
+  view.latencyMs = round.latency_ms;
+  view.firstRoundAt ??= performance.now();
+  view.strip.push(round.nodes.map((n) => (!n.delivered ? "none" : n.missing.length > 0 ? "some" : "all")));
+  if (view.strip.length > STRIP_ROUNDS) view.strip.shift();
+}
+
+function onTrackError(message) {
+  for (const t of message.tracks) {
+    if (!view.series.has(t.node)) view.series.set(t.node, { steps: [], errors: [] });
+    const s = view.series.get(t.node);
+    s.steps.push(message.step);
+    s.errors.push(t.error_m);
+  }
+}
+
+// ---- drawing ------------------------------------------------------------------------------
+
+function drawScene() {
+  const canvas = document.getElementById("scene");
+  const g = canvas.getContext("2d");
+  g.clearRect(0, 0, canvas.width, canvas.height);
+  const points = [...view.sites.values()];
+  for (const e of view.entities.values()) (e.trail ?? [e]).forEach((p) => points.push(p));
+  if (points.length === 0) return;
+  const xs = points.map((p) => p.x);
+  const ys = points.map((p) => p.y);
+  const [x0, x1, y0, y1] = [Math.min(...xs), Math.max(...xs), Math.min(...ys), Math.max(...ys)];
+  const scale = 0.8 * Math.min(canvas.width / Math.max(x1 - x0, 1), canvas.height / Math.max(y1 - y0, 1));
+  const cx = (x0 + x1) / 2;
+  const cy = (y0 + y1) / 2;
+  const at = (p) => [canvas.width / 2 + (p.x - cx) * scale, canvas.height / 2 - (p.y - cy) * scale];
+  g.font = "11px system-ui";
+  for (const s of view.sites.values()) {
+    const [u, v] = at(s);
+    g.fillStyle = COLORS.site;
+    g.fillRect(u - 4, v - 4, 8, 8);
+    const width = g.measureText(s.label).width;
+    g.fillText(s.label, u + 6 + width > canvas.width ? u - 6 - width : u + 6, v - 6);  // inside
+  }
+  const layered = [...view.entities.values()].sort((a, b) => a.layer - b.layer);
+  for (const e of layered) {
+    if (!e.trail) continue;
+    g.strokeStyle = e.color;
+    g.lineWidth = 1.5;
+    g.beginPath();
+    e.trail.forEach((p, i) => { const [u, v] = at(p); i === 0 ? g.moveTo(u, v) : g.lineTo(u, v); });
+    g.stroke();
+  }
+  for (const e of layered) {
+    if (e.trail) continue;
+    const [u, v] = at(e);
+    const radius = [7, 4.5, 2.5][e.layer];
+    if (e.ellipse) {
+      // At least this marker's size: decimetre ellipses over kilometres of scene.
+      g.strokeStyle = e.color;
+      g.lineWidth = 1.5;
+      g.beginPath();
+      g.ellipse(u, v, Math.max(e.ellipse.a * scale, 3 * radius), Math.max(e.ellipse.b * scale, 1.5 * radius),
+        -e.ellipse.angle, 0, 2 * Math.PI);
+      g.stroke();
+    }
+    g.fillStyle = e.color;
+    g.beginPath();
+    g.arc(u, v, radius, 0, 2 * Math.PI);
+    g.fill();
+  }
+}
+
+let plot = null;
+let plotted = "";
+function drawErrors() {
+  const nodes = [...view.series.keys()].sort((a, b) => a - b);
+  if (nodes.length === 0) return;
+  const key = nodes.join(",");
+  const center = view.series.get(nodes[0]);
+  const data = [center.steps, ...nodes.map((n) => {
+    const s = view.series.get(n);
+    return s.errors.slice(-center.steps.length);
+  })];
+  if (plot === null || key !== plotted) {
+    plot?.destroy();
+    plotted = key;
+    plot = new uPlot({
+      width: 600, height: 300, scales: { x: { time: false }, y: { distr: 3 } },
+      axes: [{ label: "step" }, { label: "position error (m)" }],
+      series: [{ label: "step" }, ...nodes.map((n) => ({
+        label: nodeName(n), stroke: n === 0 ? COLORS.center : COLORS.peer, width: n === 0 ? 2 : 1,
+      }))],
+    }, data, document.getElementById("errors"));
+  } else {
+    plot.setData(data);
+  }
+}
+
+function drawStrip() {
+  const canvas = document.getElementById("strip");
+  const g = canvas.getContext("2d");
+  g.clearRect(0, 0, canvas.width, canvas.height);
+  const rows = view.strip[0]?.length ?? 0;
+  if (rows === 0) return;
+  const w = canvas.width / STRIP_ROUNDS;
+  const h = canvas.height / rows;
+  const fill = { all: "#4caf50", some: "#ff9800", none: "#e53935" };
+  view.strip.forEach((round, i) => round.forEach((state, row) => {
+    g.fillStyle = fill[state];
+    g.fillRect(i * w, row * h, Math.max(w - 0.5, 1), Math.max(h - 1, 1));
+  }));
+}
+
+function drawFigures() {
+  document.getElementById("round-counter").textContent = view.round ?? "–";
+  const seconds = view.firstRoundAt === null ? 0 : (performance.now() - view.firstRoundAt) / 1000;
+  const rate = seconds > 0 ? (view.rounds / seconds).toFixed(0) : "–";
+  const parts = [`${rate} rounds/s received`];
+  if (view.latencyMs !== null) parts.push(`round latency ${view.latencyMs.toFixed(2)} ms`);
+  if (view.summary) parts.push(`RMSE center ${view.summary.rmse_central_m.toFixed(3)} m, peers ${view.summary.rmse_p2p_m.toFixed(3)} m`);
+  document.getElementById("figures").textContent = parts.join(" · ");
+  if (view.modes) {
+    document.getElementById("modes-section").hidden = false;
+    const center = view.modes.tracks.find((t) => t.node === 0);
+    if (center) {
+      document.getElementById("modes").textContent = view.modes.modes
+        .map((m, i) => `${m} ${center.probabilities[i].toFixed(3)}`).join(" · ");
+    }
+  }
+}
+
+function frame() {
+  drawScene();
+  drawErrors();
+  drawStrip();
+  drawFigures();
+  requestAnimationFrame(frame);
+}
+
+// ---- the connection -------------------------------------------------------------------------
+
+const handlers = {
+  "/scene": onScene,
+  "/stations": onStations,
+  "/skyfuse/round": onRound,
+  "/skyfuse/track_error": onTrackError,
+  "/skyfuse/modes": (m) => { view.modes = m; },
+  "/skyfuse/summary": (m) => { view.summary = m; },
+};
+
+function connect() {
+  const ws = new WebSocket(`ws://${location.host}/`, [SUBPROTOCOL]);
+  ws.binaryType = "arraybuffer";
+  const topicOfSubscription = new Map();
+  const decoder = new TextDecoder();
+  ws.onopen = () => { document.getElementById("source").textContent = `live: ws://${location.host}`; };
+  ws.onclose = () => { document.getElementById("source").textContent = "live stream ended"; };
+  ws.onmessage = (event) => {
+    if (typeof event.data === "string") {
+      const message = JSON.parse(event.data);
+      if (message.op === "advertise") {
+        const subscriptions = message.channels.map((c, i) => {
+          topicOfSubscription.set(i, c.topic);
+          return { id: i, channelId: c.id };
+        });
+        ws.send(JSON.stringify({ op: "subscribe", subscriptions }));
+      }
+      return;
+    }
+    const bytes = new DataView(event.data);
+    if (bytes.getUint8(0) !== 1) return;
+    const topic = topicOfSubscription.get(bytes.getUint32(1, true));
+    const handler = handlers[topic];
+    if (handler) handler(JSON.parse(decoder.decode(new Uint8Array(event.data, 13))));
+  };
+}
+
+connect();
+requestAnimationFrame(frame);

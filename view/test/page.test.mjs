@@ -1,0 +1,76 @@
+// skyfuse's own page as a person sees it: Debian's Chromium, driven by playwright-core, opens the
+// page a live run serves, follows the run to its last round, and must show one error series per
+// peer plus the center, a drawn scene and the strip of contributions. It saves a screenshot
+// (SKYFUSE_SCREENSHOT, default in the test's folder), which the docs show.
+import { test } from "node:test";
+import assert from "node:assert/strict";
+import { spawn } from "node:child_process";
+import { existsSync, mkdtempSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join } from "node:path";
+import { chromium } from "playwright-core";
+
+const skyfuse = process.env.SKYFUSE_BIN;
+const browserPath = process.env.SKYFUSE_CHROMIUM ?? "/usr/bin/chromium";
+const domain = process.env.SKYFUSE_DOMAIN ?? "215";
+const stations = 4;
+const steps = 400;
+
+test("the live page follows a run to its last round", { skip: !existsSync(browserPath) && `no ${browserPath}` }, async () => {
+  assert.ok(skyfuse, "SKYFUSE_BIN names the build's skyfuse");
+  const dir = mkdtempSync(join(tmpdir(), "skyfuse-page-"));
+  const browser = await chromium.launch({
+    executablePath: browserPath,
+    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+      "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+    // playwright gives the browser a new, empty profile of its own.
+  });
+  try {
+    const page = await browser.newPage({ viewport: { width: 1400, height: 800 } });
+    const errors = [];
+    page.on("pageerror", (e) => errors.push(e.message));
+    // Real time at 50 Hz: 8 s, long enough for a person (and the page) to watch.
+    const run = spawn(skyfuse, ["run", "--stations", String(stations), "--steps", String(steps),
+      "--domain", domain, "--realtime-deadline-ms", "15", "--out", join(dir, "out"),
+      "--live", "127.0.0.1:0"], { stdio: ["ignore", "pipe", "pipe"] });
+    let output = "";
+    const exited = new Promise((resolve) => run.on("exit", (code) => resolve(code)));
+    run.stderr.on("data", (c) => { output += c; });
+    const port = await new Promise((resolve, reject) => {
+      run.stdout.on("data", (chunk) => {
+        output += chunk;
+        const m = /live: ws:\/\/127\.0\.0\.1:(\d+)/.exec(output);
+        if (m) resolve(Number(m[1]));
+      });
+      exited.then(() => reject(new Error(output)));
+    });
+    await page.goto(`http://127.0.0.1:${port}/`);
+    await page.waitForFunction((last) => window.skyfuseView?.round === last, steps - 1, { timeout: 60_000 });
+    assert.equal(await exited, 0, output);
+    await page.waitForTimeout(300);  // a frame after the last round
+
+    await page.screenshot({ path: process.env.SKYFUSE_SCREENSHOT ?? join(dir, "view.png") });
+    assert.equal(await page.textContent("#round-counter"), String(steps - 1));
+    const series = await page.evaluate(() => [...window.skyfuseView.series.keys()]);
+    assert.deepEqual(series.sort((a, b) => a - b), [0, 1, 2, 3, 4], "the center and every peer");
+    assert.equal(await page.locator("#errors .u-legend .u-series").count(), 1 + stations + 1,
+      "uPlot's legend: the step column and one series per track");
+    // The scene is drawn: pixels of the truth's, the center's, the peers' and the stations' colours.
+    const colours = await page.evaluate(() => {
+      const c = document.getElementById("scene");
+      const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+      const seen = new Set();
+      for (let i = 0; i < d.length; i += 4) if (d[i + 3] === 255) seen.add(`${d[i]},${d[i + 1]},${d[i + 2]}`);
+      return [...seen];
+    });
+    for (const rgb of ["38,179,64", "255,140,0", "51,115,230", "119,119,119"]) {
+      assert.ok(colours.includes(rgb), `scene has ${rgb}: ${colours.slice(0, 12).join(" ")}`);
+    }
+    const strip = await page.evaluate(() => window.skyfuseView.strip.length);
+    assert.ok(strip > 100, `strip of ${strip} rounds`);
+    assert.deepEqual(errors, [], "no error in the page");
+  } finally {
+    await browser.close();
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
