@@ -12,6 +12,7 @@
 #include "commands/run_command.hpp"
 #include "commands/soak_command.hpp"
 #include "commands/sweep_command.hpp"
+#include "commands/view_command.hpp"
 #include "run/lockstep_driver.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
   SoakOptions soak;
   CertsOptions certs;
   ReproduceOptions reproduce;
+  ViewOptions view;
   add_sweep_command(app, sweep);
   add_run_command(app, run);
   add_demo_command(app, demo);
@@ -34,6 +36,7 @@ int main(int argc, char** argv) {
   add_soak_command(app, soak);
   add_certs_command(app, certs);
   add_reproduce_command(app, reproduce);
+  add_view_command(app, view);
   // CLI11 takes a word that names no command for a stray argument and answers "A subcommand is
   // required": say which word, and what the commands are.
   if (argc > 1 && argv[1][0] != '-') {
@@ -62,6 +65,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("soak")) return run_soak(soak);
     if (app.got_subcommand("certs")) return run_certs(certs);
     if (app.got_subcommand("reproduce")) return run_reproduce(reproduce);
+    if (app.got_subcommand("view")) return run_view(view);
   } catch (const RunAborted& e) {
     std::fprintf(stderr, "skyfuse: run aborted: %s\n", e.what());
     // As a shell reports a process its signal ended: 130 for Ctrl-C, 143 for SIGTERM.

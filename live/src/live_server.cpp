@@ -32,6 +32,7 @@ std::string content_type(const std::string& path) {
   if (ends(".json")) return "application/json";
   if (ends(".png")) return "image/png";
   if (ends(".svg")) return "image/svg+xml";
+  if (ends(".mcap")) return "application/x-mcap";
   return "application/octet-stream";
 }
 
@@ -107,14 +108,19 @@ struct LiveServer::Impl {
     std::string path = con->get_resource();
     path = path.substr(0, path.find('?'));
     if (path == "/") path = "/index.html";
-    if (options.site_dir.empty()) {
+    const auto named = options.files.find(path);
+    if (named == options.files.end() && options.site_dir.empty()) {
       con->set_status(websocketpp::http::status_code::ok);
       con->append_header("Content-Type", "text/plain; charset=utf-8");
       con->set_body("skyfuse live: connect a Foxglove WebSocket client (foxglove.websocket.v1)\n");
       return;
     }
     std::ifstream in;
-    if (path.find("..") == std::string::npos) in.open(options.site_dir + path, std::ios::binary);
+    if (named != options.files.end()) {
+      in.open(named->second, std::ios::binary);
+    } else if (path.find("..") == std::string::npos) {
+      in.open(options.site_dir + path, std::ios::binary);
+    }
     if (!in) {
       con->set_status(websocketpp::http::status_code::not_found);
       con->set_body("not found\n");

@@ -1,7 +1,10 @@
 // skyfuse's own view of a run: connects to the server that served this page (`skyfuse run
 // --live`) over the Foxglove WebSocket protocol, subscribes to every channel and draws the
 // scene top-down, each track's error against time, who contributed to each round, the IMM's
-// mode probabilities and the run's figures. Built with esbuild from locked npm packages; no CDN.
+// mode probabilities and the run's figures. With ?recording=FILE (`skyfuse view FILE.mcap`) it
+// reads a recording instead and shows it up to the time its slider is set to. Built with
+// esbuild from locked npm packages; no CDN.
+import { McapIndexedReader } from "@mcap/core";
 import uPlot from "uplot";
 import "uplot/dist/uPlot.min.css";
 import "./page.css";
@@ -182,7 +185,8 @@ function drawFigures() {
   document.getElementById("round-counter").textContent = view.round ?? "–";
   const seconds = view.firstRoundAt === null ? 0 : (performance.now() - view.firstRoundAt) / 1000;
   const rate = seconds > 0 ? (view.rounds / seconds).toFixed(0) : "–";
-  const parts = [`${rate} rounds/s received`];
+  const parts = view.recordingRounds ? [`${view.recordingRounds} rounds recorded`]
+    : [`${rate} rounds/s received`];
   if (view.latencyMs !== null) parts.push(`round latency ${view.latencyMs.toFixed(2)} ms`);
   if (view.summary) parts.push(`RMSE center ${view.summary.rmse_central_m.toFixed(3)} m, peers ${view.summary.rmse_p2p_m.toFixed(3)} m`);
   document.getElementById("figures").textContent = parts.join(" · ");
@@ -215,6 +219,47 @@ const handlers = {
   "/skyfuse/summary": (m) => { view.summary = m; },
 };
 
+function resetView() {
+  Object.assign(view, { round: null, rounds: 0, firstRoundAt: null, latencyMs: null,
+    modes: null, summary: null, strip: [] });
+  view.entities.clear();
+  view.series.clear();
+}
+
+// A recording: every message read once, then shown up to the slider's round.
+async function loadRecording(url) {
+  document.getElementById("source").textContent = `recording: ${url}`;
+  const bytes = new Uint8Array(await (await fetch(url)).arrayBuffer());
+  const reader = await McapIndexedReader.Initialize({ readable: {
+    size: async () => BigInt(bytes.length),
+    read: async (offset, length) => bytes.subarray(Number(offset), Number(offset + length)),
+  } });
+  const decoder = new TextDecoder();
+  const messages = [];
+  for await (const m of reader.readMessages()) {
+    const topic = reader.channelsById.get(m.channelId).topic;
+    if (handlers[topic]) messages.push({ time: m.logTime, topic, payload: JSON.parse(decoder.decode(m.data)) });
+  }
+  const roundTimes = messages.filter((m) => m.topic === "/skyfuse/round").map((m) => m.time);
+  const slider = document.getElementById("time");
+  slider.max = String(roundTimes.length - 1);
+  slider.value = slider.max;
+  const showUpTo = (index) => {
+    resetView();
+    // At the end, the summary (logged after the last round) too.
+    const last = index === roundTimes.length - 1;
+    const until = roundTimes[index];
+    for (const m of messages) {
+      if (!last && m.time > until) break;
+      handlers[m.topic](m.payload);
+    }
+  };
+  slider.oninput = () => showUpTo(Number(slider.value));
+  document.getElementById("slider").hidden = false;
+  showUpTo(roundTimes.length - 1);
+  view.recordingRounds = roundTimes.length;
+}
+
 function connect() {
   const ws = new WebSocket(`ws://${location.host}/`, [SUBPROTOCOL]);
   ws.binaryType = "arraybuffer";
@@ -242,5 +287,6 @@ function connect() {
   };
 }
 
-connect();
+const recording = new URLSearchParams(location.search).get("recording");
+if (recording) loadRecording(recording); else connect();
 requestAnimationFrame(frame);

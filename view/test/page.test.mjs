@@ -16,15 +16,64 @@ const domain = process.env.SKYFUSE_DOMAIN ?? "215";
 const stations = 4;
 const steps = 400;
 
+function untilLine(child, pattern) {
+  let output = "";
+  return new Promise((resolve, reject) => {
+    child.stdout.on("data", (chunk) => {
+      output += chunk;
+      const m = pattern.exec(output);
+      if (m) resolve(m);
+    });
+    child.stderr.on("data", (chunk) => { output += chunk; });
+    child.on("exit", () => reject(new Error(output)));
+  });
+}
+
+const launchOptions = {
+  executablePath: browserPath,
+  args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+    "--disable-background-networking", "--disable-component-update", "--disable-sync"],
+};
+
+test("skyfuse view shows a recording, and its slider moves through the rounds", { skip: !existsSync(browserPath) && `no ${browserPath}` }, async () => {
+  assert.ok(skyfuse, "SKYFUSE_BIN names the build's skyfuse");
+  const dir = mkdtempSync(join(tmpdir(), "skyfuse-view-"));
+  const browser = await chromium.launch(launchOptions);
+  let server = null;
+  try {
+    const file = join(dir, "run.mcap");
+    const recorded = spawn(skyfuse, ["run", "--stations", "4", "--steps", "200", "--domain", domain,
+      "--out", join(dir, "out"), "--record", file], { stdio: "ignore" });
+    assert.equal(await new Promise((resolve) => recorded.on("exit", resolve)), 0);
+    server = spawn(skyfuse, ["view", file, "--port", "0"], { stdio: ["ignore", "pipe", "pipe"] });
+    const [url] = await untilLine(server, /http:\/\/127\.0\.0\.1:\d+\/\?recording=recording\.mcap/);
+    const page = await browser.newPage({ viewport: { width: 1400, height: 800 } });
+    const errors = [];
+    page.on("pageerror", (e) => errors.push(e.message));
+    await page.goto(url);
+    await page.waitForFunction(() => window.skyfuseView?.recordingRounds === 200, null, { timeout: 30_000 });
+    await page.waitForFunction(() => document.getElementById("round-counter").textContent === "199");
+    assert.equal(await page.evaluate(() => window.skyfuseView.series.size), 5);
+    await page.$eval("#time", (slider) => {
+      slider.value = "100";
+      slider.dispatchEvent(new Event("input"));
+    });
+    await page.waitForFunction(() => document.getElementById("round-counter").textContent === "100");
+    const errorPoints = await page.evaluate(() => window.skyfuseView.series.get(0).steps.length);
+    assert.equal(errorPoints, 101, "the center's errors up to round 100");
+    assert.deepEqual(errors, []);
+  } finally {
+    server?.kill("SIGINT");
+    await browser.close();
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
 test("the live page follows a run to its last round", { skip: !existsSync(browserPath) && `no ${browserPath}` }, async () => {
   assert.ok(skyfuse, "SKYFUSE_BIN names the build's skyfuse");
   const dir = mkdtempSync(join(tmpdir(), "skyfuse-page-"));
-  const browser = await chromium.launch({
-    executablePath: browserPath,
-    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-      "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-    // playwright gives the browser a new, empty profile of its own.
-  });
+  // playwright gives the browser a new, empty profile of its own.
+  const browser = await chromium.launch(launchOptions);
   try {
     const page = await browser.newPage({ viewport: { width: 1400, height: 800 } });
     const errors = [];

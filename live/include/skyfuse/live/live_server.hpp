@@ -8,6 +8,7 @@
 // The WebSocket library (websocketpp) stays inside live_server.cpp: it builds only as C++17.
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +24,8 @@ class LiveServer {
     std::uint16_t port = 8765;          ///< 0: any free port (tests)
     std::size_t client_buffer_bytes = std::size_t{8} << 20;
     std::string site_dir;  ///< files served over HTTP from "/"; empty: a one-line page
+    /// More files served over HTTP: URL path ("/recording.mcap") -> file on disk.
+    std::map<std::string, std::string> files;
   };
   struct Stats {
     std::size_t clients = 0;            ///< connected now
