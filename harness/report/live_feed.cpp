@@ -44,9 +44,14 @@ void LiveFeed::offer(const RoundRecord& round) {
 
 void LiveFeed::run() {
   using Clock = std::chrono::steady_clock;
-  const auto frame = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(scene_hz_ > 0.0 ? 1.0 / scene_hz_ : 0.0));
+  const auto period = [](double hz) {
+    return std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(hz > 0.0 ? 1.0 / hz : 0.0));
+  };
+  const Clock::duration frame = period(scene_hz_);
+  const Clock::duration figures = period(scene_hz_ > 0.0 ? kFiguresHz : 0.0);
   Clock::time_point next_frame = Clock::now();
+  Clock::time_point next_figures = next_frame;
   for (;;) {
     RoundRecord round;
     {
@@ -61,6 +66,11 @@ void LiveFeed::run() {
     const bool last = round.step + 1 == static_cast<std::uint64_t>(steps_);
     const bool scene = now >= next_frame || last;
     if (scene) next_frame = now + frame;
+    if (!scene && now < next_figures) {
+      channels_->follow(round);
+      continue;
+    }
+    next_figures = now + figures;
     const auto detail =
         scene ? RunChannels::Detail::kDisplayFrame : RunChannels::Detail::kFiguresOnly;
     for (ChannelMessage& m : channels_->round_messages(round, detail)) {

@@ -22,11 +22,13 @@ class RunChannels;
 class LiveFeed {
  public:
   static constexpr std::size_t kMaxWaitingRounds = 4096;
-  /// The most scenes (and frames and map fixes) a second: a display's rate. skyfuse's own
-  /// channels go out every round.
+  /// The most scenes (and frames and map fixes) a second: a display's rate.
   static constexpr double kDefaultSceneHz = 30.0;
+  /// The most rounds of skyfuse's own channels a second while scenes are capped: every round
+  /// of a real-time run (50 Hz), a sample of a lock-step run's thousands.
+  static constexpr double kFiguresHz = 250.0;
 
-  /// `scene_hz` 0: a scene every round.
+  /// `scene_hz` 0: everything every round, nothing thinned.
   LiveFeed(const RunRecorder& recorder, std::uint64_t epoch_ns, live::LiveServer::Options options,
            double scene_hz = kDefaultSceneHz);
   ~LiveFeed();  ///< stops the thread and the server

@@ -327,18 +327,7 @@ std::vector<ChannelMessage> RunChannels::round_messages(const RoundRecord& round
   }
 
   // The trails take a point every kTrailEvery steps, drawn or not.
-  const bool trails_moved = round.step % kTrailEvery == 0;
-  if (trails_moved) {
-    const auto extend = [&](Trail& trail, const Vector3& p) {
-      trail.points.push_back(p);
-      if (trail.points.size() > kTrailPoints) trail.points.erase(trail.points.begin());
-    };
-    extend(trails_[0], truth);
-    if (round.central) extend(trails_[1], recorder_.position_of(*round.central));
-    for (std::size_t i = 0; i < round.peers.size(); ++i) {
-      if (round.peers[i]) extend(trails_[2 + i], recorder_.position_of(*round.peers[i]));
-    }
-  }
+  const bool trails_moved = extend_trails(round);
   if (detail != Detail::kFiguresOnly) {
     scene_messages(round, tracks, detail == Detail::kDisplayFrame || trails_moved || scenes_ == 0,
                    emit);
@@ -474,6 +463,24 @@ void RunChannels::figure_messages(const RoundRecord& round, const TrackList& tra
                   {"modes", std::move(names)},
                   {"tracks", std::move(probabilities)}});
   }
+}
+
+void RunChannels::follow(const RoundRecord& round) {
+  extend_trails(round);
+}
+
+bool RunChannels::extend_trails(const RoundRecord& round) {
+  if (round.step % kTrailEvery != 0) return false;
+  const auto extend = [&](Trail& trail, const Vector3& p) {
+    trail.points.push_back(p);
+    if (trail.points.size() > kTrailPoints) trail.points.erase(trail.points.begin());
+  };
+  extend(trails_[0], recorder_.truth_position(round.step));
+  if (round.central) extend(trails_[1], recorder_.position_of(*round.central));
+  for (std::size_t i = 0; i < round.peers.size(); ++i) {
+    if (round.peers[i]) extend(trails_[2 + i], recorder_.position_of(*round.peers[i]));
+  }
+  return true;
 }
 
 ChannelMessage RunChannels::summary_message(std::string summary_json) const {

@@ -61,6 +61,9 @@ class RunChannels {
   /// The messages of `round`, in channel order.
   std::vector<ChannelMessage> round_messages(const RoundRecord& round,
                                              Detail detail = Detail::kEveryRound);
+  /// A round that is not sent (a live stream thinned to its display): the trails still take
+  /// its point.
+  void follow(const RoundRecord& round);
   /// The run's summary (summary.json's text) at the log time after the last step.
   ChannelMessage summary_message(std::string summary_json) const;
 
@@ -79,6 +82,7 @@ class RunChannels {
   void scene_messages(const RoundRecord& round, const TrackList& tracks, bool with_trails,
                       const Emit& emit);
   void figure_messages(const RoundRecord& round, const TrackList& tracks, const Emit& emit);
+  bool extend_trails(const RoundRecord& round);  ///< true if the round added a point
 
   const RunRecorder& recorder_;
   std::uint64_t epoch_ns_;
