@@ -56,7 +56,7 @@ function onScene(update) {
       view.entities.set(e.id, { trail: e.lines[0].points, color, layer });
     } else if (e.spheres.length > 0) {
       const p = e.spheres[0].pose.position;
-      view.entities.set(e.id, { x: p.x, y: p.y, color, layer,
+      view.entities.set(e.id, { x: p.x, y: p.y, z: p.z, color, layer,
         ellipse: e.spheres.length > 1 ? topDownEllipse(e.spheres[1]) : null });
     }
   }
@@ -65,7 +65,7 @@ function onScene(update) {
 function onStations(update) {
   for (const e of update.entities) {
     const p = e.cubes[0].pose.position;
-    view.sites.set(e.id, { x: p.x, y: p.y, label: e.texts[0]?.text ?? e.id });
+    view.sites.set(e.id, { x: p.x, y: p.y, z: p.z, label: e.texts[0]?.text ?? e.id });
   }
 }
 
@@ -140,6 +140,89 @@ function drawScene() {
   }
 }
 
+// The 3-D view: the scene turned by `yaw` about the vertical and tilted by `pitch`, projected
+// orthographically; dragging turns it.
+const turn = { yaw: -0.6, pitch: 0.45 };
+
+function drawScene3d() {
+  const canvas = document.getElementById("scene3d");
+  const g = canvas.getContext("2d");
+  g.clearRect(0, 0, canvas.width, canvas.height);
+  const points = [...view.sites.values()];
+  for (const e of view.entities.values()) (e.trail ?? [e]).forEach((p) => points.push(p));
+  if (points.length === 0) return;
+  const mid = ["x", "y", "z"].map((k) => {
+    const v = points.map((p) => p[k]);
+    return (Math.min(...v) + Math.max(...v)) / 2;
+  });
+  const [cy, sy, cp, sp] = [Math.cos(turn.yaw), Math.sin(turn.yaw), Math.cos(turn.pitch), Math.sin(turn.pitch)];
+  const project = (p) => {
+    const dx = p.x - mid[0];
+    const dy = p.y - mid[1];
+    const dz = p.z - mid[2];
+    const across = cy * dx - sy * dy;
+    const depth = sy * dx + cy * dy;
+    return [across, -(dz * cp + depth * sp)];
+  };
+  const projected = points.map(project);
+  const span = Math.max(...projected.map(([u, v]) => Math.max(Math.abs(u), Math.abs(v))), 1);
+  const scale = 0.45 * Math.min(canvas.width, canvas.height) / span;
+  const at = (p) => {
+    const [u, v] = project(p);
+    return [canvas.width / 2 + u * scale, canvas.height / 2 + v * scale];
+  };
+  const dropLine = (p, color) => {
+    const [u, v] = at(p);
+    const [gu, gv] = at({ ...p, z: 0 });
+    g.strokeStyle = color;
+    g.setLineDash([3, 3]);
+    g.beginPath();
+    g.moveTo(u, v);
+    g.lineTo(gu, gv);
+    g.stroke();
+    g.setLineDash([]);
+  };
+  g.font = "11px system-ui";
+  for (const s of view.sites.values()) {
+    dropLine(s, COLORS.site);
+    const [u, v] = at(s);
+    g.fillStyle = COLORS.site;
+    g.fillRect(u - 4, v - 4, 8, 8);
+    g.fillText(s.label.split(" ")[0], u + 6, v - 6);
+  }
+  const layered = [...view.entities.values()].sort((a, b) => a.layer - b.layer);
+  for (const e of layered) {
+    if (!e.trail) continue;
+    g.strokeStyle = e.color;
+    g.lineWidth = 1.5;
+    g.beginPath();
+    e.trail.forEach((p, i) => { const [u, v] = at(p); i === 0 ? g.moveTo(u, v) : g.lineTo(u, v); });
+    g.stroke();
+  }
+  for (const e of layered) {
+    if (e.trail) continue;
+    if (e.layer === 2) dropLine(e, e.color);
+    const [u, v] = at(e);
+    g.fillStyle = e.color;
+    g.beginPath();
+    g.arc(u, v, [7, 4.5, 2.5][e.layer], 0, 2 * Math.PI);
+    g.fill();
+  }
+}
+
+function enableTurning() {
+  const canvas = document.getElementById("scene3d");
+  let from = null;
+  canvas.addEventListener("pointerdown", (e) => { from = [e.clientX, e.clientY]; canvas.setPointerCapture(e.pointerId); });
+  canvas.addEventListener("pointerup", () => { from = null; });
+  canvas.addEventListener("pointermove", (e) => {
+    if (!from) return;
+    turn.yaw += (e.clientX - from[0]) * 0.01;
+    turn.pitch = Math.min(Math.max(turn.pitch + (e.clientY - from[1]) * 0.01, 0), Math.PI / 2);
+    from = [e.clientX, e.clientY];
+  });
+}
+
 let plot = null;
 let plotted = "";
 function drawErrors() {
@@ -202,6 +285,7 @@ function drawFigures() {
 
 function frame() {
   drawScene();
+  drawScene3d();
   drawErrors();
   drawStrip();
   drawFigures();
@@ -289,4 +373,5 @@ function connect() {
 
 const recording = new URLSearchParams(location.search).get("recording");
 if (recording) loadRecording(recording); else connect();
+enableTurning();
 requestAnimationFrame(frame);

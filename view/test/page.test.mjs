@@ -98,7 +98,7 @@ test("the live page follows a run to its last round", { skip: !existsSync(browse
     assert.equal(await exited, 0, output);
     await page.waitForTimeout(300);  // a frame after the last round
 
-    await page.screenshot({ path: process.env.SKYFUSE_SCREENSHOT ?? join(dir, "view.png") });
+    await page.screenshot({ path: process.env.SKYFUSE_SCREENSHOT ?? join(dir, "view.png"), fullPage: true });
     assert.equal(await page.textContent("#round-counter"), String(steps - 1));
     const series = await page.evaluate(() => [...window.skyfuseView.series.keys()]);
     assert.deepEqual(series.sort((a, b) => a - b), [0, 1, 2, 3, 4], "the center and every peer");
@@ -115,6 +115,25 @@ test("the live page follows a run to its last round", { skip: !existsSync(browse
     for (const rgb of ["38,179,64", "255,140,0", "51,115,230", "119,119,119"]) {
       assert.ok(colours.includes(rgb), `scene has ${rgb}: ${colours.slice(0, 12).join(" ")}`);
     }
+    // The 3-D view is drawn too, and turns when dragged.
+    const drawn3d = () => page.evaluate(() => {
+      const c = document.getElementById("scene3d");
+      const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+      let opaque = 0;
+      let hash = 0;
+      for (let i = 3; i < d.length; i += 4) if (d[i] === 255) { opaque += 1; hash = (hash * 31 + i) % 1000003; }
+      return { opaque, hash };
+    });
+    const before = await drawn3d();
+    assert.ok(before.opaque > 100, `3-D view: ${before.opaque} pixels drawn`);
+    await page.locator("#scene3d").scrollIntoViewIfNeeded();
+    const box = await page.locator("#scene3d").boundingBox();
+    await page.mouse.move(box.x + 200, box.y + 200);
+    await page.mouse.down();
+    await page.mouse.move(box.x + 320, box.y + 230, { steps: 5 });
+    await page.mouse.up();
+    await page.waitForTimeout(100);
+    assert.notEqual((await drawn3d()).hash, before.hash, "dragging turns the 3-D view");
     const strip = await page.evaluate(() => window.skyfuseView.strip.length);
     assert.ok(strip > 100, `strip of ${strip} rounds`);
     assert.deepEqual(errors, [], "no error in the page");
