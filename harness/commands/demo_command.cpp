@@ -88,9 +88,10 @@ int run_demo(const DemoOptions& d) {
     fmt::print(stderr, "skyfuse: warning: plot not written (needs python3-matplotlib)\n");
   }
   fmt::print(
-      "\nresults in {}/ (per speed: steps.csv, tracks.csv, measurements.csv, summary.json; "
-      "demo.png)\n",
-      out_dir);
+      "\nresults in {0}/ (per speed: steps.csv, tracks.csv, measurements.csv, summary.json, "
+      "run.mcap; demo.png)\nsee a recording: skyfuse view {0}/{1:.0f}kmh/run.mcap, or open it "
+      "in Foxglove or Lichtblick\n",
+      out_dir, scenario.target.speeds_mps.front() * 3.6);
   return 0;
 }
 
