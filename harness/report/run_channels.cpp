@@ -310,39 +310,31 @@ std::uint64_t RunChannels::log_time_ns(std::uint64_t step) const {
 }
 
 std::vector<ChannelMessage> RunChannels::round_messages(const RoundRecord& round, Detail detail) {
-  const std::uint64_t ns = log_time_ns(round.step);
-  const std::vector<int>& ids = recorder_.station_ids();
-  const int pd = recorder_.position_dim();
-  const Vector3 truth = recorder_.truth_position(round.step);
-  std::vector<ChannelMessage> out;
-  const Emit emit = [&](Channel channel, std::string message) {
-    out.push_back({channel, ns, std::move(message)});
-  };
-
-  // Every track of the round: (node, track), the center first.
-  TrackList tracks;
-  if (round.central) tracks.emplace_back(kCenterNodeId, &*round.central);
+  RoundView r{round, log_time_ns(round.step), recorder_.truth_position(round.step), {}};
+  if (round.central) r.tracks.emplace_back(kCenterNodeId, &*round.central);
   for (std::size_t i = 0; i < round.peers.size(); ++i) {
-    if (round.peers[i]) tracks.emplace_back(ids[i], &*round.peers[i]);
+    if (round.peers[i]) r.tracks.emplace_back(recorder_.station_ids()[i], &*round.peers[i]);
   }
-
+  std::vector<ChannelMessage> out;
   // The trails take a point every kTrailEvery steps, drawn or not.
   const bool trails_moved = extend_trails(round);
   if (detail != Detail::kFiguresOnly) {
-    scene_messages(round, tracks, detail == Detail::kDisplayFrame || trails_moved || scenes_ == 0,
-                   emit);
+    scene_messages(r, detail == Detail::kDisplayFrame || trails_moved || scenes_ == 0, out);
   }
-  figure_messages(round, tracks, emit);
+  figure_messages(r, out);
   return out;
 }
 
-void RunChannels::scene_messages(const RoundRecord& round, const TrackList& tracks,
-                                 bool with_trails, const Emit& to) {
-  const auto emit = [&](Channel channel, const json& message) { to(channel, message.dump()); };
-  const std::uint64_t ns = log_time_ns(round.step);
+void RunChannels::scene_messages(const RoundView& r, bool with_trails,
+                                 std::vector<ChannelMessage>& out) {
+  const auto emit = [&](Channel channel, const json& message) {
+    out.push_back({channel, r.ns, message.dump()});
+  };
+  const std::uint64_t ns = r.ns;
+  const RoundRecord& round = r.round;
+  const Vector3& truth = r.truth;
   const std::vector<int>& ids = recorder_.station_ids();
   const int pd = recorder_.position_dim();
-  const Vector3 truth = recorder_.truth_position(round.step);
   // The scene: truth, and each track's position and ellipsoid, and the trails.
   json entities = json::array();
   {
@@ -350,7 +342,7 @@ void RunChannels::scene_messages(const RoundRecord& round, const TrackList& trac
     e["spheres"].push_back(shape(truth, Vector3::Constant(1.0), kTruthColor));
     entities.push_back(std::move(e));
   }
-  for (const auto& [node, track] : tracks) {
+  for (const auto& [node, track] : r.tracks) {
     const Vector3 at = recorder_.position_of(*track);
     const Rgba c = node == kCenterNodeId ? kCenterColor : kPeerColor;
     json e = entity(ns, node == kCenterNodeId ? "center" : fmt::format("station/{}", node));
@@ -399,13 +391,14 @@ void RunChannels::scene_messages(const RoundRecord& round, const TrackList& trac
   emit(kTruthLocation, location_fix(ns, anchor, truth, Eigen::Matrix3d::Zero()));
 }
 
-void RunChannels::figure_messages(const RoundRecord& round, const TrackList& tracks,
-                                  const Emit& to) {
-  const auto emit = [&](Channel channel, const json& message) { to(channel, message.dump()); };
-  const std::uint64_t ns = log_time_ns(round.step);
+void RunChannels::figure_messages(const RoundView& r, std::vector<ChannelMessage>& out) const {
+  const auto emit = [&](Channel channel, const json& message) {
+    out.push_back({channel, r.ns, message.dump()});
+  };
+  const RoundRecord& round = r.round;
+  const std::uint64_t ns = r.ns;
   const std::vector<int>& ids = recorder_.station_ids();
   const int pd = recorder_.position_dim();
-  const Vector3 truth = recorder_.truth_position(round.step);
 
   // Who contributed to each node's track, and who is missing from it.
   json nodes = json::array();
@@ -438,8 +431,8 @@ void RunChannels::figure_messages(const RoundRecord& round, const TrackList& tra
 
   // Each track's position error and position NEES against the truth (chi-square, pd dof).
   json errors = json::array();
-  for (const auto& [node, track] : tracks) {
-    const Eigen::VectorXd e = (truth - recorder_.position_of(*track)).head(pd);
+  for (const auto& [node, track] : r.tracks) {
+    const Eigen::VectorXd e = (r.truth - recorder_.position_of(*track)).head(pd);
     const Eigen::MatrixXd p = track->estimate.covariance.topLeftCorner(pd, pd);
     errors.push_back(
         {{"node", node}, {"error_m", e.norm()}, {"nees", e.dot(p.ldlt().solve(e))}, {"dof", pd}});
@@ -449,7 +442,7 @@ void RunChannels::figure_messages(const RoundRecord& round, const TrackList& tra
 
   if (!recorder_.mode_names().empty()) {
     json probabilities = json::array();
-    for (const auto& [node, track] : tracks) {
+    for (const auto& [node, track] : r.tracks) {
       probabilities.push_back(
           {{"node", node},
            {"probabilities", std::vector<double>(track->mode_probabilities.data(),

@@ -8,7 +8,6 @@
 // The recording (run_recording.hpp) writes every message; a live stream sends the same ones.
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -77,11 +76,16 @@ class RunChannels {
   struct Trail {
     std::vector<Vector3> points;
   };
-  using TrackList = std::vector<std::pair<int, const ReceivedTrack*>>;  ///< (node, track)
-  using Emit = std::function<void(Channel, std::string)>;
-  void scene_messages(const RoundRecord& round, const TrackList& tracks, bool with_trails,
-                      const Emit& emit);
-  void figure_messages(const RoundRecord& round, const TrackList& tracks, const Emit& emit);
+  /// A round as the message builders read it: its log time, the truth's position, and every
+  /// track as (node, track), the center first.
+  struct RoundView {
+    const RoundRecord& round;
+    std::uint64_t ns = 0;
+    Vector3 truth;
+    std::vector<std::pair<int, const ReceivedTrack*>> tracks;
+  };
+  void scene_messages(const RoundView& r, bool with_trails, std::vector<ChannelMessage>& out);
+  void figure_messages(const RoundView& r, std::vector<ChannelMessage>& out) const;
   bool extend_trails(const RoundRecord& round);  ///< true if the round added a point
 
   const RunRecorder& recorder_;

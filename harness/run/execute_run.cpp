@@ -388,14 +388,15 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     summary.best_effort = o.node.best_effort;
     summary.hosts = o.hosts;
     summary.refusion_lag = o.node.refusion_lag;
-    summary.settled = recorder.summarise_settled(driver.settled_tracks());
     recorder.set_settled(driver.settled_tracks());
+    summary.settled = recorder.summarise_settled();
     if (placement.harness.discovery_server) {
       summary.discovery_server = placement.harness.discovery_server->to_string();
     }
     recorder.write(out, summary, run_id);
+    const std::string summary_json = recorder.summary_json(summary, run_id);
     if (live) {
-      live->finish(recorder.summary_json(summary, run_id));
+      live->finish(summary_json);
       if (const auto dropped = live->stats().clients_dropped; dropped > 0) {
         fmt::print("live: {} client(s) dropped for falling behind\n", dropped);
       }
@@ -405,8 +406,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       }
     }
     if (!o.record_path.empty()) {
-      write_recording(recorder, recorder.summary_json(summary, run_id), o.record_path,
-                      wall_clock_ns(wall_start));
+      write_recording(recorder, summary_json, o.record_path, wall_clock_ns(wall_start));
     }
     return summary;
   } catch (...) {

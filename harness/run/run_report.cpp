@@ -86,8 +86,8 @@ void RunRecorder::set_settled(std::map<std::pair<std::uint64_t, int>, ReceivedTr
   settled_ = std::move(settled);
 }
 
-std::optional<SettledFigures> RunRecorder::summarise_settled(
-    const std::map<std::pair<std::uint64_t, int>, ReceivedTrack>& settled) const {
+std::optional<SettledFigures> RunRecorder::summarise_settled() const {
+  const auto& settled = settled_;
   if (settled.empty()) return std::nullopt;
   SettledFigures f;
   f.tracks = static_cast<int>(settled.size());

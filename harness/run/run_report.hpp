@@ -107,12 +107,11 @@ class RunRecorder {
   void add(RoundRecord round);
 
   RunSummary summarise(double discovery_s, double rounds_elapsed_s) const;
-  /// The settled tracks' figures, none if there are none (by (step, source id)).
-  std::optional<SettledFigures> summarise_settled(
-      const std::map<std::pair<std::uint64_t, int>, ReceivedTrack>& settled) const;
   /// The settled (re-fused) tracks of a run with --refusion-lag, by (step, source id):
   /// tracks.csv lists them after the live ones.
   void set_settled(std::map<std::pair<std::uint64_t, int>, ReceivedTrack> settled);
+  /// The settled tracks' figures, none if there are none.
+  std::optional<SettledFigures> summarise_settled() const;
   void write(const std::filesystem::path& dir, const RunSummary& summary,
              std::uint64_t run_id) const;
   /// summary.json's text.

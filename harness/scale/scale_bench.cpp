@@ -11,6 +11,7 @@
 #include "report/output_files.hpp"
 #include "run/bench_scenario.hpp"
 #include "run/execute_run.hpp"
+#include "run/round_samples.hpp"
 #include "run/simulated_hosts.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/shutdown.hpp"

@@ -10,8 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "run/round_samples.hpp"
-
 namespace skyfuse::harness {
 
 struct ScaleBenchOptions {

@@ -51,6 +51,7 @@ struct LiveServer::Impl {
     std::map<std::uint32_t, std::uint32_t> channel_of_subscription;
   };
   std::map<Handle, Client, std::owner_less<Handle>> clients;
+  std::uint64_t sessions = 0;  ///< connections opened so far: each client's session id
 
   std::atomic<std::size_t> connected{0};
   std::atomic<std::uint64_t> dropped{0};
@@ -150,7 +151,6 @@ struct LiveServer::Impl {
   void on_open(Handle h) {
     clients.emplace(h, Client{});
     ++connected;
-    static std::atomic<std::uint64_t> sessions{0};
     send_text(h, server_info("skyfuse", "skyfuse-" + std::to_string(++sessions)));
     send_text(h, advertise(channels));
   }

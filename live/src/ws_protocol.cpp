@@ -2,17 +2,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "skyfuse/record/little_endian.hpp"
+
 namespace skyfuse::live {
 namespace {
 
 using nlohmann::json;
-
-template <typename T>
-void put(std::string& out, T value) {
-  for (std::size_t i = 0; i < sizeof(T); ++i) {
-    out.push_back(static_cast<char>(static_cast<std::uint64_t>(value) >> (8 * i) & 0xFFu));
-  }
-}
 
 // A JSON number that is a whole number in [0, 2^32): ids in the protocol.
 bool is_u32(const json& v) {
@@ -52,9 +47,9 @@ std::string message_frame(std::uint32_t subscription, std::uint64_t log_time_ns,
                           std::string_view payload) {
   std::string frame;
   frame.reserve(13 + payload.size());
-  put(frame, std::uint8_t{0x01});
-  put(frame, subscription);
-  put(frame, log_time_ns);
+  record::append_little_endian(frame, std::uint8_t{0x01});
+  record::append_little_endian(frame, subscription);
+  record::append_little_endian(frame, log_time_ns);
   frame.append(payload);
   return frame;
 }

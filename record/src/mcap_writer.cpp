@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "skyfuse/record/crc32.hpp"
+#include "skyfuse/record/little_endian.hpp"
 
 namespace skyfuse::record {
 namespace {
@@ -29,9 +30,7 @@ constexpr std::string_view kMagic{"\x89MCAP0\r\n", 8};
 // Little-endian fixed-width integers, and the spec's length-prefixed String and Bytes.
 template <typename T>
 void put(std::string& out, T value) {
-  for (std::size_t i = 0; i < sizeof(T); ++i) {
-    out.push_back(static_cast<char>(static_cast<std::uint64_t>(value) >> (8 * i) & 0xFFu));
-  }
+  append_little_endian(out, value);
 }
 
 std::uint32_t length32(std::size_t n) {

@@ -89,12 +89,50 @@ function onTrackError(message) {
 
 // ---- drawing ------------------------------------------------------------------------------
 
+// Everything the scene holds, for fitting it to a canvas: stations, markers, trail points.
+function scenePoints() {
+  const points = [...view.sites.values()];
+  for (const e of view.entities.values()) (e.trail ?? [e]).forEach((p) => points.push(p));
+  return points;
+}
+
+// Peers below, the center above them, the truth on top, each marker smaller than the one under.
+const MARKER_RADIUS = [7, 4.5, 2.5];
+function layeredEntities() {
+  return [...view.entities.values()].sort((a, b) => a.layer - b.layer);
+}
+
+function drawTrails(g, at, layered) {
+  for (const e of layered) {
+    if (!e.trail) continue;
+    g.strokeStyle = e.color;
+    g.lineWidth = 1.5;
+    g.beginPath();
+    e.trail.forEach((p, i) => { const [u, v] = at(p); i === 0 ? g.moveTo(u, v) : g.lineTo(u, v); });
+    g.stroke();
+  }
+}
+
+// A station's square and label, the label left of it where the right would leave the canvas.
+function drawSite(g, [u, v], label) {
+  g.fillStyle = COLORS.site;
+  g.fillRect(u - 4, v - 4, 8, 8);
+  const width = g.measureText(label).width;
+  g.fillText(label, u + 6 + width > g.canvas.width ? u - 6 - width : u + 6, v - 6);
+}
+
+function drawMarker(g, [u, v], e) {
+  g.fillStyle = e.color;
+  g.beginPath();
+  g.arc(u, v, MARKER_RADIUS[e.layer], 0, 2 * Math.PI);
+  g.fill();
+}
+
 function drawScene() {
   const canvas = document.getElementById("scene");
   const g = canvas.getContext("2d");
   g.clearRect(0, 0, canvas.width, canvas.height);
-  const points = [...view.sites.values()];
-  for (const e of view.entities.values()) (e.trail ?? [e]).forEach((p) => points.push(p));
+  const points = scenePoints();
   if (points.length === 0) return;
   const xs = points.map((p) => p.x);
   const ys = points.map((p) => p.y);
@@ -105,25 +143,14 @@ function drawScene() {
   const at = (p) => [canvas.width / 2 + (p.x - cx) * scale, canvas.height / 2 - (p.y - cy) * scale];
   g.font = "11px system-ui";
   for (const s of view.sites.values()) {
-    const [u, v] = at(s);
-    g.fillStyle = COLORS.site;
-    g.fillRect(u - 4, v - 4, 8, 8);
-    const width = g.measureText(s.label).width;
-    g.fillText(s.label, u + 6 + width > canvas.width ? u - 6 - width : u + 6, v - 6);  // inside
+    drawSite(g, at(s), s.label);
   }
-  const layered = [...view.entities.values()].sort((a, b) => a.layer - b.layer);
-  for (const e of layered) {
-    if (!e.trail) continue;
-    g.strokeStyle = e.color;
-    g.lineWidth = 1.5;
-    g.beginPath();
-    e.trail.forEach((p, i) => { const [u, v] = at(p); i === 0 ? g.moveTo(u, v) : g.lineTo(u, v); });
-    g.stroke();
-  }
+  const layered = layeredEntities();
+  drawTrails(g, at, layered);
   for (const e of layered) {
     if (e.trail) continue;
     const [u, v] = at(e);
-    const radius = [7, 4.5, 2.5][e.layer];
+    const radius = MARKER_RADIUS[e.layer];
     if (e.ellipse) {
       // At least this marker's size: decimetre ellipses over kilometres of scene.
       g.strokeStyle = e.color;
@@ -133,10 +160,7 @@ function drawScene() {
         -e.ellipse.angle, 0, 2 * Math.PI);
       g.stroke();
     }
-    g.fillStyle = e.color;
-    g.beginPath();
-    g.arc(u, v, radius, 0, 2 * Math.PI);
-    g.fill();
+    drawMarker(g, [u, v], e);
   }
 }
 
@@ -148,8 +172,7 @@ function drawScene3d() {
   const canvas = document.getElementById("scene3d");
   const g = canvas.getContext("2d");
   g.clearRect(0, 0, canvas.width, canvas.height);
-  const points = [...view.sites.values()];
-  for (const e of view.entities.values()) (e.trail ?? [e]).forEach((p) => points.push(p));
+  const points = scenePoints();
   if (points.length === 0) return;
   const mid = ["x", "y", "z"].map((k) => {
     const v = points.map((p) => p[k]);
@@ -185,28 +208,14 @@ function drawScene3d() {
   g.font = "11px system-ui";
   for (const s of view.sites.values()) {
     dropLine(s, COLORS.site);
-    const [u, v] = at(s);
-    g.fillStyle = COLORS.site;
-    g.fillRect(u - 4, v - 4, 8, 8);
-    g.fillText(s.label.split(" ")[0], u + 6, v - 6);
+    drawSite(g, at(s), s.label.split(" ")[0]);
   }
-  const layered = [...view.entities.values()].sort((a, b) => a.layer - b.layer);
-  for (const e of layered) {
-    if (!e.trail) continue;
-    g.strokeStyle = e.color;
-    g.lineWidth = 1.5;
-    g.beginPath();
-    e.trail.forEach((p, i) => { const [u, v] = at(p); i === 0 ? g.moveTo(u, v) : g.lineTo(u, v); });
-    g.stroke();
-  }
+  const layered = layeredEntities();
+  drawTrails(g, at, layered);
   for (const e of layered) {
     if (e.trail) continue;
     if (e.layer === 2) dropLine(e, e.color);
-    const [u, v] = at(e);
-    g.fillStyle = e.color;
-    g.beginPath();
-    g.arc(u, v, [7, 4.5, 2.5][e.layer], 0, 2 * Math.PI);
-    g.fill();
+    drawMarker(g, at(e), e);
   }
 }
 
