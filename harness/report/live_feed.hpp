@@ -3,6 +3,12 @@
 // the recording's messages (run_channels.hpp) and publishes them on the live server. offer()
 // never blocks the rounds: it copies the round into a bounded queue, and when the feed falls
 // that far behind it drops the oldest waiting round (and counts it).
+//
+// The feed's thread wakes on its own clock (the scenes' rate), not once per round: at a
+// lock-step run's thousands of rounds a second, a wake-up per round cost the run more than the
+// messages did. Each wake takes every waiting round, publishes what is due in one hand-over to
+// the server, and builds nothing while no client is subscribed. Its thread and the server's
+// run SCHED_IDLE (background_priority.hpp).
 
 #include <condition_variable>
 #include <cstdint>
@@ -11,6 +17,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "run/run_report.hpp"
 #include "skyfuse/live/live_server.hpp"
@@ -26,7 +33,12 @@ class LiveFeed {
   static constexpr double kDefaultSceneHz = 30.0;
   /// The most rounds of skyfuse's own channels a second while scenes are capped: every round
   /// of a real-time run (50 Hz), a sample of a lock-step run's thousands.
-  static constexpr double kFiguresHz = 250.0;
+  static constexpr double kFiguresHz = 60.0;
+  /// The most scenes a second that carry the trails (300 points, most of a scene's bytes): a
+  /// 50 Hz run's trails take a point 5 times a second.
+  static constexpr double kTrailsHz = 5.0;
+  /// Rounds of figures that may go out at once after a quiet spell (a token bucket).
+  static constexpr double kFiguresBurst = 4.0;
 
   /// `scene_hz` 0: everything every round, nothing thinned.
   LiveFeed(const RunRecorder& recorder, std::uint64_t epoch_ns, live::LiveServer::Options options,
@@ -45,6 +57,10 @@ class LiveFeed {
 
  private:
   void run();
+  /// The messages for the rounds taken in one wake-up; trails follow every round.
+  std::vector<live::LiveServer::Message> batch_messages(std::deque<RoundRecord>& rounds,
+                                                        bool scene_due, bool trails_due,
+                                                        double& figure_tokens);
 
   std::unique_ptr<RunChannels> channels_;
   double scene_hz_;

@@ -138,18 +138,35 @@ std::string location_fix_schema() {
       .dump();
 }
 
+// What was refused, by whom and why: kind by its summary.json name; the harness is node -1.
+json refused_entries(const std::vector<Refusal>& refused) {
+  json entries = json::array();
+  for (const Refusal& r : refused) {
+    entries.push_back({{"node", r.node},
+                       {"step", r.step},
+                       {"kind", std::string(to_string(r.kind))},
+                       {"count", r.count}});
+  }
+  return entries;
+}
+
 std::string round_schema() {
   const json node = object_of({{"node", typed("integer")},
                                {"delivered", typed("boolean")},
                                {"contributors", array_of(typed("integer"))},
                                {"missing", array_of(typed("integer"))}});
+  const json refusal = object_of({{"node", typed("integer")},
+                                  {"step", typed("integer")},
+                                  {"kind", typed("string")},
+                                  {"count", typed("integer")}});
   return titled(object_of({{"timestamp", time_schema()},
                            {"step", typed("integer")},
                            {"time_s", typed("number")},
                            {"latency_ms", typed("number")},
                            {"all_inputs_in_time", typed("boolean")},
                            {"measurements", typed("integer")},
-                           {"nodes", array_of(node)}}),
+                           {"nodes", array_of(node)},
+                           {"refused", array_of(refusal)}}),
                 "skyfuse.Round")
       .dump();
 }
@@ -319,7 +336,9 @@ std::vector<ChannelMessage> RunChannels::round_messages(const RoundRecord& round
   // The trails take a point every kTrailEvery steps, drawn or not.
   const bool trails_moved = extend_trails(round);
   if (detail != Detail::kFiguresOnly) {
-    scene_messages(r, detail == Detail::kDisplayFrame || trails_moved || scenes_ == 0, out);
+    const bool trails = scenes_ == 0 || (detail == Detail::kEveryRound && trails_moved) ||
+                        (detail == Detail::kDisplayFrameAndTrails && trails_unsent_);
+    scene_messages(r, trails, out);
   }
   figure_messages(r, out);
   return out;
@@ -351,6 +370,7 @@ void RunChannels::scene_messages(const RoundView& r, bool with_trails,
     entities.push_back(std::move(e));
   }
   if (with_trails) {
+    trails_unsent_ = false;
     for (std::size_t t = 0; t < trails_.size(); ++t) {
       if (trails_[t].points.size() < 2) continue;
       const std::string id = t == 0   ? "trail/truth"
@@ -427,7 +447,8 @@ void RunChannels::figure_messages(const RoundView& r, std::vector<ChannelMessage
         {"latency_ms", std::chrono::duration<double, std::milli>(round.latency).count()},
         {"all_inputs_in_time", round.all_inputs_in_time},
         {"measurements", measurements},
-        {"nodes", std::move(nodes)}});
+        {"nodes", std::move(nodes)},
+        {"refused", refused_entries(round.refused)}});
 
   // Each track's position error and position NEES against the truth (chi-square, pd dof).
   json errors = json::array();
@@ -468,6 +489,7 @@ bool RunChannels::extend_trails(const RoundRecord& round) {
     trail.points.push_back(p);
     if (trail.points.size() > kTrailPoints) trail.points.erase(trail.points.begin());
   };
+  trails_unsent_ = true;
   extend(trails_[0], recorder_.truth_position(round.step));
   if (round.central) extend(trails_[1], recorder_.position_of(*round.central));
   for (std::size_t i = 0; i < round.peers.size(); ++i) {

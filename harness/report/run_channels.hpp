@@ -51,11 +51,12 @@ class RunChannels {
   const std::vector<ChannelSpec>& specs() const { return specs_; }
 
   /// How much of a round to send. kEveryRound (a recording): every channel, the trails every
-  /// kTrailEvery steps. kDisplayFrame (a live stream's frame): every channel, the trails in
-  /// each scene. kFiguresOnly (a live stream between frames): skyfuse's own channels, without
-  /// the scene, frames and map fixes. The stations go in the first scene and every
-  /// kStationsEvery scenes after it.
-  enum class Detail { kEveryRound, kDisplayFrame, kFiguresOnly };
+  /// kTrailEvery steps. kDisplayFrame (a live stream's frame): every channel; the trails only
+  /// in the first scene (an entity stays until replaced). kDisplayFrameAndTrails: the same,
+  /// with the trails if they took a point since they were last sent. kFiguresOnly (a live
+  /// stream between frames): skyfuse's own channels, without the scene, frames and map fixes.
+  /// The stations go in the first scene and every kStationsEvery scenes after it.
+  enum class Detail { kEveryRound, kDisplayFrame, kDisplayFrameAndTrails, kFiguresOnly };
 
   /// The messages of `round`, in channel order.
   std::vector<ChannelMessage> round_messages(const RoundRecord& round,
@@ -93,6 +94,7 @@ class RunChannels {
   std::vector<ChannelSpec> specs_;
   std::uint64_t scenes_ = 0;   ///< scenes sent so far
   std::vector<Trail> trails_;  ///< truth, center, then the stations in ascending id
+  bool trails_unsent_ = true;  ///< a point taken since the trails were last in a scene
 };
 
 }  // namespace skyfuse::harness

@@ -383,6 +383,8 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
         1e3 * (after_rounds.cpu_s - before_rounds.cpu_s) / station_rounds;
     summary.node_peak_resident_mib = static_cast<double>(node_peak_kib) / 1024.0;
     summary.node_counts = driver.finished_counts();
+    recorder.set_refusals_after_run(
+        driver.take_refusals(static_cast<std::uint64_t>(plan.scenario.steps)));
     summary.round_deadline_ms = o.node.round_deadline_ms;
     summary.loss = o.node.loss;
     summary.best_effort = o.node.best_effort;
@@ -397,7 +399,10 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     const std::string summary_json = recorder.summary_json(summary, run_id);
     if (live) {
       live->finish(summary_json);
-      if (const auto dropped = live->stats().clients_dropped; dropped > 0) {
+      const live::LiveServer::Stats stats = live->stats();
+      fmt::print("live: {} message(s) sent, {} client(s) connected at the end\n", stats.frames_sent,
+                 stats.clients);
+      if (const auto dropped = stats.clients_dropped; dropped > 0) {
         fmt::print("live: {} client(s) dropped for falling behind\n", dropped);
       }
       if (live->rounds_dropped() > 0) {

@@ -8,6 +8,7 @@
 #include <optional>
 #include <random>
 #include <set>
+#include <utility>
 
 #include "run/realtime_rounds.hpp"
 #include "skyfuse/registry/registry.hpp"
@@ -150,6 +151,11 @@ struct LockstepDriver::Impl {
           (killed == killed_instance.end() || killed->second != s.instance())) {
         ready[s.station_id()] = s.instance();
       }
+      if ((s.state() == wire::READY && s.step() > 0) || s.state() == wire::FINISHED) {
+        DropCounts dropped{};
+        std::copy(s.dropped().begin(), s.dropped().end(), dropped.begin());
+        note_refusals(s.station_id(), s.instance(), s.step(), dropped);
+      }
       if (s.state() == wire::FINISHED) {
         NodeCounts& counts = finished[s.station_id()];
         std::copy(s.dropped().begin(), s.dropped().end(), counts.dropped.begin());
@@ -158,6 +164,30 @@ struct LockstepDriver::Impl {
         counts.late_used = s.late_used();
       }
     }
+  }
+
+  // A node's counts so far, against those it reported before: what it refused in between.
+  void note_refusals(int node, std::uint64_t instance, std::uint64_t step,
+                     const DropCounts& counts) {
+    auto& [seen_instance, before] = reported[node];
+    if (seen_instance != instance) {  // a new process counts from zero
+      seen_instance = instance;
+      before = {};
+    }
+    for (std::size_t i = 0; i < kDropKinds; ++i) {
+      if (counts[i] > before[i]) {
+        refusals.push_back({node, step, static_cast<DropKind>(i), counts[i] - before[i]});
+      }
+    }
+    before = counts;
+  }
+
+  // The refusals reported since the last call, the harness's own (as of round k) with them.
+  std::vector<Refusal> take_refusals(std::uint64_t k) {
+    read_statuses();
+    const DropCounts own = own_drops.counts();
+    note_refusals(kHarnessNodeId, 0, k, own);
+    return std::exchange(refusals, {});
   }
 
   void drain_samples() {
@@ -249,6 +279,9 @@ struct LockstepDriver::Impl {
   transport::SourceBinding measurement_sources;
   std::map<std::pair<std::uint64_t, int>, ReceivedTrack> settled;  // by (step, source)
   DropTally own_drops;
+  // node -> (the process that reported, its counts then): for the refusals in between.
+  std::map<int, std::pair<std::uint64_t, DropCounts>> reported;
+  std::vector<Refusal> refusals;  // reported since the last round's record
 };
 
 LockstepDriver::LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
@@ -344,6 +377,7 @@ RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds
     record.measurements.push_back(d.measurement_collector.filled(i) ? std::optional(z[i])
                                                                     : std::nullopt);
   }
+  record.refused = d.take_refusals(k);
   d.track_collector.advance();
   d.measurement_collector.advance();
   return record;
@@ -432,6 +466,7 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(
     }
     const std::size_t before = done.size();
     rounds.hand_over(done);
+    if (done.size() > before) done.back().refused = d.take_refusals(done.back().step);
     if (on_round) {
       for (std::size_t i = before; i < done.size(); ++i) on_round(done[i]);
     }
@@ -451,6 +486,10 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(
         rounds.tracks_lost(), rounds.measurements_lost(), RealtimeRounds::kLostAfterSteps);
   }
   return done;
+}
+
+std::vector<Refusal> LockstepDriver::take_refusals(std::uint64_t step) {
+  return impl_->take_refusals(step);
 }
 
 std::map<int, NodeCounts> LockstepDriver::finished_counts() {

@@ -94,6 +94,9 @@ class LockstepDriver {
 
   /// What every node that has announced FINISHED so far reported, by node id (0: center),
   /// and the harness's own drops under kHarnessNodeId.
+  /// Refusals reported since the last round's record (the nodes' last statuses after the
+  /// run), the harness's own with them, as of round `step`.
+  std::vector<Refusal> take_refusals(std::uint64_t step);
   std::map<int, NodeCounts> finished_counts();
 
   /// Waits until every node that is up has announced FINISHED; false if `timeout` passed first.

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {
 
@@ -23,6 +24,14 @@ struct ReceivedTrack {
   Eigen::VectorXd mode_probabilities;
 };
 
+/// Samples a node reported refusing: `count` of one kind, in rounds up to its round `step`.
+struct Refusal {
+  int node = 0;  ///< kCenterNodeId, a station id, or the harness (-1)
+  std::uint64_t step = 0;
+  DropKind kind = DropKind::kWrongRun;
+  std::uint64_t count = 0;
+};
+
 struct RoundRecord {
   std::uint64_t step = 0;
   /// Each empty when the node delivered nothing for the step (down, or past the deadline).
@@ -35,6 +44,9 @@ struct RoundRecord {
   /// first then the stations in ascending id; and whether every node fused all M inputs.
   std::vector<double> track_age_us;
   bool all_inputs_in_time = true;
+  /// Refusals reported while this round was collected (a node reports after its round, so
+  /// usually this round's or the one before), by node and kind.
+  std::vector<Refusal> refused;
 };
 
 }  // namespace skyfuse::harness

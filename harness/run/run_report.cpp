@@ -250,6 +250,15 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
   };
   std::string measurements = measurements_header();
   std::string rounds = "step,latency_us\n";
+  // refusals.csv: each refusal as reported in round `reported` (node -1: the harness); they
+  // add up to summary.json's dropped_by_node.
+  std::string refusals = "reported,node,step,kind,count\n";
+  const auto refusal_rows = [&](std::uint64_t reported, const std::vector<Refusal>& refused) {
+    for (const Refusal& x : refused) {
+      refusals +=
+          fmt::format("{},{},{},{},{}\n", reported, x.node, x.step, to_string(x.kind), x.count);
+    }
+  };
   const bool imm = !mode_names_.empty();
   std::string modes = fmt::format("step,source,{}\n", fmt::join(mode_names_, ","));
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -285,12 +294,15 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
     }
     rounds += fmt::format("{},{:.1f}\n", r.step,
                           std::chrono::duration<double, std::micro>(r.latency).count());
+    refusal_rows(r.step, r.refused);
   }
+  refusal_rows(static_cast<std::uint64_t>(plan_.scenario.steps), refusals_after_run_);
   for (const auto& [key, track] : settled_) track_row(key.first, key.second, track, true);
   write_file_atomically(dir / "steps.csv", steps);
   write_file_atomically(dir / "tracks.csv", tracks);
   write_file_atomically(dir / "measurements.csv", measurements);
   write_file_atomically(dir / "rounds.csv", rounds);
+  write_file_atomically(dir / "refusals.csv", refusals);
   if (imm) write_file_atomically(dir / "modes.csv", modes);
 
   write_file_atomically(dir / "summary.json", summary_json(summary, run_id) + "\n");

@@ -110,6 +110,11 @@ class RunRecorder {
   /// The settled (re-fused) tracks of a run with --refusion-lag, by (step, source id):
   /// tracks.csv lists them after the live ones.
   void set_settled(std::map<std::pair<std::uint64_t, int>, ReceivedTrack> settled);
+  /// Refusals reported after the last round (the nodes' last statuses): refusals.csv lists
+  /// them after the rounds', as reported in round `steps`.
+  void set_refusals_after_run(std::vector<Refusal> refused) {
+    refusals_after_run_ = std::move(refused);
+  }
   /// The settled tracks' figures, none if there are none.
   std::optional<SettledFigures> summarise_settled() const;
   void write(const std::filesystem::path& dir, const RunSummary& summary,
@@ -137,6 +142,7 @@ class RunRecorder {
   std::vector<std::string_view> mode_names_;  // the filter's modes (none: one model)
   std::vector<RoundRecord> rounds_;
   std::map<std::pair<std::uint64_t, int>, ReceivedTrack> settled_;
+  std::vector<Refusal> refusals_after_run_;
 
   // measurements.csv: `step,station_id,` and the sensor's components when every participant
   // has the same sensor (what --replay reads), else `step,station_id,sensor,z0,z1,...`.

@@ -15,6 +15,8 @@
 #include <websocketpp/config/asio_no_tls.hpp>
 #include <websocketpp/server.hpp>
 
+#include "skyfuse/live/background_priority.hpp"
+
 namespace skyfuse::live {
 namespace {
 
@@ -57,8 +59,15 @@ struct LiveServer::Impl {
   std::atomic<std::uint64_t> dropped{0};
   std::atomic<std::uint64_t> frames{0};
   std::atomic<std::uint64_t> refused{0};
+  std::atomic<std::size_t> subscriptions{0};  ///< over every client: a copy for other threads
   std::atomic<std::uint64_t> posted{0};
   std::atomic<std::uint64_t> handled{0};
+
+  void count_subscriptions() {
+    std::size_t n = 0;
+    for (const auto& [h, client] : clients) n += client.channel_of_subscription.size();
+    subscriptions = n;
+  }
 
   void send_text(Handle h, const std::string& text) {
     websocketpp::lib::error_code ec;
@@ -102,6 +111,7 @@ struct LiveServer::Impl {
     } else {
       refuse(h, std::get<Refused>(request).why);
     }
+    count_subscriptions();
   }
 
   void on_http(Handle h) {
@@ -157,6 +167,7 @@ struct LiveServer::Impl {
 
   void on_close(Handle h) {
     if (clients.erase(h) != 0) --connected;
+    count_subscriptions();
   }
 
   // On the server's thread: one message to every subscriber, or the end of a slow client.
@@ -186,6 +197,7 @@ struct LiveServer::Impl {
         ++dropped;
       }
     }
+    if (!too_slow.empty()) count_subscriptions();
   }
 };
 
@@ -215,7 +227,10 @@ LiveServer::LiveServer(Options options, std::vector<AdvertisedChannel> channels)
   } catch (const std::exception& e) {
     throw std::runtime_error("--live: cannot listen on " + where + ": " + e.what());
   }
-  d.thread = std::thread([&d] { d.server.run(); });
+  d.thread = std::thread([&d] {
+    lower_this_thread_to_idle_priority();
+    d.server.run();
+  });
 }
 
 LiveServer::~LiveServer() {
@@ -239,13 +254,18 @@ std::uint16_t LiveServer::port() const {
   return impl_->port;
 }
 
-void LiveServer::publish(std::uint32_t channel, std::uint64_t log_time_ns, std::string payload) {
+void LiveServer::publish(std::vector<Message> messages) {
+  if (messages.empty()) return;
   Impl& d = *impl_;
   ++d.posted;
-  asio::post(d.server.get_io_service(), [&d, channel, log_time_ns, payload = std::move(payload)] {
-    d.deliver(channel, log_time_ns, payload);
+  asio::post(d.server.get_io_service(), [&d, messages = std::move(messages)] {
+    for (const Message& m : messages) d.deliver(m.channel, m.log_time_ns, m.payload);
     ++d.handled;
   });
+}
+
+bool LiveServer::has_subscribers() const {
+  return impl_->subscriptions.load() != 0;
 }
 
 bool LiveServer::flush(int timeout_ms) {

@@ -9,6 +9,8 @@ import uPlot from "uplot";
 import "uplot/dist/uPlot.min.css";
 import "./page.css";
 
+window.NODRAW = new URLSearchParams(location.search).has("nodraw");
+window.NOMSG = new URLSearchParams(location.search).has("nomsg");
 const SUBPROTOCOL = "foxglove.websocket.v1";
 const COLORS = { truth: "#26b340", center: "#ff8c00", peer: "#3373e6", site: "#777777" };
 const STRIP_ROUNDS = 240;
@@ -229,6 +231,7 @@ function enableTurning() {
     turn.yaw += (e.clientX - from[0]) * 0.01;
     turn.pitch = Math.min(Math.max(turn.pitch + (e.clientY - from[1]) * 0.01, 0), Math.PI / 2);
     from = [e.clientX, e.clientY];
+    requestDraw();
   });
 }
 
@@ -292,13 +295,28 @@ function drawFigures() {
   }
 }
 
-function frame() {
+function draw() {
   drawScene();
   drawScene3d();
   drawErrors();
   drawStrip();
   drawFigures();
-  requestAnimationFrame(frame);
+}
+
+// Drawn only when something changed, and at most DRAWS_PER_SECOND: a page open beside a run on
+// the same cores takes what a display needs and no more (docs/view.md, what it costs).
+const DRAWS_PER_SECOND = 10;
+let drawPending = false;
+let lastDrawAt = -Infinity;
+function requestDraw() {
+  if (drawPending) return;
+  drawPending = true;
+  const wait = Math.max(0, lastDrawAt + 1000 / DRAWS_PER_SECOND - performance.now());
+  setTimeout(() => requestAnimationFrame(() => {
+    drawPending = false;
+    lastDrawAt = performance.now();
+    if (!window.NODRAW) draw();
+  }), wait);
 }
 
 // ---- the connection -------------------------------------------------------------------------
@@ -347,10 +365,14 @@ async function loadRecording(url) {
       handlers[m.topic](m.payload);
     }
   };
-  slider.oninput = () => showUpTo(Number(slider.value));
+  slider.oninput = () => {
+    showUpTo(Number(slider.value));
+    requestDraw();
+  };
   document.getElementById("slider").hidden = false;
   showUpTo(roundTimes.length - 1);
   view.recordingRounds = roundTimes.length;
+  requestDraw();
 }
 
 function connect() {
@@ -359,12 +381,16 @@ function connect() {
   const topicOfSubscription = new Map();
   const decoder = new TextDecoder();
   ws.onopen = () => { document.getElementById("source").textContent = `live: ws://${location.host}`; };
-  ws.onclose = () => { document.getElementById("source").textContent = "live stream ended"; };
+  ws.onclose = () => {
+    document.getElementById("source").textContent = "live stream ended";
+    requestDraw();
+  };
   ws.onmessage = (event) => {
     if (typeof event.data === "string") {
       const message = JSON.parse(event.data);
       if (message.op === "advertise") {
-        const subscriptions = message.channels.map((c, i) => {
+        // Only the channels the page draws: each message costs the browser a task.
+        const subscriptions = message.channels.filter((c) => handlers[c.topic]).map((c, i) => {
           topicOfSubscription.set(i, c.topic);
           return { id: i, channelId: c.id };
         });
@@ -372,15 +398,18 @@ function connect() {
       }
       return;
     }
+    if (window.NOMSG) return;
     const bytes = new DataView(event.data);
     if (bytes.getUint8(0) !== 1) return;
     const topic = topicOfSubscription.get(bytes.getUint32(1, true));
     const handler = handlers[topic];
-    if (handler) handler(JSON.parse(decoder.decode(new Uint8Array(event.data, 13))));
+    if (!handler) return;
+    handler(JSON.parse(decoder.decode(new Uint8Array(event.data, 13))));
+    requestDraw();
   };
 }
 
 const recording = new URLSearchParams(location.search).get("recording");
 if (recording) loadRecording(recording); else connect();
 enableTurning();
-requestAnimationFrame(frame);
+requestDraw();

@@ -2,7 +2,8 @@
 // subscribes to every channel while the run goes on, checks the schema names, validates every
 // foxglove.* payload against @foxglove/schemas and follows the run to its last round with one
 // scene per round. Beside it, a client that sends what the server does not serve (answered with
-// an error status and ignored) and a client that stops reading (dropped; the run goes on).
+// an error status and ignored) and a client that stops reading (dropped; the run goes on); and
+// a stream capped to a display (the default), thinned but ending on the last round in full.
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
@@ -150,6 +151,44 @@ test("a client that stops reading is dropped and the run goes on to its end", as
     slow._socket.resume();
     await new Promise((resolve) => setTimeout(resolve, 200));
     assert.notEqual(closedWith, null, "the connection is closed");
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test("a stream capped to a display thins the scenes and their trails, and ends on a full scene", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "skyfuse-live-capped-"));
+  try {
+    const runSteps = 3000;
+    // Lock-step runs its rounds far faster than the 30 scenes and 5 trails a second sent.
+    const { port, exited } = startLiveRun(dir, { runSteps, sceneHz: 30 });
+    const client = new FoxgloveClient({ ws: connect(await port) });
+    const topics = new Map();
+    client.on("advertise", (advertised) => {
+      for (const c of advertised) {
+        if (c.topic === "/scene" || c.topic === "/skyfuse/round") topics.set(client.subscribe(c.id), c.topic);
+      }
+    });
+    const scenes = [];
+    const rounds = [];
+    const decoder = new TextDecoder();
+    client.on("message", ({ subscriptionId, data }) => {
+      const p = JSON.parse(decoder.decode(data));
+      (topics.get(subscriptionId) === "/scene" ? scenes : rounds).push(p);
+    });
+    const { code, output } = await exited;
+    assert.equal(code, 0, output);
+    client.close();
+
+    const trailsOf = (scene) => scene.entities.filter((e) => e.id.startsWith("trail/")).map((e) => e.id).sort();
+    assert.ok(scenes.length > 0 && scenes.length < runSteps, `${scenes.length} scenes for ${runSteps} rounds`);
+    assert.ok(scenes.some((s) => trailsOf(s).length === 0), "scenes between trail updates carry no trails");
+    // The last scene is the last round's, with all six trails: a viewer ends on the whole run.
+    assert.deepEqual(trailsOf(scenes.at(-1)),
+      ["trail/center", "trail/station/1", "trail/station/2", "trail/station/3", "trail/station/4", "trail/truth"]);
+    assert.equal(rounds.at(-1).step, runSteps - 1);
+    for (let i = 1; i < rounds.length; ++i) assert.ok(rounds[i].step > rounds[i - 1].step);
+    assert.ok(rounds.length < runSteps, "figures are thinned too");
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }

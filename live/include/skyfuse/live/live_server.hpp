@@ -41,8 +41,17 @@ class LiveServer {
   LiveServer& operator=(const LiveServer&) = delete;
 
   std::uint16_t port() const;  ///< the port listened on (the one chosen, for port 0)
-  /// Sends `payload` on `channel` to every client subscribed to it.
-  void publish(std::uint32_t channel, std::uint64_t log_time_ns, std::string payload);
+  struct Message {
+    std::uint32_t channel = 0;
+    std::uint64_t log_time_ns = 0;
+    std::string payload;
+  };
+  /// Sends each message to every client subscribed to its channel. One hand-over to the
+  /// server's thread for the lot: a caller batching its messages wakes that thread once.
+  void publish(std::vector<Message> messages);
+  /// Whether any client is subscribed to anything now: when not, a caller need not build
+  /// messages at all.
+  bool has_subscribers() const;
   /// Waits up to `timeout_ms` for everything published so far to be handed to the clients'
   /// sockets; true if it was.
   bool flush(int timeout_ms);

@@ -184,7 +184,20 @@ class NodeLoop {
     if (const RunEnd end = process.open_round(k)) return end;
     if (const RunEnd end = wait_until(process, k, close, [&] { return process.round_complete(); }))
       return end;
-    return process.close_round(k);
+    const RunEnd end = process.close_round(k);
+    if (!end) report_new_refusals(k);
+    return end;
+  }
+
+  // After a round in which this node refused something: a status with the counts so far, so
+  // that whoever watches the run (the harness, a recording) learns what was refused and why
+  // while it goes on. Rounds with nothing refused send nothing.
+  void report_new_refusals(std::uint64_t k) {
+    const DropCounts counts = drops_.counts();
+    if (counts == reported_drops_) return;
+    reported_drops_ = counts;
+    presence_.set_drops(counts);
+    presence_.announce(wire::READY, static_cast<std::uint32_t>(k));
   }
 
   // After the last round: in real time, a lag's worth of steps for late samples; then the
@@ -305,7 +318,8 @@ class NodeLoop {
   std::optional<Own> own_;
   DelayedInbox<Sample> delayed_;  // held by --link-delay-ms
   DropTally drops_;
-  std::uint64_t epoch_ns_ = 0;  // real time: the system-clock start of step 0
+  DropCounts reported_drops_{};  // as last announced
+  std::uint64_t epoch_ns_ = 0;   // real time: the system-clock start of step 0
   std::optional<std::uint64_t> last_tick_;
   std::uint64_t lost_ = 0;  // samples removed by the simulated loss
 };
