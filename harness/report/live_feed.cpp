@@ -8,9 +8,8 @@
 
 namespace skyfuse::harness {
 
-LiveFeed::LiveFeed(const RunRecorder& recorder, std::uint64_t epoch_ns,
-                   live::LiveServer::Options options, double scene_hz)
-    : channels_(std::make_unique<RunChannels>(recorder, epoch_ns)),
+LiveFeed::LiveFeed(const RunRecorder& recorder, live::LiveServer::Options options, double scene_hz)
+    : channels_(std::make_unique<RunChannels>(recorder, 0)),
       scene_hz_(scene_hz),
       steps_(recorder.plan().scenario.steps) {
   std::vector<live::AdvertisedChannel> advertised;
@@ -33,6 +32,11 @@ LiveFeed::~LiveFeed() {
   }
   wake_.notify_one();
   if (thread_.joinable()) thread_.join();
+}
+
+void LiveFeed::set_epoch_ns(std::uint64_t epoch_ns) {
+  const std::lock_guard lock(mutex_);  // the feed's thread reads it after taking a round
+  channels_->set_epoch_ns(epoch_ns);
 }
 
 void LiveFeed::offer(const RoundRecord& round) {

@@ -41,13 +41,16 @@ class LiveFeed {
   static constexpr double kFiguresBurst = 4.0;
 
   /// `scene_hz` 0: everything every round, nothing thinned.
-  LiveFeed(const RunRecorder& recorder, std::uint64_t epoch_ns, live::LiveServer::Options options,
+  LiveFeed(const RunRecorder& recorder, live::LiveServer::Options options,
            double scene_hz = kDefaultSceneHz);
   ~LiveFeed();  ///< stops the thread and the server
   LiveFeed(const LiveFeed&) = delete;
   LiveFeed& operator=(const LiveFeed&) = delete;
 
   std::uint16_t port() const { return server_->port(); }
+  /// Step 0's log time, the recording's (call before the first offer): the stream and the
+  /// recording of one run stamp every message alike.
+  void set_epoch_ns(std::uint64_t epoch_ns);
   void offer(const RoundRecord& round);
   /// Publishes what is waiting and then `summary_json`, and waits up to 2 s for the clients'
   /// sockets to take it all.

@@ -68,6 +68,8 @@ class RunChannels {
   ChannelMessage summary_message(std::string summary_json) const;
 
   std::uint64_t log_time_ns(std::uint64_t step) const;
+  /// Moves step 0's log time (a live stream learns it when the rounds begin).
+  void set_epoch_ns(std::uint64_t epoch_ns) { epoch_ns_ = epoch_ns; }
 
   static constexpr std::uint64_t kTrailEvery = 10;
   static constexpr std::size_t kTrailPoints = 50;

@@ -275,8 +275,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
           std::filesystem::exists(site / "index.html")) {
         server.site_dir = site.string();
       }
-      live =
-          std::make_unique<LiveFeed>(recorder, wall_clock_ns(), std::move(server), o.live_scene_hz);
+      live = std::make_unique<LiveFeed>(recorder, std::move(server), o.live_scene_hz);
       fmt::print("live: ws://{0}:{1} (Foxglove), http://{0}:{1}/ (page)\n", o.live->address,
                  live->port());
       std::fflush(stdout);
@@ -299,6 +298,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     const KernelSnapshot before_rounds = kernel_snapshot();
     const auto start = Clock::now();
     const auto wall_start = std::chrono::system_clock::now();
+    if (live) live->set_epoch_ns(wall_clock_ns(wall_start));
     if (o.node.realtime_deadline_ms > 0.0) {
       // A little head start so that the start tick reaches every node before step 0 begins.
       const auto epoch = std::chrono::system_clock::now() + std::chrono::milliseconds(300);

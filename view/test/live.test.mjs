@@ -4,6 +4,7 @@
 // scene per round. Beside it, a client that sends what the server does not serve (answered with
 // an error status and ignored) and a client that stops reading (dropped; the run goes on); and
 // a stream capped to a display (the default), thinned but ending on the last round in full.
+// The first run is recorded too: every message streamed is in the file, stamped alike.
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
@@ -13,6 +14,8 @@ import { join } from "node:path";
 import wsProtocol from "@foxglove/ws-protocol";
 const { FoxgloveClient } = wsProtocol;
 import WebSocket from "ws";
+import { McapIndexedReader } from "@mcap/core";
+import { readFileSync } from "node:fs";
 import * as foxglove from "@foxglove/schemas/jsonschema.js";
 import Ajv from "ajv";
 
@@ -24,9 +27,11 @@ const ajv = new Ajv({ strict: false, allErrors: true });
 
 // Starts a run with --live on a free port; resolves with the process, its port and its exit.
 // `sceneHz` 0: a scene every round, as a recording has.
-function startLiveRun(dir, { runSteps = steps, sceneHz = 0 } = {}) {
+// `record`: also write the run's recording there.
+function startLiveRun(dir, { runSteps = steps, sceneHz = 0, record = null } = {}) {
   const run = spawn(skyfuse, ["run", "--stations", "4", "--steps", String(runSteps), "--domain", domain,
-    "--out", join(dir, "out"), "--live", "127.0.0.1:0", "--live-scene-hz", String(sceneHz)],
+    "--out", join(dir, "out"), "--live", "127.0.0.1:0", "--live-scene-hz", String(sceneHz),
+    ...(record ? ["--record", record] : [])],
     { stdio: ["ignore", "pipe", "pipe"] });
   let output = "";
   const exited = new Promise((resolve) => run.on("exit", (code) => resolve({ code, output })));
@@ -42,6 +47,14 @@ function startLiveRun(dir, { runSteps = steps, sceneHz = 0 } = {}) {
   return { run, port, exited };
 }
 
+async function readRecording(path) {
+  const bytes = readFileSync(path);
+  return McapIndexedReader.Initialize({ readable: {
+    size: async () => BigInt(bytes.length),
+    read: async (offset, length) => bytes.subarray(Number(offset), Number(offset + length)),
+  } });
+}
+
 function connect(port) {
   return new WebSocket(`ws://127.0.0.1:${port}`, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]);
 }
@@ -49,7 +62,8 @@ function connect(port) {
 test("a live run streams every channel to its last round, and ignores what it does not serve", async () => {
   const dir = mkdtempSync(join(tmpdir(), "skyfuse-live-"));
   try {
-    const { port, exited } = startLiveRun(dir);
+    const recording = join(dir, "run.mcap");
+    const { port, exited } = startLiveRun(dir, { record: recording });
     const client = new FoxgloveClient({ ws: connect(await port) });
     const channels = new Map();   // id -> channel
     const bySubscription = new Map();
@@ -118,6 +132,24 @@ test("a live run streams every channel to its last round, and ignores what it do
     assert.equal(payloads.get("/skyfuse/summary").length, 1);
     assert.equal(payloads.get("/skyfuse/summary")[0].steps, steps);
     assert.equal(statuses.length, 0, "the well-behaved client got no status");
+
+    // The stream and the recording of the run are one: every message streamed is in the
+    // recording at the same log time on the same channel, with the same payload.
+    const recorded = new Map();  // topic + log time -> payload
+    const reader = await readRecording(recording);
+    const decoderOfFile = new TextDecoder();
+    for await (const m of reader.readMessages()) {
+      recorded.set(`${reader.channelsById.get(m.channelId).topic} ${m.logTime}`,
+        JSON.parse(decoderOfFile.decode(m.data)));
+    }
+    let compared = 0;
+    for (const [topic, list] of payloads) {
+      for (const { __log_time, ...message } of list) {
+        assert.deepEqual(recorded.get(`${topic} ${__log_time}`), message, `${topic} at ${__log_time}`);
+        compared += 1;
+      }
+    }
+    assert.ok(compared > 4 * steps / 2, `${compared} messages compared`);
 
     // Five messages, five error statuses; the run went on regardless.
     assert.equal(answers.filter((a) => a.op === "status" && a.level === 2).length, 5,
