@@ -3,7 +3,7 @@
 // foxglove.* payload against @foxglove/schemas and follows the run to its last round with one
 // scene per round. Beside it, a client that sends what the server does not serve (answered with
 // an error status and ignored) and a client that stops reading (dropped; the run goes on); and
-// a stream capped to a display (the default), thinned but ending on the last round in full.
+// a stream capped to a display (the default), thinned but ending on the last round's scene.
 // The first run is recorded too: every message streamed is in the file, stamped alike.
 import { test } from "node:test";
 import assert from "node:assert/strict";
@@ -215,10 +215,12 @@ test("a stream capped to a display thins the scenes and their trails, and ends o
     const trailsOf = (scene) => scene.entities.filter((e) => e.id.startsWith("trail/")).map((e) => e.id).sort();
     assert.ok(scenes.length > 0 && scenes.length < runSteps, `${scenes.length} scenes for ${runSteps} rounds`);
     assert.ok(scenes.some((s) => trailsOf(s).length === 0), "scenes between trail updates carry no trails");
-    // The last scene is the last round's, with all six trails: a viewer ends on the whole run.
-    assert.deepEqual(trailsOf(scenes.at(-1)),
-      ["trail/center", "trail/station/1", "trail/station/2", "trail/station/3", "trail/station/4", "trail/truth"]);
+    // A viewer ends on the last round's scene, and holds all six trails as last sent (an entity
+    // stays until replaced; trails are resent only once they have moved).
     assert.equal(rounds.at(-1).step, runSteps - 1);
+    assert.deepEqual(scenes.at(-1).entities[0].timestamp, rounds.at(-1).timestamp);
+    assert.deepEqual(trailsOf(scenes.findLast((s) => trailsOf(s).length > 0)),
+      ["trail/center", "trail/station/1", "trail/station/2", "trail/station/3", "trail/station/4", "trail/truth"]);
     for (let i = 1; i < rounds.length; ++i) assert.ok(rounds[i].step > rounds[i - 1].step);
     assert.ok(rounds.length < runSteps, "figures are thinned too");
   } finally {
