@@ -128,6 +128,8 @@ RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) c
   RunSummary s;
   s.stations = plan_.stations;
   s.steps = static_cast<int>(rounds_.size());
+  s.exchange = std::string(to_string(plan_.scenario.exchange.kind));
+  s.fanout = static_cast<int>(plan_.scenario.exchange.round_fanout());
   s.speed_kmh = plan_.speed_mps * 3.6;
   s.discovery_s = discovery_s;
   s.imm = !mode_names_.empty();
@@ -315,6 +317,8 @@ std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t r
                                {"mc_run", plan_.mc_run},
                                {"run_id", run_id},
                                {"stations", summary.stations},
+                               {"exchange", summary.exchange},
+                               {"fanout", summary.fanout},
                                {"steps", summary.steps},
                                {"speed_kmh", summary.speed_kmh},
                                {"rmse_central_m", summary.rmse_central_m},
@@ -431,6 +435,8 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
                s.settled->rmse_p2p_m, s.settled->rmse_central_m,
                s.settled->max_abs_diff_between_peers, s.settled->peer_spread_end);
   }
+  fmt::print(out, "  exchange                 {}\n",
+             s.fanout > 0 ? fmt::format("tree, clusters of {}", s.fanout) : s.exchange);
   fmt::print(out, "  rounds per second        {:.0f}\n", s.rounds_per_s);
   fmt::print(out, "  round latency p50/p99/max {:.0f} / {:.0f} / {:.0f} us\n",
              s.round_latency_us_p50, s.round_latency_us_p99, s.round_latency_us_max);

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -39,6 +40,8 @@ struct SettledFigures {
 struct RunSummary {
   int stations = 0;
   int steps = 0;
+  std::string exchange;  ///< "flat" or "tree", as the run's plan chose it
+  int fanout = 0;        ///< the tree's stations per cluster; 0 for flat
   double speed_kmh = 0.0;
   double rmse_central_m = 0.0;
   double rmse_p2p_m = 0.0;

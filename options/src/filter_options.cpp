@@ -26,8 +26,8 @@ void require_filter_takes(const Scenario& scenario, const NodeOptions& node) {
   }
   if (node.refusion_lag != 0) {
     throw std::invalid_argument(
-        "--refusion-lag with --exchange tree: the tree exchange fuses each round once; leave "
-        "the lag at 0");
+        "--refusion-lag with the tree exchange (asked for, or auto's choice from 16 stations): "
+        "the tree fuses each round once; leave the lag at 0 or give --exchange flat");
   }
 }
 

@@ -360,7 +360,7 @@ ExchangeConfig read_network(const YamlField& field) {
   ExchangeConfig exchange;
   if (const auto kind = field.optional("exchange")) {
     const auto parsed = parse_exchange_kind(kind->string());
-    if (!parsed) kind->fail(fmt::format("expected flat or tree, got '{}'", kind->text()));
+    if (!parsed) kind->fail(fmt::format("expected flat, tree or auto, got '{}'", kind->text()));
     exchange.kind = *parsed;
   }
   if (const auto fanout = field.optional("fanout")) {

@@ -42,7 +42,7 @@ class EkfRunStepper {
         order_(run_setup::ascending(scenario, stations)),
         observations_(run_setup::checked_observations<Sensor>(scenario, order_, run)),
         peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_),
-                    scenario.exchange.round_fanout()),
+                    round_fanout_for(scenario, static_cast<std::size_t>(stations))),
         central_round_(order_.size()),
         trace_(run_setup::sized_trace(scenario.steps)) {
     // Everything sized once per run: the step loop allocates nothing. Slots are in ascending

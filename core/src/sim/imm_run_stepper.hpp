@@ -43,7 +43,7 @@ class ImmRunStepper {
       : central_(NetworkImm<ModeSet>::make(scenario, start(scenario, truth, run))),
         peers_(NetworkImm<ModeSet>::make(scenario, start(scenario, truth, run)),
                run_setup::ids(scenario, run_setup::ascending(scenario, stations)),
-               scenario.exchange.round_fanout()),
+               round_fanout_for(scenario, static_cast<std::size_t>(stations))),
         gate_(gate),
         order_(run_setup::ascending(scenario, stations)),
         weights_(run_setup::weights(scenario, order_)),

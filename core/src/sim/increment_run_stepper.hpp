@@ -36,7 +36,7 @@ class IncrementRunStepper {
         observations_(run_setup::checked_observations<Sensor>(scenario, order_, run)),
         central_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_)),
         peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_),
-                    scenario.exchange.round_fanout()),
+                    round_fanout_for(scenario, static_cast<std::size_t>(stations))),
         gate_(gate),
         trace_(run_setup::sized_trace(scenario.steps)) {
     increments_.resize(order_.size());

@@ -36,9 +36,9 @@ class NcrkfRunStepper {
         observations_(run_setup::checked_observations<Sensor>(scenario, order_, run)),
         // The center sums in the peers' order too, as fusion_center's NcrkfCenter does.
         central_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_),
-                       scenario.exchange.round_fanout()),
+                       round_fanout_for(scenario, static_cast<std::size_t>(stations))),
         peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_),
-                    scenario.exchange.round_fanout()),
+                    round_fanout_for(scenario, static_cast<std::size_t>(stations))),
         trace_(run_setup::sized_trace(scenario.steps)) {
     if (gate.enabled()) {
       throw std::invalid_argument(

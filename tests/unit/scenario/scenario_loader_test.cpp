@@ -7,6 +7,8 @@
 #include <numbers>
 #include <string>
 
+#include "skyfuse/sim/run_plan.hpp"
+
 namespace skyfuse {
 namespace {
 
@@ -314,20 +316,46 @@ TEST(ScenarioLoader, RefusesAnImmModeSetTheRegistryDoesNotCompile) {
 TEST(ScenarioLoader, ReadsTheNetworksExchangeAndRefusesWhatCannotRun) {
   EXPECT_EQ(
       parse_scenario(default_with("  kind: ekf\n", "  kind: ekf\n"), "test.yaml").exchange.kind,
-      ExchangeConfig::Kind::kFlat);
+      ExchangeConfig::Kind::kAuto);
   const std::string tree = "network: {exchange: tree, fanout: 4}\n";
   const Scenario s = parse_scenario(default_with("filter:\n", tree + "filter:\n"), "test.yaml");
   EXPECT_EQ(s.exchange.kind, ExchangeConfig::Kind::kTree);
   EXPECT_EQ(s.exchange.fanout, 4);
   EXPECT_EQ(s.exchange.round_fanout(), 4u);
   EXPECT_EQ(rejection(default_with("filter:\n", "network: {exchange: star}\nfilter:\n")),
-            "test.yaml: network.exchange: expected flat or tree, got 'star' (line 56)");
+            "test.yaml: network.exchange: expected flat, tree or auto, got 'star' (line 56)");
   EXPECT_EQ(rejection(default_with("filter:\n", "network: {fanout: 1}\nfilter:\n")),
             "test.yaml: network.fanout: must be an integer in [2, 256], got 1 (line 56)");
   EXPECT_EQ(parse_scenario(default_with("filter:\n  kind: ekf\n", tree + "filter:\n  kind: imm\n"),
                            "test.yaml")
                 .exchange.kind,
             ExchangeConfig::Kind::kTree);
+}
+
+// No `network.exchange` (or `auto`): the tree from 16 stations where the filter's station
+// processes take it (the EKF, the UKF), flat below and for the others (the IMM); an exchange
+// asked for is kept at any size. A run's plan holds the choice, as every node makes it.
+TEST(ScenarioLoader, AutoChoosesTheTreeFromSixteenStationsWhereTheStationsTakeIt) {
+  const Scenario ring = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/ring64.yaml");
+  ASSERT_EQ(ring.exchange.kind, ExchangeConfig::Kind::kAuto);
+  EXPECT_EQ(chosen_exchange(ring, 15), ExchangeConfig::Kind::kFlat);
+  EXPECT_EQ(chosen_exchange(ring, 16), ExchangeConfig::Kind::kTree);
+  EXPECT_EQ(round_fanout_for(ring, 15), 0u);
+  EXPECT_EQ(round_fanout_for(ring, 64), 8u);
+  EXPECT_EQ(make_run_plan(ring, {8, 10, {}, 0}).scenario.exchange.kind,
+            ExchangeConfig::Kind::kFlat);
+  EXPECT_EQ(make_run_plan(ring, {16, 10, {}, 0}).scenario.exchange.kind,
+            ExchangeConfig::Kind::kTree);
+  EXPECT_EQ(
+      make_run_plan(ring, {64, 10, {}, 0, ExchangeConfig::Kind::kFlat, {}}).scenario.exchange.kind,
+      ExchangeConfig::Kind::kFlat);
+
+  Scenario imm = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper000-imm.yaml");
+  EXPECT_EQ(chosen_exchange(imm, 64), ExchangeConfig::Kind::kFlat);
+  imm.exchange.kind = ExchangeConfig::Kind::kTree;  // in-process, the IMM sums in a tree too
+  EXPECT_EQ(chosen_exchange(imm, 4), ExchangeConfig::Kind::kTree);
+  EXPECT_EQ(to_string(ExchangeConfig::Kind::kAuto), "auto");
+  EXPECT_EQ(parse_exchange_kind("auto"), ExchangeConfig::Kind::kAuto);
 }
 
 TEST(ScenarioLoader, ReadsTheMapAnchorAndRefusesOneOffTheGlobe) {

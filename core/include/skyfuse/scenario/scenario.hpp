@@ -111,16 +111,23 @@ struct ExchangeConfig {
   enum class Kind {
     kFlat,  ///< every station hears every other's increment: M (M - 1) receptions a round
     kTree,  ///< clusters of `fanout` by ascending id, summed by an aggregator each
+    kAuto,  ///< the default: chosen by the number of stations (chosen_exchange())
   };
-  Kind kind = Kind::kFlat;
+  /// `auto` is the tree from this many stations on, when the filter's station processes take
+  /// it: below, both exchanges hold real time at 50 Hz with room to spare and the flat one
+  /// has no aggregator to lose; from 16 on the tree's rounds are faster and its tracks younger
+  /// (docs/performance.md, "The default exchange").
+  static constexpr std::size_t kTreeFromStations = 16;
+  Kind kind = Kind::kAuto;
   /// The tree's stations per cluster, >= 2 (the flat exchange ignores it).
   int fanout = 8;
-  /// What PeerRound takes: 0 for the flat exchange, the fanout for the tree.
+  /// What PeerRound takes: 0 for the flat exchange, the fanout for the tree. An `auto` not yet
+  /// chosen (resolve_exchange()) counts as flat.
   std::size_t round_fanout() const {
     return kind == Kind::kTree ? static_cast<std::size_t>(fanout) : 0;
   }
 };
-/// "flat" or "tree"; and back (nothing for another name).
+/// "flat", "tree" or "auto"; and back (nothing for another name).
 std::string_view to_string(ExchangeConfig::Kind kind);
 std::optional<ExchangeConfig::Kind> parse_exchange_kind(std::string_view name);
 
@@ -151,5 +158,10 @@ struct Scenario {
 /// option when the fanout is out of range.
 void apply_exchange_overrides(Scenario& scenario, std::optional<ExchangeConfig::Kind> kind,
                               std::optional<int> fanout);
+/// The exchange a run of `stations` uses: the scenario's, or for `auto` the tree from
+/// ExchangeConfig::kTreeFromStations stations when the filter's station processes take it.
+ExchangeConfig::Kind chosen_exchange(const Scenario& scenario, std::size_t stations);
+/// What PeerRound takes for a run of `stations`: the chosen exchange's fanout, 0 for flat.
+std::size_t round_fanout_for(const Scenario& scenario, std::size_t stations);
 
 }  // namespace skyfuse
