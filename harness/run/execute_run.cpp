@@ -56,7 +56,7 @@ RunPlan plan_from(const std::string& text, const std::string& source,
                   const options::NodeOptions& node) {
   RunPlan plan = make_run_plan(parse_scenario(text, source), node.overrides);
   // Refused here, before any process starts, rather than by each node.
-  options::require_filter_takes(plan.scenario, node);
+  options::settle_exchange(plan.scenario, node);
   return plan;
 }
 

@@ -8,7 +8,12 @@
 
 namespace skyfuse::options {
 
-void require_filter_takes(const Scenario& scenario, const NodeOptions& node) {
+void settle_exchange(Scenario& scenario, const NodeOptions& node) {
+  ExchangeConfig& exchange = scenario.exchange;
+  if (exchange.chosen_by_size && exchange.kind == ExchangeConfig::Kind::kTree &&
+      (node.loss.enabled() || node.delay.enabled() || node.refusion_lag != 0)) {
+    exchange.kind = ExchangeConfig::Kind::kFlat;
+  }
   const auto filter = find_filter(scenario.filter.kind);
   if (!filter) {  // the loader refuses an unknown filter: this is a programming error
     throw std::logic_error("unregistered filter " + scenario.filter.kind);
@@ -26,8 +31,8 @@ void require_filter_takes(const Scenario& scenario, const NodeOptions& node) {
   }
   if (node.refusion_lag != 0) {
     throw std::invalid_argument(
-        "--refusion-lag with the tree exchange (asked for, or auto's choice from 16 stations): "
-        "the tree fuses each round once; leave the lag at 0 or give --exchange flat");
+        "--refusion-lag with --exchange tree: the tree exchange fuses each round once; leave "
+        "the lag at 0");
   }
 }
 

@@ -26,7 +26,7 @@ RunPlan load_plan(const options::NodeOptions& options) {
     throw std::invalid_argument(kSecureDiscoveryServerRefusal);
   }
   RunPlan plan = make_run_plan(load_scenario_or_default(options.scenario_path), options.overrides);
-  options::require_filter_takes(plan.scenario, options);
+  options::settle_exchange(plan.scenario, options);
   return plan;
 }
 

@@ -59,6 +59,7 @@ RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
     scenario.target.speeds_mps = {plan.speed_mps};
   }
   apply_exchange_overrides(scenario, overrides.exchange, overrides.fanout);
+  scenario.exchange.chosen_by_size = scenario.exchange.kind == ExchangeConfig::Kind::kAuto;
   scenario.exchange.kind = chosen_exchange(scenario, static_cast<std::size_t>(plan.stations));
   validate_scenario(scenario, "run options");
   plan.mc_run = overrides.mc_run;

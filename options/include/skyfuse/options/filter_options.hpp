@@ -9,8 +9,12 @@
 
 namespace skyfuse::options {
 
-/// Throws std::invalid_argument, naming the option and the filter, for a re-fusion lag or a NIS
-/// gate that the scenario's filter does not take, and for an exchange the nodes do not run.
-void require_filter_takes(const Scenario& scenario, const NodeOptions& node);
+/// Settles the run's exchange and checks what the filter takes: the tree that `auto` chose by
+/// size goes back to flat for a run with simulated loss, link delay or a re-fusion lag (the
+/// tree does not keep its guarantees through them yet: docs/performance.md). Then throws
+/// std::invalid_argument, naming the option and the filter, for a re-fusion lag or a NIS gate
+/// that the scenario's filter does not take, and for an exchange the nodes do not run. The
+/// harness and every node call it on their plans alike.
+void settle_exchange(Scenario& scenario, const NodeOptions& node);
 
 }  // namespace skyfuse::options
