@@ -25,13 +25,25 @@ LiveFeed::LiveFeed(const RunRecorder& recorder, live::LiveServer::Options option
   });
 }
 
+namespace {
+
+live::LiveServer::Message to_live(ChannelMessage&& m) {
+  return {static_cast<std::uint32_t>(m.channel), m.log_time_ns, std::move(m.json)};
+}
+
+}  // namespace
+
 LiveFeed::~LiveFeed() {
+  stop_thread();
+}
+
+void LiveFeed::stop_thread() {
   {
     const std::lock_guard lock(mutex_);
     stopping_ = true;
   }
   wake_.notify_one();
-  if (thread_.joinable()) thread_.join();
+  if (thread_.joinable()) thread_.join();  // every waiting round published
 }
 
 void LiveFeed::set_epoch_ns(std::uint64_t epoch_ns) {
@@ -50,14 +62,15 @@ void LiveFeed::offer(const RoundRecord& round) {
 
 void LiveFeed::run() {
   using Clock = std::chrono::steady_clock;
+  const auto period = [](double hz) {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / hz));
+  };
+  const bool capped = scene_hz_ > 0.0;
   // Waking at the display's rate, not faster: each wake-up also wakes the clients, and both
   // take cores from the run at moments the run did not choose.
-  const auto tick = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(1.0 / (scene_hz_ > 0.0 ? scene_hz_ : kFiguresHz)));
-  const auto frame = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(scene_hz_ > 0.0 ? 1.0 / scene_hz_ : 0.0));
-  const auto trails_period =
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kTrailsHz));
+  const Clock::duration tick = period(capped ? scene_hz_ : kFiguresHz);
+  const Clock::duration frame = capped ? period(scene_hz_) : Clock::duration::zero();
+  const Clock::duration trails_period = period(kTrailsHz);
   Clock::time_point next_frame = Clock::now();
   Clock::time_point next_trails = next_frame;
   Clock::time_point last_wake = next_frame;
@@ -104,26 +117,19 @@ std::vector<live::LiveServer::Message> LiveFeed::batch_messages(std::deque<Round
     using Detail = RunChannels::Detail;
     const bool trails = every_round || last || trails_due;
     const Detail detail = !scene   ? Detail::kFiguresOnly
-                          : trails ? Detail::kDisplayFrameAndTrails
+                          : trails ? Detail::kEveryRound
                                    : Detail::kDisplayFrame;
     for (ChannelMessage& m : channels_->round_messages(round, detail)) {
-      out.push_back({static_cast<std::uint32_t>(m.channel), m.log_time_ns, std::move(m.json)});
+      out.push_back(to_live(std::move(m)));
     }
   }
   return out;
 }
 
 void LiveFeed::finish(std::string summary_json) {
-  {
-    const std::lock_guard lock(mutex_);
-    stopping_ = true;
-  }
-  wake_.notify_one();
-  if (thread_.joinable()) thread_.join();  // every waiting round published
-  ChannelMessage summary = channels_->summary_message(std::move(summary_json));
+  stop_thread();
   std::vector<live::LiveServer::Message> last;
-  last.push_back(
-      {static_cast<std::uint32_t>(summary.channel), summary.log_time_ns, std::move(summary.json)});
+  last.push_back(to_live(channels_->summary_message(std::move(summary_json))));
   server_->publish(std::move(last));
   server_->flush(2000);
 }

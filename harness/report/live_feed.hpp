@@ -60,6 +60,7 @@ class LiveFeed {
 
  private:
   void run();
+  void stop_thread();  ///< after the rounds still waiting are published
   /// The messages for the rounds taken in one wake-up; trails follow every round.
   std::vector<live::LiveServer::Message> batch_messages(std::deque<RoundRecord>& rounds,
                                                         bool scene_due, bool trails_due,

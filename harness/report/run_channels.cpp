@@ -334,11 +334,9 @@ std::vector<ChannelMessage> RunChannels::round_messages(const RoundRecord& round
   }
   std::vector<ChannelMessage> out;
   // The trails take a point every kTrailEvery steps, drawn or not.
-  const bool trails_moved = extend_trails(round);
+  extend_trails(round);
   if (detail != Detail::kFiguresOnly) {
-    const bool trails = scenes_ == 0 || (detail == Detail::kEveryRound && trails_moved) ||
-                        (detail == Detail::kDisplayFrameAndTrails && trails_unsent_);
-    scene_messages(r, trails, out);
+    scene_messages(r, scenes_ == 0 || (detail == Detail::kEveryRound && trails_unsent_), out);
   }
   figure_messages(r, out);
   return out;
@@ -483,8 +481,8 @@ void RunChannels::follow(const RoundRecord& round) {
   extend_trails(round);
 }
 
-bool RunChannels::extend_trails(const RoundRecord& round) {
-  if (round.step % kTrailEvery != 0) return false;
+void RunChannels::extend_trails(const RoundRecord& round) {
+  if (round.step % kTrailEvery != 0) return;
   const auto extend = [&](Trail& trail, const Vector3& p) {
     trail.points.push_back(p);
     if (trail.points.size() > kTrailPoints) trail.points.erase(trail.points.begin());
@@ -495,7 +493,6 @@ bool RunChannels::extend_trails(const RoundRecord& round) {
   for (std::size_t i = 0; i < round.peers.size(); ++i) {
     if (round.peers[i]) extend(trails_[2 + i], recorder_.position_of(*round.peers[i]));
   }
-  return true;
 }
 
 ChannelMessage RunChannels::summary_message(std::string summary_json) const {

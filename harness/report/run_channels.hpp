@@ -50,13 +50,14 @@ class RunChannels {
 
   const std::vector<ChannelSpec>& specs() const { return specs_; }
 
-  /// How much of a round to send. kEveryRound (a recording): every channel, the trails every
-  /// kTrailEvery steps. kDisplayFrame (a live stream's frame): every channel; the trails only
-  /// in the first scene (an entity stays until replaced). kDisplayFrameAndTrails: the same,
-  /// with the trails if they took a point since they were last sent. kFiguresOnly (a live
-  /// stream between frames): skyfuse's own channels, without the scene, frames and map fixes.
-  /// The stations go in the first scene and every kStationsEvery scenes after it.
-  enum class Detail { kEveryRound, kDisplayFrame, kDisplayFrameAndTrails, kFiguresOnly };
+  /// How much of a round to send. kEveryRound (a recording, or a live frame due its trails):
+  /// every channel, the trails when they took a point since they were last sent (every
+  /// kTrailEvery steps in a recording). kDisplayFrame (a live stream's other frames): every
+  /// channel, the trails only in the first scene (an entity stays until replaced).
+  /// kFiguresOnly (a live stream between frames): skyfuse's own channels, without the scene,
+  /// frames and map fixes. The stations go in the first scene and every kStationsEvery scenes
+  /// after it.
+  enum class Detail { kEveryRound, kDisplayFrame, kFiguresOnly };
 
   /// The messages of `round`, in channel order.
   std::vector<ChannelMessage> round_messages(const RoundRecord& round,
@@ -89,7 +90,7 @@ class RunChannels {
   };
   void scene_messages(const RoundView& r, bool with_trails, std::vector<ChannelMessage>& out);
   void figure_messages(const RoundView& r, std::vector<ChannelMessage>& out) const;
-  bool extend_trails(const RoundRecord& round);  ///< true if the round added a point
+  void extend_trails(const RoundRecord& round);
 
   const RunRecorder& recorder_;
   std::uint64_t epoch_ns_;

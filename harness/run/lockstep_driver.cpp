@@ -151,14 +151,14 @@ struct LockstepDriver::Impl {
           (killed == killed_instance.end() || killed->second != s.instance())) {
         ready[s.station_id()] = s.instance();
       }
+      DropCounts dropped{};
+      std::copy(s.dropped().begin(), s.dropped().end(), dropped.begin());
       if ((s.state() == wire::READY && s.step() > 0) || s.state() == wire::FINISHED) {
-        DropCounts dropped{};
-        std::copy(s.dropped().begin(), s.dropped().end(), dropped.begin());
         note_refusals(s.station_id(), s.instance(), s.step(), dropped);
       }
       if (s.state() == wire::FINISHED) {
         NodeCounts& counts = finished[s.station_id()];
-        std::copy(s.dropped().begin(), s.dropped().end(), counts.dropped.begin());
+        counts.dropped = dropped;
         counts.lost = s.lost();
         counts.resyncs = s.resyncs();
         counts.late_used = s.late_used();

@@ -130,10 +130,16 @@ function drawMarker(g, [u, v], e) {
   g.fill();
 }
 
-function drawScene() {
-  const canvas = document.getElementById("scene");
+// A canvas and its 2-D context, cleared for a new drawing.
+function clearedCanvas(id) {
+  const canvas = document.getElementById(id);
   const g = canvas.getContext("2d");
   g.clearRect(0, 0, canvas.width, canvas.height);
+  return [canvas, g];
+}
+
+function drawScene() {
+  const [canvas, g] = clearedCanvas("scene");
   const points = scenePoints();
   if (points.length === 0) return;
   const xs = points.map((p) => p.x);
@@ -171,9 +177,7 @@ function drawScene() {
 const turn = { yaw: -0.6, pitch: 0.45 };
 
 function drawScene3d() {
-  const canvas = document.getElementById("scene3d");
-  const g = canvas.getContext("2d");
-  g.clearRect(0, 0, canvas.width, canvas.height);
+  const [canvas, g] = clearedCanvas("scene3d");
   const points = scenePoints();
   if (points.length === 0) return;
   const mid = ["x", "y", "z"].map((k) => {
@@ -262,9 +266,7 @@ function drawErrors() {
 }
 
 function drawStrip() {
-  const canvas = document.getElementById("strip");
-  const g = canvas.getContext("2d");
-  g.clearRect(0, 0, canvas.width, canvas.height);
+  const [canvas, g] = clearedCanvas("strip");
   const rows = view.strip[0]?.length ?? 0;
   if (rows === 0) return;
   const w = canvas.width / STRIP_ROUNDS;
