@@ -5,7 +5,8 @@
 // terms, the prior's mode probabilities), collected by (station, mode). A station counts as
 // arrived when all its modes have; the round is fused by PeerImm::fuse_round in ascending
 // station id onto the lowest-id arrival's mode priors (tracking/imm_network.hpp). Same interface
-// as SingleModelFusion (single_model_fusion.hpp).
+// as SingleModelFusion (single_model_fusion.hpp), the tree exchange's part included: its sums
+// hold every mode's (tracking/imm_partial_sum.hpp).
 
 #include <cstdint>
 #include <optional>
@@ -30,6 +31,8 @@ class ImmFusion {
  public:
   using Peers = typename NetworkImm<ModeSet>::Peer;
   using Contribution = typename Peers::Contribution;
+  /// The sum the tree adds and fuses.
+  using TreeSum = typename Peers::Sum;
   static constexpr int kModes = Peers::kModes;
   template <int I>
   using ModeSample =
@@ -121,20 +124,58 @@ class ImmFusion {
     contributors_.clear();
     for (std::size_t i = 0; i < assembled_.size(); ++i) {
       if (!complete(i)) continue;
-      Contribution& c = assembled_[i];
-      c.station_id = station_ids()[i];
-      c.prior_probabilities = std::get<0>(collectors_).payloads()[i].prior_probabilities;
-      Peers::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
-        const ModeSample<I>& sample = std::get<I>(collectors_).payloads()[i];
-        std::get<I>(c.modes) = sample.contribution;
-        c.terms[I] = sample.terms;
-      });
-      arrivals_.push_back(&c);
+      arrivals_.push_back(&assemble(i));
       round_weights_.push_back(weights_[i]);
-      contributors_.push_back(c.station_id);
+      contributors_.push_back(station_ids()[i]);
     }
     return peers_.fuse_round(arrivals_, round_weights_);
   }
+
+  // The tree exchange (tree_exchange.hpp).
+
+  /// `out` := the contribution of `station_id` kept for the current round (this station's own,
+  /// once contribute() made it) as a sum of one, unweighted; false if not all its modes are.
+  bool own_sum(int station_id, TreeSum& out) {
+    const auto index = position_of(station_ids(), station_id);
+    if (!index || !complete(*index)) return false;
+    out.assign(assemble(*index));
+    return true;
+  }
+  /// Checks a member's contribution to `step` (`one`: a sum of its modes alone, unweighted),
+  /// which reached its aggregator, and keeps it mode by mode; why not if it did not.
+  std::optional<DropKind> admit_contribution(std::uint64_t step, int station_id, const TreeSum& one,
+                                             const transport::WriterId& writer,
+                                             transport::SourceBinding& sources) {
+    std::optional<DropKind> why = check_mode_probabilities(one.prior_probabilities);
+    Peers::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      const PeerContribution<ModeSample<I>::kDim> mode{std::get<I>(one.sums),
+                                                       std::get<I>(one.references)};
+      if (!why) why = check_contribution(mode);
+      if (!why) why = check_likelihood_terms(one.terms[I], mode.increment);
+    });
+    Peers::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      if (why) return;
+      why = transport::admit(std::get<I>(collectors_), sources, step, station_id, writer,
+                             ModeSample<I>{{std::get<I>(one.sums), std::get<I>(one.references)},
+                                           one.terms[I],
+                                           one.prior_probabilities});
+    });
+    return why;
+  }
+  /// Cluster c's sum of the current round's contributions, every mode's, in ascending id.
+  void sum_cluster(std::size_t c, TreeSum& out) {
+    out.clear();
+    for (const int id : peers_.layout()->members(c)) {
+      const auto index = position_of(station_ids(), id);
+      if (index && complete(*index)) out.add(weights_[*index], assemble(*index));
+    }
+  }
+  /// Fuses the current round's total; arrived() then says whether it counted anyone.
+  RoundFusion fuse_total(const TreeSum& total) {
+    contributors_ = total.contributors;
+    return peers_.fuse_total(total);
+  }
+
   bool arrived() const { return !contributors_.empty(); }
 
   /// The fused track of the round just fused: the mixture's [p; v; a] and the probabilities.
@@ -155,6 +196,18 @@ class ImmFusion {
   }
   bool complete(std::size_t i) const {
     return std::apply([&](const auto&... c) { return (c.filled(i) && ...); }, collectors_);
+  }
+  // Participant i's contribution, rebuilt from its modes' samples (all in: complete(i)).
+  const Contribution& assemble(std::size_t i) {
+    Contribution& c = assembled_[i];
+    c.station_id = station_ids()[i];
+    c.prior_probabilities = std::get<0>(collectors_).payloads()[i].prior_probabilities;
+    Peers::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      const ModeSample<I>& sample = std::get<I>(collectors_).payloads()[i];
+      std::get<I>(c.modes) = sample.contribution;
+      c.terms[I] = sample.terms;
+    });
+    return c;
   }
 
   Peers peers_;

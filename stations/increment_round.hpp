@@ -62,13 +62,20 @@ class IncrementRound {
 
   /// The tree's clusters of this run (none with the flat exchange).
   const std::optional<ClusterLayout>& layout() const { return chain_.round().layout(); }
-  /// The contribution of `station_id` kept for the current round (this station's own, once
-  /// contribute() made it), or null.
-  const Contribution* kept_contribution(int station_id) const {
+  /// The sum the tree adds and fuses.
+  using TreeSum = PartialSum<kDim>;
+  /// `out` := the contribution of `station_id` kept for the current round (this station's own,
+  /// once contribute() made it) as a sum of one, unweighted; false if none is kept.
+  bool own_sum(int station_id, TreeSum& out) const {
     const auto& collector = chain_.collector();
     const auto index = position_of(collector.station_ids(), station_id);
-    if (!index || !collector.filled(*index)) return nullptr;
-    return &collector.payloads()[*index];
+    if (!index || !collector.filled(*index)) return false;
+    const Contribution& own = collector.payloads()[*index];
+    out.clear();
+    out.sum = own.increment;
+    out.contributors.push_back(station_id);
+    out.reference = own.prior;
+    return true;
   }
   /// Cluster c's sum of the current round's contributions.
   void sum_cluster(std::size_t c, PartialSum<kDim>& out) const {

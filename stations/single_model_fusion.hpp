@@ -52,10 +52,12 @@ class SingleModelFusion : public IncrementRound<Model> {
 
   /// Checks a peer's contribution to `step` that came another way than its own sample (a tree
   /// exchange's member to its aggregator) and keeps it; why not if it did not.
+  /// `one`: the contribution as a sum of one (its sender's, unweighted).
   std::optional<DropKind> admit_contribution(std::uint64_t step, int station_id,
-                                             const Contribution& contribution,
+                                             const typename Base::TreeSum& one,
                                              const transport::WriterId& writer,
                                              transport::SourceBinding& sources) {
+    const Contribution contribution{one.sum, one.reference};
     if (const auto why = check_contribution(contribution)) return why;
     return this->keep(step, station_id, writer, sources, contribution);
   }

@@ -28,7 +28,9 @@
 // total), its contributors (inside the cluster, none twice), its numbers; then its round and its
 // writer, as a flat station checks an increment.
 //
-// `Fusion` is the run's filter part's (SingleModelFusion: a filter with an increment rule).
+// `Fusion` is the run's filter part's: SingleModelFusion (a filter with an increment rule),
+// whose sums are one sample each, or ImmFusion, whose sums are one sample per mode
+// (transport/imm_partial_wire.hpp); its TreeSum is the sum it adds and fuses.
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -48,6 +50,7 @@
 #include "skyfuse/tracking/cluster_layout.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/imm_partial_wire.hpp"
 #include "skyfuse/transport/partial_wire.hpp"
 #include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/transport/tree_partitions.hpp"
@@ -66,8 +69,7 @@ class TreeExchange {
  public:
   using Sample = wire::PartialSum;
   using SystemTime = std::chrono::system_clock::time_point;
-  static constexpr int kDim = Fusion::kDim;
-  using Sum = PartialSum<kDim>;
+  using Sum = typename Fusion::TreeSum;
 
   /// What the station's drop counts call a sample.
   static constexpr const char* kInputName = "partial sum";
@@ -165,13 +167,11 @@ class TreeExchange {
     const OwnContribution result =
         fusion_.contribute(k, observation, gate, run_id, [](const auto& /*flat sample*/) {});
     if (aggregating_ || result.status != NumericalStatus::kOk) return result;
-    const auto* own = fusion_.kept_contribution(id_);
-    if (own == nullptr) throw std::logic_error("tree exchange: own contribution not kept");
-    outgoing_.clear();
-    outgoing_.sum = own->increment;  // unweighted: its aggregator weighs it
-    outgoing_.contributors.push_back(id_);
-    outgoing_.reference = own->prior;
-    up_->write(to_wire(outgoing_, header(wire::CONTRIBUTION)));
+    // Unweighted: its aggregator weighs it.
+    if (!fusion_.own_sum(id_, outgoing_)) {
+      throw std::logic_error("tree exchange: own contribution not kept");
+    }
+    transport::write_sum(*up_, outgoing_, header(wire::CONTRIBUTION));
     return result;
   }
 
@@ -227,7 +227,7 @@ class TreeExchange {
       for (std::size_t c = 0; c < clusters(); ++c) {
         if (sums_.filled(c)) total_.add(sums_.payloads()[c].sum);
       }
-      if (members() > 1) totals_out_->write(to_wire(total_, header(wire::ROUND_TOTAL)));
+      if (members() > 1) transport::write_sum(*totals_out_, total_, header(wire::ROUND_TOTAL));
       stage_ = Stage::kDone;
       return fusion_.fuse_total(total_);
     }
@@ -302,7 +302,7 @@ class TreeExchange {
 
   void publish_cluster_sum() {
     fusion_.sum_cluster(cluster_, cluster_sum_.sum);
-    sums_out_->write(to_wire(cluster_sum_.sum, header(wire::CLUSTER_SUM)));
+    transport::write_sum(*sums_out_, cluster_sum_.sum, header(wire::CLUSTER_SUM));
     if (const auto why = sums_.check(step_, static_cast<int>(cluster_))) {
       // A lower id's sum for this cluster came first: it aggregates, and is kept.
       if (*why != DropKind::kDuplicate) throw std::logic_error("own cluster sum out of its round");
@@ -379,11 +379,12 @@ class TreeExchange {
     if (!aggregating_ || sample.cluster() != cluster_ || !in_cluster(cluster_, sender)) {
       return DropKind::kWrongCluster;
     }
-    const auto sum = transport::partial_sum_from_wire<kDim>(sample);
-    if (!sum || sum->contributors.size() != 1) return DropKind::kOutOfRange;
+    std::optional<DropKind> why;
+    const Sum* sum = assembler_.feed(sample, writer, why);
+    if (sum == nullptr) return why;  // refused, or an IMM's sum not complete yet
+    if (sum->contributors.size() != 1) return DropKind::kOutOfRange;
     if (sum->contributors.front() != sender) return DropKind::kWrongCluster;
-    return fusion_.admit_contribution(sample.step(), sender, {sum->sum, sum->reference}, writer,
-                                      contribution_sources_);
+    return fusion_.admit_contribution(sample.step(), sender, *sum, writer, contribution_sources_);
   }
 
   // A cluster's sum, at an aggregator: from a member of that cluster no higher than the one
@@ -395,9 +396,10 @@ class TreeExchange {
     if (!aggregating_ || c >= clusters() || !in_cluster(c, sender) || sender > views_[c]) {
       return DropKind::kWrongCluster;
     }
-    const auto sum = transport::partial_sum_from_wire<kDim>(sample);
-    if (!sum) return DropKind::kOutOfRange;
-    if (const auto why = check_cluster_sum(*sum, layout_, c)) return why;
+    std::optional<DropKind> why;
+    const Sum* sum = assembler_.feed(sample, writer, why);
+    if (sum == nullptr) return why;
+    if (const auto bad = check_cluster_sum(*sum, layout_, c)) return bad;
     // This station's own sums never reach here (the loop skips its writer's): another writer
     // speaks for it. Its round is checked first, as for any sum.
     if (sender == id_)
@@ -415,9 +417,10 @@ class TreeExchange {
         sender > views_[cluster_] || sender == id_) {
       return DropKind::kWrongCluster;
     }
-    const auto total = transport::partial_sum_from_wire<kDim>(sample);
-    if (!total) return DropKind::kOutOfRange;
-    if (const auto why = check_round_total(*total, fusion_.station_ids())) return why;
+    std::optional<DropKind> why;
+    const Sum* total = assembler_.feed(sample, writer, why);
+    if (total == nullptr) return why;
+    if (const auto bad = check_round_total(*total, fusion_.station_ids())) return bad;
     const auto kept =
         keep_lowest(totals_, total_sources_, sample.step(), 0, sender, writer, *total);
     note_lower_aggregator(sender, kept);
@@ -498,9 +501,10 @@ class TreeExchange {
   transport::SourceBinding contribution_sources_;
   Senders sum_sources_;
   Senders total_sources_;
-  Sum outgoing_;         // a member's contribution as a sum of one
-  SentSum cluster_sum_;  // this cluster's sum
-  Sum total_;            // the round's total
+  transport::SumAssembler<Sum> assembler_;  // received samples back into sums
+  Sum outgoing_;                            // a member's contribution as a sum of one
+  SentSum cluster_sum_;                     // this cluster's sum
+  Sum total_;                               // the round's total
   Stage stage_ = Stage::kDone;
   std::uint64_t step_ = 0;
   std::uint64_t run_id_ = 0;

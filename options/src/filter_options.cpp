@@ -24,10 +24,10 @@ void settle_exchange(Scenario& scenario, const NodeOptions& node) {
   }
   if (scenario.exchange.kind != ExchangeConfig::Kind::kTree) return;
   if (!filter->nodes_take_tree) {
-    throw std::invalid_argument(fmt::format(
-        "--exchange tree: the station processes of filter {} exchange flat only so far; the "
-        "in-process `skyfuse sweep` runs the tree for it",
-        filter->kind));
+    throw std::invalid_argument(
+        fmt::format("--exchange tree: the station processes of filter {} exchange flat only; the "
+                    "in-process `skyfuse sweep` runs the tree for it",
+                    filter->kind));
   }
   if (node.refusion_lag != 0) {
     throw std::invalid_argument(

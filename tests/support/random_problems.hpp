@@ -32,6 +32,16 @@ Covariance<N> random_spd(std::mt19937& rng, double lo, double hi) {
   return spd;
 }
 
+/// An N-state estimate: mean entries of spread 100, covariance eigenvalues in [0.01, 50].
+template <int N>
+GaussianState<N> random_state(std::mt19937& rng) {
+  GaussianState<N> s;
+  std::normal_distribution<double> n(0.0, 100.0);
+  for (int i = 0; i < N; ++i) s.mean(i) = n(rng);
+  s.covariance = random_spd<N>(rng, 0.01, 50.0);
+  return s;
+}
+
 /// A 9-state prior whose position lies near `position`.
 inline GaussianState<9> random_prior(std::mt19937& rng, const Vector3& position) {
   GaussianState<9> prior;

@@ -18,14 +18,7 @@
 namespace skyfuse::transport {
 namespace {
 
-template <int N>
-GaussianState<N> random_state(std::mt19937& rng) {
-  GaussianState<N> s;
-  std::normal_distribution<double> n(0.0, 100.0);
-  for (int i = 0; i < N; ++i) s.mean(i) = n(rng);
-  s.covariance = test::random_spd<N>(rng, 0.01, 50.0);
-  return s;
-}
+using test::random_state;
 
 TEST(WireConversion, ARangeAzimuthElevationMeasurementArrivesAsSent) {
   std::mt19937 rng(1);

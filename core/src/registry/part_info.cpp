@@ -38,12 +38,7 @@ std::vector<FilterInfo> describe(FilterList<Filters...> /*list*/) {
       Filters::kKind, Filters::kSummary, Filters::kMotionModel, Filters::kSensor,
       Filters::kOneSensorKind, Filters::kTakesRefusionLag, Filters::kTakesNisGate,
       std::vector<std::string_view>(Filters::kModeNames.begin(), Filters::kModeNames.end()),
-      requires {typename Filters::IncrementRule;
-}
-, Filters::kNeesDof
-}  // namespace
-...
-};  // namespace skyfuse
+      Filters::kNodesTakeTree, Filters::kNeesDof}...};
 }
 
 // Each kind once, in registry order.

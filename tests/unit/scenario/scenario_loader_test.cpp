@@ -333,7 +333,7 @@ TEST(ScenarioLoader, ReadsTheNetworksExchangeAndRefusesWhatCannotRun) {
 }
 
 // No `network.exchange` (or `auto`): the tree from 16 stations where the filter's station
-// processes take it (the EKF, the UKF), flat below and for the others (the IMM); an exchange
+// processes take it (the EKF, the UKF, the IMM), flat below and for the NCRKF; an exchange
 // asked for is kept at any size. A run's plan holds the choice, as every node makes it.
 TEST(ScenarioLoader, AutoChoosesTheTreeFromSixteenStationsWhereTheStationsTakeIt) {
   const Scenario ring = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/ring64.yaml");
@@ -350,10 +350,13 @@ TEST(ScenarioLoader, AutoChoosesTheTreeFromSixteenStationsWhereTheStationsTakeIt
       make_run_plan(ring, {64, 10, {}, 0, ExchangeConfig::Kind::kFlat, {}}).scenario.exchange.kind,
       ExchangeConfig::Kind::kFlat);
 
-  Scenario imm = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper000-imm.yaml");
-  EXPECT_EQ(chosen_exchange(imm, 64), ExchangeConfig::Kind::kFlat);
-  imm.exchange.kind = ExchangeConfig::Kind::kTree;  // in-process, the IMM sums in a tree too
-  EXPECT_EQ(chosen_exchange(imm, 4), ExchangeConfig::Kind::kTree);
+  const Scenario imm = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper000-imm.yaml");
+  EXPECT_EQ(chosen_exchange(imm, 15), ExchangeConfig::Kind::kFlat);
+  EXPECT_EQ(chosen_exchange(imm, 64), ExchangeConfig::Kind::kTree);
+  Scenario ncrkf = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002.yaml");
+  EXPECT_EQ(chosen_exchange(ncrkf, 64), ExchangeConfig::Kind::kFlat);
+  ncrkf.exchange.kind = ExchangeConfig::Kind::kTree;  // in-process, the NCRKF sums in a tree too
+  EXPECT_EQ(chosen_exchange(ncrkf, 4), ExchangeConfig::Kind::kTree);
   EXPECT_EQ(to_string(ExchangeConfig::Kind::kAuto), "auto");
   EXPECT_EQ(parse_exchange_kind("auto"), ExchangeConfig::Kind::kAuto);
 }

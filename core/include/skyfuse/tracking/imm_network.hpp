@@ -35,6 +35,7 @@
 #include "skyfuse/fusion/stacked_likelihood.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
 #include "skyfuse/tracking/cluster_layout.hpp"
+#include "skyfuse/tracking/imm_partial_sum.hpp"
 #include "skyfuse/tracking/peer_contribution.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
@@ -53,18 +54,6 @@ SensorT<M> sensor_for_dimension(const SensorT<N>& sensor) {
   }
 }
 
-/// One station's contribution to a round of a PeerImm: per mode, an increment and the mode's
-/// prior it was computed against, and the likelihood terms; and the mode probabilities of that
-/// prior.
-template <typename... Modes>
-struct ImmContribution {
-  static constexpr int kModes = sizeof...(Modes);
-  int station_id = 0;
-  std::tuple<PeerContribution<Modes::kDim>...> modes;
-  std::array<LikelihoodTerms, kModes> terms{};
-  Vector<kModes> prior_probabilities = Vector<kModes>::Zero();
-};
-
 /// Why `observation` may not update an IMM whose mixture prior is `mixture()`: a value the
 /// sensor cannot report, then the gate against the mixture (computed only with a gate).
 template <typename Common, template <int> class SensorT, int N, typename Mixture>
@@ -82,6 +71,7 @@ class PeerImm {
  public:
   using Filter = Imm<Common, Modes...>;
   using Contribution = ImmContribution<Modes...>;
+  using Sum = ImmPartialSum<Modes...>;
   static constexpr int kModes = sizeof...(Modes);
 
   /// `ids` (ascending) and `fanout` >= 1: the tree exchange's clusters, whose order of
@@ -133,25 +123,34 @@ class PeerImm {
   /// Fuses one round, `contributions` in ascending station id (weights[i] for the i-th), onto
   /// the mode priors and probabilities of the first, which this peer takes as its own if they
   /// differ. On failure nothing changes and nothing counts as resynchronised. An empty round
-  /// fuses nothing.
+  /// fuses nothing. With the tree's clusters, the round is summed as the tree sums it
+  /// (fusion/partial_sum.hpp): each cluster's contributions from zero, the clusters' sums in
+  /// cluster order, the total fused by fuse_total().
   RoundFusion fuse_round(std::span<const Contribution* const> contributions,
                          std::span<const double> weights) {
     if (contributions.empty()) return {};
+    if (layout_) {
+      total_.clear();
+      cluster_.clear();
+      std::size_t current = layout_->cluster_of_id(contributions.front()->station_id);
+      for (std::size_t i = 0; i < contributions.size(); ++i) {
+        const std::size_t c = layout_->cluster_of_id(contributions[i]->station_id);
+        if (c != current) {
+          total_.add(cluster_);
+          cluster_.clear();
+          current = c;
+        }
+        cluster_.add(weights[i], *contributions[i]);
+      }
+      total_.add(cluster_);
+      return fuse_total(total_);
+    }
     const Contribution& reference = *contributions.front();
-    bool differs = reference.prior_probabilities != imm_.mode_probabilities();
     typename Filter::ModeStates priors;
     for_each_mode([&]<int I>(std::integral_constant<int, I>) {
-      const auto& prior = std::get<I>(reference.modes).prior;
-      const auto& own = imm_.template mode_state<I>();
-      differs = differs || prior.mean != own.mean || prior.covariance != own.covariance;
-      std::get<I>(priors) = prior;
+      std::get<I>(priors) = std::get<I>(reference.modes).prior;
     });
-    std::optional<Filter> before;
-    if (differs) {
-      before = imm_;
-      imm_.restore(priors, reference.prior_probabilities);
-    }
-    const NumericalStatus status = imm_.update_with([&](auto mode, auto& state) {
+    return fuse_onto(priors, reference.prior_probabilities, [&](auto mode, auto& state, int& dim) {
       constexpr int I = decltype(mode)::value;
       // Mode I's increments and terms where they lie in the contributions: nothing is copied.
       const ProjectedView increments(
@@ -160,55 +159,61 @@ class PeerImm {
       const ProjectedView terms(contributions, [](const Contribution& c) -> const LikelihoodTerms& {
         return c.terms[I];
       });
+      return fuse_increments_with_likelihood(state, increments, terms, weights, state, dim);
+    });
+  }
+
+  /// Fuses a round's total (the tree exchange's) onto its reference, as fuse_round() does a
+  /// round: every mode's summed increment and terms with weight 1, which changes no bit of
+  /// them. An empty total fuses nothing.
+  RoundFusion fuse_total(const Sum& total) {
+    if (total.empty()) return {};
+    return fuse_onto(
+        total.references, total.prior_probabilities, [&](auto mode, auto& state, int& dim) {
+          constexpr int I = decltype(mode)::value;
+          constexpr double kOne = 1.0;
+          return fuse_increments_with_likelihood(state, std::span(&std::get<I>(total.sums), 1),
+                                                 std::span(&total.terms[I], 1), std::span(&kOne, 1),
+                                                 state, dim);
+        });
+  }
+
+  /// The tree exchange's clusters, if this peer sums by them.
+  const std::optional<ClusterLayout>& layout() const { return layout_; }
+
+  const Filter& filter() const { return imm_; }
+
+ private:
+  // Takes `priors` and `probabilities` as this peer's own if they differ from them, then every
+  // mode's update by fuse_mode(mode, state, measurement_dim) -> UpdateReport; on failure the
+  // peer is as before.
+  template <typename FuseMode>
+  RoundFusion fuse_onto(const typename Filter::ModeStates& priors,
+                        const Vector<kModes>& probabilities, FuseMode fuse_mode) {
+    bool differs = probabilities != imm_.mode_probabilities();
+    for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      const auto& prior = std::get<I>(priors);
+      const auto& own = imm_.template mode_state<I>();
+      differs = differs || prior.mean != own.mean || prior.covariance != own.covariance;
+    });
+    std::optional<Filter> before;
+    if (differs) {
+      before = imm_;
+      imm_.restore(priors, probabilities);
+    }
+    const NumericalStatus status = imm_.update_with([&](auto mode, auto& state) {
       int measurement_dim = 0;
-      const UpdateReport report =
-          layout_ ? fuse_mode_by_clusters(state, increments, terms, weights, measurement_dim)
-                  : fuse_increments_with_likelihood(state, increments, terms, weights, state,
-                                                    measurement_dim);
+      const UpdateReport report = fuse_mode(mode, state, measurement_dim);
       return ModeUpdate{report.status, report.log_likelihood(measurement_dim)};
     });
     if (status != NumericalStatus::kOk && before) imm_ = *before;
     return {status, differs && status == NumericalStatus::kOk};
   }
 
-  const Filter& filter() const { return imm_; }
-
- private:
-  // One mode's round in the tree exchange's order (fusion/partial_sum.hpp): each cluster's
-  // weighted increments and terms summed from zero, the clusters' sums added in cluster order,
-  // and the total fused with weight 1 (which changes no bit of it). Fixed-size sums only: no
-  // allocation, and no prior copied (the mode's prior is the reference).
-  template <int N, typename Increments, typename Terms>
-  UpdateReport fuse_mode_by_clusters(GaussianState<N>& state, const Increments& increments,
-                                     const Terms& terms, std::span<const double> weights,
-                                     int& measurement_dim) const {
-    InformationIncrement<N> total;
-    InformationIncrement<N> cluster;
-    LikelihoodTerms total_terms;
-    LikelihoodTerms cluster_terms;
-    std::size_t current = 0;
-    for (std::size_t i = 0; i < increments.size(); ++i) {
-      const std::size_t c = layout_->cluster_of_id(increments[i].station_id);
-      if (i == 0) total.station_id = increments[i].station_id;
-      if (i > 0 && c != current) {
-        add_increment_sum(total, cluster);
-        add_terms(total_terms, cluster_terms);
-        cluster.set_zero(0);
-        cluster_terms = {};
-      }
-      current = c;
-      add_weighted_increment(cluster, weights[i], increments[i]);
-      add_weighted_terms(cluster_terms, terms[i], weights[i]);
-    }
-    add_increment_sum(total, cluster);
-    add_terms(total_terms, cluster_terms);
-    constexpr double kOne = 1.0;
-    return fuse_increments_with_likelihood(state, std::span(&total, 1), std::span(&total_terms, 1),
-                                           std::span(&kOne, 1), state, measurement_dim);
-  }
-
   Filter imm_;
   std::optional<ClusterLayout> layout_;
+  Sum cluster_;  // fuse_round()'s sums in the tree's order, kept to reuse their storage
+  Sum total_;
 };
 
 template <typename Common, typename... Modes>

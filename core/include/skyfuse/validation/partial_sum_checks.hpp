@@ -5,14 +5,17 @@
 /// Nothing may be counted twice and nothing forged: the contributors strictly ascending (no
 /// station twice), every one a member of the cluster the sum claims (wrong_cluster), none already
 /// counted in the sums a receiver holds (overlap); the sum itself as an increment (finite,
-/// bounded, positive semi-definite, since a sum of such is such) and its reference as a prior.
+/// bounded, positive semi-definite, since a sum of such is such) and its reference as a prior;
+/// an IMM's sum so mode by mode, with its summed likelihood terms and mode probabilities.
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <span>
 
 #include "skyfuse/fusion/partial_sum.hpp"
 #include "skyfuse/tracking/cluster_layout.hpp"
+#include "skyfuse/tracking/imm_partial_sum.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 
 namespace skyfuse {
@@ -55,10 +58,54 @@ std::optional<DropKind> check_sum_values(const PartialSum<N>& sum) {
   return check_estimate(sum.reference);
 }
 
+/// The summed likelihood terms of `contributors` stations: as check_likelihood_terms() says of
+/// one station's, with the bounds of that many (a sum of screened-out stations' is all zero).
+template <int N>
+std::optional<DropKind> check_summed_terms(const LikelihoodTerms& terms,
+                                           const InformationIncrement<N>& sum,
+                                           std::size_t contributors) {
+  constexpr int kMaxMeasurementDim = 16;
+  constexpr double kMaxLogDetNoise = 2.0e3;  // a station's bound, with room for its weight
+  if (!std::isfinite(terms.weighted_innovation) || !std::isfinite(terms.log_det_noise)) {
+    return DropKind::kNonFinite;
+  }
+  const auto n = static_cast<double>(contributors);
+  if (terms.measurement_dim == 0) {
+    const bool all_zero = terms.weighted_innovation == 0.0 && terms.log_det_noise == 0.0 &&
+                          sum.delta_information.isZero(0.0) && sum.delta_vector.isZero(0.0);
+    return all_zero ? std::nullopt : std::optional(DropKind::kOutOfRange);
+  }
+  if (terms.weighted_innovation < 0.0 || terms.measurement_dim < 0 ||
+      terms.measurement_dim > kMaxMeasurementDim * static_cast<int>(contributors) ||
+      std::abs(terms.log_det_noise) > kMaxLogDetNoise * n) {
+    return DropKind::kOutOfRange;
+  }
+  return std::nullopt;
+}
+
+/// The numbers of an IMM's sum: each mode's as check_sum_values() says of one model's, its
+/// summed likelihood terms, and the reference's mode probabilities.
+template <typename... Modes>
+std::optional<DropKind> check_sum_values(const ImmPartialSum<Modes...>& sum) {
+  std::optional<DropKind> why;
+  ImmPartialSum<Modes...>::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+    if (why) return;
+    constexpr int N = std::tuple_element_t<I, std::tuple<Modes...>>::kDim;
+    PartialSum<N> mode;
+    mode.sum = std::get<I>(sum.sums);
+    mode.contributors = sum.contributors;
+    mode.reference = std::get<I>(sum.references);
+    why = check_sum_values(mode);
+    if (!why) why = check_summed_terms(sum.terms[I], mode.sum, sum.contributors.size());
+  });
+  if (!why && !sum.empty()) why = check_mode_probabilities(sum.prior_probabilities);
+  return why;
+}
+
 /// Cluster `cluster`'s sum as its aggregator sends it: contributors inside the cluster, then
 /// its numbers.
-template <int N>
-std::optional<DropKind> check_cluster_sum(const PartialSum<N>& sum, const ClusterLayout& layout,
+template <typename Sum>
+std::optional<DropKind> check_cluster_sum(const Sum& sum, const ClusterLayout& layout,
                                           std::size_t cluster) {
   if (cluster >= layout.clusters()) return DropKind::kWrongCluster;
   if (const auto why = check_contributor_set(sum.contributors, layout.members(cluster))) {
@@ -68,9 +115,8 @@ std::optional<DropKind> check_cluster_sum(const PartialSum<N>& sum, const Cluste
 }
 
 /// A round's total: contributors among the run's `participants` (ascending), then its numbers.
-template <int N>
-std::optional<DropKind> check_round_total(const PartialSum<N>& total,
-                                          std::span<const int> participants) {
+template <typename Sum>
+std::optional<DropKind> check_round_total(const Sum& total, std::span<const int> participants) {
   if (const auto why = check_contributor_set(total.contributors, participants)) return why;
   return check_sum_values(total);
 }

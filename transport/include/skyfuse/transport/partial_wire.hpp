@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "skyfuse/fusion/partial_sum.hpp"
+#include "skyfuse/transport/node_config.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::transport {
 
@@ -65,5 +67,41 @@ std::optional<PartialSum<N>> partial_sum_from_wire(const wire::PartialSum& sampl
   sum.reference.covariance = *p;
   return sum;
 }
+
+/// Writes `sum` as the samples that carry it: one for a single model's (an IMM's:
+/// imm_partial_wire.hpp).
+template <int N, typename Writer>
+void write_sum(Writer& writer, const PartialSum<N>& sum, const SumHeader& header) {
+  writer.write(to_wire(sum, header));
+}
+
+/// Turns received samples back into sums (the tree exchange's input). A single model's sum
+/// is one sample: the sum it carries, or why not - not this dimension's, or with an IMM's
+/// fields.
+template <typename Sum>
+class SumAssembler;
+template <int N>
+class SumAssembler<PartialSum<N>> {
+ public:
+  /// The sum complete with `sample`, or null: `why` then says why it was refused (an IMM's
+  /// assembler also answers null without a reason while a sum is still incomplete).
+  const PartialSum<N>* feed(const wire::PartialSum& sample, const WriterId& /*writer*/,
+                            std::optional<DropKind>& why) {
+    why.reset();
+    const bool single_model = sample.mode() == 0 && sample.prior_mode_probabilities().empty() &&
+                              sample.weighted_innovation() == 0.0 &&
+                              sample.log_det_noise() == 0.0 && sample.measurement_dim() == 0;
+    auto sum = single_model ? partial_sum_from_wire<N>(sample) : std::nullopt;
+    if (!sum) {
+      why = DropKind::kOutOfRange;
+      return nullptr;
+    }
+    sum_ = std::move(*sum);
+    return &sum_;
+  }
+
+ private:
+  PartialSum<N> sum_;
+};
 
 }  // namespace skyfuse::transport

@@ -24,6 +24,8 @@ struct EkfFilterPart {
   static constexpr bool kTakesNisGate = true;
   static constexpr std::array<std::string_view, 0> kModeNames = {};
   static constexpr int kNeesDof = 0;  // the model's state
+  // Its station processes run the tree exchange (stations/tree_exchange.hpp).
+  static constexpr bool kNodesTakeTree = true;
   /// A station's increment. (The center stacks the raw measurements instead: its own line in
   /// fusion_center/central_fusion.hpp and core/src/sim/run_steppers.hpp.)
   using IncrementRule = EkfIncrementRule;

@@ -30,6 +30,8 @@ struct ImmFilterPart {
   static constexpr bool kTakesNisGate = true;
   static constexpr auto kModeNames = Modes::kNames;
   static constexpr int kNeesDof = 6;
+  // Its station processes run the tree exchange, every mode summed (tracking/imm_partial_sum.hpp).
+  static constexpr bool kNodesTakeTree = true;
 };
 
 }  // namespace skyfuse

@@ -31,6 +31,8 @@ struct UkfFilterPart {
   static constexpr bool kTakesNisGate = true;
   static constexpr std::array<std::string_view, 0> kModeNames = {};
   static constexpr int kNeesDof = 0;
+  // Its station processes run the tree exchange (stations/tree_exchange.hpp).
+  static constexpr bool kNodesTakeTree = true;
   using IncrementRule = UnscentedIncrementRule;
 };
 
