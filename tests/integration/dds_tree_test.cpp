@@ -20,15 +20,21 @@ using namespace std::chrono_literals;
 // A tree run of `scenario` (`stations` in clusters of `fanout`) over DDS: every peer holds the
 // same bits, each one the in-process run's with the tree's order of summation (not the flat
 // exchange's), central and peer-to-peer within 1e-9 m, nothing refused, no round incomplete.
-// Its summary.json.
+// Its summary.json. `extra`: more arguments for `skyfuse run`.
 nlohmann::json expect_tree_run_equals_twin(const std::string& scenario, int stations, int steps,
-                                           int fanout, int domain) {
+                                           int fanout, int domain,
+                                           const std::vector<std::string>& extra = {}) {
   const auto dir = test_dir();
-  const Completed run = run_to_completion(
-      {bin("skyfuse"), "run", "--scenario", scenario, "--stations", std::to_string(stations),
-       "--steps", std::to_string(steps), "--exchange", "tree", "--fanout", std::to_string(fanout),
-       "--domain", std::to_string(domain), "--out", (dir / "out").string()},
-      (dir / "out.log").string(), 180s);
+  std::vector<std::string> args = {bin("skyfuse"), "run",
+                                   "--scenario",   scenario,
+                                   "--stations",   std::to_string(stations),
+                                   "--steps",      std::to_string(steps),
+                                   "--exchange",   "tree",
+                                   "--fanout",     std::to_string(fanout),
+                                   "--domain",     std::to_string(domain),
+                                   "--out",        (dir / "out").string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const Completed run = run_to_completion(args, (dir / "out.log").string(), 180s);
   EXPECT_TRUE(run.status.exited && run.status.code == 0) << run.output;
   if (!run.status.exited || run.status.code != 0) return {};
 
@@ -72,6 +78,57 @@ TEST(DdsTree, AnImmsModesAreSummedByTheTreeAsTheInProcessRunSumsThem) {
   if (HasFailure()) return;
   EXPECT_EQ(summary.at("filter"), "imm");
   EXPECT_LT(summary.at("max_abs_diff_mode_probability_central_vs_p2p").get<double>(), 1e-9);
+}
+
+// Delayed links (2 +- 1 ms on every sample, three hops a round) change when samples come, not
+// what is summed: the in-process tree's bits.
+TEST(DdsTree, DelayedLinksLeaveEveryPeerWithTheInProcessTreesBits) {
+  expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 8, 100, 4, 217,
+                              {"--link-delay-ms", "2", "--link-jitter-ms", "1"});
+}
+
+// 5 % of the samples lost on every link for 100 rounds: a member whose total was lost fuses its
+// own contribution alone and an aggregator that lost a cluster's sum fuses the rest, so peers
+// disagree during the loss; each round is fused onto its total's reference, so they hold the
+// same bits again once a round is whole, and no lost total is taken for a dead aggregator
+// (no cluster taken over: nothing refused as wrong_cluster).
+TEST(DdsTree, PeersThatLostSumsAgreeAgainAfterTheLossWithoutTakingClustersOver) {
+  constexpr int kSteps = 300;
+  const auto dir = test_dir();
+  const Completed run = run_to_completion({bin("skyfuse"),
+                                           "run",
+                                           "--scenario",
+                                           bin("scenarios/ring64.yaml"),
+                                           "--stations",
+                                           "8",
+                                           "--steps",
+                                           std::to_string(kSteps),
+                                           "--exchange",
+                                           "tree",
+                                           "--fanout",
+                                           "4",
+                                           "--loss",
+                                           "0.05",
+                                           "--loss-steps",
+                                           "100:200",
+                                           "--round-deadline-ms",
+                                           "50",
+                                           "--domain",
+                                           "218",
+                                           "--out",
+                                           (dir / "out").string()},
+                                          (dir / "out.log").string(), 180s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_GT(summary.at("max_abs_diff_between_peers").get<double>(), 0.0)
+      << "peers that lost different samples cannot agree during the loss";
+  EXPECT_EQ(summary.at("dropped_by_kind").at("wrong_cluster").get<int>(), 0);
+  const auto spread = steps_column(dir / "out" / "steps.csv", "peer_spread");
+  const auto apart = steps_column(dir / "out" / "steps.csv", "central_minus_p2p_m");
+  ASSERT_EQ(spread.size(), static_cast<std::size_t>(kSteps));
+  for (int k = 201; k < kSteps; ++k) EXPECT_EQ(spread[k], 0.0) << "step " << k;
+  // The center lost other measurements than the peers: they drift together again slowly.
+  for (int k = 250; k < kSteps; ++k) EXPECT_LT(apart[k], 1e-4) << "step " << k;
 }
 
 // Cluster 0's aggregator (station 1) killed before round 100 and started again before round

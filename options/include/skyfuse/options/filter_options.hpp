@@ -11,7 +11,9 @@ namespace skyfuse::options {
 
 /// Settles the run's exchange and checks what the filter takes: the tree that `auto` chose by
 /// size goes back to flat for a run with simulated loss, link delay or a re-fusion lag (the
-/// tree does not keep its guarantees through them yet: docs/performance.md). Then throws
+/// tree keeps its guarantees through loss and delay, but flat peers stay closer under loss and
+/// flat rounds are faster over delayed links, one hop instead of three; the tree takes no lag:
+/// docs/performance.md#the-default-exchange). Then throws
 /// std::invalid_argument, naming the option and the filter, for a re-fusion lag or a NIS gate
 /// that the scenario's filter does not take, and for an exchange the nodes do not run. The
 /// harness and every node call it on their plans alike.
