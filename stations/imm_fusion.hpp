@@ -170,8 +170,10 @@ class ImmFusion {
       if (index && complete(*index)) out.add(weights_[*index], assemble(*index));
     }
   }
-  /// Fuses the current round's total; arrived() then says whether it counted anyone.
-  RoundFusion fuse_total(const TreeSum& total) {
+  /// Fuses the current round's total; arrived() then says whether it counted anyone. Refuses
+  /// nothing (on_refused is never called): every sum was checked on arrival.
+  template <typename OnRefused>
+  RoundFusion fuse_total(const TreeSum& total, OnRefused /*on_refused*/) {
     contributors_ = total.contributors;
     return peers_.fuse_total(total);
   }

@@ -81,8 +81,12 @@ class IncrementRound {
   void sum_cluster(std::size_t c, PartialSum<kDim>& out) const {
     chain_.sum_cluster_current(c, out);
   }
-  /// Fuses the current round's total; arrived() then says whether it counted anyone.
-  RoundFusion fuse_total(const PartialSum<kDim>& total) { return chain_.fuse_total_current(total); }
+  /// Fuses the current round's total; arrived() then says whether it counted anyone. Refuses
+  /// nothing (on_refused is never called): every sum was checked on arrival.
+  template <typename OnRefused>
+  RoundFusion fuse_total(const PartialSum<kDim>& total, OnRefused /*on_refused*/) {
+    return chain_.fuse_total_current(total);
+  }
 
  protected:
   /// Writes this station's own contribution (write(sample)) and keeps it for round k.

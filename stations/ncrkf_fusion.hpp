@@ -16,6 +16,7 @@
 #include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
+#include "skyfuse/tracking/tdoa_partial_sum.hpp"
 #include "skyfuse/tracking/tdoa_round.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 
@@ -68,6 +69,40 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
       if (sender && !why) why = check_estimate(contribution.prior);
       return why;
     });
+  }
+
+  // The tree exchange (tree_exchange.hpp): sums of all increments and of the definite ones.
+
+  /// The sum the tree adds and fuses.
+  using TreeSum = TdoaPartialSum<kDim>;
+  /// `out` := this station's kept contribution as a sum of one, unweighted, with its fallback;
+  /// false if none is kept.
+  bool own_sum(int station_id, TreeSum& out) const {
+    if (!IncrementRound::own_sum(station_id, out)) return false;
+    out.set_definite_of_one();
+    return true;
+  }
+  /// Checks a member's contribution to `step` (`one`: its increment as a sum of one) against
+  /// its sender's noise, as admit() does a sample, and keeps it; why not if it did not.
+  std::optional<DropKind> admit_contribution(std::uint64_t step, int station_id, const TreeSum& one,
+                                             const transport::WriterId& writer,
+                                             transport::SourceBinding& sources) {
+    const auto sender = position_of(station_ids(), station_id);
+    if (!sender) return DropKind::kUnknownStation;
+    std::optional<DropKind> why = check_tdoa_increment(one.sum, sigmas_[*sender]);
+    if (!why) why = check_estimate(one.reference);
+    if (why) return why;
+    return keep(step, station_id, writer, sources, Contribution{one.sum, one.reference});
+  }
+  /// Cluster c's sums of the current round's contributions.
+  void sum_cluster(std::size_t c, TreeSum& out) const { chain_.sum_cluster_current(c, out); }
+  /// Fuses the current round's total of all by the TDOA round rule: if its information is not
+  /// positive definite, the total of the definite ones, on_refused(station_id, kNotPositive)
+  /// named for each of the others. arrived() then says whether it counted anyone.
+  template <typename OnRefused>
+  RoundFusion fuse_total(const TreeSum& total, OnRefused on_refused) {
+    return fuse_tdoa_total(chain_.round(), chain_.tracker(), total,
+                           [&](int id) { on_refused(id, DropKind::kNotPositive); });
   }
 
   /// Fuses what arrived by the TDOA round rule; on_refused(station_id, kNotPositive) for each

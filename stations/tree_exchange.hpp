@@ -29,8 +29,10 @@
 // writer, as a flat station checks an increment.
 //
 // `Fusion` is the run's filter part's: SingleModelFusion (a filter with an increment rule),
-// whose sums are one sample each, or ImmFusion, whose sums are one sample per mode
-// (transport/imm_partial_wire.hpp); its TreeSum is the sum it adds and fuses.
+// whose sums are one sample each; ImmFusion, whose sums are one sample per mode
+// (transport/imm_partial_wire.hpp); or NcrkfFusion, whose sums are two, of all increments and
+// of the definite ones (transport/tdoa_partial_wire.hpp). Its TreeSum is the sum it adds and
+// fuses.
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -53,6 +55,7 @@
 #include "skyfuse/transport/imm_partial_wire.hpp"
 #include "skyfuse/transport/partial_wire.hpp"
 #include "skyfuse/transport/source_binding.hpp"
+#include "skyfuse/transport/tdoa_partial_wire.hpp"
 #include "skyfuse/transport/tree_partitions.hpp"
 #include "skyfuse/validation/partial_sum_checks.hpp"
 
@@ -219,8 +222,10 @@ class TreeExchange {
 
   /// An aggregator: the clusters' sums in cluster order into the total, sent to its members and
   /// fused. A member: the total it received, or its own contribution alone.
+  /// on_refused(station_id, why): a contribution the round's fusion refuses (the NCRKF's
+  /// indefinite increments); every sum was checked on arrival.
   template <typename OnRefused>
-  RoundFusion fuse(OnRefused /*on_refused: every sum was checked on arrival*/) {
+  RoundFusion fuse(OnRefused on_refused) {
     if (aggregating_) {
       if (stage_ == Stage::kCollecting) publish_cluster_sum();  // the round ended early
       total_.clear();
@@ -229,11 +234,11 @@ class TreeExchange {
       }
       if (members() > 1) transport::write_sum(*totals_out_, total_, header(wire::ROUND_TOTAL));
       stage_ = Stage::kDone;
-      return fusion_.fuse_total(total_);
+      return fusion_.fuse_total(total_, on_refused);
     }
-    if (totals_.count() == 1) return fusion_.fuse_total(totals_.payloads().front().sum);
+    if (totals_.count() == 1) return fusion_.fuse_total(totals_.payloads().front().sum, on_refused);
     fusion_.sum_cluster(cluster_, cluster_sum_.sum);  // this member's own contribution, if any
-    return fusion_.fuse_total(cluster_sum_.sum);
+    return fusion_.fuse_total(cluster_sum_.sum, on_refused);
   }
 
   /// Closes the round: who aggregates each cluster from the next round on, as this round

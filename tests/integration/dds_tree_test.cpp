@@ -80,6 +80,14 @@ TEST(DdsTree, AnImmsModesAreSummedByTheTreeAsTheInProcessRunSumsThem) {
   EXPECT_LT(summary.at("max_abs_diff_mode_probability_central_vs_p2p").get<double>(), 1e-9);
 }
 
+// Paper 002's NCRKF over the tree (its three TDOA receivers in clusters of 2): each sum carries
+// its fallback without the indefinite increments; every peer and the center hold the same bits.
+TEST(DdsTree, TheNcrkfsSumsAndTheirFallbackGiveTheInProcessTreesBits) {
+  const auto summary = expect_tree_run_equals_twin(bin("scenarios/paper002.yaml"), 3, 2000, 2, 219);
+  if (HasFailure()) return;
+  EXPECT_EQ(summary.at("max_abs_diff_central_vs_p2p").get<double>(), 0.0);
+}
+
 // Delayed links (2 +- 1 ms on every sample, three hops a round) change when samples come, not
 // what is summed: the in-process tree's bits.
 TEST(DdsTree, DelayedLinksLeaveEveryPeerWithTheInProcessTreesBits) {

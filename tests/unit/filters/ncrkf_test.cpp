@@ -1,6 +1,7 @@
 // The NCRKF in information form against its Eq 11, its refusal of an update whose fused
 // information is not positive definite, what a received TDOA increment must be, and the round
-// rule that fuses a round without its indefinite increments when it must.
+// rule that fuses a round without its indefinite increments when it must, in the flat and the
+// tree exchange's orders.
 #include "skyfuse/filters/ncrkf.hpp"
 
 #include <gtest/gtest.h>
@@ -9,6 +10,7 @@
 #include <cmath>
 
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
+#include "skyfuse/tracking/tdoa_partial_sum.hpp"
 #include "skyfuse/tracking/tdoa_round.hpp"
 
 namespace skyfuse {
@@ -179,6 +181,75 @@ TEST(TdoaRound, ARoundThatIsNotPositiveDefiniteIsFusedAgainWithoutItsIndefiniteI
             NumericalStatus::kOk);
   EXPECT_TRUE(refused.empty());
   EXPECT_EQ(round.contributors().size(), 2U);
+}
+
+// The tree exchange's sums (stations 1-4 in clusters of 2, station 2's increment indefinite)
+// give a peer the bits the in-process tree gives from the slots, the fallback included: the
+// round is not positive definite, and both fuse it without station 2.
+TEST(TdoaRound, TheTreesSumsAndTheirFallbackGiveTheBitsOfTheRoundsSlots) {
+  const TdoaRelativeMotion model(0.002, {0.1});
+  GaussianState<9> start = prior();
+  start.covariance(2, 2) = 1e12;  // cannot absorb -W
+  const auto indefinite =
+      tdoa_increment(2, pseudo_linear_tdoa_row(Vector<2>(200.0, 0.0), 0.1, 0.1, 0.4),
+                     BiasCompensation::kCompensated);
+  std::vector<InformationIncrement<9>> increments(4);
+  for (int i : {0, 2, 3}) {
+    increments[i].station_id = i + 1;
+    increments[i].delta_information(i % 2, i % 2) = 1.5 + i;
+    increments[i].delta_vector(i % 2) = (1.5 + i) * 1801.0;
+  }
+  increments[1] = indefinite;
+  const std::vector<int> ids = {1, 2, 3, 4};
+  const std::vector<double> weights = {1.0, 0.5, 0.75, 1.0};
+  const auto slot_at = [&](std::size_t i) { return PeerSlot<9>{&increments[i], &start}; };
+
+  PeerTracker<TdoaRelativeMotion> twin(model, start);
+  PeerRound<TdoaRelativeMotion> twin_round(ids, weights, 2);
+  std::vector<int> twin_refused;
+  ASSERT_EQ(fuse_tdoa_round(twin_round, twin, ids.size(), slot_at,
+                            [&](std::size_t i) { twin_refused.push_back(ids[i]); })
+                .status,
+            NumericalStatus::kOk);
+  ASSERT_EQ(twin_refused, std::vector<int>{2});
+
+  // The aggregators' sums, added in cluster order, and the total fused.
+  PeerTracker<TdoaRelativeMotion> peer(model, start);
+  PeerRound<TdoaRelativeMotion> peer_round(ids, weights, 2);
+  TdoaPartialSum<9> cluster;
+  TdoaPartialSum<9> total;
+  total.clear();
+  for (std::size_t c = 0; c < 2; ++c) {
+    peer_round.sum_cluster(c, slot_at, cluster);
+    EXPECT_EQ(check_sum_values(cluster), std::nullopt) << "cluster " << c;
+    total.add(cluster);
+  }
+  EXPECT_EQ(total.contributors, ids);
+  EXPECT_EQ(total.definite.contributors, (std::vector<int>{1, 3, 4}));
+  std::vector<int> refused;
+  ASSERT_EQ(fuse_tdoa_total(peer_round, peer, total, [&](int id) { refused.push_back(id); }).status,
+            NumericalStatus::kOk);
+  EXPECT_EQ(refused, twin_refused);
+  EXPECT_EQ(peer.estimate().mean, twin.estimate().mean);
+  EXPECT_EQ(peer.estimate().covariance, twin.estimate().covariance);
+  EXPECT_EQ(std::vector<int>(peer_round.contributors().begin(), peer_round.contributors().end()),
+            (std::vector<int>{1, 3, 4}));
+
+  // What a receiver refuses of such a sum: a fallback with a station the sum has not, or on
+  // another reference than its first contributor's.
+  TdoaPartialSum<9> forged = total;
+  forged.definite.contributors = {1, 3, 5};
+  EXPECT_EQ(check_sum_values(forged), DropKind::kOutOfRange);
+  forged = total;
+  forged.definite.reference.mean(0) += 1.0;
+  EXPECT_EQ(check_sum_values(forged), DropKind::kOutOfRange);
+  forged = total;
+  forged.definite.sum = indefinite;
+  forged.definite.sum.station_id = 1;
+  EXPECT_EQ(check_sum_values(forged), DropKind::kNotPositive) << "an indefinite fallback";
+  forged = total;
+  forged.sum.delta_information(8, 8) = 1.0;
+  EXPECT_EQ(check_sum_values(forged), DropKind::kOutOfRange) << "outside [dx, dy, d_t1]";
 }
 
 }  // namespace

@@ -333,7 +333,7 @@ TEST(ScenarioLoader, ReadsTheNetworksExchangeAndRefusesWhatCannotRun) {
 }
 
 // No `network.exchange` (or `auto`): the tree from 16 stations where the filter's station
-// processes take it (the EKF, the UKF, the IMM), flat below and for the NCRKF; an exchange
+// processes take it (every registered filter's), flat below; an exchange
 // asked for is kept at any size. A run's plan holds the choice, as every node makes it.
 TEST(ScenarioLoader, AutoChoosesTheTreeFromSixteenStationsWhereTheStationsTakeIt) {
   const Scenario ring = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/ring64.yaml");
@@ -353,10 +353,8 @@ TEST(ScenarioLoader, AutoChoosesTheTreeFromSixteenStationsWhereTheStationsTakeIt
   const Scenario imm = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper000-imm.yaml");
   EXPECT_EQ(chosen_exchange(imm, 15), ExchangeConfig::Kind::kFlat);
   EXPECT_EQ(chosen_exchange(imm, 64), ExchangeConfig::Kind::kTree);
-  Scenario ncrkf = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002.yaml");
-  EXPECT_EQ(chosen_exchange(ncrkf, 64), ExchangeConfig::Kind::kFlat);
-  ncrkf.exchange.kind = ExchangeConfig::Kind::kTree;  // in-process, the NCRKF sums in a tree too
-  EXPECT_EQ(chosen_exchange(ncrkf, 4), ExchangeConfig::Kind::kTree);
+  const Scenario ncrkf = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002.yaml");
+  EXPECT_EQ(chosen_exchange(ncrkf, 64), ExchangeConfig::Kind::kTree);
   EXPECT_EQ(to_string(ExchangeConfig::Kind::kAuto), "auto");
   EXPECT_EQ(parse_exchange_kind("auto"), ExchangeConfig::Kind::kAuto);
 }

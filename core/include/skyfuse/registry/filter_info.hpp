@@ -30,9 +30,9 @@ struct FilterInfo {
   /// Its modes, in the order of every probability vector it reports; empty: one model. A
   /// scenario configures the modes under `filter.imm` only for a filter that has them.
   std::vector<std::string_view> mode_names;
-  /// Whether its station processes run the tree exchange (`network: {exchange: tree}`): the
-  /// EKF's, the UKF's and the IMM's do; the NCRKF's exchange flat only (the in-process sweep
-  /// runs the tree for every filter).
+  /// Whether its station processes run the tree exchange (`network: {exchange: tree}`): those of
+  /// every registered filter do; a new filter's only once its fusion sums partial sums
+  /// (stations/tree_exchange.hpp). The in-process sweep runs the tree for every filter.
   bool nodes_take_tree = false;
   /// Degrees of freedom of its NEES: the leading state entries every estimate of it shares
   /// (0: the motion model's whole state).

@@ -96,7 +96,9 @@ class FixedLagPeer {
   }
   /// The tree exchange (no lag): cluster c's sum of the current round's contributions, each
   /// with its own prior (PeerRound::sum_cluster): what the cluster's aggregator publishes.
-  void sum_cluster_current(std::size_t c, PartialSum<kDim>& out) const {
+  /// `Sum`: a PartialSum<kDim>, or one that adds more per station (TdoaPartialSum).
+  template <typename Sum>
+  void sum_cluster_current(std::size_t c, Sum& out) const {
     const std::uint64_t q = collector_.current_step();
     round_.sum_cluster(
         c,

@@ -131,9 +131,10 @@ class PeerRound {
   }
 
   /// Cluster c's sum of the slots that arrived (slot_at as for fuse()), into `out`: what the
-  /// cluster's aggregator publishes.
-  template <typename SlotAt>
-  void sum_cluster(std::size_t c, SlotAt slot_at, PartialSum<kDim>& out) const {
+  /// cluster's aggregator publishes. `Sum`: a PartialSum<kDim>, or one that adds more per
+  /// station (TdoaPartialSum).
+  template <typename SlotAt, typename Sum>
+  void sum_cluster(std::size_t c, SlotAt slot_at, Sum& out) const {
     out.clear();
     for (std::size_t i = layout_->first_index(c); i < layout_->end_index(c); ++i) {
       const PeerSlot<kDim> slot = slot_at(i);

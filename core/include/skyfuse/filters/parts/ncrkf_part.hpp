@@ -24,10 +24,9 @@ struct NcrkfFilterPart {
   static constexpr bool kTakesNisGate = false;
   static constexpr std::array<std::string_view, 0> kModeNames = {};
   static constexpr int kNeesDof = 0;
-  // Its stations exchange flat only: a round whose fused information is indefinite is fused
-  // again without the indefinite increments (tracking/tdoa_round.hpp), which a cluster's sum
-  // no longer tells apart.
-  static constexpr bool kNodesTakeTree = false;
+  // Its station processes run the tree exchange, each sum with its fallback without the
+  // indefinite increments (tracking/tdoa_partial_sum.hpp).
+  static constexpr bool kNodesTakeTree = true;
 };
 
 }  // namespace skyfuse
