@@ -22,6 +22,7 @@ const view = {
   entities: new Map(),       // entity id -> {x, y, ellipse, color} or {trail, color}
   series: new Map(),         // node -> {steps: [], errors: []}
   strip: [],                 // per round: [state of the center, of each station]
+  stripNodes: [],            // the strip's rows: the center (0), then each station's id
   modes: null, summary: null,
 };
 window.skyfuseView = view;
@@ -77,6 +78,7 @@ function onRound(round) {
   view.latencyMs = round.latency_ms;
   view.firstRoundAt ??= performance.now();
   view.strip.push(round.nodes.map((n) => (!n.delivered ? "none" : n.missing.length > 0 ? "some" : "all")));
+  view.stripNodes = round.nodes.map((n) => n.node);
   if (view.strip.length > STRIP_ROUNDS) view.strip.shift();
 }
 
@@ -260,21 +262,40 @@ function drawErrors() {
         label: nodeName(n), stroke: n === 0 ? COLORS.center : COLORS.peer, width: n === 0 ? 2 : 1,
       }))],
     }, data, document.getElementById("errors"));
+    // Away from the cursor the legend shows the latest round's errors, not dashes.
+    plot.over.addEventListener("mouseleave", () => showLatestInLegend(plot));
   } else {
     plot.setData(data);
   }
+  showLatestInLegend(plot);
 }
 
+function showLatestInLegend(u) {
+  const last = u.data[0].length - 1;
+  if (u.cursor.idx == null && last >= 0) u.setLegend({ idx: last });
+}
+
+// Row labels take the strip's left margin; with many stations only every few rows is named,
+// so that names stay readable (at least STRIP_LABEL_PX apart).
+const STRIP_LABEL_WIDTH = 64;
+const STRIP_LABEL_PX = 11;
 function drawStrip() {
   const [canvas, g] = clearedCanvas("strip");
   const rows = view.strip[0]?.length ?? 0;
   if (rows === 0) return;
-  const w = canvas.width / STRIP_ROUNDS;
+  const w = (canvas.width - STRIP_LABEL_WIDTH) / STRIP_ROUNDS;
   const h = canvas.height / rows;
+  const every = Math.ceil(STRIP_LABEL_PX / h);
+  g.font = `${Math.min(11, Math.max(h, 8))}px system-ui, sans-serif`;
+  g.textBaseline = "middle";
+  g.fillStyle = "#555";
+  view.stripNodes.forEach((node, row) => {
+    if (row % every === 0) g.fillText(node === 0 ? "center" : `${node}`, 2, (row + 0.5) * h);
+  });
   const fill = { all: "#4caf50", some: "#ff9800", none: "#e53935" };
   view.strip.forEach((round, i) => round.forEach((state, row) => {
     g.fillStyle = fill[state];
-    g.fillRect(i * w, row * h, Math.max(w - 0.5, 1), Math.max(h - 1, 1));
+    g.fillRect(STRIP_LABEL_WIDTH + i * w, row * h, Math.max(w - 0.5, 1), Math.max(h - 1, 1));
   }));
 }
 
@@ -334,7 +355,7 @@ const handlers = {
 
 function resetView() {
   Object.assign(view, { round: null, rounds: 0, firstRoundAt: null, latencyMs: null,
-    modes: null, summary: null, strip: [] });
+    modes: null, summary: null, strip: [], stripNodes: [] });
   view.entities.clear();
   view.series.clear();
 }

@@ -104,6 +104,10 @@ test("the live page follows a run to its last round", { skip: !existsSync(browse
     assert.deepEqual(series.sort((a, b) => a - b), [0, 1, 2, 3, 4], "the center and every peer");
     assert.equal(await page.locator("#errors .u-legend .u-series").count(), 1 + stations + 1,
       "uPlot's legend: the step column and one series per track");
+    // Away from the cursor the legend holds the last round's step and errors, not dashes.
+    const legend = await page.locator("#errors .u-legend .u-series .u-value").allTextContents();
+    assert.equal(legend[0], String(steps - 1), "the legend's step");
+    for (const value of legend.slice(1)) assert.match(value, /^\d+(\.\d+)?$/, "an error in metres");
     // The scene is drawn: pixels of the truth's, the center's, the peers' and the stations' colours.
     const colours = await page.evaluate(() => {
       const c = document.getElementById("scene");
