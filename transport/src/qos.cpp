@@ -27,16 +27,25 @@ namespace {
 // sample_lost_status), and the resource limits are sized for kMaxStations stations with a few
 // steps in flight. The defaults would lose data silently: a reader is BEST_EFFORT by default,
 // max_instances is 10.
-constexpr int kStepsInFlight = 4;
+// At 4 steps in flight (1 024 samples) the bare floor's tick and echo writers, 6 000 writes/s with
+// a 100 ms heartbeat, filled their history under a loaded core and write() timed out (4 of 4
+// `skyfuse bench --stations 1` runs beside a busy loop; 0 of 6 at 32). Samples are allocated as
+// they are needed: a station's peak memory stays 21-22 MiB.
+constexpr int kStepsInFlight = 32;
 constexpr int kMaxSamples = kMaxStations * kStepsInFlight;
 
-// A short heartbeat turns a lost datagram into a ~20 ms repair instead of the default 3 s stall.
-const Duration_t kHeartbeatPeriod{0, 20'000'000};
-// A writer heartbeats while a sample is unacknowledged, and every heartbeat draws an ACKNACK:
-// at 20 ms, nearly every track cost three datagrams (DATA, HEARTBEAT, ACKNACK). Tracks go to
-// the harness, which records them and does not fuse them, so their repair may take longer.
-// M = 64, tree exchange, best effort, real time (tcpdump, 5 s): 13 heartbeats and 13
-// acknowledgements a round, against 233 data samples.
+// A writer heartbeats while a sample is unacknowledged and every heartbeat draws an ACKNACK from
+// each reader, so the period is paid in receptions: at 20 ms, lock-step M = 64 (tree, reliable,
+// 500 steps, alternating pairs) received 1 315-1 505 datagrams a round and ran 23.6-32.7
+// rounds/s; at 100 ms, 626-821 and 30.7-58.6. M = 4: wall time 0.999 of the 20 ms build's, CPU
+// 0.95 (farm-bench, 8 pairs). A lost datagram now waits up to 100 ms for its repair instead of 20
+// (the default would stall 3 s): inside a lock-step round's deadline; a real-time round's 15 ms
+// never waited for one. The writer keeps its samples until acknowledged, so the history below
+// holds 100 ms of the fastest writer's samples with room to spare (kStepsInFlight).
+const Duration_t kHeartbeatPeriod{0, 100'000'000};
+// Tracks had 100 ms before the data topics did: at 20 ms nearly every track cost three datagrams
+// (DATA, HEARTBEAT, ACKNACK). M = 64, tree exchange, best effort, real time (tcpdump, 5 s): 13
+// heartbeats and 13 acknowledgements a round, against 233 data samples.
 const Duration_t kTrackHeartbeatPeriod{0, 100'000'000};
 // Fast DDS arms a per-reader nack-suppression timer on every write; at the default of 0 it
 // expires at once, so every write woke the participant's event thread (and that thread then
