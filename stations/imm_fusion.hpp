@@ -96,9 +96,7 @@ class ImmFusion {
       if (sample.mode() != static_cast<std::uint32_t>(I)) return;
       const auto mode = transport::mode_from_wire<ModeSample<I>::kDim, kModes>(sample);
       if (!mode) return;  // not this mode's state dimension, or not kModes probabilities
-      why = check_contribution(mode->contribution);
-      if (!why) why = check_likelihood_terms(mode->terms, mode->contribution.increment);
-      if (!why) why = check_mode_probabilities(mode->prior_probabilities);
+      why = check_mode(*mode);
       if (!why) {
         why = transport::admit(std::get<I>(collectors_), sources, sample.step(),
                                sample.station_id(), writer, *mode);
@@ -146,19 +144,15 @@ class ImmFusion {
   std::optional<DropKind> admit_contribution(std::uint64_t step, int station_id, const TreeSum& one,
                                              const transport::WriterId& writer,
                                              transport::SourceBinding& sources) {
-    std::optional<DropKind> why = check_mode_probabilities(one.prior_probabilities);
+    // Every mode checked before any is kept: a contribution is kept whole or not at all.
+    std::optional<DropKind> why;
     Peers::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
-      const PeerContribution<ModeSample<I>::kDim> mode{std::get<I>(one.sums),
-                                                       std::get<I>(one.references)};
-      if (!why) why = check_contribution(mode);
-      if (!why) why = check_likelihood_terms(one.terms[I], mode.increment);
+      if (!why) why = check_mode(mode_of<I>(one));
     });
     Peers::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
       if (why) return;
       why = transport::admit(std::get<I>(collectors_), sources, step, station_id, writer,
-                             ModeSample<I>{{std::get<I>(one.sums), std::get<I>(one.references)},
-                                           one.terms[I],
-                                           one.prior_probabilities});
+                             mode_of<I>(one));
     });
     return why;
   }
@@ -195,6 +189,22 @@ class ImmFusion {
   static auto make_collectors(const std::vector<int>& ids, std::index_sequence<I...>) {
     return std::tuple<StepCollector<ModeSample<static_cast<int>(I)>>...>(
         StepCollector<ModeSample<static_cast<int>(I)>>(ids)...);
+  }
+  // What a mode's sample must be, however it came: its contribution, its likelihood terms, and
+  // its prior's mode probabilities.
+  template <typename Mode>
+  static std::optional<DropKind> check_mode(const Mode& mode) {
+    std::optional<DropKind> why = check_contribution(mode.contribution);
+    if (!why) why = check_likelihood_terms(mode.terms, mode.contribution.increment);
+    if (!why) why = check_mode_probabilities(mode.prior_probabilities);
+    return why;
+  }
+  // Mode I of a sum of one station (a member's contribution, unweighted) as its sample.
+  template <int I>
+  static ModeSample<I> mode_of(const TreeSum& one) {
+    return {{std::get<I>(one.sums), std::get<I>(one.references)},
+            one.terms[I],
+            one.prior_probabilities};
   }
   bool complete(std::size_t i) const {
     return std::apply([&](const auto&... c) { return (c.filled(i) && ...); }, collectors_);

@@ -62,12 +62,7 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
                                 const transport::WriterId& writer,
                                 transport::SourceBinding& sources) {
     return admit_checked(sample, writer, sources, [&](const Contribution& contribution) {
-      // An unknown sender has no noise to check against; keep() refuses it by name.
-      const auto sender = position_of(station_ids(), static_cast<int>(sample.station_id()));
-      std::optional<DropKind> why;
-      if (sender) why = check_tdoa_increment(contribution.increment, sigmas_[*sender]);
-      if (sender && !why) why = check_estimate(contribution.prior);
-      return why;
+      return check_from(static_cast<int>(sample.station_id()), contribution);
     });
   }
 
@@ -87,12 +82,9 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
   std::optional<DropKind> admit_contribution(std::uint64_t step, int station_id, const TreeSum& one,
                                              const transport::WriterId& writer,
                                              transport::SourceBinding& sources) {
-    const auto sender = position_of(station_ids(), station_id);
-    if (!sender) return DropKind::kUnknownStation;
-    std::optional<DropKind> why = check_tdoa_increment(one.sum, sigmas_[*sender]);
-    if (!why) why = check_estimate(one.reference);
-    if (why) return why;
-    return keep(step, station_id, writer, sources, Contribution{one.sum, one.reference});
+    const Contribution contribution{one.sum, one.reference};
+    if (const auto why = check_from(station_id, contribution)) return why;
+    return keep(step, station_id, writer, sources, contribution);
   }
   /// Cluster c's sums of the current round's contributions.
   void sum_cluster(std::size_t c, TreeSum& out) const { chain_.sum_cluster_current(c, out); }
@@ -126,6 +118,16 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
                                  on_refused(ids[i], DropKind::kNotPositive);
                              });
     };
+  }
+
+  // What a contribution from `station_id` must be, however it came: its increment against that
+  // receiver's noise, its prior as an estimate. An unknown sender has no noise to check against;
+  // keep() refuses it by name.
+  std::optional<DropKind> check_from(int station_id, const Contribution& contribution) const {
+    const auto sender = position_of(station_ids(), station_id);
+    if (!sender) return std::nullopt;
+    if (const auto why = check_tdoa_increment(contribution.increment, sigmas_[*sender])) return why;
+    return check_estimate(contribution.prior);
   }
 
   std::vector<double> sigmas_;  // each participant's range-difference noise, ascending id

@@ -269,7 +269,7 @@ class TreeExchange {
   static constexpr int kLossySilentRounds = 3;
   static int silent_rounds_to_fail_over(const options::NodeOptions& options) {
     if (options.realtime_deadline_ms > 0.0) return kRealtimeSilentRounds;
-    if (options.loss.probability > 0.0 || options.delay.enabled()) return kLossySilentRounds;
+    if (options.loss.enabled() || options.delay.enabled()) return kLossySilentRounds;
     return 1;
   }
   static constexpr const char* kStandbyPartition = "skyfuse-standby";

@@ -55,8 +55,8 @@ void add_exchange_options(CLI::App& app, std::optional<ExchangeConfig::Kind>& ex
          [&exchange](const std::string& name) { exchange = parse_exchange_kind(name); },
          "How peers exchange increments: flat (every station hears every station), tree "
          "(clusters of --fanout summed by an aggregator each) or auto (tree from 16 stations "
-         "when the filter's stations take it and there is no --loss, link delay or "
-         "--refusion-lag, else flat; default: the scenario's, auto if it gives none)")
+         "when there is no --loss, link delay or --refusion-lag, else flat; default: the "
+         "scenario's, auto if it gives none)")
       ->check(CLI::IsMember({"flat", "tree", "auto"}));
   app.add_option("--fanout", fanout,
                  "Tree exchange: stations per cluster (default: the scenario's, 8 if it gives "

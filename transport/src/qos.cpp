@@ -41,12 +41,11 @@ constexpr int kMaxSamples = kMaxStations * kStepsInFlight;
 // 0.95 (farm-bench, 8 pairs). A lost datagram now waits up to 100 ms for its repair instead of 20
 // (the default would stall 3 s): inside a lock-step round's deadline; a real-time round's 15 ms
 // never waited for one. The writer keeps its samples until acknowledged, so the history below
-// holds 100 ms of the fastest writer's samples with room to spare (kStepsInFlight).
+// holds 100 ms of the fastest writer's samples with room to spare (kStepsInFlight). Tracks had
+// 100 ms before the data topics did: at 20 ms nearly every track cost three datagrams (DATA,
+// HEARTBEAT, ACKNACK; M = 64, tree, best effort, real time, tcpdump over 5 s: 13 heartbeats and
+// 13 acknowledgements a round, against 233 data samples).
 const Duration_t kHeartbeatPeriod{0, 100'000'000};
-// Tracks had 100 ms before the data topics did: at 20 ms nearly every track cost three datagrams
-// (DATA, HEARTBEAT, ACKNACK). M = 64, tree exchange, best effort, real time (tcpdump, 5 s): 13
-// heartbeats and 13 acknowledgements a round, against 233 data samples.
-const Duration_t kTrackHeartbeatPeriod{0, 100'000'000};
 // Fast DDS arms a per-reader nack-suppression timer on every write; at the default of 0 it
 // expires at once, so every write woke the participant's event thread (and that thread then
 // queued on the writer's mutex): ~3 wake-ups per station per round. A 10 ms window keeps the
@@ -227,8 +226,7 @@ dds::DataWriterQos QosProfiles::writer(const dds::Publisher& publisher,
     qos.history().depth = kSamplesPerInstance;
   }
   qos.reliability().max_blocking_time = kMaxBlockingTime;
-  qos.reliable_writer_qos().times.heartbeatPeriod =
-      is_track_topic(topic) ? kTrackHeartbeatPeriod : kHeartbeatPeriod;
+  qos.reliable_writer_qos().times.heartbeatPeriod = kHeartbeatPeriod;
   qos.reliable_writer_qos().times.nackResponseDelay = Duration_t(0, 0);
   qos.reliable_writer_qos().times.nackSupressionDuration = kNackSuppression;
   qos.publish_mode().kind = dds::SYNCHRONOUS_PUBLISH_MODE;

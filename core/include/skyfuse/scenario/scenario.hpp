@@ -120,8 +120,7 @@ struct ExchangeConfig {
   static constexpr std::size_t kTreeFromStations = 16;
   Kind kind = Kind::kAuto;
   /// Whether `kind` is auto's choice rather than asked for: a run whose links lose, delay or
-  /// re-fuse samples then goes back to flat (options::settle_exchange), which the tree does
-  /// not yet keep its guarantees through.
+  /// re-fuse samples then goes back to flat (options::settle_exchange says why).
   bool chosen_by_size = false;
   /// The tree's stations per cluster, >= 2 (the flat exchange ignores it).
   int fanout = 8;

@@ -84,10 +84,7 @@ class PeerImm {
   /// fn(std::integral_constant<int, I>{}) for every mode I, in order.
   template <typename Fn>
   static void for_each_mode(Fn&& fn) {
-    [&]<int... I>(std::integer_sequence<int, I...>) {
-      (fn(std::integral_constant<int, I>{}), ...);
-    }
-    (std::make_integer_sequence<int, kModes>{});
+    Sum::for_each_mode(std::forward<Fn>(fn));
   }
 
   /// Mixing and every mode's time update.

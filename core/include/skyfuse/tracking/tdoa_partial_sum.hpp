@@ -71,17 +71,8 @@ RoundFusion fuse_tdoa_total(PeerRound<Model>& round, PeerTracker<Model>& tracker
 /// reference when it starts with the same station.
 inline std::optional<DropKind> check_sum_values(
     const TdoaPartialSum<PseudoLinearTdoaRow::kDim>& sum) {
-  constexpr int kRange = PseudoLinearTdoaRow::kRange;
-  constexpr int kRest = PseudoLinearTdoaRow::kDim - kRange - 1;
   const auto& all = sum.sum;
-  if (!all.delta_information.allFinite() || !all.delta_vector.allFinite()) {
-    return DropKind::kNonFinite;
-  }
-  if (!all.delta_information.bottomRows<kRest>().isZero(0.0) ||
-      !all.delta_information.rightCols<kRest>().isZero(0.0) ||
-      !all.delta_vector.tail<kRest>().isZero(0.0)) {
-    return DropKind::kOutOfRange;
-  }
+  if (const auto why = check_tdoa_shape(all)) return why;
   if (all.delta_information.cwiseAbs().maxCoeff() > kMaxInformation ||
       all.delta_vector.cwiseAbs().maxCoeff() > kMaxInformation * kMaxRangeM) {
     return DropKind::kOutOfRange;

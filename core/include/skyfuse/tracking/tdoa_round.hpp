@@ -32,16 +32,11 @@ inline InformationIncrement<PseudoLinearTdoaRow::kDim> tdoa_contribution(
   return tdoa_increment(observation.station_id, row, BiasCompensation::kCompensated);
 }
 
-/// What a TDOA increment received from a receiver of noise `sigma` must be, since one need not
-/// be positive semi-definite: finite and within check_increment()'s bounds; zero outside
-/// [dx, dy, d_t1] (its 3 x 3 block and the first three entries of dy); and no more indefinite
-/// than bias compensation can make it, ΔQ + (2 / sigma^2) e3 e3^T positive semi-definite, since
-/// H~^T R^-1 H~ is and W_j = 2 / (2 r~^2 + sigma^2) <= 2 / sigma^2.
-inline std::optional<DropKind> check_tdoa_increment(
-    const InformationIncrement<PseudoLinearTdoaRow::kDim>& increment, double sigma) {
-  constexpr int kRange = PseudoLinearTdoaRow::kRange;
-  constexpr int kBlock = kRange + 1;
-  constexpr int kRest = PseudoLinearTdoaRow::kDim - kBlock;
+/// The shape of a TDOA increment, or of a sum of them: finite, and zero outside [dx, dy, d_t1]
+/// (its 3 x 3 block and the first three entries of dy).
+inline std::optional<DropKind> check_tdoa_shape(
+    const InformationIncrement<PseudoLinearTdoaRow::kDim>& increment) {
+  constexpr int kRest = PseudoLinearTdoaRow::kDim - PseudoLinearTdoaRow::kRange - 1;
   if (!increment.delta_information.allFinite() || !increment.delta_vector.allFinite()) {
     return DropKind::kNonFinite;
   }
@@ -50,6 +45,17 @@ inline std::optional<DropKind> check_tdoa_increment(
       !increment.delta_vector.tail<kRest>().isZero(0.0)) {
     return DropKind::kOutOfRange;
   }
+  return std::nullopt;
+}
+
+/// What a TDOA increment received from a receiver of noise `sigma` must be, since one need not
+/// be positive semi-definite: of check_tdoa_shape()'s shape and within check_increment()'s
+/// bounds; and no more indefinite than bias compensation can make it, ΔQ + (2 / sigma^2) e3 e3^T
+/// positive semi-definite, since H~^T R^-1 H~ is and W_j = 2 / (2 r~^2 + sigma^2) <= 2 / sigma^2.
+inline std::optional<DropKind> check_tdoa_increment(
+    const InformationIncrement<PseudoLinearTdoaRow::kDim>& increment, double sigma) {
+  constexpr int kRange = PseudoLinearTdoaRow::kRange;
+  if (const auto why = check_tdoa_shape(increment)) return why;
   InformationIncrement<PseudoLinearTdoaRow::kDim> compensated = increment;
   compensated.delta_information(kRange, kRange) += 2.0 / (sigma * sigma);
   return check_increment(compensated);

@@ -9,7 +9,6 @@
 /// an IMM's sum so mode by mode, with its summed likelihood terms and mode probabilities.
 
 #include <algorithm>
-#include <cmath>
 #include <optional>
 #include <span>
 
@@ -45,42 +44,35 @@ inline bool contributors_overlap(std::span<const int> a, std::span<const int> b)
   return false;
 }
 
-/// The numbers of a sum: its increment as check_increment(), its reference as check_estimate()
-/// (an empty sum has no reference to check), and its station id its lowest contributor's.
+/// The numbers of a sum, given as its increment, its contributors and its reference: the
+/// increment as check_increment(), the reference as check_estimate() (an empty sum has no
+/// reference to check), and its station id its lowest contributor's.
 template <int N>
-std::optional<DropKind> check_sum_values(const PartialSum<N>& sum) {
-  if (const auto why = check_increment(sum.sum)) return why;
-  if (sum.empty()) {
-    const bool zero = sum.sum.delta_information.isZero(0.0) && sum.sum.delta_vector.isZero(0.0);
+std::optional<DropKind> check_sum_values(const InformationIncrement<N>& sum,
+                                         std::span<const int> contributors,
+                                         const GaussianState<N>& reference) {
+  if (const auto why = check_increment(sum)) return why;
+  if (contributors.empty()) {
+    const bool zero = sum.delta_information.isZero(0.0) && sum.delta_vector.isZero(0.0);
     return zero ? std::nullopt : std::optional(DropKind::kOutOfRange);
   }
-  if (sum.sum.station_id != sum.contributors.front()) return DropKind::kOutOfRange;
-  return check_estimate(sum.reference);
+  if (sum.station_id != contributors.front()) return DropKind::kOutOfRange;
+  return check_estimate(reference);
+}
+template <int N>
+std::optional<DropKind> check_sum_values(const PartialSum<N>& sum) {
+  return check_sum_values(sum.sum, sum.contributors, sum.reference);
 }
 
 /// The summed likelihood terms of `contributors` stations: as check_likelihood_terms() says of
-/// one station's, with the bounds of that many (a sum of screened-out stations' is all zero).
+/// one station's, with the bounds of that many and room for their weights in log det R (a sum
+/// of screened-out stations' is all zero).
 template <int N>
 std::optional<DropKind> check_summed_terms(const LikelihoodTerms& terms,
                                            const InformationIncrement<N>& sum,
                                            std::size_t contributors) {
-  constexpr int kMaxMeasurementDim = 16;
-  constexpr double kMaxLogDetNoise = 2.0e3;  // a station's bound, with room for its weight
-  if (!std::isfinite(terms.weighted_innovation) || !std::isfinite(terms.log_det_noise)) {
-    return DropKind::kNonFinite;
-  }
-  const auto n = static_cast<double>(contributors);
-  if (terms.measurement_dim == 0) {
-    const bool all_zero = terms.weighted_innovation == 0.0 && terms.log_det_noise == 0.0 &&
-                          sum.delta_information.isZero(0.0) && sum.delta_vector.isZero(0.0);
-    return all_zero ? std::nullopt : std::optional(DropKind::kOutOfRange);
-  }
-  if (terms.weighted_innovation < 0.0 || terms.measurement_dim < 0 ||
-      terms.measurement_dim > kMaxMeasurementDim * static_cast<int>(contributors) ||
-      std::abs(terms.log_det_noise) > kMaxLogDetNoise * n) {
-    return DropKind::kOutOfRange;
-  }
-  return std::nullopt;
+  const auto n = static_cast<int>(contributors);
+  return check_likelihood_terms(terms, sum, kMaxMeasurementDim * n, 2.0 * kMaxLogDetNoise * n);
 }
 
 /// The numbers of an IMM's sum: each mode's as check_sum_values() says of one model's, its
@@ -90,13 +82,9 @@ std::optional<DropKind> check_sum_values(const ImmPartialSum<Modes...>& sum) {
   std::optional<DropKind> why;
   ImmPartialSum<Modes...>::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
     if (why) return;
-    constexpr int N = std::tuple_element_t<I, std::tuple<Modes...>>::kDim;
-    PartialSum<N> mode;
-    mode.sum = std::get<I>(sum.sums);
-    mode.contributors = sum.contributors;
-    mode.reference = std::get<I>(sum.references);
-    why = check_sum_values(mode);
-    if (!why) why = check_summed_terms(sum.terms[I], mode.sum, sum.contributors.size());
+    const auto& mode_sum = std::get<I>(sum.sums);
+    why = check_sum_values(mode_sum, sum.contributors, std::get<I>(sum.references));
+    if (!why) why = check_summed_terms(sum.terms[I], mode_sum, sum.contributors.size());
   });
   if (!why && !sum.empty()) why = check_mode_probabilities(sum.prior_probabilities);
   return why;

@@ -123,14 +123,20 @@ std::optional<DropKind> check_mode_probabilities(const Probabilities& probabilit
   return std::nullopt;
 }
 
+/// One station's bounds on its likelihood terms: 16 measured components of variance
+/// 1e-27 .. 1e27.
+inline constexpr int kMaxMeasurementDim = 16;
+inline constexpr double kMaxLogDetNoise = 1.0e3;
+
 /// The likelihood terms that travel with an IMM mode's increment: finite, nu^T R^-1 nu >= 0, a
-/// measured dimension in [1, kMaxMeasurementDim] and |log det R| within kMaxLogDetNoise; or, for
-/// a measurement screened out, all zero with a zero increment.
+/// measured dimension in [1, max_measurement_dim] and |log det R| within max_log_det_noise; or,
+/// for a measurement screened out, all zero with a zero increment. The bounds are one
+/// station's unless a sum of several is checked (validation/partial_sum_checks.hpp).
 template <int N>
 std::optional<DropKind> check_likelihood_terms(const LikelihoodTerms& terms,
-                                               const InformationIncrement<N>& increment) {
-  constexpr int kMaxMeasurementDim = 16;
-  constexpr double kMaxLogDetNoise = 1.0e3;  // 16 components of variance 1e-27 .. 1e27
+                                               const InformationIncrement<N>& increment,
+                                               int max_measurement_dim = kMaxMeasurementDim,
+                                               double max_log_det_noise = kMaxLogDetNoise) {
   if (!std::isfinite(terms.weighted_innovation) || !std::isfinite(terms.log_det_noise)) {
     return DropKind::kNonFinite;
   }
@@ -141,8 +147,8 @@ std::optional<DropKind> check_likelihood_terms(const LikelihoodTerms& terms,
     return all_zero ? std::nullopt : std::optional(DropKind::kOutOfRange);
   }
   if (terms.weighted_innovation < 0.0 || terms.measurement_dim < 0 ||
-      terms.measurement_dim > kMaxMeasurementDim ||
-      std::abs(terms.log_det_noise) > kMaxLogDetNoise) {
+      terms.measurement_dim > max_measurement_dim ||
+      std::abs(terms.log_det_noise) > max_log_det_noise) {
     return DropKind::kOutOfRange;
   }
   return std::nullopt;
