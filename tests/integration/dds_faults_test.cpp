@@ -180,12 +180,13 @@ TEST(DdsFaults, CtrlCStopsEveryProcessAndLeavesNothingBehind) {
   const int domain = 123;
   const auto shm_before = fastdds_shm_entries();
   const auto run = start_long_run(domain, 3, dir);
-  EXPECT_EQ(processes_on_domain(domain).size(), 5U);  // harness, center, 3 stations
+  EXPECT_EQ(processes_on_domain(domain).size(), 5U)  // harness, center, 3 stations
+      << run->output();
 
   run->signal(SIGINT);
   const auto status = run->wait(20s);
-  ASSERT_TRUE(status.has_value());
-  EXPECT_EQ(status->code, 130);
+  ASSERT_TRUE(status.has_value()) << "harness still running 20 s after SIGINT\n" << run->output();
+  EXPECT_EQ(status->code, 130) << run->output();
   EXPECT_THAT(run->output(), HasSubstr("run aborted: interrupted by signal 2"));
   EXPECT_TRUE(eventually([&] { return processes_on_domain(domain).empty(); }, 10s))
       << "processes left behind";
