@@ -39,6 +39,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <numeric>
@@ -96,11 +97,12 @@ class TreeExchange {
         cluster_(layout_.cluster_of_id(id)),
         round_span_(options.realtime_deadline_ms > 0.0 ? options.realtime_deadline()
                                                        : options.round_deadline()),
-        silent_rounds_to_fail_over_(silent_rounds_to_fail_over(options)),
+        silent_rounds_to_fail_over_(silent_rounds_to_fail_over(options, plan.scenario.time_step_s)),
         syncing_at_start_(syncing),
         inputs_(inputs),
         views_(initial_views(layout_)),
         silent_(layout_.clusters(), 0),
+        heard_late_(layout_.clusters(), false),
         aggregating_(aggregates()),
         node_(node),
         sums_(cluster_indices(layout_.clusters())),
@@ -258,17 +260,25 @@ class TreeExchange {
  private:
   enum class Stage { kCollecting, kSumming, kDone };
 
-  // How many rounds in a row without its aggregator's total (or a cluster's sum) make a station
-  // take that aggregator for dead. In lock-step on sound links one: a whole round's deadline
-  // passed. In real time a late total is no proof that its aggregator died. Over lossy or
-  // delayed links one missing total is most often a lost or late sample: with one round, a
-  // 2 % loss made members take their clusters over and give them back every few rounds (M = 16,
-  // k = 4, 100 rounds of loss: 55 sums refused as wrong_cluster, peers up to 0.36 m apart);
-  // three rounds in a row are lost with probability p^3.
-  static constexpr int kRealtimeSilentRounds = 5;
+  // How many rounds in a row without a word from its aggregator (its total, or a cluster's sum,
+  // in time or not) make a station take that aggregator for dead. A late sum or total counts as
+  // a word: its sender lives, and a member that took its place would only add an aggregator to
+  // a busy network.
+  // - Lock-step on sound links: one round; a whole round's deadline passed.
+  // - Over lossy or delayed links one missing total is most often a lost or late sample: with
+  //   one round, a 2 % loss made members take their clusters over and give them back every few
+  //   rounds (M = 16, k = 4, 100 rounds of loss: 55 sums refused as wrong_cluster, peers up to
+  //   0.36 m apart); three rounds in a row are lost with probability p^3.
+  // - Real time: a second. On a busy machine a process may not run for several rounds, and
+  //   nothing of it is heard, late or not. With five rounds, M = 64 real-time runs that fell
+  //   behind for a moment had members take clusters over and give them back (122-231 moves in
+  //   each of six runs), every move cost discovery on every node, and no run caught up again.
   static constexpr int kLossySilentRounds = 3;
-  static int silent_rounds_to_fail_over(const options::NodeOptions& options) {
-    if (options.realtime_deadline_ms > 0.0) return kRealtimeSilentRounds;
+  static constexpr double kRealtimeSilenceS = 1.0;
+  static int silent_rounds_to_fail_over(const options::NodeOptions& options, double time_step_s) {
+    if (options.realtime_deadline_ms > 0.0) {
+      return std::max(1, static_cast<int>(std::ceil(kRealtimeSilenceS / time_step_s)));
+    }
     if (options.loss.enabled() || options.delay.enabled()) return kLossySilentRounds;
     return 1;
   }
@@ -334,6 +344,8 @@ class TreeExchange {
       if (kept.filled(slot)) {
         views_[c] = kept.payloads()[slot].sender;
         silent_[c] = 0;
+      } else if (heard_late_[c]) {
+        silent_[c] = 0;  // alive, only out of step
       } else if (c == cluster_ && settling_ > 0) {
         // Just moved: the others match its endpoints only as discovery tells them.
       } else if (++silent_[c] >= silent_rounds_to_fail_over_) {
@@ -351,6 +363,7 @@ class TreeExchange {
       silent_[cluster_] = 0;
     }
     lower_aggregator_.reset();
+    std::fill(heard_late_.begin(), heard_late_.end(), false);
     if (settling_ > 0) --settling_;
   }
   int next_member(std::size_t c, int after) const {
@@ -423,6 +436,7 @@ class TreeExchange {
     const auto kept =
         keep_lowest(sums_, sum_sources_, sample.step(), static_cast<int>(c), sender, writer, *sum);
     if (c == cluster_) note_lower_aggregator(sender, kept);
+    note_late(c, sender, writer, sum_sources_, kept);
     return kept;
   }
 
@@ -440,6 +454,7 @@ class TreeExchange {
     const auto kept =
         keep_lowest(totals_, total_sources_, sample.step(), 0, sender, writer, *total);
     note_lower_aggregator(sender, kept);
+    note_late(cluster_, sender, writer, total_sources_, kept);
     return kept;
   }
 
@@ -459,6 +474,9 @@ class TreeExchange {
   class Senders {
    public:
     void bind(int sender, const transport::WriterId& writer) { binding_.bind(sender, writer); }
+    bool would_accept(int sender, const transport::WriterId& writer) const {
+      return binding_.would_accept(sender, writer);
+    }
     bool accept(int sender, const transport::WriterId& writer, std::uint64_t step,
                 std::uint64_t current) {
       if (!binding_.accept(sender, writer)) {
@@ -475,6 +493,17 @@ class TreeExchange {
     transport::SourceBinding binding_;
     std::map<int, std::uint64_t> last_step_;  // the latest round accepted from each sender
   };
+
+  // A sum or total of cluster c for a round this station is not in (too late, or this station
+  // is behind), from the aggregator it hears for c and through a writer that may speak for it:
+  // that aggregator lives (update_views()).
+  void note_late(std::size_t c, int sender, const transport::WriterId& writer,
+                 const Senders& senders, std::optional<DropKind> kept) {
+    const bool out_of_round = kept == DropKind::kStaleStep || kept == DropKind::kFutureStep;
+    if (out_of_round && sender == views_[c] && senders.would_accept(sender, writer)) {
+      heard_late_[c] = true;
+    }
+  }
 
   // Its round (the collector's window), then its writer, then kept; if the slot holds a higher
   // sender's, replaced: the lower one aggregates.
@@ -503,8 +532,9 @@ class TreeExchange {
   int silent_rounds_to_fail_over_;
   bool syncing_at_start_;
   transport::Reader<Sample>& inputs_;
-  std::vector<int> views_;   // each cluster's aggregator, as this station sees it
-  std::vector<int> silent_;  // rounds in a row without its sum (a member: without its total)
+  std::vector<int> views_;        // each cluster's aggregator, as this station sees it
+  std::vector<int> silent_;       // rounds in a row without its sum (a member: without its total)
+  std::vector<bool> heard_late_;  // this round: its sum (or total) came, too late
   std::optional<int> lower_aggregator_;  // heard this round: see note_lower_aggregator()
   int settling_ = 0;                     // rounds left since this station moved its endpoints
   bool aggregating_;  // this station's endpoints are in its cluster's aggregator's places

@@ -47,6 +47,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Real time: step 0 begins this long after every node joined, so that the start tick reaches
+// every node and discovery's last exchanges are over. At M = 64 both cores stay busy until
+// 0.2-0.3 s after the last node joins; with 300 ms, the first rounds ran beside them and came
+// late.
+constexpr std::chrono::milliseconds kRealtimeHeadStart{1000};
+
 // The embedded default, or the file: the nodes read exactly this text from the results folder.
 std::string scenario_text(const std::string& path) {
   return path.empty() ? std::string(default_scenario_yaml()) : read_scenario_text(path);
@@ -300,8 +306,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     const auto wall_start = std::chrono::system_clock::now();
     if (live) live->set_epoch_ns(wall_clock_ns(wall_start));
     if (o.node.realtime_deadline_ms > 0.0) {
-      // A little head start so that the start tick reaches every node before step 0 begins.
-      const auto epoch = std::chrono::system_clock::now() + std::chrono::milliseconds(300);
+      const auto epoch = std::chrono::system_clock::now() + kRealtimeHeadStart;
       const auto stream = [&](const RoundRecord& r) {
         if (live) live->offer(r);
       };

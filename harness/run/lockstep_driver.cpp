@@ -17,6 +17,7 @@
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"
+#include "skyfuse/transport/refusal_reports.hpp"
 #include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
@@ -127,6 +128,8 @@ struct LockstepDriver::Impl {
         tracks(node.make_reader<wire::TrackEstimate>()),
         measurements(node.make_reader<wire::Measurement>()),
         statuses(node.make_reader<wire::StationStatus>()),
+        refusal_reports(
+            node.make_reader<wire::StationStatus>({transport::kRefusalReportsPartition})),
         track_collector(with_center(station_ids)),
         measurement_collector(station_ids) {
     std::sort(station_ids.begin(), station_ids.end());
@@ -134,11 +137,19 @@ struct LockstepDriver::Impl {
     wait_set.attach(tracks);
     wait_set.attach(measurements);
     wait_set.attach(statuses);
+    wait_set.attach(refusal_reports);
   }
 
-  // Reads statuses; a node that failed ends the run with its own words.
+  // Reads statuses; a node that failed ends the run with its own words. Then the nodes'
+  // reports of what they refused while the run goes on.
   void read_statuses() {
     wire::StationStatus s;
+    while (refusal_reports.take(s)) {
+      if (s.run_id() != run_id || s.state() != wire::READY) continue;
+      DropCounts dropped{};
+      std::copy(s.dropped().begin(), s.dropped().end(), dropped.begin());
+      note_refusals(s.station_id(), s.instance(), s.step(), dropped);
+    }
     while (statuses.take(s)) {
       if (s.run_id() != run_id) continue;
       if (s.state() == wire::FAILED) {
@@ -153,10 +164,8 @@ struct LockstepDriver::Impl {
       }
       DropCounts dropped{};
       std::copy(s.dropped().begin(), s.dropped().end(), dropped.begin());
-      if ((s.state() == wire::READY && s.step() > 0) || s.state() == wire::FINISHED) {
-        note_refusals(s.station_id(), s.instance(), s.step(), dropped);
-      }
       if (s.state() == wire::FINISHED) {
+        note_refusals(s.station_id(), s.instance(), s.step(), dropped);
         NodeCounts& counts = finished[s.station_id()];
         counts.dropped = dropped;
         counts.lost = s.lost();
@@ -174,12 +183,14 @@ struct LockstepDriver::Impl {
       seen_instance = instance;
       before = {};
     }
+    // Counts only grow; a report that comes after a later status (two writers: the reports and
+    // the node's last status) adds nothing.
     for (std::size_t i = 0; i < kDropKinds; ++i) {
       if (counts[i] > before[i]) {
         refusals.push_back({node, step, static_cast<DropKind>(i), counts[i] - before[i]});
+        before[i] = counts[i];
       }
     }
-    before = counts;
   }
 
   // The refusals reported since the last call, the harness's own (as of round k) with them.
@@ -253,6 +264,7 @@ struct LockstepDriver::Impl {
   transport::Reader<wire::TrackEstimate> tracks;
   transport::Reader<wire::Measurement> measurements;
   transport::Reader<wire::StationStatus> statuses;
+  transport::Reader<wire::StationStatus> refusal_reports;  // kRefusalReportsPartition
   transport::ReaderWaitSet wait_set;
   // Whether every node that is up has delivered its track (and every station its measurement)
   // for the current step.

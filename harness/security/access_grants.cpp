@@ -26,16 +26,18 @@ AccessGrant access_grant(const std::string& identity) {
   const std::string status = topic<wire::StationStatus>();
 
   if (identity == transport::kHarnessIdentity) {
-    return {identity, {tick}, {track, measurement, status}};
+    return {identity, {tick}, {track, measurement, status}, {}, {status}};
   }
   if (identity == transport::kCenterIdentity) {
-    return {identity, {track, status}, {tick, measurement, status}};
+    return {identity, {track, status}, {tick, measurement, status}, {status}, {}};
   }
   if (identity == transport::kObserverIdentity) return {identity, {}, {tick, track, status}};
   if (transport::is_station_identity(identity)) {
     return {identity,
             {increment, partial, measurement, track, status},
-            {tick, increment, partial, status}};
+            {tick, increment, partial, status},
+            {status},
+            {}};
   }
   throw std::invalid_argument("no access grant defined for identity '" + identity + "'");
 }

@@ -9,6 +9,9 @@
 //   harness    tick                                   track, measurement, status
 //   observer   -                                      tick, track, status
 //
+// and in partition skyfuse-refusal-reports (transport/refusal_reports.hpp) a station and the
+// center publish status, the harness subscribes to it.
+//
 // The harness subscribes to measurements because it records them (measurements.csv, and the
 // replay that rests on it); it still may not publish them, nor read any increment.
 
@@ -19,8 +22,11 @@ namespace skyfuse::harness {
 
 struct AccessGrant {
   std::string identity;
-  std::vector<std::string> publish;    ///< topic names
-  std::vector<std::string> subscribe;  ///< topic names
+  std::vector<std::string> publish;    ///< topic names, in the default partition
+  std::vector<std::string> subscribe;  ///< topic names, in the default partition
+  /// Topic names in kRefusalReportsPartition.
+  std::vector<std::string> publish_refusal_reports;
+  std::vector<std::string> subscribe_refusal_reports;
 };
 
 /// The grant for a harness, center, station-N or observer identity.

@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "skyfuse/transport/node_config.hpp"
+#include "skyfuse/transport/refusal_reports.hpp"
 #include "skyfuse/transport/topics.hpp"
 
 namespace skyfuse::harness {
@@ -36,11 +37,20 @@ std::string topic_rule(const std::string& topic) {
                      topic);
 }
 
-std::string topic_list(const char* element, const std::vector<std::string>& topics) {
+// A <publish> or <subscribe> criterion: its topics, in `partition` if one is given (else the
+// default partition).
+std::string topic_list(const char* element, const std::vector<std::string>& topics,
+                       const char* partition = nullptr) {
   if (topics.empty()) return {};
   std::string text = fmt::format("        <{}>\n          <topics>\n", element);
   for (const std::string& t : topics) text += fmt::format("            <topic>{}</topic>\n", t);
-  return text + fmt::format("          </topics>\n        </{}>\n", element);
+  text += "          </topics>\n";
+  if (partition != nullptr) {
+    text += fmt::format(
+        "          <partitions>\n            <partition>{}</partition>\n          </partitions>\n",
+        partition);
+  }
+  return text + fmt::format("        </{}>\n", element);
 }
 
 // The validity format of the permissions schema: UTC, no zone suffix.
@@ -101,20 +111,23 @@ std::string permissions_xml(const std::vector<AccessGrant>& grants,
 )",
                                  kHeader);
   for (const AccessGrant& g : grants) {
-    text += fmt::format(R"(    <grant name="{0}">
+    text += fmt::format(
+        R"(    <grant name="{0}">
       <subject_name>{1}</subject_name>
       <validity>
         <not_before>{2}</not_before>
         <not_after>{3}</not_after>
       </validity>
       <allow_rule>
-{4}{5}{6}      </allow_rule>
+{4}{5}{6}{7}{8}      </allow_rule>
       <default>DENY</default>
     </grant>
 )",
-                        g.identity, subject_name(g.identity), xml_time(not_before),
-                        xml_time(not_after), all_domains("        "),
-                        topic_list("publish", g.publish), topic_list("subscribe", g.subscribe));
+        g.identity, subject_name(g.identity), xml_time(not_before), xml_time(not_after),
+        all_domains("        "), topic_list("publish", g.publish),
+        topic_list("subscribe", g.subscribe),
+        topic_list("publish", g.publish_refusal_reports, transport::kRefusalReportsPartition),
+        topic_list("subscribe", g.subscribe_refusal_reports, transport::kRefusalReportsPartition));
   }
   return text + "  </permissions>\n</dds>\n";
 }

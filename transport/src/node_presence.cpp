@@ -27,9 +27,19 @@ NodePresence::NodePresence(DdsNode& node, std::uint64_t run_id, int node_id)
                                          std::chrono::system_clock::now().time_since_epoch())
                                          .count())),
       writer_(node.make_writer<wire::StationStatus>()),
+      refusal_reports_(node.make_writer<wire::StationStatus>({kRefusalReportsPartition})),
       reader_(node.make_reader<wire::StationStatus>()) {}
 
 void NodePresence::announce(wire::NodeState state, std::uint32_t step, const std::string& detail) {
+  writer_.write(status(state, step, detail));
+}
+
+void NodePresence::report_refusals(std::uint32_t step) {
+  refusal_reports_.write(status(wire::READY, step, {}));
+}
+
+wire::StationStatus NodePresence::status(wire::NodeState state, std::uint32_t step,
+                                         const std::string& detail) const {
   wire::StationStatus status;
   status.run_id(run_id_);
   status.station_id(node_id_);
@@ -43,7 +53,7 @@ void NodePresence::announce(wire::NodeState state, std::uint32_t step, const std
   status.lost(lost_);
   status.resyncs(resyncs_);
   status.late_used(late_used_);
-  writer_.write(status);
+  return status;
 }
 
 std::optional<std::string> NodePresence::find_older_twin() {

@@ -191,13 +191,14 @@ class NodeLoop {
 
   // After a round in which this node refused something: a status with the counts so far, so
   // that whoever watches the run (the harness, a recording) learns what was refused and why
-  // while it goes on. Rounds with nothing refused send nothing.
+  // while it goes on. Rounds with nothing refused send nothing; the last status carries every
+  // count. The reports go to the harness alone (kRefusalReportsPartition).
   void report_new_refusals(std::uint64_t k) {
     const DropCounts counts = drops_.counts();
     if (counts == reported_drops_) return;
     reported_drops_ = counts;
     presence_.set_drops(counts);
-    presence_.announce(wire::READY, static_cast<std::uint32_t>(k));
+    presence_.report_refusals(static_cast<std::uint32_t>(k));
   }
 
   // After the last round: in real time, a lag's worth of steps for late samples; then the

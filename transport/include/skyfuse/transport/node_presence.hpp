@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/refusal_reports.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::transport {
@@ -25,6 +26,9 @@ class NodePresence {
 
   /// Publishes this node's state, with the drop counts last given to set_drops().
   void announce(wire::NodeState state, std::uint32_t step = 0, const std::string& detail = {});
+  /// A READY status of round `step` with the drop counts last given to set_drops(), in
+  /// kRefusalReportsPartition.
+  void report_refusals(std::uint32_t step);
   void set_drops(const DropCounts& drops) { drops_ = drops; }
   /// Samples removed by the simulated loss, and rounds that resynchronised this node's prior.
   void set_link_counts(std::uint64_t lost, std::uint32_t resyncs, std::uint64_t late_used) {
@@ -48,7 +52,11 @@ class NodePresence {
   int node_id_;
   std::uint64_t instance_;
   std::uint64_t started_ns_;
+  wire::StationStatus status(wire::NodeState state, std::uint32_t step,
+                             const std::string& detail) const;
+
   Writer<wire::StationStatus> writer_;
+  Writer<wire::StationStatus> refusal_reports_;
   Reader<wire::StationStatus> reader_;
   std::optional<std::string> older_twin_;
   DropCounts drops_{};

@@ -23,6 +23,11 @@ class SourceBinding {
  public:
   /// Binds `station_id` to `writer` in advance (a node's own writer).
   void bind(int station_id, const WriterId& writer) { owners_[station_id] = writer; }
+  /// What accept() would say, binding nothing.
+  bool would_accept(int station_id, const WriterId& writer) const {
+    const auto it = owners_.find(station_id);
+    return it == owners_.end() || it->second == writer;
+  }
   /// True if `writer` owns `station_id`, binding it on first use.
   bool accept(int station_id, const WriterId& writer) {
     const auto [it, inserted] = owners_.try_emplace(station_id, writer);
