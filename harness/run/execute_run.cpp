@@ -218,10 +218,12 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   Placement placement;
   placement.harness = o.node.network;
   if (o.hosts > 0) {
-    placement.hosts.emplace(o.hosts);
+    placement.hosts.emplace(o.hosts, o.multicast_host_discovery);
     placement.harness.interface_address = placement.hosts->bridge_address();
-    placement.harness.discovery_server =
-        options::Ipv4Endpoint{placement.hosts->bridge_address(), options::kDefaultDiscoveryPort};
+    if (!o.multicast_host_discovery) {
+      placement.harness.discovery_server =
+          options::Ipv4Endpoint{placement.hosts->bridge_address(), options::kDefaultDiscoveryPort};
+    }
   }
   transport::NodeConfig config;
   config.domain_id = o.node.domain;

@@ -78,7 +78,7 @@ void SimulatedHosts::check_allowed(int count) {
   }
 }
 
-SimulatedHosts::SimulatedHosts(int count) {
+SimulatedHosts::SimulatedHosts(int count, bool multicast) {
   check_allowed(count);
   // A tag of our own, so that runs side by side do not meet: the pid's low bits pick the
   // names and the /24, the next free one if taken.
@@ -107,9 +107,10 @@ SimulatedHosts::SimulatedHosts(int count) {
       ip_or_throw({"link", "add", veth, "type", "veth", "peer", "name", "eth0", "netns", name});
       ip_or_throw({"link", "set", veth, "master", bridge_, "up"});
       ip_or_throw({"-n", name, "addr", "add", address + "/24", "dev", "eth0"});
-      // No multicast on the host's interface: discovery and data must go through the server
-      // and unicast, as across real networks that do not carry multicast.
-      ip_or_throw({"-n", name, "link", "set", "eth0", "multicast", "off", "up"});
+      // Without multicast discovery, no multicast on the host's interface: discovery and data
+      // must go through the server and unicast, as across real networks that do not carry
+      // multicast. With it, the bridge carries every participant's announcements to every host.
+      ip_or_throw({"-n", name, "link", "set", "eth0", "multicast", multicast ? "on" : "off", "up"});
       ip_or_throw({"-n", name, "link", "set", "lo", "up"});
       addresses_.push_back(address);
       const int fd = open(("/run/netns/" + name).c_str(), O_RDONLY | O_CLOEXEC);

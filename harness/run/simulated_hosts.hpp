@@ -2,7 +2,8 @@
 // `skyfuse run --hosts N`: N simulated hosts on this machine, each a network namespace with its
 // own interface, joined by a bridge in the harness's namespace, so that no two hosts share a
 // loopback interface (and the processes share no memory: the DDS transport is UDP only). The
-// harness stays on the bridge, where it serves discovery. Everything is created by the
+// harness stays on the bridge, where it serves discovery (or, with multicast discovery, takes
+// part in it as every node does). Everything is created by the
 // constructor and removed by the destructor; creating namespaces needs root.
 
 #include <cstdint>
@@ -20,9 +21,9 @@ class SimulatedHosts {
   /// hosts (not root, no `ip`, a count out of range).
   static void check_allowed(int count);
 
-  /// Creates `count` hosts; throws as check_allowed() does, and std::runtime_error when a step
-  /// fails (what was made is removed).
-  explicit SimulatedHosts(int count);
+  /// Creates `count` hosts, whose interfaces carry multicast only if `multicast`; throws as
+  /// check_allowed() does, and std::runtime_error when a step fails (what was made is removed).
+  SimulatedHosts(int count, bool multicast);
   ~SimulatedHosts();
   SimulatedHosts(const SimulatedHosts&) = delete;
   SimulatedHosts& operator=(const SimulatedHosts&) = delete;

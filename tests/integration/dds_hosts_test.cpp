@@ -60,6 +60,27 @@ TEST(DdsHosts, FourStationsOnThreeHostsEqualTheInProcessRunBitForBit) {
   EXPECT_THAT(output_of("ip -o link show type bridge"), ::testing::Not(HasSubstr("sfbr")));
 }
 
+// Multicast discovery across the hosts' bridge: the interfaces carry multicast, and no server.
+TEST(DdsHosts, FourStationsOnThreeHostsDiscoveringByMulticastEqualTheInProcessRun) {
+  if (geteuid() != 0) GTEST_SKIP() << "--hosts creates network namespaces: root only";
+  if (std::system("ip -V > /dev/null 2>&1") != 0) GTEST_SKIP() << "no `ip` (iproute2)";
+  const auto summary =
+      expect_equal_to_twin(4, 186, {"--hosts", "3", "--host-discovery", "multicast"});
+  EXPECT_EQ(summary["network"]["hosts"], 3);
+  EXPECT_EQ(summary["network"]["discovery"], "multicast");
+  EXPECT_THAT(output_of("ip netns list"), ::testing::Not(HasSubstr("skyfuse-")));
+}
+
+TEST(DdsHosts, MulticastDiscoveryIsRefusedWithoutHosts) {
+  const auto dir = test_dir();
+  const Completed run = run_to_completion(
+      {bin("skyfuse"), "run", "--host-discovery", "multicast", "--out", (dir / "out").string()},
+      dir / "run.log", 30s);
+  EXPECT_NE(run.status.code, 0);
+  EXPECT_THAT(run.output, HasSubstr("--host-discovery requires --hosts"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+}
+
 TEST(DdsHosts, RefusedWithoutRootBeforeWritingAnything) {
   const auto dir = test_dir();
   std::vector<std::string> args = {bin("skyfuse"), "run", "--hosts", "2",
