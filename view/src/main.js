@@ -243,11 +243,14 @@ function enableTurning() {
 
 let plot = null;
 let plotted = "";
+// uPlot draws its series in legend order. The peers and the center agree to 1e-9 m, so the
+// center's line goes last, wider and dashed, or the peers' would hide it.
 function drawErrors() {
-  const nodes = [...view.series.keys()].sort((a, b) => a - b);
-  if (nodes.length === 0) return;
+  const ids = [...view.series.keys()];
+  if (ids.length === 0) return;
+  const nodes = [...ids.filter((n) => n !== 0).sort((a, b) => a - b), ...ids.filter((n) => n === 0)];
   const key = nodes.join(",");
-  const center = view.series.get(nodes[0]);
+  const center = view.series.get(0) ?? view.series.get(nodes[0]);
   const data = [center.steps, ...nodes.map((n) => {
     const s = view.series.get(n);
     return s.errors.slice(-center.steps.length);
@@ -260,6 +263,7 @@ function drawErrors() {
       axes: [{ label: "step" }, { label: "position error (m)" }],
       series: [{ label: "step" }, ...nodes.map((n) => ({
         label: nodeName(n), stroke: n === 0 ? COLORS.center : COLORS.peer, width: n === 0 ? 2 : 1,
+        dash: n === 0 ? [8, 6] : undefined,
       }))],
     }, data, document.getElementById("errors"));
     // Away from the cursor the legend shows the latest round's errors, not dashes.

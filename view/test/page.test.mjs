@@ -108,6 +108,20 @@ test("the live page follows a run to its last round", { skip: !existsSync(browse
     const legend = await page.locator("#errors .u-legend .u-series .u-value").allTextContents();
     assert.equal(legend[0], String(steps - 1), "the legend's step");
     for (const value of legend.slice(1)) assert.match(value, /^\d+(\.\d+)?$/, "an error in metres");
+    // The error plot shows the center's series and the peers' although their errors are equal:
+    // uPlot draws its series in legend order, and the center's comes last, dashed.
+    const labels = await page.locator("#errors .u-legend .u-series .u-label").allTextContents();
+    assert.equal(labels.at(-1), "center", `the center's series is drawn last: ${labels.join(", ")}`);
+    const plotColours = await page.evaluate(() => {
+      const c = document.querySelector("#errors canvas");
+      const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+      const seen = new Set();
+      for (let i = 0; i < d.length; i += 4) if (d[i + 3] === 255) seen.add(`${d[i]},${d[i + 1]},${d[i + 2]}`);
+      return [...seen];
+    });
+    for (const rgb of ["255,140,0", "51,115,230"]) {
+      assert.ok(plotColours.includes(rgb), `error plot has ${rgb}: ${plotColours.slice(0, 12).join(" ")}`);
+    }
     // The scene is drawn: pixels of the truth's, the center's, the peers' and the stations' colours.
     const colours = await page.evaluate(() => {
       const c = document.getElementById("scene");
