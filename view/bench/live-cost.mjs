@@ -3,6 +3,9 @@
 // Chromium; and with a client that subscribed to everything and then stopped reading — the
 // four alternating in one sitting.
 // Usage: node bench/live-cost.mjs SKYFUSE_BIN [ROUNDS_OF_FOUR] [STEPS]
+// KINDS=follow,page,stall picks the clients; RUN_CPUS and BROWSER_CPUS (taskset lists, e.g. 0
+// and 1) keep the run and the browser on cores of their own, as if the page were on another
+// machine: the baseline runs on RUN_CPUS too.
 import { spawn } from "node:child_process";
 import { mkdtempSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
@@ -43,10 +46,12 @@ function stall(port) {
 // the runs, opens the page in a new tab for each run (DevTools protocol's Target domain only:
 // a test driver's network tracing would cost the browser more than the page does).
 const profile = mkdtempSync(join(tmpdir(), "skyfuse-live-cost-browser-"));
-const browser = spawn(process.env.SKYFUSE_CHROMIUM ?? "/usr/bin/chromium", ["--headless",
+// `command args` on the cores `cpus` names (taskset), or anywhere.
+const onCpus = (cpus, command, args) => (cpus ? ["taskset", ["-c", cpus, command, ...args]] : [command, args]);
+const browser = spawn(...onCpus(process.env.BROWSER_CPUS, process.env.SKYFUSE_CHROMIUM ?? "/usr/bin/chromium", ["--headless",
   "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
   "--disable-component-update", "--disable-sync", "--remote-debugging-port=0", `--user-data-dir=${profile}`,
-  "about:blank"], { stdio: ["ignore", "ignore", "pipe"] });
+  "about:blank"]), { stdio: ["ignore", "ignore", "pipe"] });
 const devtools = await new Promise((resolve, reject) => {
   let text = "";
   browser.stderr.on("data", (chunk) => {
@@ -82,7 +87,7 @@ function run(client) {
   const dir = mkdtempSync(join(tmpdir(), "skyfuse-live-cost-"));
   const args = ["run", "--stations", "4", "--steps", steps, "--domain", "214", "--out", dir];
   if (client) args.push("--live", "127.0.0.1:0");
-  const child = spawn(skyfuse, args, { stdio: ["ignore", "pipe", "ignore"] });
+  const child = spawn(...onCpus(process.env.RUN_CPUS, skyfuse, args), { stdio: ["ignore", "pipe", "ignore"] });
   let output = "";
   let close = null;
   const counts = { messages: 0 };
