@@ -10,13 +10,16 @@ new=$(cd "${2:-$(dirname "$0")/..}" && pwd)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 
+# --exchange flat where the build knows the option (asked once per checkout).
+exchange_of() { "$1/build/bin/skyfuse" run --help | grep -q -- --exchange && echo "--exchange flat" || true; }
+declare -A exchange=([$old]=$(exchange_of "$old") [$new]=$(exchange_of "$new"))
+
 run() {  # checkout label stations steps [options...]
   local tree=$1 label=$2 m=$3 steps=$4
   shift 4
-  local exchange=()
-  "$tree/build/bin/skyfuse" run --help | grep -q -- --exchange && exchange=(--exchange flat)
+  # shellcheck disable=SC2086  # empty or two words
   "$tree/build/bin/skyfuse" run --scenario "$tree/scenarios/ring64.yaml" --stations "$m" \
-    --steps "$steps" "${exchange[@]}" "$@" --out "$out/$label" 2>&1 |
+    --steps "$steps" ${exchange[$tree]} "$@" --out "$out/$label" 2>&1 |
     awk -v b="$label" -v m="$m" -v x="$*" '
       /rounds per second/ { r = $4 } /latency/ { l = $4 } /in time/ { t = $(NF - 1) }
       END { printf "%s M=%s %s rounds/s %s p50_us %s%s\n", b, m, x, r, l, t == "" ? "" : " in_time_% " t }'

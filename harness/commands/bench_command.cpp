@@ -168,13 +168,10 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
                   "--scale: the real-time runs' deadline")
       ->check(options::positive_number())
       ->capture_default_str();
-  cmd->add_option_function<std::string>(
-         "--host-discovery",
-         [&o](const std::string& how) { o.scale.multicast_host_discovery = how == "multicast"; },
-         "--scale: how runs on simulated hosts (M above one host's limit) discover each other: "
-         "by multicast across the hosts' bridge, or through the harness's discovery server")
-      ->check(CLI::IsMember({"server", "multicast"}))
-      ->default_str("multicast");
+  options::add_host_discovery_option(
+      *cmd, o.scale.multicast_host_discovery,
+      "--scale: how runs on simulated hosts (M above one host's limit) discover each other: "
+      "by multicast across the hosts' bridge, or through the harness's discovery server");
   cmd->add_flag("!--reliable", o.scale.best_effort,
                 "--scale: reliable increments, sums and measurements (default: best effort)");
   // The options the two benchmarks share go to the scale benchmark only when given, so that

@@ -117,13 +117,10 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Place the center and the stations, round robin, on N simulated hosts: network "
                   "namespaces joined by a bridge, discovering through the harness (root only)")
       ->check(options::whole_number_in(1, SimulatedHosts::kMaxHosts));
-  cmd->add_option_function<std::string>(
-         "--host-discovery",
-         [&o](const std::string& how) { o.multicast_host_discovery = how == "multicast"; },
-         "With --hosts: discover through the harness's discovery server (server), or by every "
-         "participant's multicast announcements across the hosts' bridge (multicast)")
-      ->check(CLI::IsMember({"server", "multicast"}))
-      ->default_str("server")
+  options::add_host_discovery_option(
+      *cmd, o.multicast_host_discovery,
+      "With --hosts: discover through the harness's discovery server (server), or by every "
+      "participant's multicast announcements across the hosts' bridge (multicast)")
       ->needs("--hosts");
   cmd->add_flag("--external", o.external,
                 "Do not start processes: drive stations and a center started elsewhere");

@@ -60,6 +60,15 @@ void add_network_options(CLI::App& app, NetworkOptions& options) {
       ->type_name("ADDRESS:PORT");
 }
 
+CLI::Option* add_host_discovery_option(CLI::App& app, bool& multicast, const std::string& help) {
+  return app
+      .add_option_function<std::string>(
+          "--host-discovery", [&multicast](const std::string& how) { multicast = how == "multicast"; },
+          help)
+      ->check(CLI::IsMember({"server", "multicast"}))
+      ->default_str(multicast ? "multicast" : "server");
+}
+
 std::vector<std::string> network_arguments(const NetworkOptions& options) {
   std::vector<std::string> args;
   if (options.interface_address != NetworkOptions{}.interface_address) {

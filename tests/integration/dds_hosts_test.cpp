@@ -60,7 +60,7 @@ TEST(DdsHosts, FourStationsOnThreeHostsEqualTheInProcessRunBitForBit) {
   EXPECT_THAT(output_of("ip -o link show type bridge"), ::testing::Not(HasSubstr("sfbr")));
 }
 
-// Multicast discovery across the hosts' bridge: the interfaces carry multicast, and no server.
+// Multicast discovery across the hosts' bridge, no server: the run says so and equals its twin.
 TEST(DdsHosts, FourStationsOnThreeHostsDiscoveringByMulticastEqualTheInProcessRun) {
   if (geteuid() != 0) GTEST_SKIP() << "--hosts creates network namespaces: root only";
   if (std::system("ip -V > /dev/null 2>&1") != 0) GTEST_SKIP() << "no `ip` (iproute2)";

@@ -246,9 +246,9 @@ let plotted = "";
 // uPlot draws its series in legend order. The peers and the center agree to 1e-9 m, so the
 // center's line goes last, wider and dashed, or the peers' would hide it.
 function drawErrors() {
-  const ids = [...view.series.keys()];
-  if (ids.length === 0) return;
-  const nodes = [...ids.filter((n) => n !== 0).sort((a, b) => a - b), ...ids.filter((n) => n === 0)];
+  const centerLast = (a, b) => (a === 0) - (b === 0) || a - b;
+  const nodes = [...view.series.keys()].sort(centerLast);
+  if (nodes.length === 0) return;
   const key = nodes.join(",");
   const center = view.series.get(0) ?? view.series.get(nodes[0]);
   const data = [center.steps, ...nodes.map((n) => {

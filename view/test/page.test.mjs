@@ -29,6 +29,17 @@ function untilLine(child, pattern) {
   });
 }
 
+// The colours ("r,g,b") of the fully opaque pixels of the canvas `selector` finds.
+function opaqueColours(page, selector) {
+  return page.evaluate((sel) => {
+    const c = document.querySelector(sel);
+    const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
+    const seen = new Set();
+    for (let i = 0; i < d.length; i += 4) if (d[i + 3] === 255) seen.add(`${d[i]},${d[i + 1]},${d[i + 2]}`);
+    return [...seen];
+  }, selector);
+}
+
 const launchOptions = {
   executablePath: browserPath,
   args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -112,24 +123,12 @@ test("the live page follows a run to its last round", { skip: !existsSync(browse
     // uPlot draws its series in legend order, and the center's comes last, dashed.
     const labels = await page.locator("#errors .u-legend .u-series .u-label").allTextContents();
     assert.equal(labels.at(-1), "center", `the center's series is drawn last: ${labels.join(", ")}`);
-    const plotColours = await page.evaluate(() => {
-      const c = document.querySelector("#errors canvas");
-      const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
-      const seen = new Set();
-      for (let i = 0; i < d.length; i += 4) if (d[i + 3] === 255) seen.add(`${d[i]},${d[i + 1]},${d[i + 2]}`);
-      return [...seen];
-    });
+    const plotColours = await opaqueColours(page, "#errors canvas");
     for (const rgb of ["255,140,0", "51,115,230"]) {
       assert.ok(plotColours.includes(rgb), `error plot has ${rgb}: ${plotColours.slice(0, 12).join(" ")}`);
     }
     // The scene is drawn: pixels of the truth's, the center's, the peers' and the stations' colours.
-    const colours = await page.evaluate(() => {
-      const c = document.getElementById("scene");
-      const d = c.getContext("2d").getImageData(0, 0, c.width, c.height).data;
-      const seen = new Set();
-      for (let i = 0; i < d.length; i += 4) if (d[i + 3] === 255) seen.add(`${d[i]},${d[i + 1]},${d[i + 2]}`);
-      return [...seen];
-    });
+    const colours = await opaqueColours(page, "#scene");
     for (const rgb of ["38,179,64", "255,140,0", "51,115,230", "119,119,119"]) {
       assert.ok(colours.includes(rgb), `scene has ${rgb}: ${colours.slice(0, 12).join(" ")}`);
     }

@@ -13,6 +13,7 @@
 
 namespace CLI {
 class App;
+class Option;
 }
 
 namespace skyfuse::options {
@@ -46,6 +47,10 @@ struct NetworkOptions {
 
 /// `--interface ADDRESS` and `--discovery-server ADDRESS:PORT` into `options`.
 void add_network_options(CLI::App& app, NetworkOptions& options);
+/// `--host-discovery server|multicast`: how the processes of a run on simulated hosts discover
+/// each other, through the harness's discovery server or by multicast across the hosts' bridge.
+/// Sets `multicast`; its value on entry is the default shown in the help.
+CLI::Option* add_host_discovery_option(CLI::App& app, bool& multicast, const std::string& help);
 /// The arguments that give a node the same network options (none for the defaults).
 std::vector<std::string> network_arguments(const NetworkOptions& options);
 
