@@ -168,10 +168,11 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
                   "--scale: the real-time runs' deadline")
       ->check(options::positive_number())
       ->capture_default_str();
-  options::add_host_discovery_option(
-      *cmd, o.scale.multicast_host_discovery,
+  options::add_discovery_option(
+      *cmd, o.scale.host_discovery,
       "--scale: how runs on simulated hosts (M above one host's limit) discover each other: "
-      "by multicast across the hosts' bridge, or through the harness's discovery server");
+      "each process announcing itself to its exchange partners only (peers), by multicast "
+      "across the hosts' bridge, or through the harness's discovery server (server or auto)");
   cmd->add_flag("!--reliable", o.scale.best_effort,
                 "--scale: reliable increments, sums and measurements (default: best effort)");
   // The options the two benchmarks share go to the scale benchmark only when given, so that

@@ -117,11 +117,12 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Place the center and the stations, round robin, on N simulated hosts: network "
                   "namespaces joined by a bridge, discovering through the harness (root only)")
       ->check(options::whole_number_in(1, SimulatedHosts::kMaxHosts));
-  options::add_host_discovery_option(
-      *cmd, o.multicast_host_discovery,
-      "With --hosts: discover through the harness's discovery server (server), or by every "
-      "participant's multicast announcements across the hosts' bridge (multicast)")
-      ->needs("--hosts");
+  options::add_discovery_option(
+      *cmd, o.discovery,
+      "How the processes find each other: auto (multicast on one host, the harness's discovery "
+      "server across --hosts), multicast (every participant announces itself to all), server "
+      "(--hosts only), or peers (each announces itself only to the processes it exchanges "
+      "with, so a station discovers its cluster, not every station)");
   cmd->add_flag("--external", o.external,
                 "Do not start processes: drive stations and a center started elsewhere");
   cmd->add_flag("-v,--verbose", o.verbose, "Let the node processes log at info level");

@@ -18,8 +18,8 @@
 #include "run/child_processes.hpp"
 #include "run/kernel_counters.hpp"
 #include "run/lockstep_driver.hpp"
+#include "run/placement.hpp"
 #include "run/secure_start.hpp"
-#include "run/simulated_hosts.hpp"
 #include "skyfuse/options/filter_options.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/registry/filter_info.hpp"
@@ -158,42 +158,10 @@ void check_station_events(const RunOptions& o, const RunPlan& plan) {
   }
 }
 
-// Where the processes run: on this host's interface, or each on a simulated host of its own
-// network, discovering each other through the harness.
-struct Placement {
-  std::optional<SimulatedHosts> hosts;
-  options::NetworkOptions harness;  // the harness's interface and discovery server
-
-  // The network options and namespace of the process with index `i`: 0 the center, then the
-  // stations in ascending id. Round robin over the hosts, the center on the first; without
-  // hosts, the harness's own options and namespace.
-  std::pair<options::NetworkOptions, int> of(std::size_t i) const {
-    if (!hosts) return {harness, -1};
-    const int host = static_cast<int>(i % static_cast<std::size_t>(hosts->count()));
-    options::NetworkOptions network = harness;
-    network.interface_address = hosts->address(host);
-    return {network, hosts->namespace_fd(host)};
-  }
-};
-
-void check_hosts(const RunOptions& o) {
-  if (o.node.secure_dir && (o.hosts > 0 || o.node.network.discovery_server)) {
-    throw std::invalid_argument(transport::kSecureDiscoveryServerRefusal);
-  }
-  if (o.hosts == 0) return;
-  if (o.external) throw std::invalid_argument("--hosts: not with --external (it starts the nodes)");
-  if (o.node.network != options::NetworkOptions{}) {
-    throw std::invalid_argument(
-        "--hosts: gives every node its host's interface and the harness's discovery server; "
-        "leave out --interface and --discovery-server");
-  }
-  SimulatedHosts::check_allowed(o.hosts);
-}
-
 RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   // Refusals first: a refused command leaves an earlier run's folder as it was.
   check_station_events(o, plan);
-  check_hosts(o);
+  Placement::check(o, static_cast<std::size_t>(plan.stations));
   const std::vector<int> ids = plan.participant_ids();
   if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
     transport::SecurityFolder{*o.node.secure_dir}.check(transport::run_identities(ids));
@@ -215,22 +183,14 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       if (!e.success()) throw RunAborted(e.describe());
     }
   };
-  Placement placement;
-  placement.harness = o.node.network;
-  if (o.hosts > 0) {
-    placement.hosts.emplace(o.hosts, o.multicast_host_discovery);
-    placement.harness.interface_address = placement.hosts->bridge_address();
-    if (!o.multicast_host_discovery) {
-      placement.harness.discovery_server =
-          options::Ipv4Endpoint{placement.hosts->bridge_address(), options::kDefaultDiscoveryPort};
-    }
-  }
+  const Placement placement(o, plan.scenario.exchange, ids.size());
   transport::NodeConfig config;
   config.domain_id = o.node.domain;
   config.name = "skyfuse-harness";
   if (o.node.qos_file) config.qos_file = *o.node.qos_file;
   config.best_effort_data = o.node.best_effort;
-  config.network = placement.harness;
+  config.network = placement.harness();
+  config.network.lease_s = options::lease_seconds(plan.stations + 2);
   config.serves_discovery = config.network.discovery_server.has_value();  // the nodes' server
   if (o.node.secure_dir) {
     config.security = transport::SecurityConfig{*o.node.secure_dir, transport::kHarnessIdentity};
@@ -399,9 +359,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     summary.refusion_lag = o.node.refusion_lag;
     recorder.set_settled(driver.settled_tracks());
     summary.settled = recorder.summarise_settled();
-    if (placement.harness.discovery_server) {
-      summary.discovery_server = placement.harness.discovery_server->to_string();
-    }
+    summary.discovery = placement.discovery();
     recorder.write(out, summary, run_id);
     const std::string summary_json = recorder.summary_json(summary, run_id);
     if (live) {

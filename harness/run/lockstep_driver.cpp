@@ -171,6 +171,7 @@ struct LockstepDriver::Impl {
         counts.lost = s.lost();
         counts.resyncs = s.resyncs();
         counts.late_used = s.late_used();
+        counts.participants_known = s.participants_known();
       }
     }
   }

@@ -50,6 +50,7 @@ struct NodeCounts {
   std::uint64_t lost = 0;       ///< received samples removed by the simulated loss
   std::uint32_t resyncs = 0;    ///< rounds fused onto another station's prior
   std::uint64_t late_used = 0;  ///< samples kept after their round closed, and re-fused
+  std::uint32_t participants_known = 0;  ///< other DDS participants it had discovered
 };
 
 /// What every track of a run carries: an estimate of the run's state dimension, and as many

@@ -38,9 +38,8 @@ struct RunOptions {
                                 ///< the run while it goes on (report/live_feed.hpp)
   bool external = false;        ///< stations and center are started elsewhere (by hand, compose)
   int hosts = 0;  ///< > 0: place the processes on this many simulated hosts (simulated_hosts.hpp)
-  /// How processes on simulated hosts discover each other: through the harness's discovery
-  /// server (false) or by multicast announcements across the hosts' bridge (true).
-  bool multicast_host_discovery = false;
+  /// How the processes discover each other (run/placement.hpp).
+  options::Discovery discovery = options::Discovery::kAutomatic;
   bool verbose = false;
 };
 

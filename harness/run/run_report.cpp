@@ -403,10 +403,16 @@ std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t r
         {"seed", summary.loss.seed},
         {"best_effort", summary.best_effort}};
   }
+  // Whom each node had discovered when it finished: every process with multicast discovery, its
+  // exchange partners with peer discovery.
+  nlohmann::json known = nlohmann::json::object();
+  for (const auto& [node, counts] : summary.node_counts) {
+    if (node != kHarnessNodeId) known[node_key(node)] = counts.participants_known;
+  }
   full["network"] = {
       {"hosts", summary.hosts},
-      {"discovery",
-       summary.discovery_server.empty() ? "multicast" : "server " + summary.discovery_server}};
+      {"discovery", summary.discovery},
+      {"participants_known_by_node", known}};
   full["dropped_by_kind"] = by_kind;
   full["dropped_by_node"] = by_node;
   return full.dump(2);

@@ -89,9 +89,9 @@ struct RunSummary {
   LinkLoss loss;
   bool best_effort = false;
   /// Where the processes ran and how they found each other: simulated hosts (0: this host),
-  /// and the discovery server's address ("": multicast).
+  /// and their discovery ("multicast", "server ADDRESS:PORT", "peers").
   int hosts = 0;
-  std::string discovery_server;
+  std::string discovery = "multicast";
   std::size_t refusion_lag = 0;
   std::optional<SettledFigures> settled;  ///< none: no station re-fused
 };

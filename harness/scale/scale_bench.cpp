@@ -146,7 +146,7 @@ RunSummary measure(const ScaleBenchOptions& o, const Scenario& scenario,
   run.node.domain = o.domain;
   if (realtime) run.node.realtime_deadline_ms = o.realtime_deadline_ms;
   run.hosts = hosts;
-  run.multicast_host_discovery = o.multicast_host_discovery;
+  if (hosts > 0) run.discovery = o.host_discovery;
   run.out_dir =
       (out / fmt::format("{}-M{}-{}", exchange, m, realtime ? "realtime" : "lockstep")).string();
   run.round_timeout_s = 30.0;

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "skyfuse/options/network_options.hpp"
+
 namespace skyfuse::harness {
 
 struct ScaleBenchOptions {
@@ -22,10 +24,10 @@ struct ScaleBenchOptions {
   int realtime_steps = 500;  ///< real-time steps per run; 0 skips the real-time runs
   double realtime_deadline_ms = 15.0;
   bool best_effort = true;  ///< increments, partial sums and measurements BEST_EFFORT
-  /// Runs on simulated hosts discover by multicast across the hosts' bridge, not through the
-  /// harness's discovery server: at M = 128 on 2 cores the server's Fast DDS 2.9 dropped
-  /// endpoints for good (docs/performance.md#m--128-and-m--256), multicast matched them all.
-  bool multicast_host_discovery = true;
+  /// Runs on simulated hosts discover their exchange partners only (`--discovery peers`): on 2
+  /// cores, M = 128 on 4 hosts matched in 11.5 s that way, in 127 s by multicast, and the
+  /// server's Fast DDS 2.9 dropped endpoints for good (docs/performance.md#m--128-and-m--256).
+  options::Discovery host_discovery = options::Discovery::kPeers;
   int domain = 0;
 };
 

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <charconv>
+#include <map>
 
 namespace skyfuse::options {
 
@@ -58,15 +59,55 @@ void add_network_options(CLI::App& app, NetworkOptions& options) {
          "Discover the run's participants through the discovery server at ADDRESS:PORT "
          "instead of by multicast (no multicast at all then); `skyfuse run` serves it itself")
       ->type_name("ADDRESS:PORT");
+  app.add_option_function<std::vector<std::string>>(
+         "--discovery-peers",
+         [&options](const std::vector<std::string>& texts) {
+           options.discovery_peers.clear();
+           for (const std::string& text : texts) {
+             const auto endpoint = parse_ipv4_endpoint(text);
+             if (!endpoint) {
+               throw CLI::ValidationError(
+                   "--discovery-peers", "expected ADDRESS:PORT (IPv4, port 1-65535), got " + text);
+             }
+             options.discovery_peers.push_back(*endpoint);
+           }
+         },
+         "Announce this node only to the participants listening for discovery at these "
+         "endpoints, not by multicast: it knows only them and those that list it")
+      ->type_name("ADDRESS:PORT,...")
+      ->delimiter(',')
+      ->excludes("--discovery-server");
+  app.add_option_function<int>(
+         "--participant-id", [&options](int id) { options.participant_id = id; },
+         "This node's RTPS participant id, which fixes its discovery port at 7410 + 250 "
+         "domain + 2 id (default: the first free one)")
+      ->type_name("N")
+      ->check(CLI::Range(0, kParticipantIdsPerAddress - 1));
 }
 
-CLI::Option* add_host_discovery_option(CLI::App& app, bool& multicast, const std::string& help) {
-  return app
-      .add_option_function<std::string>(
-          "--host-discovery", [&multicast](const std::string& how) { multicast = how == "multicast"; },
-          help)
-      ->check(CLI::IsMember({"server", "multicast"}))
-      ->default_str(multicast ? "multicast" : "server");
+std::string_view discovery_name(Discovery discovery) {
+  switch (discovery) {
+    case Discovery::kAutomatic:
+      return "auto";
+    case Discovery::kMulticast:
+      return "multicast";
+    case Discovery::kServer:
+      return "server";
+    case Discovery::kPeers:
+      return "peers";
+  }
+  return "auto";
+}
+
+CLI::Option* add_discovery_option(CLI::App& app, Discovery& discovery, const std::string& help) {
+  const std::map<std::string, Discovery> names{{"auto", Discovery::kAutomatic},
+                                               {"multicast", Discovery::kMulticast},
+                                               {"server", Discovery::kServer},
+                                               {"peers", Discovery::kPeers}};
+  return app.add_option("--discovery,--host-discovery", discovery, help)
+      ->transform(CLI::CheckedTransformer(names))
+      ->option_text(fmt::format("auto|multicast|server|peers (default: {})",
+                                discovery_name(discovery)));
 }
 
 std::vector<std::string> network_arguments(const NetworkOptions& options) {
@@ -77,6 +118,19 @@ std::vector<std::string> network_arguments(const NetworkOptions& options) {
   if (options.discovery_server) {
     args.push_back("--discovery-server");
     args.push_back(options.discovery_server->to_string());
+  }
+  if (!options.discovery_peers.empty()) {
+    std::string peers;
+    for (const Ipv4Endpoint& peer : options.discovery_peers) {
+      if (!peers.empty()) peers += ',';
+      peers += peer.to_string();
+    }
+    args.push_back("--discovery-peers");
+    args.push_back(std::move(peers));
+  }
+  if (options.participant_id) {
+    args.push_back("--participant-id");
+    args.push_back(std::to_string(*options.participant_id));
   }
   return args;
 }

@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <regex>
 #include <nlohmann/json.hpp>
 
 #include "integration/run_fixture.hpp"
@@ -16,6 +18,7 @@ namespace {
 
 using namespace std::chrono_literals;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 constexpr int kSteps = 200;
 
@@ -46,6 +49,18 @@ nlohmann::json expect_equal_to_twin(int stations, int domain,
   EXPECT_EQ(run.status.code, 0) << run.output;
   if (run.status.code != 0) return {};
 
+  if (std::find(extra.begin(), extra.end(), "--hosts") != extra.end()) {
+    // Nothing of the run is left behind: no namespace, no bridge. Only this run's are looked
+    // for, as another test's run may be up meanwhile.
+    std::smatch bridge;
+    EXPECT_TRUE(std::regex_search(run.output, bridge, std::regex("on bridge sfbr([0-9]+)")))
+        << run.output;
+    if (!bridge.empty()) {
+      const std::string tag = bridge[1];
+      EXPECT_THAT(output_of("ip netns list"), Not(HasSubstr("skyfuse-" + tag + "-h")));
+      EXPECT_THAT(output_of("ip -o link show type bridge"), Not(HasSubstr("sfbr" + tag + ":")));
+    }
+  }
   return expect_default_run_equals_twin(dir / "out", stations, kSteps);
 }
 
@@ -55,9 +70,6 @@ TEST(DdsHosts, FourStationsOnThreeHostsEqualTheInProcessRunBitForBit) {
   const auto summary = expect_equal_to_twin(4, 188, {"--hosts", "3"});
   EXPECT_EQ(summary["network"]["hosts"], 3);
   EXPECT_THAT(summary["network"]["discovery"].get<std::string>(), HasSubstr("server 198.18."));
-  // Nothing is left behind: no namespace, no bridge of the run.
-  EXPECT_THAT(output_of("ip netns list"), ::testing::Not(HasSubstr("skyfuse-")));
-  EXPECT_THAT(output_of("ip -o link show type bridge"), ::testing::Not(HasSubstr("sfbr")));
 }
 
 // Multicast discovery across the hosts' bridge, no server: the run says so and equals its twin.
@@ -65,19 +77,39 @@ TEST(DdsHosts, FourStationsOnThreeHostsDiscoveringByMulticastEqualTheInProcessRu
   if (geteuid() != 0) GTEST_SKIP() << "--hosts creates network namespaces: root only";
   if (std::system("ip -V > /dev/null 2>&1") != 0) GTEST_SKIP() << "no `ip` (iproute2)";
   const auto summary =
-      expect_equal_to_twin(4, 186, {"--hosts", "3", "--host-discovery", "multicast"});
+      expect_equal_to_twin(4, 186, {"--hosts", "3", "--discovery", "multicast"});
   EXPECT_EQ(summary["network"]["hosts"], 3);
   EXPECT_EQ(summary["network"]["discovery"], "multicast");
-  EXPECT_THAT(output_of("ip netns list"), ::testing::Not(HasSubstr("skyfuse-")));
 }
 
-TEST(DdsHosts, MulticastDiscoveryIsRefusedWithoutHosts) {
+// Peer discovery across hosts: each process listed by its host's address and participant id,
+// and announcing itself to those it exchanges with (here, as the flat exchange has it, all).
+TEST(DdsHosts, FourStationsOnThreeHostsDiscoveringTheirPeersEqualTheInProcessRun) {
+  if (geteuid() != 0) GTEST_SKIP() << "--hosts creates network namespaces: root only";
+  if (std::system("ip -V > /dev/null 2>&1") != 0) GTEST_SKIP() << "no `ip` (iproute2)";
+  const auto summary = expect_equal_to_twin(4, 223, {"--hosts", "3", "--discovery", "peers"});
+  EXPECT_EQ(summary["network"]["hosts"], 3);
+  EXPECT_EQ(summary["network"]["discovery"], "peers");
+  for (const auto& [node, known] : summary["network"]["participants_known_by_node"].items()) {
+    EXPECT_EQ(known.get<int>(), 5) << node;  // the harness, the center and the other stations
+  }
+}
+
+// The harness serves discovery only to the hosts it makes; peer lists are its to write.
+TEST(DdsHosts, ServerDiscoveryIsRefusedWithoutHostsAndPeerDiscoveryWithoutTheHarnessStarting) {
   const auto dir = test_dir();
-  const Completed run = run_to_completion(
-      {bin("skyfuse"), "run", "--host-discovery", "multicast", "--out", (dir / "out").string()},
-      dir / "run.log", 30s);
-  EXPECT_NE(run.status.code, 0);
-  EXPECT_THAT(run.output, HasSubstr("--host-discovery requires --hosts"));
+  const Completed server = run_to_completion(
+      {bin("skyfuse"), "run", "--discovery", "server", "--out", (dir / "out").string()},
+      dir / "server.log", 30s);
+  EXPECT_NE(server.status.code, 0);
+  EXPECT_THAT(server.output, HasSubstr("--discovery server: the harness serves discovery for "
+                                       "--hosts only"));
+  const Completed external =
+      run_to_completion({bin("skyfuse"), "run", "--discovery", "peers", "--external", "--out",
+                         (dir / "out").string()},
+                        dir / "external.log", 30s);
+  EXPECT_NE(external.status.code, 0);
+  EXPECT_THAT(external.output, HasSubstr("--discovery peers: not with --external"));
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 }
 

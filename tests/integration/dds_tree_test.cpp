@@ -69,6 +69,26 @@ TEST(DdsTree, SixteenStationsInClustersOfFourEqualTheInProcessTreeBitForBit) {
   expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 200, 4, 208);
 }
 
+// `--discovery peers`: each process announces itself only to those it exchanges samples with.
+// The run is the same bit for bit, and each node reports knowing only its partners: the
+// harness and the center, its 3 cluster mates, and for a cluster's first two members (the
+// aggregator and its stand-in) the first two of each of the 3 other clusters. The center knows
+// the harness and every station. With multicast discovery every node knows all 17 others.
+TEST(DdsTree, StationsDiscoveringOnlyTheirPeersKnowTheirClusterAndGiveTheInProcessTreesBits) {
+  const auto summary = expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 200, 4, 221,
+                                                   {"--discovery", "peers"});
+  ASSERT_FALSE(summary.is_null());
+  const auto& network = summary.at("network");
+  EXPECT_EQ(network.at("discovery"), "peers");
+  const auto& known = network.at("participants_known_by_node");
+  EXPECT_EQ(known.at("center").get<int>(), 1 + 16);
+  for (int id = 1; id <= 16; ++id) {
+    const bool stand_in = (id - 1) % 4 < 2;
+    EXPECT_EQ(known.at(std::to_string(id)).get<int>(), stand_in ? 2 + 3 + 2 * 3 : 2 + 3)
+        << "station " << id;
+  }
+}
+
 // The IMM over the tree (paper 000's ten stations in clusters of 3, the last cluster of one,
 // through the turn at 10-18 s): each sum carries every mode's increments and likelihood terms,
 // one sample per mode; peers agree in the mode probabilities too.
@@ -147,19 +167,21 @@ TEST(DdsTree, PeersThatLostSumsAgreeAgainAfterTheLossWithoutTakingClustersOver) 
 // Peers disagree only in the round of each change and the one after: every other round holds
 // the same bits on every peer, and nothing is counted twice (peer-to-peer stays within 1e-4 m
 // of the center).
-TEST(DdsTree, AKilledAggregatorIsReplacedByTheNextIdAndTakesItsClusterBackWhenRestarted) {
+// Station 1, cluster 0's aggregator, is killed before round 100 and restarted before round
+// 150: station 2 sums the cluster meanwhile, and station 1 takes it back. Peers agree but in
+// the rounds of the change, and the center stays within 1e-4 m but while histories settle.
+void expect_aggregator_replaced_and_restored(int domain, const std::vector<std::string>& extra) {
   constexpr int kSteps = 300;
   const auto dir = test_dir();
-  const Completed run = run_to_completion(
-      {bin("skyfuse"), "run", "--scenario", bin("scenarios/ring64.yaml"), "--stations", "16",
-       "--steps", std::to_string(kSteps), "--exchange", "tree", "--fanout", "4",
-       // Long enough that no total comes late under a
-       // loaded CI (at 50 ms one round in 300 did, and
-       // its member fused alone); only the rounds of the
-       // kill and the restart wait for it.
-       "--round-deadline-ms", "250", "--kill", "1@100", "--restart", "1@150", "--domain", "210",
-       "--out", (dir / "out").string()},
-      (dir / "out.log").string(), 180s);
+  std::vector<std::string> args = {
+      bin("skyfuse"), "run", "--scenario", bin("scenarios/ring64.yaml"), "--stations", "16",
+      "--steps", std::to_string(kSteps), "--exchange", "tree", "--fanout", "4",
+      // Long enough that no total comes late under a loaded CI (at 50 ms one round in 300 did,
+      // and its member fused alone); only the rounds of the kill and the restart wait for it.
+      "--round-deadline-ms", "250", "--kill", "1@100", "--restart", "1@150", "--domain",
+      std::to_string(domain), "--out", (dir / "out").string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const Completed run = run_to_completion(args, (dir / "out.log").string(), 180s);
   ASSERT_EQ(run.status.code, 0) << run.output;
   EXPECT_EQ(run.output.find("was killed by signal"), std::string::npos) << run.output;
 
@@ -181,6 +203,16 @@ TEST(DdsTree, AKilledAggregatorIsReplacedByTheNextIdAndTakesItsClusterBackWhenRe
   for (const auto& [station, rounds] : summary["rounds_missing_by_station"].items()) {
     if (station != "1") EXPECT_LE(rounds.get<int>(), 2) << station;
   }
+}
+
+TEST(DdsTree, AKilledAggregatorIsReplacedByTheNextIdAndTakesItsClusterBackWhenRestarted) {
+  expect_aggregator_replaced_and_restored(210, {});
+}
+
+// With peer discovery the stand-in (station 2) already knows the other clusters' aggregators,
+// and the restarted station 1 announces itself to its peers again.
+TEST(DdsTree, AnAggregatorsStandInTakesOverWhenStationsDiscoverOnlyTheirPeers) {
+  expect_aggregator_replaced_and_restored(222, {"--discovery", "peers"});
 }
 
 std::vector<std::string> tree_run_args(int domain, const std::filesystem::path& out) {

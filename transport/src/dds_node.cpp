@@ -1,6 +1,7 @@
 #include "skyfuse/transport/dds_node.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
@@ -21,7 +22,10 @@ DdsNode::DdsNode(const NodeConfig& config)
   auto* factory = dds::DomainParticipantFactory::get_instance();
   dds::DomainParticipantQos participant_qos = qos_.participant(config.name);
   if (config.security) add_security_properties(participant_qos, *config.security);
-  participant_ = factory->create_participant(config.domain_id, participant_qos);
+  // No status in the mask: the listener hears discovery only, and the readers' events stay
+  // with their WaitSets.
+  participant_ = factory->create_participant(config.domain_id, participant_qos, discovery_.get(),
+                                             dds::StatusMask::none());
   if (participant_ == nullptr) {
     throw DdsError(fmt::format("cannot create a DDS participant on domain {}{}", config.domain_id,
                                config.security ? " with DDS-Security (see the log above)" : ""));
@@ -52,6 +56,26 @@ dds::Subscriber* DdsNode::subscriber_in(const std::vector<std::string>& partitio
     throw DdsError("cannot create a subscriber in partition " + partitions[0]);
   }
   return subscriber;
+}
+
+void DdsNode::DiscoveryCount::on_participant_discovery(
+    dds::DomainParticipant*, eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) {
+  using Status = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
+  switch (info.status) {
+    case Status::DISCOVERED_PARTICIPANT:
+      ++known_;
+      break;
+    case Status::REMOVED_PARTICIPANT:
+    case Status::DROPPED_PARTICIPANT:
+      if (known_ > 0) --known_;
+      // Dropped: its lease ran out, which on a starved machine may be a live participant.
+      spdlog::info("participant {} {}", info.info.m_participantName.to_string(),
+                   info.status == Status::DROPPED_PARTICIPANT ? "dropped (lease expired)"
+                                                              : "left");
+      break;
+    default:
+      break;
+  }
 }
 
 DdsNode::~DdsNode() {

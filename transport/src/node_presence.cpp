@@ -17,7 +17,8 @@
 namespace skyfuse::transport {
 
 NodePresence::NodePresence(DdsNode& node, std::uint64_t run_id, int node_id)
-    : run_id_(run_id),
+    : node_(node),
+      run_id_(run_id),
       node_id_(node_id),
       instance_(std::random_device{}() ^
                 (static_cast<std::uint64_t>(std::random_device{}()) << 32) ^
@@ -53,6 +54,7 @@ wire::StationStatus NodePresence::status(wire::NodeState state, std::uint32_t st
   status.lost(lost_);
   status.resyncs(resyncs_);
   status.late_used(late_used_);
+  status.participants_known(static_cast<std::uint32_t>(node_.participants_known()));
   return status;
 }
 

@@ -192,12 +192,13 @@ dds::DomainParticipantQos QosProfiles::participant(const std::string& name) cons
   // 14 rounds/s; with 4 MiB none, 19 rounds/s. The kernel caps it at net.core.rmem_max.
   udp->receiveBufferSize = static_cast<std::uint32_t>(kReceiveBufferBytes);
   qos.transport().user_transports.push_back(udp);
-  // A dead participant is noticed after its lease: 10 s instead of the default 20 s. Shorter
+  // A dead participant is noticed after its lease: 10 s instead of the default 20 s, longer for
+  // large runs (options::lease_seconds). Shorter
   // leases (2 s was tried) expire on a starved machine - 30+ processes on 2 cores - and Debian's
   // Fast DDS, built with assertions, then aborts in PDP::check_remote_participant_liveliness.
   // The harness does not rely on leases: it sees a dead child through waitpid at once.
   auto& discovery = qos.wire_protocol().builtin.discovery_config;
-  discovery.leaseDuration = Duration_t(10, 0);
+  discovery.leaseDuration = Duration_t(static_cast<long double>(network_.lease_s));
   // Every participant announces itself to every other one each period: M^2 datagrams. At
   // M = 64 and 1 s that was 4 300 receptions a second, a sixth of a tree round's; at 3 s (Fast
   // DDS's default) a third of that. Lock-step M = 64, tree exchange, best effort: 69 -> 68-85
@@ -206,8 +207,34 @@ dds::DomainParticipantQos QosProfiles::participant(const std::string& name) cons
   // Announce quickly at start so that all-matched is reached in tenths of a second.
   discovery.initial_announcements.count = 10;
   discovery.initial_announcements.period = Duration_t(0, 50'000'000);
+  if (network_.participant_id) qos.wire_protocol().participant_id = *network_.participant_id;
   if (network_.discovery_server) use_discovery_server(qos, *network_.discovery_server);
+  if (!network_.discovery_peers.empty()) announce_to_peers_only(qos);
   return qos;
+}
+
+void QosProfiles::announce_to_peers_only(dds::DomainParticipantQos& qos) const {
+  // Simple discovery, but announced by unicast to the listed peers only. A participant learns
+  // of another only from that one's announcement, and announces itself to its initial peers
+  // and to those it has learnt of (by unicast: Fast DDS avoids multicast for built-in traffic
+  // after discovery). So it knows the peers it lists and those that list or reach it.
+  // It still listens on the domain's discovery multicast group, which none of the run's
+  // processes send to, so that a reader of another DDS that announces itself by multicast (a
+  // viewer, docs/interop.md) is answered and finds it as before. Fast DDS adds the default
+  // locators only when both lists are empty; port 0 becomes the well-known port.
+  namespace rtps = eprosima::fastrtps::rtps;
+  auto& builtin = qos.wire_protocol().builtin;
+  rtps::Locator_t own;
+  rtps::IPLocator::createLocator(LOCATOR_KIND_UDPv4, network_.interface_address, 0, own);
+  builtin.metatrafficUnicastLocatorList.push_back(own);
+  rtps::Locator_t group;
+  rtps::IPLocator::createLocator(LOCATOR_KIND_UDPv4, kMulticastGroup, 0, group);
+  builtin.metatrafficMulticastLocatorList.push_back(group);
+  for (const options::Ipv4Endpoint& peer : network_.discovery_peers) {
+    rtps::Locator_t locator;
+    rtps::IPLocator::createLocator(LOCATOR_KIND_UDPv4, peer.address, peer.port, locator);
+    builtin.initialPeersList.push_back(locator);
+  }
 }
 
 dds::DataWriterQos QosProfiles::writer(const dds::Publisher& publisher,

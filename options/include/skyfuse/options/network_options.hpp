@@ -35,22 +35,63 @@ std::optional<Ipv4Endpoint> parse_ipv4_endpoint(std::string_view text);
 /// The UDP port the harness serves discovery on for `--hosts`, on the bridge's address.
 inline constexpr std::uint16_t kDefaultDiscoveryPort = 11811;
 
+/// Participant ids a domain has room for on one address: the RTPS port mapping gives each
+/// domain 250 ports, and participant p its discovery port 10 + 2 p and its data port one above.
+inline constexpr int kParticipantIdsPerAddress = 120;
+/// Participant ids a domain has on one address: kParticipantIdsPerAddress, fewer in the
+/// highest domains, whose ports would pass 65535.
+inline constexpr int participant_ids_per_address(int domain) {
+  const int room = (65535 - 1 - (7400 + 250 * domain + 10)) / 2 + 1;
+  return room < kParticipantIdsPerAddress ? room : kParticipantIdsPerAddress;
+}
+/// The UDP port on which participant `participant_id` of `domain` listens for discovery (the
+/// RTPS well-known ports: 7400 + 250 domain + 10 + 2 participant_id), which `--discovery-peers`
+/// lists.
+inline constexpr std::uint16_t discovery_port(int domain, int participant_id) {
+  return static_cast<std::uint16_t>(7400 + 250 * domain + 10 + 2 * participant_id);
+}
+
 struct NetworkOptions {
   /// The address of the interface the participant's sockets use (`--interface`).
   std::string interface_address = "127.0.0.1";
   /// Discover the run's participants through the server there (`--discovery-server`) instead
   /// of by multicast; then no topic uses multicast either. `skyfuse run` serves it itself.
   std::optional<Ipv4Endpoint> discovery_server;
+  /// Announce this participant only to these discovery endpoints (`--discovery-peers`), and
+  /// not by multicast: it then knows only the participants it or they list, instead of every
+  /// participant of the domain. Empty: multicast (or the discovery server).
+  std::vector<Ipv4Endpoint> discovery_peers;
+  /// This participant's RTPS participant id (`--participant-id`), which fixes its discovery
+  /// port (discovery_port()) for the others' peer lists; none: the first free one.
+  std::optional<int> participant_id;
+  /// How long another participant may hear nothing from this one before dropping it. Not an
+  /// option: nodes and harness derive it from the run's size (lease_seconds()).
+  double lease_s = 10.0;
 
   bool operator==(const NetworkOptions&) const = default;
 };
 
-/// `--interface ADDRESS` and `--discovery-server ADDRESS:PORT` into `options`.
+/// `--interface ADDRESS`, `--discovery-server ADDRESS:PORT`, `--discovery-peers
+/// ADDRESS:PORT,...` and `--participant-id N` into `options`.
 void add_network_options(CLI::App& app, NetworkOptions& options);
-/// `--host-discovery server|multicast`: how the processes of a run on simulated hosts discover
-/// each other, through the harness's discovery server or by multicast across the hosts' bridge.
-/// Sets `multicast`; its value on entry is the default shown in the help.
-CLI::Option* add_host_discovery_option(CLI::App& app, bool& multicast, const std::string& help);
+/// The lease of a run of `processes` DDS processes: 10 s, and a quarter second per process
+/// above 40. Starting 257 processes on 2 cores starves some for more than 10 s: the harness
+/// dropped 74 live stations for an expired lease, and never matched some of them again
+/// (M = 256 on 4 hosts, --discovery peers, 2026-11-26).
+inline double lease_seconds(int processes) { return processes > 40 ? 0.25 * processes : 10.0; }
+
+/// How the processes of a run find each other.
+enum class Discovery {
+  kAutomatic,  ///< multicast on one host, the harness's discovery server across hosts
+  kMulticast,  ///< every participant announces itself to every other one by multicast
+  kServer,     ///< through the harness's discovery server (across hosts only)
+  kPeers,      ///< each process announces itself only to the processes it exchanges with
+};
+/// "auto", "multicast", "server", "peers".
+std::string_view discovery_name(Discovery discovery);
+/// `--discovery auto|multicast|server|peers` (also spelt `--host-discovery`). `discovery`'s
+/// value on entry is the default shown in the help.
+CLI::Option* add_discovery_option(CLI::App& app, Discovery& discovery, const std::string& help);
 /// The arguments that give a node the same network options (none for the defaults).
 std::vector<std::string> network_arguments(const NetworkOptions& options);
 

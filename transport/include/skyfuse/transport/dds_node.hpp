@@ -8,10 +8,12 @@
 /// waited on with a WaitSet on that thread (no listener does work).
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <fastdds/dds/core/condition/WaitSet.hpp>
 #include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -21,6 +23,7 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -162,6 +165,10 @@ class DdsNode {
     return Writer<T>(writer);
   }
 
+  /// Other participants this one has discovered and not lost since: every process of the
+  /// domain with multicast discovery, only the peers with `--discovery-peers`.
+  std::size_t participants_known() const { return discovery_->known(); }
+
   /// A reader of T's topic; with `partitions`, its own subscriber in them (as make_writer).
   template <typename T>
   Reader<T> make_reader(const std::vector<std::string>& partitions = {}) {
@@ -194,7 +201,19 @@ class DdsNode {
   dds::Publisher* publisher_in(const std::vector<std::string>& partitions);
   dds::Subscriber* subscriber_in(const std::vector<std::string>& partitions);
 
+  // Counts the participants discovered and lost, on Fast DDS's discovery thread.
+  class DiscoveryCount : public dds::DomainParticipantListener {
+   public:
+    std::size_t known() const { return known_.load(); }
+    void on_participant_discovery(dds::DomainParticipant*,
+                                  eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
+
+   private:
+    std::atomic<std::size_t> known_{0};
+  };
+
   QosProfiles qos_;
+  std::unique_ptr<DiscoveryCount> discovery_ = std::make_unique<DiscoveryCount>();
   dds::DomainParticipant* participant_ = nullptr;
   dds::Publisher* publisher_ = nullptr;
   dds::Subscriber* subscriber_ = nullptr;

@@ -48,6 +48,7 @@ class NodePresence {
   std::uint64_t instance() const { return instance_; }
 
  private:
+  const DdsNode& node_;  // for the participants it knows
   std::uint64_t run_id_;
   int node_id_;
   std::uint64_t instance_;

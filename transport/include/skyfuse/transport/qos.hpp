@@ -47,7 +47,7 @@ std::optional<std::uint64_t> receive_buffer_cap();
 /// the kernel grants; nothing when it does not.
 std::optional<std::string> receive_buffer_warning(int stations);
 
-/// The multicast group of the one-to-many topics: the RTPS default group.
+/// The multicast group of the one-to-many topics and of discovery: the RTPS default group.
 inline constexpr const char* kMulticastGroup = "239.255.0.1";
 
 /// The UDP port `topic`'s readers listen on for multicast in `domain_id`; none for the topics
@@ -77,6 +77,8 @@ class QosProfiles {
                                                const std::string& topic) const;
 
  private:
+  // Makes `qos` announce itself to network.discovery_peers only.
+  void announce_to_peers_only(eprosima::fastdds::dds::DomainParticipantQos& qos) const;
   // Makes `qos` the discovery server at `server`, or a client of it.
   void use_discovery_server(eprosima::fastdds::dds::DomainParticipantQos& qos,
                             const options::Ipv4Endpoint& server) const;

@@ -3,8 +3,9 @@
 /// The DDS partitions of the tree exchange (stations/tree_exchange.hpp). A writer matches only
 /// the readers of its partitions, so a round's samples reach only the stations that need them:
 /// a member's contribution its cluster's aggregator, an aggregator's cluster sum the other
-/// aggregators, a round's total the aggregator's members. Every station still discovers every
-/// other participant; it matches, and hears, only these.
+/// aggregators, a round's total the aggregator's members. With multicast discovery every
+/// station still discovers every other participant and matches, and hears, only these; with
+/// `--discovery peers` (harness/run/discovery_peers.hpp) it discovers only these.
 
 #include <fmt/format.h>
 

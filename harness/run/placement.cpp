@@ -1,0 +1,125 @@
+#include "run/placement.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "run/discovery_peers.hpp"
+#include "skyfuse/transport/node_setup.hpp"
+
+namespace skyfuse::harness {
+
+namespace {
+
+using options::Discovery;
+
+bool multicast_across_hosts(Discovery discovery) {
+  // Peers announce by unicast, but ticks, measurements and increments still travel by
+  // multicast, so the hosts' interfaces must carry it.
+  return discovery == Discovery::kMulticast || discovery == Discovery::kPeers;
+}
+
+// The harness is participant 0 of its address; one host's processes follow it.
+constexpr int kHarnessParticipantId = 0;
+
+}  // namespace
+
+void Placement::check(const RunOptions& o, std::size_t stations) {
+  if (o.node.secure_dir && (o.hosts > 0 || o.node.network.discovery_server)) {
+    throw std::invalid_argument(transport::kSecureDiscoveryServerRefusal);
+  }
+  if (o.discovery == Discovery::kServer && o.hosts == 0) {
+    throw std::invalid_argument(
+        "--discovery server: the harness serves discovery for --hosts only; on one host give "
+        "--discovery-server ADDRESS:PORT of a server of your own");
+  }
+  if (o.discovery == Discovery::kPeers) {
+    if (o.external) {
+      throw std::invalid_argument("--discovery peers: not with --external (it lists the nodes)");
+    }
+    if (o.node.secure_dir) {
+      throw std::invalid_argument(
+          "--discovery peers: not with --secure (secure runs discover by multicast)");
+    }
+    const std::size_t per_host =
+        o.hosts > 0 ? (stations + 1 + static_cast<std::size_t>(o.hosts) - 1) /
+                          static_cast<std::size_t>(o.hosts)
+                    : stations + 2;  // the harness shares one host's ids
+    const int room = options::participant_ids_per_address(o.node.domain);
+    if (per_host > static_cast<std::size_t>(room)) {
+      throw std::invalid_argument(fmt::format(
+          "--discovery peers: {} processes on one address, and domain {} has room for {} "
+          "there; spread them with --hosts{}",
+          per_host, o.node.domain, room, o.node.domain > 200 ? " or take a lower --domain" : ""));
+    }
+  }
+  const bool network_given = o.node.network != options::NetworkOptions{};
+  if (network_given && (o.hosts > 0 || o.discovery == Discovery::kPeers)) {
+    throw std::invalid_argument(fmt::format(
+        "{}: gives every node its interface and discovery; leave out --interface and "
+        "--discovery-server",
+        o.hosts > 0 ? "--hosts" : "--discovery peers"));
+  }
+  if (o.hosts == 0) return;
+  if (o.external) throw std::invalid_argument("--hosts: not with --external (it starts the nodes)");
+  SimulatedHosts::check_allowed(o.hosts);
+}
+
+Placement::Placement(const RunOptions& o, const ExchangeConfig& exchange, std::size_t stations)
+    : domain_(o.node.domain), harness_(o.node.network) {
+  check(o, stations);
+  if (o.hosts > 0) {
+    hosts_.emplace(o.hosts, multicast_across_hosts(o.discovery));
+    harness_.interface_address = hosts_->bridge_address();
+    if (o.discovery == Discovery::kAutomatic || o.discovery == Discovery::kServer) {
+      harness_.discovery_server =
+          options::Ipv4Endpoint{hosts_->bridge_address(), options::kDefaultDiscoveryPort};
+    }
+  }
+  if (o.discovery == Discovery::kPeers) {
+    peer_lists_ = discovery_peer_lists(exchange, stations);
+    harness_.participant_id = kHarnessParticipantId;
+    for (std::size_t i = 0; i < peer_lists_.size(); ++i) {
+      harness_.discovery_peers.push_back(discovery_endpoint(i));
+    }
+  }
+}
+
+std::string Placement::address(std::size_t i) const {
+  if (!hosts_) return harness_.interface_address;
+  return hosts_->address(static_cast<int>(i % static_cast<std::size_t>(hosts_->count())));
+}
+
+int Placement::participant_id(std::size_t i) const {
+  // On one host the processes follow the harness; on simulated hosts each host numbers its
+  // own from 0 (the harness is on the bridge's address).
+  if (!hosts_) return kHarnessParticipantId + 1 + static_cast<int>(i);
+  return static_cast<int>(i / static_cast<std::size_t>(hosts_->count()));
+}
+
+options::Ipv4Endpoint Placement::discovery_endpoint(std::size_t i) const {
+  return {address(i), options::discovery_port(domain_, participant_id(i))};
+}
+
+std::pair<options::NetworkOptions, int> Placement::of(std::size_t i) const {
+  options::NetworkOptions network = harness_;
+  network.interface_address = address(i);
+  if (!peer_lists_.empty()) {
+    network.participant_id = participant_id(i);
+    network.discovery_peers = {{harness_.interface_address,
+                                options::discovery_port(domain_, kHarnessParticipantId)}};
+    for (std::size_t peer : peer_lists_.at(i)) {
+      network.discovery_peers.push_back(discovery_endpoint(peer));
+    }
+  }
+  if (!hosts_) return {network, -1};
+  return {network, hosts_->namespace_fd(static_cast<int>(i % static_cast<std::size_t>(hosts_->count())))};
+}
+
+std::string Placement::discovery() const {
+  if (!peer_lists_.empty()) return "peers";
+  if (harness_.discovery_server) return "server " + harness_.discovery_server->to_string();
+  return "multicast";
+}
+
+}  // namespace skyfuse::harness
