@@ -5,7 +5,8 @@
 // Usage: node bench/live-cost.mjs SKYFUSE_BIN [ROUNDS_OF_FOUR] [STEPS]
 // KINDS=follow,page,stall picks the clients; RUN_CPUS and BROWSER_CPUS (taskset lists, e.g. 0
 // and 1) keep the run and the browser on cores of their own, as if the page were on another
-// machine: the baseline runs on RUN_CPUS too.
+// machine: the baseline runs on RUN_CPUS too. BROWSER_IDLE=1 runs the browser in the idle
+// scheduling class.
 import { spawn } from "node:child_process";
 import { mkdtempSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
@@ -48,10 +49,13 @@ function stall(port) {
 const profile = mkdtempSync(join(tmpdir(), "skyfuse-live-cost-browser-"));
 // `command args` on the cores `cpus` names (taskset), or anywhere.
 const onCpus = (cpus, command, args) => (cpus ? ["taskset", ["-c", cpus, command, ...args]] : [command, args]);
-const browser = spawn(...onCpus(process.env.BROWSER_CPUS, process.env.SKYFUSE_CHROMIUM ?? "/usr/bin/chromium", ["--headless",
+// BROWSER_IDLE=1: the browser in the idle scheduling class (`chrt --idle 0`, inherited by its
+// processes), drawing with the CPU the run leaves, as a person can run it beside a run.
+const atIdle = (command, args) => (process.env.BROWSER_IDLE ? ["chrt", ["--idle", "0", command, ...args]] : [command, args]);
+const browser = spawn(...onCpus(process.env.BROWSER_CPUS, ...atIdle(process.env.SKYFUSE_CHROMIUM ?? "/usr/bin/chromium", ["--headless",
   "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
   "--disable-component-update", "--disable-sync", "--remote-debugging-port=0", `--user-data-dir=${profile}`,
-  "about:blank"]), { stdio: ["ignore", "ignore", "pipe"] });
+  "about:blank"])), { stdio: ["ignore", "ignore", "pipe"] });
 const devtools = await new Promise((resolve, reject) => {
   let text = "";
   browser.stderr.on("data", (chunk) => {
