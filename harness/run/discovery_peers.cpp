@@ -10,7 +10,9 @@ namespace skyfuse::harness {
 namespace {
 
 constexpr std::size_t kCenter = 0;
-std::size_t process_of_station(std::size_t position) { return 1 + position; }
+std::size_t process_of_station(std::size_t position) {
+  return 1 + position;
+}
 
 }  // namespace
 

@@ -22,6 +22,28 @@ bool multicast_across_hosts(Discovery discovery) {
 // The harness is participant 0 of its address; one host's processes follow it.
 constexpr int kHarnessParticipantId = 0;
 
+// The harness writes every node's peer list and participant id, so it must start the nodes,
+// and their ids must fit the domain's ports on each address.
+void check_peer_discovery(const RunOptions& o, std::size_t stations) {
+  if (o.external) {
+    throw std::invalid_argument("--discovery peers: not with --external (it lists the nodes)");
+  }
+  if (o.node.secure_dir) {
+    throw std::invalid_argument(
+        "--discovery peers: not with --secure (secure runs discover by multicast)");
+  }
+  const auto hosts = static_cast<std::size_t>(o.hosts);
+  const std::size_t per_address = hosts > 0 ? (stations + 1 + hosts - 1) / hosts  // round robin
+                                            : stations + 2;  // with the harness on one host
+  const int room = options::participant_ids_per_address(o.node.domain);
+  if (per_address > static_cast<std::size_t>(room)) {
+    throw std::invalid_argument(fmt::format(
+        "--discovery peers: {} processes on one address, and domain {} has room for {} there; "
+        "spread them with --hosts{}",
+        per_address, o.node.domain, room, o.node.domain > 200 ? " or take a lower --domain" : ""));
+  }
+}
+
 }  // namespace
 
 void Placement::check(const RunOptions& o, std::size_t stations) {
@@ -33,32 +55,13 @@ void Placement::check(const RunOptions& o, std::size_t stations) {
         "--discovery server: the harness serves discovery for --hosts only; on one host give "
         "--discovery-server ADDRESS:PORT of a server of your own");
   }
-  if (o.discovery == Discovery::kPeers) {
-    if (o.external) {
-      throw std::invalid_argument("--discovery peers: not with --external (it lists the nodes)");
-    }
-    if (o.node.secure_dir) {
-      throw std::invalid_argument(
-          "--discovery peers: not with --secure (secure runs discover by multicast)");
-    }
-    const std::size_t per_host =
-        o.hosts > 0 ? (stations + 1 + static_cast<std::size_t>(o.hosts) - 1) /
-                          static_cast<std::size_t>(o.hosts)
-                    : stations + 2;  // the harness shares one host's ids
-    const int room = options::participant_ids_per_address(o.node.domain);
-    if (per_host > static_cast<std::size_t>(room)) {
-      throw std::invalid_argument(fmt::format(
-          "--discovery peers: {} processes on one address, and domain {} has room for {} "
-          "there; spread them with --hosts{}",
-          per_host, o.node.domain, room, o.node.domain > 200 ? " or take a lower --domain" : ""));
-    }
-  }
+  if (o.discovery == Discovery::kPeers) check_peer_discovery(o, stations);
   const bool network_given = o.node.network != options::NetworkOptions{};
   if (network_given && (o.hosts > 0 || o.discovery == Discovery::kPeers)) {
-    throw std::invalid_argument(fmt::format(
-        "{}: gives every node its interface and discovery; leave out --interface and "
-        "--discovery-server",
-        o.hosts > 0 ? "--hosts" : "--discovery peers"));
+    throw std::invalid_argument(
+        fmt::format("{}: gives every node its interface and discovery; leave out --interface and "
+                    "--discovery-server",
+                    o.hosts > 0 ? "--hosts" : "--discovery peers"));
   }
   if (o.hosts == 0) return;
   if (o.external) throw std::invalid_argument("--hosts: not with --external (it starts the nodes)");
@@ -106,14 +109,15 @@ std::pair<options::NetworkOptions, int> Placement::of(std::size_t i) const {
   network.interface_address = address(i);
   if (!peer_lists_.empty()) {
     network.participant_id = participant_id(i);
-    network.discovery_peers = {{harness_.interface_address,
-                                options::discovery_port(domain_, kHarnessParticipantId)}};
+    network.discovery_peers = {
+        {harness_.interface_address, options::discovery_port(domain_, kHarnessParticipantId)}};
     for (std::size_t peer : peer_lists_.at(i)) {
       network.discovery_peers.push_back(discovery_endpoint(peer));
     }
   }
   if (!hosts_) return {network, -1};
-  return {network, hosts_->namespace_fd(static_cast<int>(i % static_cast<std::size_t>(hosts_->count())))};
+  return {network,
+          hosts_->namespace_fd(static_cast<int>(i % static_cast<std::size_t>(hosts_->count())))};
 }
 
 std::string Placement::discovery() const {

@@ -409,10 +409,9 @@ std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t r
   for (const auto& [node, counts] : summary.node_counts) {
     if (node != kHarnessNodeId) known[node_key(node)] = counts.participants_known;
   }
-  full["network"] = {
-      {"hosts", summary.hosts},
-      {"discovery", summary.discovery},
-      {"participants_known_by_node", known}};
+  full["network"] = {{"hosts", summary.hosts},
+                     {"discovery", summary.discovery},
+                     {"participants_known_by_node", known}};
   full["dropped_by_kind"] = by_kind;
   full["dropped_by_node"] = by_node;
   return full.dump(2);

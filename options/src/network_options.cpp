@@ -106,8 +106,8 @@ CLI::Option* add_discovery_option(CLI::App& app, Discovery& discovery, const std
                                                {"peers", Discovery::kPeers}};
   return app.add_option("--discovery,--host-discovery", discovery, help)
       ->transform(CLI::CheckedTransformer(names))
-      ->option_text(fmt::format("auto|multicast|server|peers (default: {})",
-                                discovery_name(discovery)));
+      ->option_text(
+          fmt::format("auto|multicast|server|peers (default: {})", discovery_name(discovery)));
 }
 
 std::vector<std::string> network_arguments(const NetworkOptions& options) {

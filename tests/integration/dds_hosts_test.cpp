@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <regex>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "integration/run_fixture.hpp"
 
@@ -76,8 +76,7 @@ TEST(DdsHosts, FourStationsOnThreeHostsEqualTheInProcessRunBitForBit) {
 TEST(DdsHosts, FourStationsOnThreeHostsDiscoveringByMulticastEqualTheInProcessRun) {
   if (geteuid() != 0) GTEST_SKIP() << "--hosts creates network namespaces: root only";
   if (std::system("ip -V > /dev/null 2>&1") != 0) GTEST_SKIP() << "no `ip` (iproute2)";
-  const auto summary =
-      expect_equal_to_twin(4, 186, {"--hosts", "3", "--discovery", "multicast"});
+  const auto summary = expect_equal_to_twin(4, 186, {"--hosts", "3", "--discovery", "multicast"});
   EXPECT_EQ(summary["network"]["hosts"], 3);
   EXPECT_EQ(summary["network"]["discovery"], "multicast");
 }
@@ -104,10 +103,9 @@ TEST(DdsHosts, ServerDiscoveryIsRefusedWithoutHostsAndPeerDiscoveryWithoutTheHar
   EXPECT_NE(server.status.code, 0);
   EXPECT_THAT(server.output, HasSubstr("--discovery server: the harness serves discovery for "
                                        "--hosts only"));
-  const Completed external =
-      run_to_completion({bin("skyfuse"), "run", "--discovery", "peers", "--external", "--out",
-                         (dir / "out").string()},
-                        dir / "external.log", 30s);
+  const Completed external = run_to_completion({bin("skyfuse"), "run", "--discovery", "peers",
+                                                "--external", "--out", (dir / "out").string()},
+                                               dir / "external.log", 30s);
   EXPECT_NE(external.status.code, 0);
   EXPECT_THAT(external.output, HasSubstr("--discovery peers: not with --external"));
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));

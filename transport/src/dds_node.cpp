@@ -70,8 +70,7 @@ void DdsNode::DiscoveryCount::on_participant_discovery(
       if (known_ > 0) --known_;
       // Dropped: its lease ran out, which on a starved machine may be a live participant.
       spdlog::info("participant {} {}", info.info.m_participantName.to_string(),
-                   info.status == Status::DROPPED_PARTICIPANT ? "dropped (lease expired)"
-                                                              : "left");
+                   info.status == Status::DROPPED_PARTICIPANT ? "dropped (lease expired)" : "left");
       break;
     default:
       break;

@@ -19,8 +19,7 @@ ExchangeConfig tree(int fanout) {
   return exchange;
 }
 
-bool lists(const std::vector<std::vector<std::size_t>>& peer_lists, std::size_t a,
-           std::size_t b) {
+bool lists(const std::vector<std::vector<std::size_t>>& peer_lists, std::size_t a, std::size_t b) {
   const auto& list = peer_lists[a];
   return std::find(list.begin(), list.end(), b) != list.end();
 }
