@@ -1,7 +1,6 @@
 #include "run/discovery_peers.hpp"
 
 #include <algorithm>
-#include <set>
 
 #include "skyfuse/tracking/cluster_layout.hpp"
 
@@ -43,21 +42,6 @@ std::vector<std::vector<std::size_t>> discovery_peer_lists(const ExchangeConfig&
     }
   }
   return lists;
-}
-
-std::vector<std::size_t> participants_to_know(
-    const std::vector<std::vector<std::size_t>>& peer_lists) {
-  std::vector<std::set<std::size_t>> known(peer_lists.size());
-  for (std::size_t p = 0; p < peer_lists.size(); ++p) {
-    for (std::size_t q : peer_lists[p]) {
-      known[p].insert(q);
-      known[q].insert(p);
-    }
-  }
-  std::vector<std::size_t> counts;
-  counts.reserve(known.size());
-  for (const auto& set : known) counts.push_back(set.size());
-  return counts;
 }
 
 }  // namespace skyfuse::harness

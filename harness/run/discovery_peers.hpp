@@ -33,9 +33,4 @@ inline constexpr std::size_t kAggregatorStandIns = 2;
 std::vector<std::vector<std::size_t>> discovery_peer_lists(const ExchangeConfig& exchange,
                                                            std::size_t stations);
 
-/// Each process's known set (the lists closed under "lists or is listed by"), the harness not
-/// counted: what `participants_known` in its status should say once discovery is over.
-std::vector<std::size_t> participants_to_know(
-    const std::vector<std::vector<std::size_t>>& peer_lists);
-
 }  // namespace skyfuse::harness

@@ -190,7 +190,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   if (o.node.qos_file) config.qos_file = *o.node.qos_file;
   config.best_effort_data = o.node.best_effort;
   config.network = placement.harness();
-  config.network.lease_s = options::lease_seconds(plan.stations + 2);
+  config.network.lease_s = options::lease_seconds(plan.stations);
   config.serves_discovery = config.network.discovery_server.has_value();  // the nodes' server
   if (o.node.secure_dir) {
     config.security = transport::SecurityConfig{*o.node.secure_dir, transport::kHarnessIdentity};

@@ -47,9 +47,9 @@ inline constexpr int kHarnessNodeId = -1;
 /// What a node reported when it finished.
 struct NodeCounts {
   DropCounts dropped{};
-  std::uint64_t lost = 0;       ///< received samples removed by the simulated loss
-  std::uint32_t resyncs = 0;    ///< rounds fused onto another station's prior
-  std::uint64_t late_used = 0;  ///< samples kept after their round closed, and re-fused
+  std::uint64_t lost = 0;                ///< received samples removed by the simulated loss
+  std::uint32_t resyncs = 0;             ///< rounds fused onto another station's prior
+  std::uint64_t late_used = 0;           ///< samples kept after their round closed, and re-fused
   std::uint32_t participants_known = 0;  ///< other DDS participants it had discovered
 };
 

@@ -88,9 +88,12 @@ Placement::Placement(const RunOptions& o, const ExchangeConfig& exchange, std::s
   }
 }
 
+int Placement::host_of(std::size_t i) const {
+  return static_cast<int>(i % static_cast<std::size_t>(hosts_->count()));
+}
+
 std::string Placement::address(std::size_t i) const {
-  if (!hosts_) return harness_.interface_address;
-  return hosts_->address(static_cast<int>(i % static_cast<std::size_t>(hosts_->count())));
+  return hosts_ ? hosts_->address(host_of(i)) : harness_.interface_address;
 }
 
 int Placement::participant_id(std::size_t i) const {
@@ -115,9 +118,7 @@ std::pair<options::NetworkOptions, int> Placement::of(std::size_t i) const {
       network.discovery_peers.push_back(discovery_endpoint(peer));
     }
   }
-  if (!hosts_) return {network, -1};
-  return {network,
-          hosts_->namespace_fd(static_cast<int>(i % static_cast<std::size_t>(hosts_->count())))};
+  return {network, hosts_ ? hosts_->namespace_fd(host_of(i)) : -1};
 }
 
 std::string Placement::discovery() const {

@@ -36,6 +36,8 @@ class Placement {
   std::string discovery() const;
 
  private:
+  // The host of process `i` (round robin: i mod hosts), with hosts only.
+  int host_of(std::size_t i) const;
   // The participant id and discovery endpoint of process `i`.
   int participant_id(std::size_t i) const;
   options::Ipv4Endpoint discovery_endpoint(std::size_t i) const;

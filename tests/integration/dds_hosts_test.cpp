@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <regex>
+#include <string>
 
 #include "integration/run_fixture.hpp"
 
@@ -31,6 +33,13 @@ std::string output_of(const std::string& command) {
   while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) out += buffer;
   pclose(pipe);
   return out;
+}
+
+// Why this process cannot make simulated hosts, if it cannot.
+std::optional<std::string> why_no_hosts() {
+  if (geteuid() != 0) return "--hosts creates network namespaces: root only";
+  if (std::system("ip -V > /dev/null 2>&1") != 0) return "no `ip` (iproute2)";
+  return std::nullopt;
 }
 
 // Runs `skyfuse run` with `extra` and checks every track against the in-process twin; returns
@@ -65,8 +74,7 @@ nlohmann::json expect_equal_to_twin(int stations, int domain,
 }
 
 TEST(DdsHosts, FourStationsOnThreeHostsEqualTheInProcessRunBitForBit) {
-  if (geteuid() != 0) GTEST_SKIP() << "--hosts creates network namespaces: root only";
-  if (std::system("ip -V > /dev/null 2>&1") != 0) GTEST_SKIP() << "no `ip` (iproute2)";
+  if (const auto why = why_no_hosts()) GTEST_SKIP() << *why;
   const auto summary = expect_equal_to_twin(4, 188, {"--hosts", "3"});
   EXPECT_EQ(summary["network"]["hosts"], 3);
   EXPECT_THAT(summary["network"]["discovery"].get<std::string>(), HasSubstr("server 198.18."));
@@ -74,8 +82,7 @@ TEST(DdsHosts, FourStationsOnThreeHostsEqualTheInProcessRunBitForBit) {
 
 // Multicast discovery across the hosts' bridge, no server: the run says so and equals its twin.
 TEST(DdsHosts, FourStationsOnThreeHostsDiscoveringByMulticastEqualTheInProcessRun) {
-  if (geteuid() != 0) GTEST_SKIP() << "--hosts creates network namespaces: root only";
-  if (std::system("ip -V > /dev/null 2>&1") != 0) GTEST_SKIP() << "no `ip` (iproute2)";
+  if (const auto why = why_no_hosts()) GTEST_SKIP() << *why;
   const auto summary = expect_equal_to_twin(4, 186, {"--hosts", "3", "--discovery", "multicast"});
   EXPECT_EQ(summary["network"]["hosts"], 3);
   EXPECT_EQ(summary["network"]["discovery"], "multicast");
@@ -84,12 +91,13 @@ TEST(DdsHosts, FourStationsOnThreeHostsDiscoveringByMulticastEqualTheInProcessRu
 // Peer discovery across hosts: each process listed by its host's address and participant id,
 // and announcing itself to those it exchanges with (here, as the flat exchange has it, all).
 TEST(DdsHosts, FourStationsOnThreeHostsDiscoveringTheirPeersEqualTheInProcessRun) {
-  if (geteuid() != 0) GTEST_SKIP() << "--hosts creates network namespaces: root only";
-  if (std::system("ip -V > /dev/null 2>&1") != 0) GTEST_SKIP() << "no `ip` (iproute2)";
+  if (const auto why = why_no_hosts()) GTEST_SKIP() << *why;
   const auto summary = expect_equal_to_twin(4, 223, {"--hosts", "3", "--discovery", "peers"});
   EXPECT_EQ(summary["network"]["hosts"], 3);
   EXPECT_EQ(summary["network"]["discovery"], "peers");
-  for (const auto& [node, known] : summary["network"]["participants_known_by_node"].items()) {
+  const auto& known_by_node = summary["network"]["participants_known_by_node"];
+  EXPECT_EQ(known_by_node.size(), 5u);  // the center and four stations reported
+  for (const auto& [node, known] : known_by_node.items()) {
     EXPECT_EQ(known.get<int>(), 5) << node;  // the harness, the center and the other stations
   }
 }

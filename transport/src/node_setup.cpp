@@ -15,9 +15,8 @@ NodeConfig node_config(const options::NodeOptions& options, const std::string& n
   if (options.qos_file) config.qos_file = *options.qos_file;
   config.best_effort_data = options.best_effort;
   config.network = options.network;
-  // The run's stations, the center and the harness.
   if (options.overrides.stations) {
-    config.network.lease_s = options::lease_seconds(*options.overrides.stations + 2);
+    config.network.lease_s = options::lease_seconds(*options.overrides.stations);
   }
   if (options.secure_dir) {
     config.security = SecurityConfig{*options.secure_dir, identity_for_participant(name)};

@@ -88,11 +88,9 @@ bool is_data_link_topic(const std::string& topic) {
          topic == "skyfuse_measurement";
 }
 
-// The RTPS port mapping (PB = 7400, DG = 250) gives domain d its user-multicast port at
-// 7401 + 250 d and its first unicast port at 7410 + 250 d; the ports between are never used by
-// it, and the one-to-many topics take theirs from there.
-constexpr int kPortBase = 7400;
-constexpr int kDomainGain = 250;
+// The RTPS port mapping (options::kRtpsPortBase, kRtpsDomainGain) gives domain d its
+// user-multicast port at 7401 + 250 d and its first unicast port at 7410 + 250 d; the ports
+// between are never used by it, and the one-to-many topics take theirs from there.
 constexpr int kFirstFreeOffset = 2;
 
 }  // namespace
@@ -122,7 +120,9 @@ std::optional<int> multicast_port(std::string_view topic, int domain_id) {
   constexpr std::string_view kOneToMany[] = {"skyfuse_tick", "skyfuse_measurement",
                                              "skyfuse_increment"};
   for (int i = 0; i < static_cast<int>(std::size(kOneToMany)); ++i) {
-    if (topic == kOneToMany[i]) return kPortBase + kDomainGain * domain_id + kFirstFreeOffset + i;
+    if (topic == kOneToMany[i]) {
+      return options::kRtpsPortBase + options::kRtpsDomainGain * domain_id + kFirstFreeOffset + i;
+    }
   }
   return std::nullopt;
 }
@@ -193,10 +193,10 @@ dds::DomainParticipantQos QosProfiles::participant(const std::string& name) cons
   udp->receiveBufferSize = static_cast<std::uint32_t>(kReceiveBufferBytes);
   qos.transport().user_transports.push_back(udp);
   // A dead participant is noticed after its lease: 10 s instead of the default 20 s, longer for
-  // large runs (options::lease_seconds). Shorter
-  // leases (2 s was tried) expire on a starved machine - 30+ processes on 2 cores - and Debian's
-  // Fast DDS, built with assertions, then aborts in PDP::check_remote_participant_liveliness.
-  // The harness does not rely on leases: it sees a dead child through waitpid at once.
+  // large runs (options::lease_seconds). Shorter leases (2 s was tried) expire on a starved machine
+  // - 30+ processes on 2 cores - and Debian's Fast DDS, built with assertions, then aborts in
+  // PDP::check_remote_participant_liveliness. The harness does not rely on leases: it sees a dead
+  // child through waitpid at once.
   auto& discovery = qos.wire_protocol().builtin.discovery_config;
   discovery.leaseDuration = Duration_t(static_cast<long double>(network_.lease_s));
   // Every participant announces itself to every other one each period: M^2 datagrams. At

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <set>
 #include <vector>
 
 namespace skyfuse::harness {
@@ -17,6 +18,22 @@ ExchangeConfig tree(int fanout) {
   exchange.kind = ExchangeConfig::Kind::kTree;
   exchange.fanout = fanout;
   return exchange;
+}
+
+// Each process's known set (the lists closed under "lists or is listed by"), the harness not
+// counted: what `participants_known` in its status should say once discovery is over.
+std::vector<std::size_t> participants_to_know(
+    const std::vector<std::vector<std::size_t>>& peer_lists) {
+  std::vector<std::set<std::size_t>> known(peer_lists.size());
+  for (std::size_t p = 0; p < peer_lists.size(); ++p) {
+    for (std::size_t q : peer_lists[p]) {
+      known[p].insert(q);
+      known[q].insert(p);
+    }
+  }
+  std::vector<std::size_t> counts;
+  for (const auto& set : known) counts.push_back(set.size());
+  return counts;
 }
 
 bool lists(const std::vector<std::vector<std::size_t>>& peer_lists, std::size_t a, std::size_t b) {

@@ -14,7 +14,7 @@
 namespace CLI {
 class App;
 class Option;
-}
+}  // namespace CLI
 
 namespace skyfuse::options {
 
@@ -35,20 +35,26 @@ std::optional<Ipv4Endpoint> parse_ipv4_endpoint(std::string_view text);
 /// The UDP port the harness serves discovery on for `--hosts`, on the bridge's address.
 inline constexpr std::uint16_t kDefaultDiscoveryPort = 11811;
 
-/// Participant ids a domain has room for on one address: the RTPS port mapping gives each
-/// domain 250 ports, and participant p its discovery port 10 + 2 p and its data port one above.
-inline constexpr int kParticipantIdsPerAddress = 120;
-/// Participant ids a domain has on one address: kParticipantIdsPerAddress, fewer in the
-/// highest domains, whose ports would pass 65535.
-inline constexpr int participant_ids_per_address(int domain) {
-  const int room = (65535 - 1 - (7400 + 250 * domain + 10)) / 2 + 1;
-  return room < kParticipantIdsPerAddress ? room : kParticipantIdsPerAddress;
-}
-/// The UDP port on which participant `participant_id` of `domain` listens for discovery (the
-/// RTPS well-known ports: 7400 + 250 domain + 10 + 2 participant_id), which `--discovery-peers`
-/// lists.
+/// The RTPS well-known ports: domain d's start at 7400 + 250 d, and participant p listens for
+/// discovery at 10 + 2 p above them and for data one port higher.
+inline constexpr int kRtpsPortBase = 7400;
+inline constexpr int kRtpsDomainGain = 250;
+inline constexpr int kRtpsDiscoveryOffset = 10;
+inline constexpr int kRtpsParticipantGain = 2;
+/// The UDP port on which participant `participant_id` of `domain` listens for discovery, which
+/// `--discovery-peers` lists.
 inline constexpr std::uint16_t discovery_port(int domain, int participant_id) {
-  return static_cast<std::uint16_t>(7400 + 250 * domain + 10 + 2 * participant_id);
+  return static_cast<std::uint16_t>(kRtpsPortBase + kRtpsDomainGain * domain +
+                                    kRtpsDiscoveryOffset + kRtpsParticipantGain * participant_id);
+}
+/// Participant ids a domain has room for on one address: its 250 ports hold 120.
+inline constexpr int kParticipantIdsPerAddress =
+    (kRtpsDomainGain - kRtpsDiscoveryOffset) / kRtpsParticipantGain;
+/// Participant ids a domain has on one address: kParticipantIdsPerAddress, fewer in the
+/// highest domains, whose data ports (discovery_port() + 1) would pass 65535.
+inline constexpr int participant_ids_per_address(int domain) {
+  const int room = (65535 - 1 - discovery_port(domain, 0)) / kRtpsParticipantGain + 1;
+  return room < kParticipantIdsPerAddress ? room : kParticipantIdsPerAddress;
 }
 
 struct NetworkOptions {
@@ -74,11 +80,15 @@ struct NetworkOptions {
 /// `--interface ADDRESS`, `--discovery-server ADDRESS:PORT`, `--discovery-peers
 /// ADDRESS:PORT,...` and `--participant-id N` into `options`.
 void add_network_options(CLI::App& app, NetworkOptions& options);
-/// The lease of a run of `processes` DDS processes: 10 s, and a quarter second per process
-/// above 40. Starting 257 processes on 2 cores starves some for more than 10 s: the harness
-/// dropped 74 live stations for an expired lease, and never matched some of them again
-/// (M = 256 on 4 hosts, --discovery peers, 2026-11-26).
-inline double lease_seconds(int processes) { return processes > 40 ? 0.25 * processes : 10.0; }
+/// The lease of a run of `stations` stations, whose DDS processes are those, the center and
+/// the harness: 10 s, and a quarter second per process above 40. Starting 257 processes on 2
+/// cores starves some for more than 10 s: the harness dropped 74 live stations for an expired
+/// lease, and never matched some of them again (M = 256 on 4 hosts, --discovery peers,
+/// 2026-11-26).
+inline double lease_seconds(int stations) {
+  const int processes = stations + 2;
+  return processes > 40 ? 0.25 * processes : 10.0;
+}
 
 /// How the processes of a run find each other.
 enum class Discovery {

@@ -205,8 +205,9 @@ class DdsNode {
   class DiscoveryCount : public dds::DomainParticipantListener {
    public:
     std::size_t known() const { return known_.load(); }
-    void on_participant_discovery(dds::DomainParticipant*,
-                                  eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
+    void on_participant_discovery(
+        dds::DomainParticipant*,
+        eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
 
    private:
     std::atomic<std::size_t> known_{0};
