@@ -55,7 +55,8 @@ void run_rounds(benchmark::State& bench, bool late) {
     ++k;
   }
   const double rows = static_cast<double>(lag + 2) * static_cast<double>(ids.size());
-  const double per_round = 2.0 * sizeof(GaussianState<9>) + ids.size() * sizeof(int);
+  const double per_round =
+      2.0 * sizeof(GaussianState<9>) + static_cast<double>(ids.size() * sizeof(int));
   bench.counters["bytes_held"] =
       rows * sizeof(PeerContribution<9>) + static_cast<double>(lag + 1) * per_round;
 }

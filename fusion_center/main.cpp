@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "center_process.hpp"
+#include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 int main(int argc, char** argv) {
@@ -16,5 +17,6 @@ int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::from_str(options.log_level));
   spdlog::set_pattern("[center] %^%l%$: %v");
   transport::install_shutdown_handlers();
-  return options::run_node([&] { return center::run_center(options); });
+  // Every way a node's run ends leaves without deleting its participant (node_presence.hpp).
+  transport::leave_without_goodbye(options::run_node([&] { return center::run_center(options); }));
 }

@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 #include "station_process.hpp"
 
@@ -23,5 +24,7 @@ int main(int argc, char** argv) {
   spdlog::set_level(spdlog::level::from_str(options.node.log_level));
   spdlog::set_pattern(fmt::format("[station {}] %^%l%$: %v", options.id));
   transport::install_shutdown_handlers();
-  return options::run_node([&] { return station::run_station(options); });
+  // Every way a node's run ends leaves without deleting its participant (node_presence.hpp).
+  transport::leave_without_goodbye(
+      options::run_node([&] { return station::run_station(options); }));
 }

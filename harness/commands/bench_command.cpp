@@ -37,7 +37,7 @@ std::map<std::string, double> micro_benchmark_medians(const std::filesystem::pat
   const std::string command = fmt::format(
       "'{}' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true "
       "--benchmark_out='{}' --benchmark_out_format=json > /dev/null 2>&1",
-      (executable_dir() / "skyfuse_core_bench").string(), json_path.string());
+      helper_program("skyfuse_core_bench").string(), json_path.string());
   if (std::system(command.c_str()) != 0) {
     throw std::runtime_error("micro-benchmarks failed: " + command);
   }

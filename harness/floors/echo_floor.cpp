@@ -39,7 +39,7 @@ FloorResult measure_floor(const transport::NodeConfig& config, int nodes, int ro
     }
   };
   for (int id = 1; id <= nodes; ++id) {
-    std::vector<std::string> args = {(executable_dir() / "skyfuse-echo").string(),
+    std::vector<std::string> args = {helper_program("skyfuse-echo").string(),
                                      "--id",
                                      std::to_string(id),
                                      "--domain",

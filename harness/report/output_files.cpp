@@ -26,6 +26,18 @@ std::filesystem::path executable_dir() {
   return ec ? std::filesystem::current_path() : exe.parent_path();
 }
 
+std::filesystem::path helper_program(const std::string& name) {
+  auto path = executable_dir() / name;
+  if (access(path.c_str(), X_OK) != 0) {
+    throw std::runtime_error(fmt::format(
+        "{} is not built beside this program (./quickstart demo builds only what the demo runs): "
+        "build it with `cmake --build build --target {}` after configuring with "
+        "-DSKYFUSE_BUILD_BENCHMARKS=ON, or run ./quickstart test",
+        path.string(), name));
+  }
+  return path;
+}
+
 bool run_plot_script(const std::string& script, const std::vector<std::string>& args) {
   // Debian's interpreter carries python3-matplotlib; a python3 earlier on PATH may not.
   const char* python = std::getenv("SKYFUSE_PYTHON");

@@ -177,9 +177,9 @@ struct LockstepDriver::Impl {
   }
 
   // A node's counts so far, against those it reported before: what it refused in between.
-  void note_refusals(int node, std::uint64_t instance, std::uint64_t step,
+  void note_refusals(int node_id, std::uint64_t instance, std::uint64_t step,
                      const DropCounts& counts) {
-    auto& [seen_instance, before] = reported[node];
+    auto& [seen_instance, before] = reported[node_id];
     if (seen_instance != instance) {  // a new process counts from zero
       seen_instance = instance;
       before = {};
@@ -188,7 +188,7 @@ struct LockstepDriver::Impl {
     // the node's last status) adds nothing.
     for (std::size_t i = 0; i < kDropKinds; ++i) {
       if (counts[i] > before[i]) {
-        refusals.push_back({node, step, static_cast<DropKind>(i), counts[i] - before[i]});
+        refusals.push_back({node_id, step, static_cast<DropKind>(i), counts[i] - before[i]});
         before[i] = counts[i];
       }
     }

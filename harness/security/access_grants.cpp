@@ -31,7 +31,8 @@ AccessGrant access_grant(const std::string& identity) {
   if (identity == transport::kCenterIdentity) {
     return {identity, {track, status}, {tick, measurement, status}, {status}, {}};
   }
-  if (identity == transport::kObserverIdentity) return {identity, {}, {tick, track, status}};
+  if (identity == transport::kObserverIdentity)
+    return {identity, {}, {tick, track, status}, {}, {}};
   if (transport::is_station_identity(identity)) {
     return {identity,
             {increment, partial, measurement, track, status},

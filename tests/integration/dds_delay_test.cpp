@@ -94,7 +94,7 @@ TEST(DdsRefusion, LateIncrementsAreFusedAndEveryPeerSettlesOnTheSameBits) {
   // Every late measurement came within the lag, and the center updated again from its round:
   // its settled track is the track of the same run without delay.
   RunTrace twin;
-  in_process_twin(make_run_plan(load_default_scenario(), {4, 300, {}, 0}), {}, &twin);
+  in_process_twin(make_run_plan(load_default_scenario(), stations_and_steps(4, 300)), {}, &twin);
   const double sq =
       std::accumulate(twin.sq_error_central.begin(), twin.sq_error_central.end(), 0.0);
   EXPECT_NEAR(summary["settled"]["rmse_central_m"].get<double>(),

@@ -77,7 +77,7 @@ void expect_whole_flight_equals_twin(const std::string& scenario, int domain,
       run_to_completion(imm_run(domain, dir / "out", kSteps, {}, scenario), dir / "out.log", 180s);
   ASSERT_TRUE(run.status.exited && run.status.code == 0) << run.output;
 
-  const RunPlan plan = make_run_plan(load_scenario_file(scenario), {4, kSteps, {}, 0});
+  const RunPlan plan = make_run_plan(load_scenario_file(scenario), stations_and_steps(4, kSteps));
   const auto tracks = read_tracks(dir / "out" / "tracks.csv");
   ASSERT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * 5));
   EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);

@@ -90,7 +90,8 @@ TEST(DdsNisGate, AGatedRunEqualsItsInProcessTwinBitForBit) {
                         dir / "run.log", 120s);
   ASSERT_EQ(run.status.code, 0) << run.output;
 
-  const RunPlan plan = make_run_plan(load_default_scenario(), {kStations, kSteps, {}, 0});
+  const RunPlan plan =
+      make_run_plan(load_default_scenario(), stations_and_steps(kStations, kSteps));
   RunTrace trace;
   const TwinTracks twin = in_process_twin(plan, NisGate::at_probability(0.5), &trace);
   ASSERT_EQ(twin.size(), static_cast<std::size_t>(kSteps));

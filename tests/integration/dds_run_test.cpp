@@ -53,7 +53,7 @@ TEST_P(DdsRun, EveryPeerAgreesAndTheRunEqualsTheInProcessOneBitForBit) {
   ASSERT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * (m + 1)));
 
   // The same run in-process: the same core code on the same seed.
-  const RunPlan plan = make_run_plan(load_default_scenario(), {m, kSteps, {}, 0});
+  const RunPlan plan = make_run_plan(load_default_scenario(), stations_and_steps(m, kSteps));
   const TwinTracks twin = in_process_twin(plan);
   ASSERT_EQ(twin.size(), static_cast<std::size_t>(kSteps));
   EXPECT_EQ(difference_from_twin(tracks, plan, twin), std::nullopt);
@@ -120,7 +120,8 @@ std::filesystem::path expect_run_equals_twin(const std::string& scenario_file, i
   const Completed run = skyfuse_run(stations, domain, dir / "out", {"--scenario", scenario});
   EXPECT_TRUE(run.status.exited && run.status.code == 0) << run.output;
 
-  const RunPlan plan = make_run_plan(load_scenario_file(scenario), {stations, kSteps, {}, 0});
+  const RunPlan plan =
+      make_run_plan(load_scenario_file(scenario), stations_and_steps(stations, kSteps));
   const auto tracks = read_tracks(dir / "out" / "tracks.csv");
   EXPECT_EQ(tracks.size(), static_cast<std::size_t>(kSteps * (stations + 1)));
   EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);

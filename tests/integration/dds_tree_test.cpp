@@ -190,18 +190,24 @@ void expect_aggregator_replaced_and_restored(int domain, const std::vector<std::
   ASSERT_EQ(spread.size(), static_cast<std::size_t>(kSteps));
   for (int k = 0; k < kSteps; ++k) {
     const bool changing = k == 100 || k == 101 || k == 150 || k == 151;
-    if (!changing) EXPECT_EQ(spread[k], 0.0) << "step " << k;
+    if (!changing) {
+      EXPECT_EQ(spread[k], 0.0) << "step " << k;
+    }
     // After a fault the center and the peers hold different histories, and drift together
     // again only slowly (the flat exchange too: about 1e-7 m a hundred rounds after a station's
     // restart); a station counted twice would set them millimetres apart.
     const bool settling = (k >= 100 && k < 110) || (k >= 150 && k < 160);
-    if (!settling) EXPECT_LT(apart[k], 1e-4) << "step " << k;
+    if (!settling) {
+      EXPECT_LT(apart[k], 1e-4) << "step " << k;
+    }
   }
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   EXPECT_EQ(summary["rounds_missing_by_station"]["1"].get<int>(), 51);
   EXPECT_EQ(summary["rejoin_step_by_station"]["1"].get<int>(), 151);
   for (const auto& [station, rounds] : summary["rounds_missing_by_station"].items()) {
-    if (station != "1") EXPECT_LE(rounds.get<int>(), 2) << station;
+    if (station != "1") {
+      EXPECT_LE(rounds.get<int>(), 2) << station;
+    }
   }
 }
 

@@ -133,7 +133,7 @@ std::optional<std::string> difference_from_twin(const TrackRows& tracks, const R
 
 nlohmann::json expect_default_run_equals_twin(const std::filesystem::path& out, int stations,
                                               int steps) {
-  const RunPlan plan = make_run_plan(load_default_scenario(), {stations, steps, {}, 0});
+  const RunPlan plan = make_run_plan(load_default_scenario(), stations_and_steps(stations, steps));
   const auto tracks = read_tracks(out / "tracks.csv");
   EXPECT_EQ(tracks.size(), static_cast<std::size_t>(steps * (stations + 1)));
   EXPECT_EQ(difference_from_twin(tracks, plan, in_process_twin(plan)), std::nullopt);

@@ -10,83 +10,25 @@
 #include <span>
 #include <thread>
 
-#include "sim/run_setup.hpp"
-#include "sim/run_steppers.hpp"
-#include "skyfuse/models/state_position.hpp"
-#include "skyfuse/registry/dispatch.hpp"
+#include "sim/configured_runs.hpp"
 #include "skyfuse/registry/filter_info.hpp"
-#include "skyfuse/registry/make_parts.hpp"
+#include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/part_info.hpp"
-#include "skyfuse/scenario/measurement_simulation.hpp"
-#include "skyfuse/tracking/round_rule.hpp"
 
 namespace skyfuse {
 
 namespace {
 
-// One run for each of `station_counts`, all fed from one simulation of the measurements of the
-// largest count's stations; a RunStepper or an ImmRunStepper steps each.
-template <typename Stepper, template <int> class SensorOf>
-std::vector<RunTrace> simulate_runs(const Scenario& scenario, const TruthTrajectory& truth,
-                                    std::span<const int> station_counts, std::uint64_t run,
-                                    const NisGate& gate, const StepObserver& observer = {}) {
-  // The sensors as they see the truth: the target's kinematics, whatever the filter's model.
-  using TruthSensor = SensorOf<kKinematicsDim>;
-  std::vector<Stepper> steppers;
-  steppers.reserve(station_counts.size());
-  for (int m : station_counts) steppers.emplace_back(scenario, truth, m, run, gate);
-  // Every station of the largest count is simulated, indexed like scenario.stations.
-  const auto simulated =
-      static_cast<std::size_t>(*std::max_element(station_counts.begin(), station_counts.end()));
-  std::vector<ObservationFor<TruthSensor>> truth_sensors;  // sensor and noise per station
-  for (std::size_t i = 0; i < simulated; ++i) {
-    truth_sensors.push_back(make_observation<TruthSensor>(scenario, scenario.stations[i], run));
-  }
-  std::vector<typename Stepper::Measurement> z(simulated, Stepper::Measurement::Zero());
-
-  const auto steps = static_cast<std::size_t>(scenario.steps);
-  for (std::size_t k = 0; k < steps; ++k) {
-    const Vector<kKinematicsDim>& x = truth.states[k];
-    for (std::size_t i = 0; i < z.size(); ++i) {
-      with_observation(truth_sensors[i], [&](const auto& o) {
-        constexpr int kMeasDim = std::decay_t<decltype(o.z)>::RowsAtCompileTime;
-        z[i].template head<kMeasDim>() = simulate_measurement(o.sensor, x, o.noise, scenario.seed,
-                                                              run, scenario.stations[i].id, k);
-      });
-    }
-    for (Stepper& stepper : steppers) stepper.step(k, x, z, observer);
-  }
-  std::vector<RunTrace> traces;
-  traces.reserve(steppers.size());
-  for (Stepper& stepper : steppers) traces.push_back(stepper.take_trace());
-  return traces;
-}
-
-// simulate_runs for the scenario's motion model and sensor kind.
+// The runs of the scenario's configuration, from the shard that compiled its filter part.
 std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
                                                const TruthTrajectory& truth,
                                                std::span<const int> station_counts,
                                                std::uint64_t run, const NisGate& gate,
                                                const StepObserver& observer = {}) {
-  std::vector<RunTrace> traces;
-  const int most = *std::max_element(station_counts.begin(), station_counts.end());
-  dispatch_configuration(
-      scenario, most,
-      [&]<typename Model, template <int> class SensorOf>(std::type_identity<Model>,
-                                                         SensorTemplate<SensorOf>) {
-        visit_filter(scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
-          // The loader allows a filter only on what it runs on.
-          if constexpr (filter_runs_on<Filter, Model, SensorOf<Model::kDim>>()) {
-            using Stepper = typename RunStepperOf<Filter, Model, SensorOf>::type;
-            traces = simulate_runs<Stepper, SensorOf>(scenario, truth, station_counts, run, gate,
-                                                      observer);
-          } else {
-            throw std::logic_error(fmt::format("filter {} does not run on {} with these sensors",
-                                               Filter::kKind, Model::kKind));
-          }
-        });
-      });
-  return traces;
+  return with_filter_shard(filter_shard(scenario.filter), [&](auto shard) {
+    return simulate_configured_runs_in_shard<decltype(shard)::value>(
+        scenario, truth, station_counts, run, gate, observer);
+  });
 }
 
 // Degrees of freedom of the NEES (the state) and of the stacked NIS (the first M stations'

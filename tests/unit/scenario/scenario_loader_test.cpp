@@ -342,9 +342,9 @@ TEST(ScenarioLoader, AutoChoosesTheTreeFromSixteenStationsWhereTheStationsTakeIt
   EXPECT_EQ(chosen_exchange(ring, 16), ExchangeConfig::Kind::kTree);
   EXPECT_EQ(round_fanout_for(ring, 15), 0u);
   EXPECT_EQ(round_fanout_for(ring, 64), 8u);
-  EXPECT_EQ(make_run_plan(ring, {8, 10, {}, 0}).scenario.exchange.kind,
+  EXPECT_EQ(make_run_plan(ring, stations_and_steps(8, 10)).scenario.exchange.kind,
             ExchangeConfig::Kind::kFlat);
-  EXPECT_EQ(make_run_plan(ring, {16, 10, {}, 0}).scenario.exchange.kind,
+  EXPECT_EQ(make_run_plan(ring, stations_and_steps(16, 10)).scenario.exchange.kind,
             ExchangeConfig::Kind::kTree);
   EXPECT_EQ(
       make_run_plan(ring, {64, 10, {}, 0, ExchangeConfig::Kind::kFlat, {}}).scenario.exchange.kind,

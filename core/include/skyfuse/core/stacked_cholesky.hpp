@@ -159,7 +159,10 @@ class StackedCholesky {
   Eigen::Index size_ = 0;
   Eigen::MatrixXd l_;  // column-major; its lower block triangle holds L
   Eigen::VectorXd inv_diag_;
-  Eigen::LLT<Eigen::MatrixXd> blocked_;
+  // Factorised from the start, of an empty matrix: Eigen 3.4's default LLT leaves its norm and
+  // status unset, and moving the owner before its first factorisation (a tracker is moved into
+  // its node) would copy those unset values (GCC's -Wmaybe-uninitialized said so).
+  Eigen::LLT<Eigen::MatrixXd> blocked_{Eigen::MatrixXd()};
 };
 
 }  // namespace skyfuse

@@ -74,7 +74,10 @@ class SigmaPoints {
   const Eigen::LLT<Covariance<N>>& prior_factor() const { return factor_; }
 
  private:
-  Eigen::LLT<Covariance<N>> factor_;
+  // The identity's factor until the first compute(): Eigen 3.4's default LLT leaves its norm
+  // and status unset, and moving the points before their first round (a filter is moved into
+  // its node) would copy those unset values (GCC's -Wmaybe-uninitialized said so).
+  Eigen::LLT<Covariance<N>> factor_{Covariance<N>::Identity()};
   std::array<Vector<N>, kCount> points_{};
   double mean_weight_0_ = 0.0;
   double covariance_weight_0_ = 0.0;

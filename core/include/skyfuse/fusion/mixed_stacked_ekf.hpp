@@ -81,7 +81,10 @@ class MixedStackedEkf {
   Eigen::MatrixXd s_;                                // H P H^T + R
   Eigen::Matrix<double, Eigen::Dynamic, N> gain_t_;  // K^T = S^-1 H P
   Eigen::Matrix<double, N, Eigen::Dynamic> kr_;      // K R
-  Eigen::LLT<Eigen::MatrixXd> factor_;
+  // Factorised from the start, of an empty matrix: Eigen 3.4's default LLT leaves its norm and
+  // status unset, and moving the owner before its first factorisation (a tracker is moved into
+  // its node) would copy those unset values (GCC's -Wmaybe-uninitialized said so).
+  Eigen::LLT<Eigen::MatrixXd> factor_{Eigen::MatrixXd()};
 };
 
 }  // namespace skyfuse

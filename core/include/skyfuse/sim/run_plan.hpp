@@ -59,6 +59,15 @@ struct RunOverrides {
   std::optional<int> fanout;                     ///< default: the scenario's network.fanout
 };
 
+/// The overrides of a run of `stations` stations for `steps` steps; everything else the
+/// scenario's.
+inline RunOverrides stations_and_steps(int stations, int steps) {
+  RunOverrides overrides;
+  overrides.stations = stations;
+  overrides.steps = steps;
+  return overrides;
+}
+
 /// Applies the overrides; throws std::invalid_argument naming the option and the value.
 RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides);
 

@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/refusal_reports.hpp"
@@ -96,6 +97,15 @@ bool finish_when_released(Reader<wire::Tick>& ticks, std::uint64_t run_id, NodeP
 /// expires. Nothing is lost: the transport is UDP only (no shared-memory segment to leave
 /// behind), logs are flushed here, and the harness holds every sample the node owed it.
 [[noreturn]] void leave_without_goodbye(int code);
+
+/// A node process's round object (a station, the center, which own the DDS participant), made
+/// to live until leave_without_goodbye ends the process. Destroying it would delete the
+/// participant and send the goodbye above; a node made this way leaves without one however its
+/// run ends: released, stopped by a tick, by a signal, on an error or an exception.
+template <typename Process, typename... Args>
+Process& make_lifelong(Args&&... args) {
+  return *new Process(std::forward<Args>(args)...);  // never deleted: the process _Exits
+}
 
 }  // namespace skyfuse::transport
 

@@ -1,0 +1,68 @@
+#pragma once
+/// \file
+/// Code compiled for every registered filter part, on every model and sensor it runs on (a
+/// station's and the center's rounds, the Monte Carlo's steppers), is too much for one
+/// translation unit on two cores: each such file took 100-140 s and up to 4 GB. It is split into
+/// shards by filter part: shard s of S holds the parts whose position in FilterParts modulo S
+/// is s.
+///
+/// The code is written once, as a function template over the shard defined in a header:
+///
+///     template <std::size_t Shard> int run_in_shard(args);  // calls visit_filter_in_shard<Shard>
+///
+/// One source file includes that header and instantiates it for its shard:
+///
+///     template int run_in_shard<SKYFUSE_SHARD>(args);
+///
+/// and cmake/FilterShards.cmake compiles that file once per shard. The caller, which sees only
+/// the declaration, goes through with_filter_shard(filter_shard(filter), ...).
+
+#include <cstddef>
+#include <type_traits>
+#include <utility>
+
+#include "skyfuse/registry/dispatch.hpp"
+
+#ifndef SKYFUSE_FILTER_SHARDS
+#error "SKYFUSE_FILTER_SHARDS is unset: add the sharded source with skyfuse_filter_shards()"
+#endif
+
+namespace skyfuse {
+
+/// The number of shards; set by cmake/FilterShards.cmake.
+inline constexpr std::size_t kFilterShards = SKYFUSE_FILTER_SHARDS;
+
+/// visit_filter for the filter parts of shard `Shard`: calls f(std::type_identity<Filter>{}) for
+/// the part that runs `filter` if it lies in this shard, and compiles f for this shard's parts
+/// only. False, and f not called, when the part lies in another shard.
+template <std::size_t Shard, typename F>
+bool visit_filter_in_shard(const FilterConfig& filter, F&& f) {
+  static_assert(Shard < kFilterShards);
+  return visit_filter_part_in_shard<FilterParts, Shard, kFilterShards>(filter.kind,
+                                                                       filter.imm.modes, f);
+}
+
+/// The shard that holds the filter part running `filter`. The loader has checked that one does,
+/// so none is a programming error and throws std::logic_error.
+inline std::size_t filter_shard(const FilterConfig& filter) {
+  const auto index = filter_part_index<FilterParts>(filter.kind, filter.imm.modes);
+  if (!index) {
+    throw std::logic_error("no registered filter part '" + filter.kind + "' with these modes");
+  }
+  return *index % kFilterShards;
+}
+
+/// Calls f(std::integral_constant<std::size_t, shard>{}) and returns what it returns: the
+/// shard known at run time as a constant, to name a shard's instantiation with.
+template <typename F>
+auto with_filter_shard(std::size_t shard, F&& f) {
+  using Result = decltype(f(std::integral_constant<std::size_t, 0>{}));
+  Result result{};
+  [&]<std::size_t... S>(std::index_sequence<S...>) {
+    ((S == shard ? (result = f(std::integral_constant<std::size_t, S>{}), true) : false) || ...);
+  }
+  (std::make_index_sequence<kFilterShards>{});
+  return result;
+}
+
+}  // namespace skyfuse
