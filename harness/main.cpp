@@ -13,6 +13,7 @@
 #include "commands/soak_command.hpp"
 #include "commands/sweep_command.hpp"
 #include "commands/view_command.hpp"
+#include "run/execute_run.hpp"
 #include "run/lockstep_driver.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -66,11 +67,16 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("certs")) return run_certs(certs);
     if (app.got_subcommand("reproduce")) return run_reproduce(reproduce);
     if (app.got_subcommand("view")) return run_view(view);
+  } catch (const RunStoppedEarly& e) {
+    std::fprintf(stderr, "skyfuse: run stopped early (%s): %s\n",
+                 std::string(to_string(e.cause())).c_str(), e.what());
+    if (!e.summary().host_verdict.empty()) {
+      std::fprintf(stderr, "skyfuse: %s\n", e.summary().host_verdict.c_str());
+    }
+    return exit_status_of(e);
   } catch (const RunAborted& e) {
     std::fprintf(stderr, "skyfuse: run aborted: %s\n", e.what());
-    // As a shell reports a process its signal ended: 130 for Ctrl-C, 143 for SIGTERM.
-    return skyfuse::transport::shutdown_requested() ? 128 + skyfuse::transport::shutdown_signal()
-                                                    : 1;
+    return exit_status_of(e);
   } catch (const skyfuse::ConfigError& e) {
     std::fprintf(stderr, "skyfuse: error: %s\n", e.what());
     return 2;

@@ -13,6 +13,7 @@
 #include "report/output_files.hpp"
 #include "run/bench_scenario.hpp"
 #include "run/execute_run.hpp"
+#include "run/kernel_counters.hpp"
 #include "run/lockstep_driver.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -21,14 +22,6 @@
 
 namespace skyfuse::harness {
 namespace {
-
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown";
-}
 
 // Runs the Google Benchmark binary beside this one and returns median real times in ns by
 // benchmark name ("StationStep", "FuseIncrements/4", ...).

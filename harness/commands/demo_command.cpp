@@ -5,10 +5,12 @@
 #include <cmath>
 #include <ctime>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "report/output_files.hpp"
 #include "run/execute_run.hpp"
+#include "run/kernel_counters.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
@@ -69,8 +71,11 @@ int run_demo(const DemoOptions& d) {
     step_files.push_back(o.out_dir + "/steps.csv");
   }
 
-  fmt::print("\nskyfuse demo: paper000, {} station processes + fusion center over DDS (loopback)\n",
-             d.stations);
+  // Rounds/s and latency are this host's: the machine is named with them.
+  fmt::print(
+      "\nskyfuse demo: paper000, {} station processes + fusion center over DDS (loopback) on {}, "
+      "{} cores\n",
+      d.stations, cpu_model(), std::thread::hardware_concurrency());
   fmt::print("{:>6} {:>13} {:>13} {:>15} {:>15} {:>13} {:>9} {:>17}\n", "km/h", "RMSE central",
              "RMSE p2p", "in-process c/p", "max|c-p2p| m", "max|peer-peer|", "rounds/s",
              "latency p50/p99 us");

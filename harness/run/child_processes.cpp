@@ -26,6 +26,14 @@ std::string ChildExit::describe() const {
   return fmt::format("{} (pid {}) ended with wait status {}", name, pid, status);
 }
 
+std::string ChildExit::outcome() const {
+  if (WIFEXITED(status)) return fmt::format("exit {}", WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) {
+    return fmt::format("signal {} ({})", WTERMSIG(status), strsignal(WTERMSIG(status)));
+  }
+  return fmt::format("wait status {}", status);
+}
+
 bool ChildExit::success() const {
   return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }

@@ -17,6 +17,7 @@ struct ChildExit {
   pid_t pid = 0;
   int status = 0;                ///< raw waitpid status
   std::string describe() const;  ///< "station 3 (pid 123) exited with status 2"
+  std::string outcome() const;   ///< "exit 2", "signal 6 (Aborted)"
   bool success() const;
 };
 

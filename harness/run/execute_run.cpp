@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
+#include <thread>
 
 #include "report/live_feed.hpp"
 #include "report/output_files.hpp"
@@ -158,6 +160,46 @@ void check_station_events(const RunOptions& o, const RunPlan& plan) {
   }
 }
 
+// The lock-step rounds: kills and restarts before their step's round, each round recorded
+// (and streamed) as it closes.
+template <typename SpawnStation>
+void run_lockstep_rounds(const RunOptions& o, const RunPlan& plan, LockstepDriver& driver,
+                         ChildProcesses& children, RunRecorder& recorder, LiveFeed* live,
+                         Progress& progress, const SpawnStation& spawn_station) {
+  const auto round_timeout = seconds_to_ms(o.round_timeout_s);
+  const auto close_after =
+      std::chrono::milliseconds(std::llround(2.0 * o.node.round_deadline_ms + 250.0));
+  const std::size_t stations = plan.participant_ids().size();
+  for (int k = 0; k < plan.scenario.steps; ++k) {
+    const auto step = static_cast<std::uint64_t>(k);
+    for (const StationEvent& e : o.kills) {
+      if (e.step != step) continue;
+      children.kill_now(node_name(e.station_id));
+      driver.set_down(e.station_id, true);
+      spdlog::info("killed station {} before step {}", e.station_id, step);
+    }
+    for (const StationEvent& e : o.restarts) {
+      if (e.step != step) continue;
+      spawn_station(e.station_id, step);
+      driver.wait_until_ready(e.station_id, seconds_to_ms(discovery_timeout_s(o, plan.stations)));
+      driver.set_down(e.station_id, false);
+      spdlog::info("restarted station {} before step {}", e.station_id, step);
+    }
+    RoundRecord round = driver.run_round(step, close_after, round_timeout);
+    // Without loss, round 0 is complete in a connected network; if it is not, some pair of
+    // processes never matched (seen with secure discovery), and every round would wait
+    // for its deadline. Better to say so at once.
+    if (k == 0 && !o.node.loss.enabled()) {
+      if (const auto missing = missing_from(round, stations)) {
+        throw RunAborted("round 0 incomplete, the network is not fully connected: " + *missing);
+      }
+    }
+    if (live) live->offer(round);
+    recorder.add(std::move(round));
+    progress.advance();
+  }
+}
+
 RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   // Refusals first: a refused command leaves an earlier run's folder as it was.
   check_station_events(o, plan);
@@ -177,10 +219,11 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   ChildProcesses children;
   const auto check = [&] {
     if (transport::shutdown_requested()) {
-      throw RunAborted(fmt::format("interrupted by signal {}", transport::shutdown_signal()));
+      throw RunAborted(fmt::format("interrupted by signal {}", transport::shutdown_signal()),
+                       StopCause::kInterrupted);
     }
     for (const ChildExit& e : children.poll()) {
-      if (!e.success()) throw RunAborted(e.describe());
+      if (!e.success()) throw RunAborted(e.describe(), StopCause::kNodeFailed);
     }
   };
   const Placement placement(o, plan.scenario.exchange, ids.size());
@@ -267,48 +310,26 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     const auto start = Clock::now();
     const auto wall_start = std::chrono::system_clock::now();
     if (live) live->set_epoch_ns(wall_clock_ns(wall_start));
-    if (o.node.realtime_deadline_ms > 0.0) {
-      const auto epoch = std::chrono::system_clock::now() + kRealtimeHeadStart;
-      const auto stream = [&](const RoundRecord& r) {
-        if (live) live->offer(r);
-      };
-      for (RoundRecord& r : driver.run_realtime(plan.scenario.steps, plan.scenario.time_step_s,
-                                                epoch, round_timeout, stream)) {
-        recorder.add(std::move(r));
+    const bool realtime = o.node.realtime_deadline_ms > 0.0;
+    // A run that stops once its rounds have begun keeps what it recorded: the nodes are stopped
+    // below as after the last round, and every file is written before the run is reported as
+    // stopped (RunStoppedEarly).
+    std::optional<RunAborted> stopped;
+    try {
+      if (realtime) {
+        const auto epoch = std::chrono::system_clock::now() + kRealtimeHeadStart;
+        driver.run_realtime(plan.scenario.steps, plan.scenario.time_step_s, epoch, round_timeout,
+                            [&](RoundRecord r) {
+                              if (live) live->offer(r);
+                              recorder.add(std::move(r));
+                              progress.advance();
+                            });
+      } else {
+        run_lockstep_rounds(o, plan, driver, children, recorder, live.get(), progress,
+                            spawn_station);
       }
-      progress.advance(plan.scenario.steps);
-    } else {
-      const auto close_after =
-          std::chrono::milliseconds(std::llround(2.0 * o.node.round_deadline_ms + 250.0));
-      for (int k = 0; k < plan.scenario.steps; ++k) {
-        const auto step = static_cast<std::uint64_t>(k);
-        for (const StationEvent& e : o.kills) {
-          if (e.step != step) continue;
-          children.kill_now(node_name(e.station_id));
-          driver.set_down(e.station_id, true);
-          spdlog::info("killed station {} before step {}", e.station_id, step);
-        }
-        for (const StationEvent& e : o.restarts) {
-          if (e.step != step) continue;
-          spawn_station(e.station_id, step);
-          driver.wait_until_ready(e.station_id,
-                                  seconds_to_ms(discovery_timeout_s(o, plan.stations)));
-          driver.set_down(e.station_id, false);
-          spdlog::info("restarted station {} before step {}", e.station_id, step);
-        }
-        RoundRecord round = driver.run_round(step, close_after, round_timeout);
-        // Without loss, round 0 is complete in a connected network; if it is not, some pair of
-        // processes never matched (seen with secure discovery), and every round would wait
-        // for its deadline. Better to say so at once.
-        if (k == 0 && !o.node.loss.enabled()) {
-          if (const auto missing = missing_from(round, ids.size())) {
-            throw RunAborted("round 0 incomplete, the network is not fully connected: " + *missing);
-          }
-        }
-        if (live) live->offer(round);
-        recorder.add(std::move(round));
-        progress.advance();
-      }
+    } catch (const RunAborted& e) {
+      stopped = e;
     }
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
     const KernelSnapshot after_rounds = kernel_snapshot();
@@ -319,35 +340,50 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     progress.finish();
 
     // Nodes announce FINISHED after their last track and wait to be released; anything else
-    // is worth a word.
-    if (!driver.wait_until_finished(std::chrono::seconds(5))) {
+    // is worth a word. A run that stopped early releases them at once (the stop tick).
+    if (!stopped && !driver.wait_until_finished(std::chrono::seconds(5))) {
       spdlog::warn("not every node announced FINISHED within 5 s of the last step");
     }
     driver.stop();
     if (!children.wait_all(std::chrono::seconds(5))) {
-      spdlog::warn("{} node process(es) still running after the last step; terminating",
-                   children.alive());
+      spdlog::warn("{} node process(es) still running after the {}; terminating", children.alive(),
+                   stopped ? "run stopped" : "last step");
     }
     children.terminate_all(std::chrono::seconds(2));
     // A node that fails during the run ends it (check() above), so these exits came after
     // every round was recorded (nodes leave without their participant's goodbye so that
     // Fast DDS's teardown race cannot abort them: transport/node_presence.hpp).
     for (const ChildExit& e : children.exited()) {
-      if (!e.success())
-        spdlog::warn("{} after the last round; every round is recorded", e.describe());
+      if (!e.success()) {
+        spdlog::warn("{} after the {}; every round is recorded", e.describe(),
+                     stopped ? "run stopped" : "last round");
+      }
     }
 
     RunSummary summary =
         recorder.summarise(std::chrono::duration<double>(discovery).count(), elapsed);
     summary.realtime_deadline_ms = o.node.realtime_deadline_ms;
-    const double station_rounds = static_cast<double>(plan.stations) * plan.scenario.steps;
+    if (stopped) {
+      summary.ended = std::string(to_string(stopped->cause()));
+      summary.end_detail = stopped->what();
+    }
+    // The rounds the nodes worked on: those recorded, or in real time as far as any node got.
+    double rounds_worked = summary.steps;
+    if (realtime) {
+      const LockstepDriver::RealtimeProgress reached = driver.realtime_progress();
+      summary.realtime_steps_scheduled = reached.steps_scheduled;
+      summary.realtime_steps_reached = reached.steps_reached;
+      if (stopped) summary.realtime_behind_s = reached.behind_s;
+      rounds_worked = std::max(rounds_worked, static_cast<double>(reached.steps_reached));
+    }
+    rounds_worked = std::max(rounds_worked, 1.0);
     if (before_rounds.udp_datagrams && after_rounds.udp_datagrams) {
       summary.datagrams_per_round =
           static_cast<double>(*after_rounds.udp_datagrams - *before_rounds.udp_datagrams) /
-          plan.scenario.steps;
+          rounds_worked;
     }
-    summary.cpu_ms_per_station_round =
-        1e3 * (after_rounds.cpu_s - before_rounds.cpu_s) / station_rounds;
+    summary.cpu_ms_per_station_round = 1e3 * (after_rounds.cpu_s - before_rounds.cpu_s) /
+                                       (static_cast<double>(plan.stations) * rounds_worked);
     summary.node_peak_resident_mib = static_cast<double>(node_peak_kib) / 1024.0;
     summary.node_counts = driver.finished_counts();
     recorder.set_refusals_after_run(
@@ -360,6 +396,9 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     recorder.set_settled(driver.settled_tracks());
     summary.settled = recorder.summarise_settled();
     summary.discovery = placement.discovery();
+    for (const ChildExit& e : children.exited()) summary.node_exits[e.name] = e.outcome();
+    summary.host_verdict = host_verdict(summary, plan.scenario.time_step_s, cpu_model(),
+                                        std::thread::hardware_concurrency());
     recorder.write(out, summary, run_id);
     const std::string summary_json = recorder.summary_json(summary, run_id);
     if (live) {
@@ -378,6 +417,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     if (!o.record_path.empty()) {
       write_recording(recorder, summary_json, o.record_path, wall_clock_ns(wall_start));
     }
+    if (stopped) throw RunStoppedEarly(*stopped, std::move(summary));
     return summary;
   } catch (...) {
     driver.stop();
@@ -387,6 +427,23 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
 }
 
 }  // namespace
+
+int exit_status_of(const RunAborted& e) {
+  // As a shell reports a process its signal ended (130 for Ctrl-C, 143 for SIGTERM), whatever
+  // the signal made fail first.
+  if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
+  switch (e.cause()) {
+    case StopCause::kInterrupted:
+      return 130;
+    case StopCause::kFellBehind:
+    case StopCause::kRoundTimeout:
+      return kExitStoppedEarly;
+    case StopCause::kNodeFailed:
+    case StopCause::kError:
+      break;
+  }
+  return 1;
+}
 
 RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
   // A secure start on Fast DDS 2.9 sometimes stalls (secure_start.hpp): spend

@@ -3,6 +3,9 @@
 // `external`, found), driven in lock-step or real time, recorded and reported. `skyfuse run`,
 // `skyfuse demo` and `skyfuse bench` all run the system through this.
 
+#include <utility>
+
+#include "run/lockstep_driver.hpp"
 #include "run/run_options.hpp"
 #include "run/run_report.hpp"
 #include "skyfuse/sim/run_plan.hpp"
@@ -21,8 +24,30 @@ void warn_if_receive_buffers_too_small(int stations);
 /// configuration the wire cannot carry yet, before any process starts.
 RunPlan load_run_plan(const RunOptions& options);
 
+/// A run that stopped before its last round once its rounds had begun: it fell behind real
+/// time, a node went silent past --round-timeout, a signal interrupted it, or a node failed.
+/// The nodes were stopped and every file written with the rounds recorded; summary() is what
+/// summary.json says.
+class RunStoppedEarly : public RunAborted {
+ public:
+  RunStoppedEarly(const RunAborted& why, RunSummary summary)
+      : RunAborted(why.what(), why.cause()), summary_(std::move(summary)) {}
+  const RunSummary& summary() const { return summary_; }
+
+ private:
+  RunSummary summary_;
+};
+
+/// The exit status of `skyfuse run` (and the commands that run the system) for a run that
+/// ended with `e`: 128 + the signal when interrupted (130 for Ctrl-C), kExitStoppedEarly when
+/// it fell behind real time or a node went silent, 1 otherwise (a node failed, discovery did
+/// not complete, ...).
+int exit_status_of(const RunAborted& e);
+inline constexpr int kExitStoppedEarly = 3;
+
 /// One DDS run of `plan` with results written to options.out_dir; throws RunAborted on
-/// failure. A secure run is started again after a stalled start while --discovery-timeout
+/// failure, RunStoppedEarly when the rounds began but did not all complete (with the files
+/// written). A secure run is started again after a stalled start while --discovery-timeout
 /// lasts (secure_start.hpp).
 RunSummary execute_run(const RunOptions& options, const RunPlan& plan);
 

@@ -78,4 +78,25 @@ KernelSnapshot take_snapshot(const std::vector<pid_t>& processes,
   return snapshot;
 }
 
+std::string cpu_model() {
+  // The name alone can hide generations ("AMD EPYC" names machines 3x apart): family and model
+  // go with it. The first processor's block, which ends at the first empty line, says.
+  std::ifstream in("/proc/cpuinfo");
+  std::string name;
+  std::string family;
+  std::string model;
+  for (std::string line; std::getline(in, line) && !line.empty();) {
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) continue;
+    const std::string key = line.substr(0, line.find_last_not_of(" \t", colon - 1) + 1);
+    const std::string value = colon + 2 <= line.size() ? line.substr(colon + 2) : "";
+    if (key == "model name") name = value;
+    if (key == "cpu family") family = value;
+    if (key == "model") model = value;
+  }
+  if (name.empty()) return "unknown";
+  if (family.empty() || model.empty()) return name;
+  return name + " (family " + family + ", model " + model + ")";
+}
+
 }  // namespace skyfuse::harness

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace skyfuse::harness {
@@ -22,6 +23,10 @@ std::optional<double> cpu_seconds(pid_t pid);
 
 /// The most resident memory `pid` has held, in KiB (VmHWM of /proc/PID/status).
 std::optional<std::uint64_t> peak_resident_kib(pid_t pid);
+
+/// The CPU's model name as /proc/cpuinfo gives it ("unknown" if it does not): every figure of
+/// speed is printed beside it, since machines of one kind differ by 2-3x.
+std::string cpu_model();
 
 /// The kernel's counts over a run's processes at one moment.
 struct KernelSnapshot {

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <random>
@@ -99,6 +100,22 @@ std::vector<int> ids_of(std::span<const StationConfig> participants) {
 
 }  // namespace
 
+std::string_view to_string(StopCause cause) {
+  switch (cause) {
+    case StopCause::kFellBehind:
+      return "fell_behind";
+    case StopCause::kRoundTimeout:
+      return "round_timeout";
+    case StopCause::kInterrupted:
+      return "interrupted";
+    case StopCause::kNodeFailed:
+      return "node_failed";
+    case StopCause::kError:
+      break;
+  }
+  return "error";
+}
+
 std::string node_name(int id) {
   return id == kCenterNodeId ? "center" : fmt::format("station {}", id);
 }
@@ -154,7 +171,8 @@ struct LockstepDriver::Impl {
       if (s.run_id() != run_id) continue;
       if (s.state() == wire::FAILED) {
         throw RunAborted(fmt::format("{} failed at step {}: {}", node_name(s.station_id()),
-                                     s.step(), s.detail()));
+                                     s.step(), s.detail()),
+                         StopCause::kNodeFailed);
       }
       // A killed process's own READY must not count for its replacement.
       const auto killed = killed_instance.find(s.station_id());
@@ -294,7 +312,8 @@ struct LockstepDriver::Impl {
   DropTally own_drops;
   // node -> (the process that reported, its counts then): for the refusals in between.
   std::map<int, std::pair<std::uint64_t, DropCounts>> reported;
-  std::vector<Refusal> refusals;  // reported since the last round's record
+  std::vector<Refusal> refusals;              // reported since the last round's record
+  LockstepDriver::RealtimeProgress realtime;  // a real-time run's, as of its last check
 };
 
 LockstepDriver::LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
@@ -375,9 +394,10 @@ RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds
       track = tracks[i];
       d.last_heard[id] = Clock::now();
     } else if (!d.down.contains(id) && Clock::now() - d.last_heard[id] > silence_limit) {
-      throw RunAborted(fmt::format("{} is running but sent no track for {:.1f} s (step {})",
-                                   node_name(id),
-                                   std::chrono::duration<double>(silence_limit).count(), k));
+      throw RunAborted(
+          fmt::format("{} is running but sent no track for {:.1f} s (step {})", node_name(id),
+                      std::chrono::duration<double>(silence_limit).count(), k),
+          StopCause::kRoundTimeout);
     }
     if (id == kCenterNodeId) {
       record.central = std::move(track);
@@ -424,9 +444,10 @@ void LockstepDriver::wait_until_ready(int id, std::chrono::milliseconds timeout)
   }
 }
 
-std::vector<RoundRecord> LockstepDriver::run_realtime(
-    int steps, double time_step_s, std::chrono::system_clock::time_point epoch,
-    std::chrono::milliseconds timeout, const std::function<void(const RoundRecord&)>& on_round) {
+void LockstepDriver::run_realtime(int steps, double time_step_s,
+                                  std::chrono::system_clock::time_point epoch,
+                                  std::chrono::milliseconds timeout,
+                                  const std::function<void(RoundRecord)>& on_round) {
   Impl& d = *impl_;
   const auto epoch_ns = static_cast<std::uint64_t>(
       std::chrono::duration_cast<std::chrono::nanoseconds>(epoch.time_since_epoch()).count());
@@ -437,11 +458,21 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(
   tick.epoch_ns(epoch_ns);
   d.ticks.write(tick);
 
-  RealtimeRounds rounds(d.station_ids, static_cast<std::uint64_t>(steps));
+  const auto total = static_cast<std::uint64_t>(steps);
+  RealtimeRounds rounds(d.station_ids, total);
+  std::uint64_t handed_over = 0;
   std::vector<RoundRecord> done;
-  const auto give_up = Clock::now() + timeout +
-                       std::chrono::milliseconds(static_cast<long>(steps * time_step_s * 1000.0));
-  while (done.size() < static_cast<std::size_t>(steps)) {
+  const double limit_s = std::chrono::duration<double>(timeout).count();
+  // Where the run stands against its schedule; kept for realtime_progress().
+  const auto note_progress = [&] {
+    const double since_epoch_s =
+        std::chrono::duration<double>(std::chrono::system_clock::now() - epoch).count();
+    const auto scheduled = static_cast<std::uint64_t>(
+        std::clamp(std::floor(since_epoch_s / time_step_s) + 1.0, 0.0, static_cast<double>(total)));
+    d.realtime = {scheduled, rounds.steps_reached(),
+                  std::max(0.0, since_epoch_s - static_cast<double>(handed_over) * time_step_s)};
+  };
+  while (handed_over < total) {
     // The same refusals as in lock-step, by kind: content, then where the sample belongs,
     // then whether its writer speaks for its node, then duplicates.
     wire::TrackEstimate t;
@@ -477,18 +508,23 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(
       if (!why) why = rounds.offer_measurement(z.station_id(), z.step(), values);
       if (why) transport::count_drop(d.own_drops, *why, "measurement", z.station_id(), z.step());
     }
-    const std::size_t before = done.size();
-    rounds.hand_over(done);
-    if (done.size() > before) done.back().refused = d.take_refusals(done.back().step);
-    if (on_round) {
-      for (std::size_t i = before; i < done.size(); ++i) on_round(done[i]);
-    }
-    if (done.size() == static_cast<std::size_t>(steps)) break;
+    handed_over = rounds.hand_over(done);
+    if (!done.empty()) done.back().refused = d.take_refusals(done.back().step);
+    for (RoundRecord& r : done) on_round(std::move(r));
+    done.clear();
+    note_progress();
+    if (handed_over == total) break;
     d.check();
     d.read_statuses();
-    if (Clock::now() > give_up) {
-      throw RunAborted(fmt::format("real-time run: only {} of {} steps complete at the time limit",
-                                   done.size(), steps));
+    // The first step not yet complete was due longer ago than the limit (the schedule's end
+    // included): the nodes are not catching up on this host.
+    if (d.realtime.behind_s > limit_s) {
+      throw RunAborted(
+          fmt::format("real-time run fell behind: {} of {} steps complete, the first step not "
+                      "complete was due {:.1f} s ago (limit --round-timeout {:.1f} s); the nodes "
+                      "had got to step {}",
+                      handed_over, steps, d.realtime.behind_s, limit_s, d.realtime.steps_reached),
+          StopCause::kFellBehind);
     }
     d.wait_set.wait(kPollSlice);
   }
@@ -498,7 +534,10 @@ std::vector<RoundRecord> LockstepDriver::run_realtime(
         "recorded without them once {} steps later had every track",
         rounds.tracks_lost(), rounds.measurements_lost(), RealtimeRounds::kLostAfterSteps);
   }
-  return done;
+}
+
+LockstepDriver::RealtimeProgress LockstepDriver::realtime_progress() const {
+  return impl_->realtime;
 }
 
 std::vector<Refusal> LockstepDriver::take_refusals(std::uint64_t step) {

@@ -14,6 +14,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "run/round_record.hpp"
@@ -23,11 +24,29 @@
 
 namespace skyfuse::harness {
 
+/// Why a run stopped before its last round (kError: anything that is not one of the others,
+/// such as discovery that never completed).
+enum class StopCause {
+  kError,
+  kFellBehind,    ///< real time: the nodes fell further behind the schedule than allowed
+  kRoundTimeout,  ///< lock-step: a running node delivered nothing for --round-timeout
+  kInterrupted,   ///< a signal (Ctrl-C, SIGTERM) to the harness
+  kNodeFailed,    ///< a node exited, was killed by a signal, or reported failure
+};
+
+/// "fell_behind", "round_timeout", ...: summary.json's `ended`.
+std::string_view to_string(StopCause cause);
+
 /// A run was abandoned: a child died, a node reported failure, time ran out, or the user
-/// interrupted. The message says which.
+/// interrupted. The message says which; cause() says it to the program.
 class RunAborted : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit RunAborted(const std::string& what, StopCause cause = StopCause::kError)
+      : std::runtime_error(what), cause_(cause) {}
+  StopCause cause() const { return cause_; }
+
+ private:
+  StopCause cause_;
 };
 
 /// How messages name node `id`: "center" (id 0) or "station <id>"; also the name its process
@@ -86,12 +105,22 @@ class LockstepDriver {
   void wait_until_ready(int id, std::chrono::milliseconds timeout);
 
   /// Real-time mode: publishes the start tick (step 0 begins at `epoch`) and gathers every
-  /// node's track of every step as the nodes publish them on their own clocks. `on_round`, if
-  /// given, sees each step as soon as it is complete (a live stream).
-  std::vector<RoundRecord> run_realtime(
-      int steps, double time_step_s, std::chrono::system_clock::time_point epoch,
-      std::chrono::milliseconds timeout,
-      const std::function<void(const RoundRecord&)>& on_round = nullptr);
+  /// node's track of every step as the nodes publish them on their own clocks; `on_round` is
+  /// given each step, in step order, as soon as it is complete. The run is abandoned
+  /// (RunAborted, StopCause::kFellBehind) once the steps complete lag the schedule by more than
+  /// `timeout`, or the schedule's end is `timeout` past; `progress` then says how far it got.
+  void run_realtime(int steps, double time_step_s, std::chrono::system_clock::time_point epoch,
+                    std::chrono::milliseconds timeout,
+                    const std::function<void(RoundRecord)>& on_round);
+
+  /// How far a real-time run had got: the steps the schedule had reached, the furthest step
+  /// any node's track arrived for, and how long ago the first step not yet complete was due.
+  struct RealtimeProgress {
+    std::uint64_t steps_scheduled = 0;
+    std::uint64_t steps_reached = 0;
+    double behind_s = 0.0;
+  };
+  RealtimeProgress realtime_progress() const;
 
   /// What every node that has announced FINISHED so far reported, by node id (0: center),
   /// and the harness's own drops under kHarnessNodeId.

@@ -52,6 +52,7 @@ std::optional<DropKind> RealtimeRounds::offer_track(int source, std::uint64_t st
   kept = std::move(track);
   p.record.track_age_us[i] = age_us;
   ++p.tracks;
+  steps_reached_ = std::max(steps_reached_, step + 1);
   return std::nullopt;
 }
 

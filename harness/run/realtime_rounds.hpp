@@ -48,6 +48,8 @@ class RealtimeRounds {
   /// Samples given up on so far: tracks (a node's round that never reached the harness; its
   /// step counts as not all inputs in time) and measurements.
   std::uint64_t tracks_lost() const { return tracks_lost_; }
+  /// How many steps the nodes have got to: one past the furthest step any track was kept for.
+  std::uint64_t steps_reached() const { return steps_reached_; }
   std::uint64_t measurements_lost() const { return measurements_lost_; }
 
  private:
@@ -67,6 +69,7 @@ class RealtimeRounds {
   std::map<std::uint64_t, Pending> pending_;
   std::uint64_t tracks_lost_ = 0;
   std::uint64_t measurements_lost_ = 0;
+  std::uint64_t steps_reached_ = 0;
 };
 
 }  // namespace skyfuse::harness

@@ -124,6 +124,25 @@ void RunRecorder::add(RoundRecord round) {
   rounds_.push_back(std::move(round));
 }
 
+namespace {
+
+// Tracks by age on arrival, in bins from 1 ms to 5 s (1-2-5 steps) and one beyond.
+std::vector<std::pair<double, int>> age_histogram(const std::vector<double>& ages_ms) {
+  std::vector<std::pair<double, int>> bins;
+  for (double decade = 1.0; decade <= 1000.0; decade *= 10.0) {
+    for (double step : {1.0, 2.0, 5.0}) bins.emplace_back(decade * step, 0);
+  }
+  bins.emplace_back(std::numeric_limits<double>::infinity(), 0);
+  for (double age : ages_ms) {
+    const auto bin =
+        std::find_if(bins.begin(), bins.end(), [&](const auto& b) { return age <= b.first; });
+    ++bin->second;
+  }
+  return bins;
+}
+
+}  // namespace
+
 RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) const {
   RunSummary s;
   s.stations = plan_.stations;
@@ -184,11 +203,14 @@ RunSummary RunRecorder::summarise(double discovery_s, double rounds_elapsed_s) c
   }
   if (!ages_ms.empty()) {
     s.track_age_ms_p50 = percentile(ages_ms, 0.50);
+    s.track_age_ms_p90 = percentile(ages_ms, 0.90);
     s.track_age_ms_p99 = percentile(ages_ms, 0.99);
     s.track_age_ms_max = *std::max_element(ages_ms.begin(), ages_ms.end());
+    s.track_age_ms_histogram = age_histogram(ages_ms);
   }
-  const double n = std::max<double>(1.0, static_cast<double>(rounds_.size()));
-  s.rounds_all_inputs_in_time = in_time / n;
+  // Over the run's steps: a step never recorded (the run stopped first) was not in time.
+  s.steps_planned = plan_.scenario.steps;
+  s.rounds_all_inputs_in_time = in_time / std::max(1.0, static_cast<double>(s.steps_planned));
   s.rmse_central_m = std::sqrt(sq_central / std::max(1, n_central));
   s.rmse_p2p_m = std::sqrt(sq_p2p / std::max(1, n_p2p));
   s.rounds_per_s =
@@ -312,7 +334,8 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
 
 std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t run_id) const {
   const bool imm = !mode_names_.empty();
-  const nlohmann::json json = {{"scenario", plan_.scenario.name},
+  const nlohmann::json json = {{"ended", summary.ended},
+                               {"scenario", plan_.scenario.name},
                                {"seed", plan_.scenario.seed},
                                {"mc_run", plan_.mc_run},
                                {"run_id", run_id},
@@ -320,6 +343,7 @@ std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t r
                                {"exchange", summary.exchange},
                                {"fanout", summary.fanout},
                                {"steps", summary.steps},
+                               {"steps_planned", summary.steps_planned},
                                {"speed_kmh", summary.speed_kmh},
                                {"rmse_central_m", summary.rmse_central_m},
                                {"rmse_p2p_m", summary.rmse_p2p_m},
@@ -344,12 +368,26 @@ std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t r
                                                  : nlohmann::json(nullptr)},
                     {"cpu_ms_per_station_round", summary.cpu_ms_per_station_round},
                     {"node_peak_resident_mib", summary.node_peak_resident_mib}};
+  if (!summary.end_detail.empty()) full["end_detail"] = summary.end_detail;
+  if (!summary.host_verdict.empty()) full["host_verdict"] = summary.host_verdict;
+  if (!summary.node_exits.empty()) full["node_exits"] = summary.node_exits;
   if (summary.realtime_deadline_ms > 0.0) {
+    nlohmann::json histogram = nlohmann::json::array();
+    for (const auto& [up_to, tracks] : summary.track_age_ms_histogram) {
+      histogram.push_back(
+          {{"up_to_ms", std::isinf(up_to) ? nlohmann::json(nullptr) : nlohmann::json(up_to)},
+           {"tracks", tracks}});
+    }
     full["realtime"] = {{"deadline_ms", summary.realtime_deadline_ms},
                         {"rounds_all_inputs_in_time", summary.rounds_all_inputs_in_time},
+                        {"steps_scheduled", summary.realtime_steps_scheduled},
+                        {"steps_reached", summary.realtime_steps_reached},
+                        {"behind_s", summary.realtime_behind_s},
                         {"track_age_ms_p50", summary.track_age_ms_p50},
+                        {"track_age_ms_p90", summary.track_age_ms_p90},
                         {"track_age_ms_p99", summary.track_age_ms_p99},
-                        {"track_age_ms_max", summary.track_age_ms_max}};
+                        {"track_age_ms_max", summary.track_age_ms_max},
+                        {"track_age_ms_histogram", histogram}};
   }
   // Every kind appears, zeros included, so that a reader can tell "none" from "not counted".
   nlohmann::json by_kind = nlohmann::json::object();
@@ -418,8 +456,11 @@ std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t r
 }
 
 void print_run_table(const RunSummary& s, std::FILE* out) {
-  fmt::print(out, "\n{} stations + center, {} steps at {:.0f} km/h\n", s.stations, s.steps,
-             s.speed_kmh);
+  fmt::print(out, "\n{} stations + center, {} steps at {:.0f} km/h{}\n", s.stations, s.steps,
+             s.speed_kmh,
+             s.steps < s.steps_planned
+                 ? fmt::format(" (of {}: stopped early, {})", s.steps_planned, s.ended)
+                 : "");
   fmt::print(out, "  RMSE central             {:.4f} m\n", s.rmse_central_m);
   fmt::print(out, "  RMSE peer-to-peer        {:.4f} m\n", s.rmse_p2p_m);
   fmt::print(out, "  max |central - p2p|      {:.2e} m\n", s.max_abs_diff_central_vs_p2p);
@@ -474,9 +515,39 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
   if (s.realtime_deadline_ms > 0.0) {
     fmt::print(out, "  real time: deadline {} ms; rounds with every input in time {:.2f} %\n",
                s.realtime_deadline_ms, 100.0 * s.rounds_all_inputs_in_time);
-    fmt::print(out, "  track age on arrival p50/p99/max {:.2f} / {:.2f} / {:.2f} ms\n",
-               s.track_age_ms_p50, s.track_age_ms_p99, s.track_age_ms_max);
+    fmt::print(out, "  track age on arrival p50/p90/p99/max {:.2f} / {:.2f} / {:.2f} / {:.2f} ms\n",
+               s.track_age_ms_p50, s.track_age_ms_p90, s.track_age_ms_p99, s.track_age_ms_max);
+    if (s.realtime_behind_s > 0.0) {
+      fmt::print(out, "  behind the schedule      {:.1f} s when the rounds ended\n",
+                 s.realtime_behind_s);
+    }
   }
+  if (!s.host_verdict.empty()) fmt::print(out, "  {}\n", s.host_verdict);
+}
+
+std::string host_verdict(const RunSummary& s, double time_step_s, const std::string& cpu,
+                         unsigned cores) {
+  if (s.realtime_deadline_ms <= 0.0) return {};
+  const bool fell_behind = s.ended == "fell_behind";
+  if (!fell_behind && s.rounds_all_inputs_in_time >= 0.99) return {};
+  const double rate_hz = 1.0 / time_step_s;
+  // CPU per station-round times the stations a step, over a step's time: cores kept busy.
+  const double cores_needed = s.cpu_ms_per_station_round * s.stations / (1e3 * time_step_s);
+  const std::string host = fmt::format("this host ({}, {} cores)", cpu, cores);
+  const std::string rate = fmt::format("{} stations at {:.0f} Hz with a {:g} ms deadline",
+                                       s.stations, rate_hz, s.realtime_deadline_ms);
+  const std::string cost = fmt::format(
+      "the run used {:.2f} ms of CPU per station-round, {:.1f} cores' worth at that rate",
+      s.cpu_ms_per_station_round, cores_needed);
+  if (fell_behind) {
+    return fmt::format(
+        "{} could not carry {}: {} of {} steps complete, {:.1f} s behind the schedule when the "
+        "run stopped; {}",
+        host, rate, s.steps, s.steps_planned, s.realtime_behind_s, cost);
+  }
+  return fmt::format(
+      "{} carried {} only in part: {:.1f} % of the rounds had every input in time; {}", host, rate,
+      100.0 * s.rounds_all_inputs_in_time, cost);
 }
 
 }  // namespace skyfuse::harness

@@ -39,7 +39,12 @@ struct SettledFigures {
 
 struct RunSummary {
   int stations = 0;
-  int steps = 0;
+  int steps = 0;          ///< steps recorded
+  int steps_planned = 0;  ///< the run's steps; more than `steps` when it stopped early
+  /// "complete", or why the run stopped before its last step (to_string(StopCause)), and the
+  /// message that said so.
+  std::string ended = "complete";
+  std::string end_detail;
   std::string exchange;  ///< "flat" or "tree", as the run's plan chose it
   int fanout = 0;        ///< the tree's stations per cluster; 0 for flat
   double speed_kmh = 0.0;
@@ -72,8 +77,23 @@ struct RunSummary {
   double realtime_deadline_ms = 0.0;
   double rounds_all_inputs_in_time = 0.0;
   double track_age_ms_p50 = 0.0;
+  double track_age_ms_p90 = 0.0;
   double track_age_ms_p99 = 0.0;
   double track_age_ms_max = 0.0;
+  /// How many tracks arrived within each age (ms, ascending upper bounds; the last unbounded).
+  std::vector<std::pair<double, int>> track_age_ms_histogram;
+  /// Real time: the steps the schedule had reached when the rounds ended, the furthest any
+  /// node's track reached, and how long ago the first step not complete then was due (0 for a
+  /// run that completed).
+  std::uint64_t realtime_steps_scheduled = 0;
+  std::uint64_t realtime_steps_reached = 0;
+  double realtime_behind_s = 0.0;
+  /// What this host could not carry, in one line (empty when it carried the run): printed at
+  /// the end and kept in summary.json.
+  std::string host_verdict;
+  /// How each node process the harness started ended, by name ("station 3": "exit 0", "signal
+  /// 9 (Killed)"); a station killed on purpose (--kill) is not listed.
+  std::map<std::string, std::string> node_exits;
   /// Counted by the kernel over the rounds (run/kernel_counters.hpp): UDP datagrams received
   /// per round by every process of the run (none when a count could not be read), CPU time
   /// per station and round (stations, center and harness together), and the largest peak
@@ -155,5 +175,11 @@ class RunRecorder {
 };
 
 void print_run_table(const RunSummary& s, std::FILE* out);
+
+/// One line on what this host could not carry: for a real-time run that fell behind, or that
+/// kept fewer than 99 % of its rounds' inputs in time; empty otherwise. `cpu` and `cores` name
+/// the host; the CPU per station-round says how many cores the rate would take.
+std::string host_verdict(const RunSummary& s, double time_step_s, const std::string& cpu,
+                         unsigned cores);
 
 }  // namespace skyfuse::harness

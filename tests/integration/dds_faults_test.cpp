@@ -170,7 +170,11 @@ TEST(DdsFaults, SigtermEndsTheRunWithStatus143) {
   ASSERT_TRUE(status.has_value());
   EXPECT_TRUE(status->exited);
   EXPECT_EQ(status->code, 143) << run->output();
-  EXPECT_THAT(run->output(), HasSubstr("run aborted: interrupted by signal 15"));
+  EXPECT_THAT(run->output(),
+              HasSubstr("run stopped early (interrupted): interrupted by signal 15"));
+  // The rounds recorded before the signal are on disk.
+  EXPECT_EQ(nlohmann::json::parse(read_file(dir / "out" / "summary.json")).at("ended"),
+            "interrupted");
   EXPECT_TRUE(eventually([&] { return processes_on_domain(domain).empty(); }, 10s))
       << "processes left behind";
 }
@@ -187,7 +191,9 @@ TEST(DdsFaults, CtrlCStopsEveryProcessAndLeavesNothingBehind) {
   const auto status = run->wait(20s);
   ASSERT_TRUE(status.has_value()) << "harness still running 20 s after SIGINT\n" << run->output();
   EXPECT_EQ(status->code, 130) << run->output();
-  EXPECT_THAT(run->output(), HasSubstr("run aborted: interrupted by signal 2"));
+  EXPECT_THAT(run->output(), HasSubstr("run stopped early (interrupted): interrupted by signal 2"));
+  EXPECT_EQ(nlohmann::json::parse(read_file(dir / "out" / "summary.json")).at("ended"),
+            "interrupted");
   EXPECT_TRUE(eventually([&] { return processes_on_domain(domain).empty(); }, 10s))
       << "processes left behind";
   EXPECT_EQ(fastdds_shm_entries(), shm_before);
