@@ -2,15 +2,33 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <thread>
 
 #include "report/output_files.hpp"
+#include "report/run_recording.hpp"
 #include "skyfuse/live/live_server.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
+namespace {
+
+// A file name as a URL's path segment and query value: unreserved characters as they are.
+std::string url_encoded(const std::string& text) {
+  std::string out;
+  for (const unsigned char c : text) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~') {
+      out.push_back(static_cast<char>(c));
+    } else {
+      out += fmt::format("%{:02X}", c);
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 void add_view_command(CLI::App& app, ViewOptions& o) {
   CLI::App* cmd = app.add_subcommand(
@@ -21,6 +39,7 @@ void add_view_command(CLI::App& app, ViewOptions& o) {
 }
 
 int run_view(const ViewOptions& o) {
+  check_viewable_recording(o.recording);
   const std::filesystem::path site = executable_dir() / "view";
   if (!std::filesystem::exists(site / "index.html")) {
     throw std::runtime_error("the page is not built (" + site.string() +
@@ -30,10 +49,17 @@ int run_view(const ViewOptions& o) {
   options.address = o.address;
   options.port = o.port;
   options.site_dir = site.string();
-  options.files["/recording.mcap"] = std::filesystem::absolute(o.recording).string();
+  // Served under its own name (characters a URL path would encode made plain), which the page
+  // shows in its header.
+  const std::string name = std::filesystem::path(o.recording).filename().string();
+  std::string served = name;
+  for (char& c : served) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+  }
+  options.files["/" + served] = std::filesystem::absolute(o.recording).string();
   const live::LiveServer server(options, {});
-  fmt::print("view: http://{}:{}/?recording=recording.mcap  ({}; Ctrl-C ends)\n", o.address,
-             server.port(), o.recording);
+  fmt::print("view: http://{}:{}/?recording={}&name={}  ({}; Ctrl-C ends)\n", o.address,
+             server.port(), served, url_encoded(name), o.recording);
   std::fflush(stdout);
   while (!transport::shutdown_requested()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));

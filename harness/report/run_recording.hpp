@@ -17,4 +17,9 @@ namespace skyfuse::harness {
 void write_recording(const RunRecorder& recorder, std::string summary_json,
                      const std::filesystem::path& path, std::uint64_t epoch_ns);
 
+/// Whether skyfuse's page can show `path`: an MCAP file with its summary whose channels include
+/// every round's (/skyfuse/round, with at least one message). Throws std::invalid_argument
+/// naming the file and what is wrong with it.
+void check_viewable_recording(const std::filesystem::path& path);
+
 }  // namespace skyfuse::harness

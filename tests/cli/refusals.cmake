@@ -54,6 +54,11 @@ elseif(CASE STREQUAL "run_tree_refusion_lag")
   set(args run --exchange tree --refusion-lag 2 --out ${WORK}/tree_lag)
   set(expect "--refusion-lag with --exchange tree: the tree exchange fuses each round once")
   set(untouched ${WORK}/tree_lag)
+elseif(CASE STREQUAL "view_not_a_recording")
+  # Refused before anything is served, whether or not the page is built.
+  file(WRITE ${WORK}/garbage.mcap "a text file, not a recording\n")
+  set(args view ${WORK}/garbage.mcap --port 0)
+  set(expect "skyfuse: error: .*garbage.mcap: not an MCAP file \\(it does not begin with the MCAP magic bytes\\)")
 elseif(CASE STREQUAL "station_replay_out_of_range")
   # No receiver would take an elevation past the zenith: refused when the file is read, with
   # its line, not fused by the station alone.

@@ -364,10 +364,13 @@ function resetView() {
   view.series.clear();
 }
 
-// A recording: every message read once, then shown up to the slider's round.
-async function loadRecording(url) {
-  document.getElementById("source").textContent = `recording: ${url}`;
-  const bytes = new Uint8Array(await (await fetch(url)).arrayBuffer());
+// A recording: every message read once, then shown up to the slider's round. `name` is the
+// file's own name, for the header.
+async function loadRecording(url, name) {
+  document.getElementById("source").textContent = `recording: ${name}`;
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`the server answered ${response.status} ${response.statusText}`);
+  const bytes = new Uint8Array(await response.arrayBuffer());
   const reader = await McapIndexedReader.Initialize({ readable: {
     size: async () => BigInt(bytes.length),
     read: async (offset, length) => bytes.subarray(Number(offset), Number(offset + length)),
@@ -436,7 +439,19 @@ function connect() {
   };
 }
 
-const recording = new URLSearchParams(location.search).get("recording");
-if (recording) loadRecording(recording); else connect();
+// `skyfuse view` checked the file before serving it; if it changed since, or cannot be read
+// after all, the header says so instead of showing an empty page.
+function showRecording(url, name) {
+  loadRecording(url, name).catch((error) => {
+    const source = document.getElementById("source");
+    source.textContent = `recording ${name} cannot be shown: ${error.message ?? error}`;
+    source.classList.add("failed");
+    view.recordingError = source.textContent;
+  });
+}
+
+const query = new URLSearchParams(location.search);
+const recording = query.get("recording");
+if (recording) showRecording(recording, query.get("name") ?? recording); else connect();
 enableTurning();
 requestDraw();

@@ -5,7 +5,7 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
-import { existsSync, mkdtempSync, rmSync } from "node:fs";
+import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { chromium } from "playwright-core";
@@ -57,7 +57,7 @@ test("skyfuse view shows a recording, and its slider moves through the rounds", 
       "--out", join(dir, "out"), "--record", file], { stdio: "ignore" });
     assert.equal(await new Promise((resolve) => recorded.on("exit", resolve)), 0);
     server = spawn(skyfuse, ["view", file, "--port", "0"], { stdio: ["ignore", "pipe", "pipe"] });
-    const [url] = await untilLine(server, /http:\/\/127\.0\.0\.1:\d+\/\?recording=recording\.mcap/);
+    const [url] = await untilLine(server, /http:\/\/127\.0\.0\.1:\d+\/\?recording=run\.mcap&name=run\.mcap/);
     const page = await browser.newPage({ viewport: { width: 1400, height: 800 } });
     const errors = [];
     page.on("pageerror", (e) => errors.push(e.message));
@@ -72,7 +72,15 @@ test("skyfuse view shows a recording, and its slider moves through the rounds", 
     await page.waitForFunction(() => document.getElementById("round-counter").textContent === "100");
     const errorPoints = await page.evaluate(() => window.skyfuseView.series.get(0).steps.length);
     assert.equal(errorPoints, 101, "the center's errors up to round 100");
+    assert.equal(await page.textContent("#source"), "recording: run.mcap", "the header names the file");
     assert.deepEqual(errors, []);
+
+    // The file served was checked when the server started; one that is damaged afterwards is
+    // named as such in the header, not shown as an empty page.
+    writeFileSync(file, readFileSync(file).subarray(0, 1000));
+    await page.reload();
+    await page.waitForFunction(() => window.skyfuseView?.recordingError, null, { timeout: 30_000 });
+    assert.match(await page.textContent("#source"), /^recording run\.mcap cannot be shown: /);
   } finally {
     server?.kill("SIGINT");
     await browser.close();
