@@ -212,9 +212,9 @@ int run_station_of(const StationOptions& options, const RunPlan& plan, const Sta
       .run();
 }
 
-// Runs station `me` with its sensor of type Sensor, on the run's motion model and filter, which
-// lies in shard `Shard`.
-template <std::size_t Shard, typename Model, typename Sensor>
+// Runs station `me` with its sensor of type Sensor, on the run's motion model, with the run's
+// filter part `Filter` (which runs on them).
+template <typename Filter, typename Model, typename Sensor>
 int run_with_sensor(const StationOptions& options, const RunPlan& plan, const StationConfig& me) {
   std::unique_ptr<SensorSource<Sensor>> source;
   if (options.replay_path.empty()) {
@@ -230,39 +230,41 @@ int run_with_sensor(const StationOptions& options, const RunPlan& plan, const St
     throw std::invalid_argument(
         fmt::format("station {}: its noise or site is unusable: {}", me.id, to_string(*why)));
   }
-  int code = options::kExitError;
-  const bool found = visit_filter_in_shard<Shard>(
-      plan.scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
-        // The loader gives a filter only the models and stations it runs on.
-        if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
-          code = run_station_of<Sensor, typename StationFusionOf<Filter, Model, Sensor>::type>(
-              options, plan, me, std::move(source));
-        } else {
-          throw std::logic_error(fmt::format("filter {} on {} with a station of sensor kind {}",
-                                             Filter::kKind, Model::kKind, me.sensor.kind));
-        }
-      });
-  if (!found)
-    throw std::logic_error(
-        fmt::format("filter {} is not in shard {}", plan.scenario.filter.kind, Shard));
-  return code;
+  return run_station_of<Sensor, typename StationFusionOf<Filter, Model, Sensor>::type>(
+      options, plan, me, std::move(source));
 }
 
 }  // namespace detail
 
+// The filter part first: a shard compiles the stations of its own parts only, on the models and
+// sensors each runs on, and nothing for the others.
 template <std::size_t Shard>
 int run_station_in_shard(const StationOptions& options, const RunPlan& plan,
                          const StationConfig& me) {
   int code = options::kExitError;
   bool found = false;
-  visit_model_kind<MotionModels>(
-      plan.scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
-        found = visit_sensor_kind<Sensors, Model::kDim>(
-            me.sensor.kind, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-              code =
-                  detail::run_with_sensor<Shard, Model, SensorOf<Model::kDim>>(options, plan, me);
+  const bool in_shard = visit_filter_in_shard<Shard>(
+      plan.scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
+        visit_model_kind<MotionModels>(
+            plan.scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
+              found = visit_sensor_kind<Sensors, Model::kDim>(
+                  me.sensor.kind, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
+                    using Sensor = SensorOf<Model::kDim>;
+                    // The loader gives a filter only the models and stations it runs on.
+                    if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
+                      code = detail::run_with_sensor<Filter, Model, Sensor>(options, plan, me);
+                    } else {
+                      throw std::logic_error(
+                          fmt::format("filter {} on {} with a station of sensor kind {}",
+                                      Filter::kKind, Model::kKind, me.sensor.kind));
+                    }
+                  });
             });
       });
+  if (!in_shard) {
+    throw std::logic_error(
+        fmt::format("filter {} is not in shard {}", plan.scenario.filter.kind, Shard));
+  }
   if (!found) {
     throw std::logic_error(fmt::format("unregistered motion model {} or sensor kind {}",
                                        plan.scenario.filter.motion_model.kind, me.sensor.kind));

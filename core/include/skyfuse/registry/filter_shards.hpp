@@ -1,10 +1,11 @@
 #pragma once
 /// \file
 /// Code compiled for every registered filter part, on every model and sensor it runs on (a
-/// station's and the center's rounds, the Monte Carlo's steppers), is too much for one
-/// translation unit on two cores: each such file took 100-140 s and up to 4 GB. It is split into
-/// shards by filter part: shard s of S holds the parts whose position in FilterParts modulo S
-/// is s.
+/// station's and the center's rounds, the Monte Carlo's steppers), makes the largest translation
+/// units of the build: 105-141 s and up to 4.3 GB each. It can be split into shards by filter
+/// part: shard s of S holds the parts whose position in FilterParts modulo S is s. Each shard
+/// compiles again what the parts share, so more shards cost more CPU in all; S is a build
+/// setting (cmake/FilterShards.cmake says when more pay).
 ///
 /// The code is written once, as a function template over the shard defined in a header:
 ///
