@@ -47,9 +47,27 @@ class SigmaPoints {
  public:
   static constexpr int kCount = 2 * N + 1;
 
+  SigmaPoints() = default;
+  // Eigen 3.4's default LLT leaves its norm and status unset, and copying points never computed
+  // (a filter is moved into its node before its first round) would copy those unset values
+  // (GCC's -Wmaybe-uninitialized said so): the factor is copied once there is one. Factorising
+  // the identity up front instead cost the unscented station step 6-12 %, a RoundPrior being
+  // made for every station's step.
+  SigmaPoints(const SigmaPoints& other) { *this = other; }
+  SigmaPoints& operator=(const SigmaPoints& other) {
+    if (other.factorised_) factor_ = other.factor_;
+    factorised_ = other.factorised_;
+    points_ = other.points_;
+    mean_weight_0_ = other.mean_weight_0_;
+    covariance_weight_0_ = other.covariance_weight_0_;
+    weight_ = other.weight_;
+    return *this;
+  }
+
   /// False, and nothing usable, if P is not positive definite.
   bool compute(const GaussianState<N>& prior, const UnscentedParameters& p) {
     factor_.compute(prior.covariance);
+    factorised_ = true;
     if (factor_.info() != Eigen::Success) return false;
     const double lambda = p.alpha * p.alpha * (N + p.kappa) - N;
     const double spread = std::sqrt(N + lambda);
@@ -74,10 +92,8 @@ class SigmaPoints {
   const Eigen::LLT<Covariance<N>>& prior_factor() const { return factor_; }
 
  private:
-  // The identity's factor until the first compute(): Eigen 3.4's default LLT leaves its norm
-  // and status unset, and moving the points before their first round (a filter is moved into
-  // its node) would copy those unset values (GCC's -Wmaybe-uninitialized said so).
-  Eigen::LLT<Covariance<N>> factor_{Covariance<N>::Identity()};
+  Eigen::LLT<Covariance<N>> factor_;
+  bool factorised_ = false;  // factor_ has been computed (of whatever matrix)
   std::array<Vector<N>, kCount> points_{};
   double mean_weight_0_ = 0.0;
   double covariance_weight_0_ = 0.0;
