@@ -519,6 +519,9 @@ void LockstepDriver::run_realtime(int steps, double time_step_s,
     // The first step not yet complete was due longer ago than the limit (the schedule's end
     // included): the nodes are not catching up on this host.
     if (d.realtime.behind_s > limit_s) {
+      // The steps the nodes got to, complete or not, go to the files with what arrived.
+      rounds.hand_over_rest(done);
+      for (RoundRecord& r : done) on_round(std::move(r));
       throw RunAborted(
           fmt::format("real-time run fell behind: {} of {} steps complete, the first step not "
                       "complete was due {:.1f} s ago (limit --round-timeout {:.1f} s); the nodes "

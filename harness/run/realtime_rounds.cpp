@@ -85,20 +85,31 @@ std::uint64_t RealtimeRounds::hand_over(std::vector<RoundRecord>& done) {
     const bool complete =
         it != pending_.end() && it->second.tracks == m + 1 && it->second.measurements == m;
     if (!complete && !overtaken(step)) break;
-    // Given up on or complete: what is missing now is lost (a step nothing arrived for at all
-    // leaves empty).
-    Pending& p = pending_step(step);
-    RoundRecord r = std::move(p.record);
-    tracks_lost_ += m + 1 - p.tracks;
-    measurements_lost_ += m - p.measurements;
-    if (p.tracks < m + 1) r.all_inputs_in_time = false;
-    const double oldest_us = *std::max_element(r.track_age_us.begin(), r.track_age_us.end());
-    r.latency = std::chrono::nanoseconds(std::llround(1e3 * oldest_us));
-    done.push_back(std::move(r));
-    pending_.erase(step);
-    ++handed_over_;
+    hand_over_next(done);
   }
   return handed_over_;
+}
+
+std::uint64_t RealtimeRounds::hand_over_rest(std::vector<RoundRecord>& done) {
+  while (handed_over_ < steps_reached_) hand_over_next(done);
+  return handed_over_;
+}
+
+void RealtimeRounds::hand_over_next(std::vector<RoundRecord>& done) {
+  // Given up on or complete: what is missing now is lost (a step nothing arrived for at all
+  // leaves empty).
+  const std::size_t m = station_ids_.size();
+  const std::uint64_t step = handed_over_;
+  Pending& p = pending_step(step);
+  RoundRecord r = std::move(p.record);
+  tracks_lost_ += m + 1 - p.tracks;
+  measurements_lost_ += m - p.measurements;
+  if (p.tracks < m + 1) r.all_inputs_in_time = false;
+  const double oldest_us = *std::max_element(r.track_age_us.begin(), r.track_age_us.end());
+  r.latency = std::chrono::nanoseconds(std::llround(1e3 * oldest_us));
+  done.push_back(std::move(r));
+  pending_.erase(step);
+  ++handed_over_;
 }
 
 }  // namespace skyfuse::harness

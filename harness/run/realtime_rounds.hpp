@@ -44,6 +44,9 @@ class RealtimeRounds {
   /// Appends to `done` every complete step next in order, its latency the age of its oldest
   /// track; returns how many steps have been handed over in all.
   std::uint64_t hand_over(std::vector<RoundRecord>& done);
+  /// When the run stops early: hands over every step up to the furthest any track reached,
+  /// complete or not (what has not arrived is lost), so that the files hold what arrived.
+  std::uint64_t hand_over_rest(std::vector<RoundRecord>& done);
 
   /// Samples given up on so far: tracks (a node's round that never reached the harness; its
   /// step counts as not all inputs in time) and measurements.
@@ -61,6 +64,8 @@ class RealtimeRounds {
   /// 0 for the center, 1..M for the stations by id; nothing for an id not in the run.
   std::optional<std::size_t> slot(int node) const;
   std::optional<DropKind> check_step(std::uint64_t step) const;
+  // Hands over the next step, whatever it holds.
+  void hand_over_next(std::vector<RoundRecord>& done);
   Pending& pending_step(std::uint64_t step);
 
   std::vector<int> station_ids_;

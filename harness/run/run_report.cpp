@@ -541,9 +541,10 @@ std::string host_verdict(const RunSummary& s, double time_step_s, const std::str
       s.cpu_ms_per_station_round, cores_needed);
   if (fell_behind) {
     return fmt::format(
-        "{} could not carry {}: {} of {} steps complete, {:.1f} s behind the schedule when the "
-        "run stopped; {}",
-        host, rate, s.steps, s.steps_planned, s.realtime_behind_s, cost);
+        "{} could not carry {}: {} of {} steps complete ({} recorded), {:.1f} s behind the "
+        "schedule when the run stopped; {}",
+        host, rate, s.steps - s.rounds_closed_incomplete, s.steps_planned, s.steps,
+        s.realtime_behind_s, cost);
   }
   return fmt::format(
       "{} carried {} only in part: {:.1f} % of the rounds had every input in time; {}", host, rate,
