@@ -8,7 +8,7 @@ namespace skyfuse::center {
 
 int run_center(const options::NodeOptions& options) {
   const RunPlan plan = transport::load_plan(options);
-  return with_filter_shard(filter_shard(plan.scenario.filter), [&](auto shard) {
+  return with_filter_shard(plan.scenario.filter, [&](auto shard) {
     return run_center_in_shard<decltype(shard)::value>(options, plan);
   });
 }

@@ -28,7 +28,7 @@ int run_station(const StationOptions& options) {
       throw std::invalid_argument("--rejoin-at-step: lock-step runs only, not real time");
     }
   }
-  return with_filter_shard(filter_shard(plan.scenario.filter), [&](auto shard) {
+  return with_filter_shard(plan.scenario.filter, [&](auto shard) {
     return run_station_in_shard<decltype(shard)::value>(options, plan, *me);
   });
 }

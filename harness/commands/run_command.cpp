@@ -131,20 +131,21 @@ void add_run_command(CLI::App& app, RunOptions& o) {
 int run_run(const RunOptions& o) {
   const RunPlan plan = load_run_plan(o);
   warn_if_receive_buffers_too_small(plan.stations);
-  RunSummary summary;
-  try {
-    summary = execute_run(o, plan);
-  } catch (const RunStoppedEarly& e) {
-    // Every file is written: show what was recorded, then let main report why it stopped.
-    print_run_table(e.summary(), stdout);
-    fmt::print("results in {} (the {} of {} steps recorded before the run stopped)\n", o.out_dir,
-               e.summary().steps, e.summary().steps_planned);
+  const auto report = [&](const RunSummary& summary) {
+    print_run_table(summary, stdout);
+    fmt::print("results in {}{}\n", o.out_dir,
+               summary.stop_cause ? fmt::format(" (the {} of {} steps recorded before the run "
+                                                "stopped)",
+                                                summary.steps, summary.steps_planned)
+                                  : "");
     if (!o.record_path.empty()) fmt::print("recording in {}\n", o.record_path);
+  };
+  try {
+    report(execute_run(o, plan));
+  } catch (const RunStoppedEarly& e) {
+    report(e.summary());  // every file is written; main says why the run stopped
     throw;
   }
-  print_run_table(summary, stdout);
-  fmt::print("results in {}\n", o.out_dir);
-  if (!o.record_path.empty()) fmt::print("recording in {}\n", o.record_path);
   return 0;
 }
 

@@ -5,6 +5,8 @@
 #include <cctype>
 #include <chrono>
 #include <filesystem>
+#include <optional>
+#include <string>
 #include <thread>
 
 #include "report/output_files.hpp"
@@ -15,14 +17,20 @@
 namespace skyfuse::harness {
 namespace {
 
-// A file name as a URL's path segment and query value: unreserved characters as they are.
-std::string url_encoded(const std::string& text) {
+// The characters a URL carries as they are in a path and a query (RFC 3986's unreserved ones,
+// less '~').
+bool url_plain(unsigned char c) {
+  return std::isalnum(c) || c == '-' || c == '_' || c == '.';
+}
+
+// `text` with every other byte percent-encoded, or replaced by `stand_in` when one is given.
+std::string url_safe(const std::string& text, std::optional<char> stand_in = std::nullopt) {
   std::string out;
   for (const unsigned char c : text) {
-    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~') {
+    if (url_plain(c)) {
       out.push_back(static_cast<char>(c));
     } else {
-      out += fmt::format("%{:02X}", c);
+      out += stand_in ? std::string(1, *stand_in) : fmt::format("%{:02X}", c);
     }
   }
   return out;
@@ -52,14 +60,11 @@ int run_view(const ViewOptions& o) {
   // Served under its own name (characters a URL path would encode made plain), which the page
   // shows in its header.
   const std::string name = std::filesystem::path(o.recording).filename().string();
-  std::string served = name;
-  for (char& c : served) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
-  }
+  const std::string served = url_safe(name, '_');
   options.files["/" + served] = std::filesystem::absolute(o.recording).string();
   const live::LiveServer server(options, {});
   fmt::print("view: http://{}:{}/?recording={}&name={}  ({}; Ctrl-C ends)\n", o.address,
-             server.port(), served, url_encoded(name), o.recording);
+             server.port(), served, url_safe(name), o.recording);
   std::fflush(stdout);
   while (!transport::shutdown_requested()) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));

@@ -364,7 +364,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
         recorder.summarise(std::chrono::duration<double>(discovery).count(), elapsed);
     summary.realtime_deadline_ms = o.node.realtime_deadline_ms;
     if (stopped) {
-      summary.ended = std::string(to_string(stopped->cause()));
+      summary.stop_cause = stopped->cause();
       summary.end_detail = stopped->what();
     }
     // The rounds the nodes worked on: those recorded, or in real time as far as any node got.
@@ -432,17 +432,9 @@ int exit_status_of(const RunAborted& e) {
   // As a shell reports a process its signal ended (130 for Ctrl-C, 143 for SIGTERM), whatever
   // the signal made fail first.
   if (transport::shutdown_requested()) return 128 + transport::shutdown_signal();
-  switch (e.cause()) {
-    case StopCause::kInterrupted:
-      return 130;
-    case StopCause::kFellBehind:
-    case StopCause::kRoundTimeout:
-      return kExitStoppedEarly;
-    case StopCause::kNodeFailed:
-    case StopCause::kError:
-      break;
-  }
-  return 1;
+  const bool stopped_early =
+      e.cause() == StopCause::kFellBehind || e.cause() == StopCause::kRoundTimeout;
+  return stopped_early ? kExitStoppedEarly : 1;
 }
 
 RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {

@@ -465,12 +465,14 @@ void LockstepDriver::run_realtime(int steps, double time_step_s,
   const double limit_s = std::chrono::duration<double>(timeout).count();
   // Where the run stands against its schedule; kept for realtime_progress().
   const auto note_progress = [&] {
-    const double since_epoch_s =
-        std::chrono::duration<double>(std::chrono::system_clock::now() - epoch).count();
+    const auto now = std::chrono::system_clock::now();
+    const double since_epoch_s = std::chrono::duration<double>(now - epoch).count();
     const auto scheduled = static_cast<std::uint64_t>(
         std::clamp(std::floor(since_epoch_s / time_step_s) + 1.0, 0.0, static_cast<double>(total)));
-    d.realtime = {scheduled, rounds.steps_reached(),
-                  std::max(0.0, since_epoch_s - static_cast<double>(handed_over) * time_step_s)};
+    const double behind_s = std::chrono::duration<double>(
+                                now - transport::step_start(epoch_ns, handed_over, time_step_s))
+                                .count();
+    d.realtime = {scheduled, rounds.steps_reached(), std::max(0.0, behind_s)};
   };
   while (handed_over < total) {
     // The same refusals as in lock-step, by kind: content, then where the sample belongs,

@@ -108,7 +108,8 @@ class LockstepDriver {
   /// node's track of every step as the nodes publish them on their own clocks; `on_round` is
   /// given each step, in step order, as soon as it is complete. The run is abandoned
   /// (RunAborted, StopCause::kFellBehind) once the steps complete lag the schedule by more than
-  /// `timeout`, or the schedule's end is `timeout` past; `progress` then says how far it got.
+  /// `timeout` (the schedule's end included), after handing over every step any track reached;
+  /// realtime_progress() then says how far it got.
   void run_realtime(int steps, double time_step_s, std::chrono::system_clock::time_point epoch,
                     std::chrono::milliseconds timeout,
                     const std::function<void(RoundRecord)>& on_round);

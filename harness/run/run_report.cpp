@@ -126,6 +126,11 @@ void RunRecorder::add(RoundRecord round) {
 
 namespace {
 
+// summary.json's `ended`.
+std::string_view ended(const RunSummary& s) {
+  return s.stop_cause ? to_string(*s.stop_cause) : "complete";
+}
+
 // Tracks by age on arrival, in bins from 1 ms to 5 s (1-2-5 steps) and one beyond.
 std::vector<std::pair<double, int>> age_histogram(const std::vector<double>& ages_ms) {
   std::vector<std::pair<double, int>> bins;
@@ -334,7 +339,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
 
 std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t run_id) const {
   const bool imm = !mode_names_.empty();
-  const nlohmann::json json = {{"ended", summary.ended},
+  const nlohmann::json json = {{"ended", ended(summary)},
                                {"scenario", plan_.scenario.name},
                                {"seed", plan_.scenario.seed},
                                {"mc_run", plan_.mc_run},
@@ -459,7 +464,7 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
   fmt::print(out, "\n{} stations + center, {} steps at {:.0f} km/h{}\n", s.stations, s.steps,
              s.speed_kmh,
              s.steps < s.steps_planned
-                 ? fmt::format(" (of {}: stopped early, {})", s.steps_planned, s.ended)
+                 ? fmt::format(" (of {}: stopped early, {})", s.steps_planned, ended(s))
                  : "");
   fmt::print(out, "  RMSE central             {:.4f} m\n", s.rmse_central_m);
   fmt::print(out, "  RMSE peer-to-peer        {:.4f} m\n", s.rmse_p2p_m);
@@ -528,7 +533,7 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
 std::string host_verdict(const RunSummary& s, double time_step_s, const std::string& cpu,
                          unsigned cores) {
   if (s.realtime_deadline_ms <= 0.0) return {};
-  const bool fell_behind = s.ended == "fell_behind";
+  const bool fell_behind = s.stop_cause == StopCause::kFellBehind;
   if (!fell_behind && s.rounds_all_inputs_in_time >= 0.99) return {};
   const double rate_hz = 1.0 / time_step_s;
   // CPU per station-round times the stations a step, over a step's time: cores kept busy.

@@ -41,9 +41,9 @@ struct RunSummary {
   int stations = 0;
   int steps = 0;          ///< steps recorded
   int steps_planned = 0;  ///< the run's steps; more than `steps` when it stopped early
-  /// "complete", or why the run stopped before its last step (to_string(StopCause)), and the
-  /// message that said so.
-  std::string ended = "complete";
+  /// Why the run stopped before its last step, and the message that said so; none for a run
+  /// that completed (summary.json's `ended`: "complete" or to_string(cause)).
+  std::optional<StopCause> stop_cause;
   std::string end_detail;
   std::string exchange;  ///< "flat" or "tree", as the run's plan chose it
   int fanout = 0;        ///< the tree's stations per cluster; 0 for flat

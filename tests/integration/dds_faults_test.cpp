@@ -21,22 +21,6 @@ namespace {
 using namespace std::chrono_literals;
 using ::testing::HasSubstr;
 
-// A long harness run on `domain`, returned once its first rounds have been driven.
-std::unique_ptr<Process> start_long_run(int domain, int stations, const std::filesystem::path& dir,
-                                        std::vector<std::string> extra = {}) {
-  std::vector<std::string> args = {bin("skyfuse"), "run",
-                                   "--stations",   std::to_string(stations),
-                                   "--steps",      "1000000",
-                                   "--domain",     std::to_string(domain),
-                                   "--out",        (dir / "out").string()};
-  args.insert(args.end(), extra.begin(), extra.end());
-  auto run = std::make_unique<Process>(args, dir / "harness.log");
-  const bool started =
-      eventually([&] { return run->output().find("%]") != std::string::npos; }, 30s);
-  EXPECT_TRUE(started) << run->output();
-  return run;
-}
-
 std::vector<pid_t> processes_on_domain(int domain) {
   return find_processes({"--domain", std::to_string(domain)});
 }

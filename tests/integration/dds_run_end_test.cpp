@@ -27,22 +27,38 @@ using ::testing::Not;
 
 constexpr int kStations = 64;
 
-// `skyfuse run` of ring64's 64 stations in clusters of 8 on `domain`, with `extra` options.
-std::vector<std::string> run_args(const std::filesystem::path& out, int domain,
-                                  const std::vector<std::string>& extra) {
-  std::vector<std::string> args = {bin("skyfuse"), "run",
-                                   "--scenario",   bin("scenarios/ring64.yaml"),
-                                   "--stations",   std::to_string(kStations),
-                                   "--exchange",   "tree",
-                                   "--domain",     std::to_string(domain),
-                                   "--out",        out.string()};
-  args.insert(args.end(), extra.begin(), extra.end());
-  return args;
+// The options that make a run ring64's (or `scenario`'s) stations in clusters of 8, then
+// `extra`; the number of stations is added by whoever starts the run.
+std::vector<std::string> ring64_tree(const std::vector<std::string>& extra,
+                                     const std::string& scenario = bin("scenarios/ring64.yaml")) {
+  std::vector<std::string> options = {"--scenario", scenario, "--exchange", "tree"};
+  options.insert(options.end(), extra.begin(), extra.end());
+  return options;
 }
 
-// Waits until the harness has begun its rounds (its progress line).
-bool rounds_begun(const Process& run) {
-  return eventually([&] { return run.output().find("%]") != std::string::npos; }, 150s);
+// `skyfuse run` of the 64 stations on `domain` into `dir`/out with `options`, run to its end.
+Completed run_until_done(const std::filesystem::path& dir, int domain,
+                         const std::vector<std::string>& options) {
+  std::vector<std::string> args = {
+      bin("skyfuse"),         "run",   "--stations",          std::to_string(kStations), "--domain",
+      std::to_string(domain), "--out", (dir / "out").string()};
+  args.insert(args.end(), options.begin(), options.end());
+  return run_to_completion(args, dir / "run.log", 240s);
+}
+
+// A long run of the 64 stations (the fixture's start_long_run), once its rounds have begun;
+// discovery at M = 64 may take far longer than the fixture's default wait.
+std::unique_ptr<Process> start_long_run_of_64(int domain, const std::filesystem::path& dir,
+                                              const std::vector<std::string>& extra = {}) {
+  return start_long_run(domain, kStations, dir, ring64_tree(extra), 150s);
+}
+
+// The process of station `id` on `domain`; a failure unless there is exactly one.
+pid_t station_pid(int id, int domain) {
+  const auto pids =
+      find_processes({"--id", std::to_string(id), "--domain", std::to_string(domain)});
+  EXPECT_EQ(pids.size(), 1U);
+  return pids.empty() ? -1 : pids.front();
 }
 
 // What every run leaves, however it ended: summary.json saying how, steps.csv with a row per
@@ -58,7 +74,7 @@ nlohmann::json expect_files_and_clean_exits(const std::filesystem::path& out,
   }
   auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
   EXPECT_EQ(summary.at("ended"), ended) << output;
-  EXPECT_EQ(summary.at("steps_planned").get<int>() >= summary.at("steps").get<int>(), true);
+  EXPECT_GE(summary.at("steps_planned").get<int>(), summary.at("steps").get<int>());
   // steps.csv: a header and a row per recorded step.
   const std::string steps_csv = read_file(out / "steps.csv");
   EXPECT_EQ(std::count(steps_csv.begin(), steps_csv.end(), '\n'),
@@ -80,8 +96,7 @@ nlohmann::json expect_files_and_clean_exits(const std::filesystem::path& out,
 
 TEST(DdsRunEnd, SixtyFourStationsLeaveCleanlyAfterTheLastRound) {
   const auto dir = test_dir();
-  const Completed run =
-      run_to_completion(run_args(dir / "out", 135, {"--steps", "40"}), dir / "run.log", 240s);
+  const Completed run = run_until_done(dir, 135, ring64_tree({"--steps", "40"}));
   EXPECT_TRUE(run.status.exited && run.status.code == 0) << run.output;
   const auto summary = expect_files_and_clean_exits(dir / "out", run.output, "complete");
   EXPECT_EQ(summary.value("steps", 0), 40);
@@ -96,11 +111,11 @@ TEST(DdsRunEnd, ARealTimeRunThatFallsBehindStopsWithItsFiles) {
   ASSERT_THAT(scenario, HasSubstr("time_step_s: 0.0005"));
   const auto fast = dir / "ring64_2khz.yaml";
   std::ofstream(fast) << scenario;
-  auto args = run_args(dir / "out", 136,
-                       {"--steps", "2000", "--realtime-deadline-ms", "0.25", "--round-timeout", "2",
-                        "--best-effort"});
-  args[3] = fast.string();
-  const Completed run = run_to_completion(args, dir / "run.log", 240s);
+  const Completed run =
+      run_until_done(dir, 136,
+                     ring64_tree({"--steps", "2000", "--realtime-deadline-ms", "0.25",
+                                  "--round-timeout", "2", "--best-effort"},
+                                 fast.string()));
   EXPECT_TRUE(run.status.exited) << run.output;
   EXPECT_EQ(run.status.code, 3) << run.output;
   EXPECT_THAT(run.output, HasSubstr("run stopped early (fell_behind): real-time run fell behind"));
@@ -123,52 +138,50 @@ TEST(DdsRunEnd, ARealTimeRunThatFallsBehindStopsWithItsFiles) {
 // stopped) and every other node leaves by itself.
 TEST(DdsRunEnd, ASilentStationStopsALockStepRunAtTheRoundTimeout) {
   const auto dir = test_dir();
-  Process run(run_args(dir / "out", 137, {"--steps", "100000", "--round-timeout", "3"}),
-              dir / "run.log");
-  ASSERT_TRUE(rounds_begun(run)) << run.output();
-  const auto victims = find_processes({"--id", "9", "--domain", "137"});
-  ASSERT_EQ(victims.size(), 1U);
-  ::kill(victims.front(), SIGSTOP);
-  const auto status = run.wait(120s);
-  ASSERT_TRUE(status.has_value()) << run.output();
+  const auto run = start_long_run_of_64(137, dir, {"--round-timeout", "3"});
+  ASSERT_FALSE(HasFailure());
+  const pid_t victim = station_pid(9, 137);
+  ASSERT_FALSE(HasFailure());
+  ::kill(victim, SIGSTOP);
+  const auto status = run->wait(120s);
+  ASSERT_TRUE(status.has_value()) << run->output();
   EXPECT_TRUE(status->exited);
-  EXPECT_EQ(status->code, 3) << run.output();
-  EXPECT_THAT(run.output(), HasSubstr("run stopped early (round_timeout): station 9 is running "
-                                      "but sent no track for 3.0 s"));
-  const auto summary = expect_files_and_clean_exits(dir / "out", run.output(), "round_timeout",
+  EXPECT_EQ(status->code, 3) << run->output();
+  EXPECT_THAT(run->output(), HasSubstr("run stopped early (round_timeout): station 9 is running "
+                                       "but sent no track for 3.0 s"));
+  const auto summary = expect_files_and_clean_exits(dir / "out", run->output(), "round_timeout",
                                                     {{"station 9", SIGKILL}});
   EXPECT_GT(summary.value("steps", 0), 0);
 }
 
 TEST(DdsRunEnd, CtrlCStopsTheRunWithItsFiles) {
   const auto dir = test_dir();
-  Process run(run_args(dir / "out", 138, {"--steps", "100000"}), dir / "run.log");
-  ASSERT_TRUE(rounds_begun(run)) << run.output();
-  run.signal(SIGINT);
-  const auto status = run.wait(60s);
-  ASSERT_TRUE(status.has_value()) << run.output();
+  const auto run = start_long_run_of_64(138, dir);
+  ASSERT_FALSE(HasFailure());
+  run->signal(SIGINT);
+  const auto status = run->wait(60s);
+  ASSERT_TRUE(status.has_value()) << run->output();
   EXPECT_TRUE(status->exited);
-  EXPECT_EQ(status->code, 130) << run.output();
-  EXPECT_THAT(run.output(), HasSubstr("run stopped early (interrupted): interrupted by signal 2"));
-  const auto summary = expect_files_and_clean_exits(dir / "out", run.output(), "interrupted");
+  EXPECT_EQ(status->code, 130) << run->output();
+  EXPECT_THAT(run->output(), HasSubstr("run stopped early (interrupted): interrupted by signal 2"));
+  const auto summary = expect_files_and_clean_exits(dir / "out", run->output(), "interrupted");
   EXPECT_GT(summary.value("steps", 0), 0);
 }
 
 TEST(DdsRunEnd, AKilledStationStopsTheRunWithItsFiles) {
   const auto dir = test_dir();
-  Process run(run_args(dir / "out", 139, {"--steps", "100000"}), dir / "run.log");
-  ASSERT_TRUE(rounds_begun(run)) << run.output();
-  const auto victims = find_processes({"--id", "17", "--domain", "139"});
-  ASSERT_EQ(victims.size(), 1U);
-  ::kill(victims.front(), SIGKILL);
-  const auto status = run.wait(60s);
-  ASSERT_TRUE(status.has_value()) << run.output();
+  const auto run = start_long_run_of_64(139, dir);
+  ASSERT_FALSE(HasFailure());
+  const pid_t victim = station_pid(17, 139);
+  ASSERT_FALSE(HasFailure());
+  ::kill(victim, SIGKILL);
+  const auto status = run->wait(60s);
+  ASSERT_TRUE(status.has_value()) << run->output();
   EXPECT_TRUE(status->exited);
-  EXPECT_EQ(status->code, 1) << run.output();
-  EXPECT_THAT(run.output(),
-              HasSubstr("run stopped early (node_failed): station 17 (pid " +
-                        std::to_string(victims.front()) + ") was killed by signal 9"));
-  const auto summary = expect_files_and_clean_exits(dir / "out", run.output(), "node_failed",
+  EXPECT_EQ(status->code, 1) << run->output();
+  EXPECT_THAT(run->output(), HasSubstr("run stopped early (node_failed): station 17 (pid " +
+                                       std::to_string(victim) + ") was killed by signal 9"));
+  const auto summary = expect_files_and_clean_exits(dir / "out", run->output(), "node_failed",
                                                     {{"station 17", SIGKILL}});
   EXPECT_GT(summary.value("steps", 0), 0);
 }

@@ -145,4 +145,20 @@ nlohmann::json expect_default_run_equals_twin(const std::filesystem::path& out, 
   return summary;
 }
 
+std::unique_ptr<Process> start_long_run(int domain, int stations, const std::filesystem::path& dir,
+                                        const std::vector<std::string>& extra,
+                                        std::chrono::seconds started_within) {
+  std::vector<std::string> args = {bin("skyfuse"), "run",
+                                   "--stations",   std::to_string(stations),
+                                   "--steps",      "1000000",
+                                   "--domain",     std::to_string(domain),
+                                   "--out",        (dir / "out").string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  auto run = std::make_unique<Process>(args, dir / "harness.log");
+  const bool started =
+      eventually([&] { return run->output().find("%]") != std::string::npos; }, started_within);
+  EXPECT_TRUE(started) << run->output();
+  return run;
+}
+
 }  // namespace skyfuse::test

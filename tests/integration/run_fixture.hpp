@@ -7,6 +7,7 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -71,5 +72,13 @@ std::optional<std::string> difference_from_twin(const TrackRows& tracks, const R
 /// peer the same bits and nothing refused. Returns summary.json.
 nlohmann::json expect_default_run_equals_twin(const std::filesystem::path& out, int stations,
                                               int steps);
+
+/// A long `skyfuse run` (10^6 steps) of `stations` on `domain`, writing into `dir`/out and its
+/// output to `dir`/harness.log, with `extra` options; returned once its first rounds have been
+/// driven (its progress line), which must happen within `started_within` (a failure otherwise).
+std::unique_ptr<Process> start_long_run(
+    int domain, int stations, const std::filesystem::path& dir,
+    const std::vector<std::string>& extra = {},
+    std::chrono::seconds started_within = std::chrono::seconds(30));
 
 }  // namespace skyfuse::test

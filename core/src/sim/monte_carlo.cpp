@@ -25,7 +25,7 @@ std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
                                                std::span<const int> station_counts,
                                                std::uint64_t run, const NisGate& gate,
                                                const StepObserver& observer = {}) {
-  return with_filter_shard(filter_shard(scenario.filter), [&](auto shard) {
+  return with_filter_shard(scenario.filter, [&](auto shard) {
     return simulate_configured_runs_in_shard<decltype(shard)::value>(
         scenario, truth, station_counts, run, gate, observer);
   });

@@ -47,31 +47,13 @@ class SigmaPoints {
  public:
   static constexpr int kCount = 2 * N + 1;
 
-  SigmaPoints() = default;
-  // Eigen 3.4's default LLT leaves its norm and status unset, and copying points never computed
-  // (a filter is moved into its node before its first round) would copy those unset values
-  // (GCC's -Wmaybe-uninitialized said so): the factor is copied once there is one. Factorising
-  // the identity up front instead cost the unscented station step 6-12 %, a RoundPrior being
-  // made for every station's step.
-  SigmaPoints(const SigmaPoints& other) { *this = other; }
-  SigmaPoints& operator=(const SigmaPoints& other) {
-    if (other.factorised_) factor_ = other.factor_;
-    factorised_ = other.factorised_;
-    points_ = other.points_;
-    mean_weight_0_ = other.mean_weight_0_;
-    covariance_weight_0_ = other.covariance_weight_0_;
-    weight_ = other.weight_;
-    return *this;
-  }
-
   /// False, and nothing usable, if P is not positive definite.
   bool compute(const GaussianState<N>& prior, const UnscentedParameters& p) {
-    factor_.compute(prior.covariance);
-    factorised_ = true;
-    if (factor_.info() != Eigen::Success) return false;
+    const auto& factor = factor_.emplace(prior.covariance);
+    if (factor.info() != Eigen::Success) return false;
     const double lambda = p.alpha * p.alpha * (N + p.kappa) - N;
     const double spread = std::sqrt(N + lambda);
-    const Covariance<N> l = factor_.matrixL();
+    const Covariance<N> l = factor.matrixL();
     points_[0] = prior.mean;
     for (int j = 0; j < N; ++j) {
       points_[1 + j] = prior.mean + spread * l.col(j);
@@ -89,11 +71,15 @@ class SigmaPoints {
   double mean_weight(int j) const { return j == 0 ? mean_weight_0_ : weight_; }
   double covariance_weight(int j) const { return j == 0 ? covariance_weight_0_ : weight_; }
   /// The Cholesky factor of the prior's P, for P^-1 P_xz.
-  const Eigen::LLT<Covariance<N>>& prior_factor() const { return factor_; }
+  const Eigen::LLT<Covariance<N>>& prior_factor() const { return *factor_; }
 
  private:
-  Eigen::LLT<Covariance<N>> factor_;
-  bool factorised_ = false;  // factor_ has been computed (of whatever matrix)
+  // None before the first compute(): Eigen 3.4's default LLT leaves its norm and status unset,
+  // and copying points never computed (a filter is moved into its node before its first round)
+  // would copy those unset values (GCC's -Wmaybe-uninitialized said so). Factorising the identity
+  // up front instead cost the unscented station step 6-12 %: a RoundPrior is made for every
+  // station's step.
+  std::optional<Eigen::LLT<Covariance<N>>> factor_;
   std::array<Vector<N>, kCount> points_{};
   double mean_weight_0_ = 0.0;
   double covariance_weight_0_ = 0.0;

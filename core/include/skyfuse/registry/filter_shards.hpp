@@ -16,9 +16,11 @@
 ///     template int run_in_shard<SKYFUSE_SHARD>(args);
 ///
 /// and cmake/FilterShards.cmake compiles that file once per shard. The caller, which sees only
-/// the declaration, goes through with_filter_shard(filter_shard(filter), ...).
+/// the declaration, goes through with_filter_shard(filter, ...).
 
 #include <cstddef>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <utility>
 
@@ -34,29 +36,29 @@ namespace skyfuse {
 inline constexpr std::size_t kFilterShards = SKYFUSE_FILTER_SHARDS;
 
 /// visit_filter for the filter parts of shard `Shard`: calls f(std::type_identity<Filter>{}) for
-/// the part that runs `filter` if it lies in this shard, and compiles f for this shard's parts
-/// only. False, and f not called, when the part lies in another shard.
+/// the part that runs `filter`, compiled for this shard's parts only. The caller chose the shard
+/// by with_filter_shard, so a part in another shard is a programming error: std::logic_error.
 template <std::size_t Shard, typename F>
-bool visit_filter_in_shard(const FilterConfig& filter, F&& f) {
+void visit_filter_in_shard(const FilterConfig& filter, F&& f) {
   static_assert(Shard < kFilterShards);
-  return visit_filter_part_in_shard<FilterParts, Shard, kFilterShards>(filter.kind,
-                                                                       filter.imm.modes, f);
+  if (!visit_filter_part_in_shard<FilterParts, Shard, kFilterShards>(filter.kind, filter.imm.modes,
+                                                                     f)) {
+    throw std::logic_error("filter part '" + filter.kind + "' is not in shard " +
+                           std::to_string(Shard));
+  }
 }
 
-/// The shard that holds the filter part running `filter`. The loader has checked that one does,
-/// so none is a programming error and throws std::logic_error.
-inline std::size_t filter_shard(const FilterConfig& filter) {
+/// Calls f(std::integral_constant<std::size_t, S>{}), S the shard that holds the filter part
+/// running `filter`, and returns what it returns: the shard as a constant, to name a shard's
+/// instantiation with. The loader has checked that a part runs `filter`, so none is a
+/// programming error and throws std::logic_error.
+template <typename F>
+auto with_filter_shard(const FilterConfig& filter, F&& f) {
   const auto index = filter_part_index<FilterParts>(filter.kind, filter.imm.modes);
   if (!index) {
     throw std::logic_error("no registered filter part '" + filter.kind + "' with these modes");
   }
-  return *index % kFilterShards;
-}
-
-/// Calls f(std::integral_constant<std::size_t, shard>{}) and returns what it returns: the
-/// shard known at run time as a constant, to name a shard's instantiation with.
-template <typename F>
-auto with_filter_shard(std::size_t shard, F&& f) {
+  const std::size_t shard = *index % kFilterShards;
   using Result = decltype(f(std::integral_constant<std::size_t, 0>{}));
   Result result{};
   [&]<std::size_t... S>(std::index_sequence<S...>) {

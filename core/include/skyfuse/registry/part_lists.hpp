@@ -74,22 +74,6 @@ bool filter_part_is(std::string_view kind, const ModeNames& modes) {
          });
 }
 
-template <typename... Filters, typename ModeNames, typename F>
-bool visit_filter_part_in(FilterList<Filters...> /*list*/, std::string_view kind,
-                          const ModeNames& modes, F& f) {
-  return (
-      (filter_part_is<Filters>(kind, modes) ? (f(std::type_identity<Filters>{}), true) : false) ||
-      ...);
-}
-
-/// Calls f(std::type_identity<Filter>{}) for the filter part of `List` named by `kind` and
-/// `modes` (filter_part_is); false, and f not called, when there is none. The one place a
-/// filter's name is compared (dispatch.hpp's visit_filter takes them from a scenario).
-template <typename List, typename ModeNames, typename F>
-bool visit_filter_part(std::string_view kind, const ModeNames& modes, F&& f) {
-  return visit_filter_part_in(List{}, kind, modes, f);
-}
-
 template <typename... Filters, typename ModeNames>
 std::optional<std::size_t> filter_part_index_in(FilterList<Filters...> /*list*/,
                                                 std::string_view kind, const ModeNames& modes) {
@@ -129,6 +113,15 @@ bool visit_filter_part_in_shard_in(FilterList<Filters...> /*list*/, std::string_
 template <typename List, std::size_t Shard, std::size_t Shards, typename ModeNames, typename F>
 bool visit_filter_part_in_shard(std::string_view kind, const ModeNames& modes, F&& f) {
   return visit_filter_part_in_shard_in<Shard, Shards>(List{}, kind, modes, f);
+}
+
+/// Calls f(std::type_identity<Filter>{}) for the filter part of `List` named by `kind` and
+/// `modes` (filter_part_is); false, and f not called, when there is none. The one place a
+/// filter's name is compared (dispatch.hpp's visit_filter takes them from a scenario): all the
+/// parts form one shard.
+template <typename List, typename ModeNames, typename F>
+bool visit_filter_part(std::string_view kind, const ModeNames& modes, F&& f) {
+  return visit_filter_part_in_shard<List, 0, 1>(kind, modes, f);
 }
 
 }  // namespace skyfuse
