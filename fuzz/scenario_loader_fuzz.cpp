@@ -16,6 +16,7 @@
 
 #include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/scenario/traffic_config.hpp"
 
 namespace {
 
@@ -57,19 +58,84 @@ bool finite_positive(double value) {
 
 // The numbers a run computes with: a non-finite or non-positive one here would have passed the
 // loader and surfaced later as NaN in a track.
-void check_accepted(const Scenario& s) {
-  if (!finite_positive(s.time_step_s) || s.steps < 1) finding("bad time_step_s or steps");
-  if (s.target.speeds_mps.empty() || s.stations.empty()) finding("no speed or no station");
-  for (double speed : s.target.speeds_mps) {
+void check_path(const skyfuse::TargetConfig& target) {
+  if (target.speeds_mps.empty()) finding("no speed");
+  for (double speed : target.speeds_mps) {
     if (!finite_positive(speed)) finding("speed not finite and > 0");
   }
-  if (!s.target.initial_position_m.allFinite()) finding("initial position not finite");
-  if (!(std::abs(s.target.direction.norm() - 1.0) < 1e-9)) finding("direction not a unit vector");
-  for (const auto& m : s.target.manoeuvres) {
+  if (!target.initial_position_m.allFinite()) finding("initial position not finite");
+  if (!(std::abs(target.direction.norm() - 1.0) < 1e-9)) finding("direction not a unit vector");
+  for (const auto& m : target.manoeuvres) {
     if (!std::isfinite(m.start_s) || !finite_positive(m.duration_s) ||
         !m.acceleration_mps2.allFinite() || !std::isfinite(m.turn_rate_rad_s)) {
       finding("manoeuvre not finite");
     }
+  }
+}
+
+void check_detection(const skyfuse::DetectionConfig& d) {
+  if (!(d.probability > 0.0 && d.probability <= 1.0)) finding("P_D not in (0, 1]");
+  if (!(d.field_of_view.max_range_m > 0.0)) finding("max range not > 0");
+  if (!std::isfinite(d.field_of_view.min_elevation_rad)) finding("min elevation not finite");
+  if (!(d.clutter_per_scan >= 0.0 &&
+        d.clutter_per_scan <= skyfuse::DetectionConfig::kMaxClutterPerScan)) {
+    finding("clutter not in [0, bound]");
+  }
+  if (d.clutter_per_scan > 0.0 && !std::isfinite(d.field_of_view.max_range_m)) {
+    finding("clutter without a finite range");
+  }
+}
+
+// Many aircraft: every path, range and setting a run would compute with.
+void check_traffic(const Scenario& s) {
+  const skyfuse::TrafficConfig& traffic = *s.traffic;
+  for (const auto& target : traffic.targets) {
+    check_path(target.path);
+    if (!(target.appears_s >= 0.0) || (target.leaves_s && !(*target.leaves_s > target.appears_s))) {
+      finding("target schedule not ordered");
+    }
+  }
+  if (const auto& g = traffic.generator) {
+    if (g->aircraft < 1 || g->aircraft > skyfuse::TrafficConfig::kMaxAircraft) {
+      finding("aircraft out of bounds");
+    }
+    for (const auto& range : {g->east_m, g->north_m, g->height_m, g->speed_mps, g->leg_s,
+                              g->turn_deg, g->turn_rate_deg_s}) {
+      if (!std::isfinite(range[0]) || !std::isfinite(range[1]) || range[0] > range[1]) {
+        finding("generator range not finite and ordered");
+      }
+    }
+    if (!(g->speed_mps[0] > 0.0 && g->leg_s[0] > 0.0 && g->turn_rate_deg_s[0] > 0.0)) {
+      finding("generator speed, leg or turn rate not > 0");
+    }
+  }
+  check_detection(traffic.detection);
+  for (const auto& station : s.stations) {
+    if (station.detection) check_detection(*station.detection);
+  }
+  const auto& t = traffic.tracker;
+  if (!(t.association.gate_probability > 0.0 && t.association.gate_probability < 1.0) ||
+      !(t.initiation.gate_probability > 0.0 && t.initiation.gate_probability < 1.0)) {
+    finding("gate probability not in (0, 1)");
+  }
+  if (t.management.confirm_hits < 1 || t.management.confirm_window < t.management.confirm_hits ||
+      t.management.confirm_window > 32 || t.management.delete_misses < 1) {
+    finding("confirmation or deletion out of bounds");
+  }
+  if (!finite_positive(t.management.max_position_std_m) ||
+      !finite_positive(t.initiation.velocity_std_mps) || !finite_positive(traffic.gospa.cutoff_m) ||
+      !(traffic.gospa.order >= 1.0) || !std::isfinite(traffic.gospa.order)) {
+    finding("tracker or metric setting not finite and > 0");
+  }
+}
+
+void check_accepted(const Scenario& s) {
+  if (!finite_positive(s.time_step_s) || s.steps < 1) finding("bad time_step_s or steps");
+  if (s.stations.empty()) finding("no station");
+  if (s.has_many_targets()) {
+    check_traffic(s);
+  } else {
+    check_path(s.target);
   }
   for (const auto& station : s.stations) {
     if (!station.position_m.allFinite() || !finite_positive(station.weight)) {

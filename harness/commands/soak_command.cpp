@@ -27,6 +27,7 @@ void add_soak_command(CLI::App& app, SoakOptions& options) {
 
 int run_soak(const SoakOptions& options) {
   const Scenario scenario = load_scenario_or_default(options.scenario_path);
+  require_one_target(scenario, "soak runs");
   const int stations =
       options.stations == 0 ? static_cast<int>(scenario.stations.size()) : options.stations;
   if (stations > static_cast<int>(scenario.stations.size())) {

@@ -22,6 +22,8 @@ struct SweepOptions {
   std::optional<int> fanout;
   int threads = 0;  ///< 0: one per core
   bool plot = true;
+  /// A scenario with recorded traffic: the OpenSky CSV file to run instead of the scenario's.
+  std::string traffic_file;
 };
 
 void add_sweep_command(CLI::App& app, SweepOptions& options);

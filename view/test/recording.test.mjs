@@ -52,7 +52,12 @@ async function readRecording(path) {
   return { reader, messages, streamed };
 }
 
-const names = readdirSync(scenarios).filter((f) => f.endsWith(".yaml")).sort();
+// Scenarios with many aircraft (`traffic:`) run in-process only so far (`skyfuse sweep`);
+// `skyfuse run` refuses them with a message, which the unit tests check.
+const names = readdirSync(scenarios)
+  .filter((f) => f.endsWith(".yaml"))
+  .filter((f) => !/^traffic:/m.test(readFileSync(join(scenarios, f), "utf8")))
+  .sort();
 assert.ok(names.length >= 8, `scenarios found in ${scenarios}: ${names}`);
 
 for (const name of names) {

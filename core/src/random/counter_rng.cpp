@@ -27,6 +27,7 @@ CounterRng::CounterRng(const NoiseKey& key) {
   h = absorb(h, key.station);
   h = absorb(h, key.step);
   h = absorb(h, static_cast<std::uint64_t>(key.stream));
+  if (key.target != 0) h = absorb(h, key.target);
   state_ = h;
 }
 

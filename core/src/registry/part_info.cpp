@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "skyfuse/models/state_position.hpp"
+#include "skyfuse/multitarget/fixes_position.hpp"
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/scenario/scenario.hpp"
@@ -29,7 +30,8 @@ std::vector<SensorInfo> describe(SensorList<Sensors...> /*list*/) {
   return {SensorInfo{Sensors<kAnyStateDim>::kKind, Sensors<kAnyStateDim>::kMeasDim,
                      Sensors<kAnyStateDim>::kJacobianCols, Sensors<kAnyStateDim>::kNeedsSite,
                      std::vector<std::string_view>(Sensors<kAnyStateDim>::kComponents.begin(),
-                                                   Sensors<kAnyStateDim>::kComponents.end())}...};
+                                                   Sensors<kAnyStateDim>::kComponents.end()),
+                     FixesPosition<Sensors<kAnyStateDim>>}...};
 }
 
 template <typename... Filters>
@@ -38,7 +40,8 @@ std::vector<FilterInfo> describe(FilterList<Filters...> /*list*/) {
       Filters::kKind, Filters::kSummary, Filters::kMotionModel, Filters::kSensor,
       Filters::kOneSensorKind, Filters::kTakesRefusionLag, Filters::kTakesNisGate,
       std::vector<std::string_view>(Filters::kModeNames.begin(), Filters::kModeNames.end()),
-      Filters::kNodesTakeTree, Filters::kNeesDof}...};
+      Filters::kNodesTakeTree, Filters::kNeesDof,
+      requires { typename Filters::IncrementRule; }}...};
 }
 
 // Each kind once, in registry order.

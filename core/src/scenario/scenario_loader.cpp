@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "scenario/traffic_reader.hpp"
 #include "scenario/yaml_field.hpp"
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/part_info.hpp"
@@ -56,9 +57,15 @@ Manoeuvre read_manoeuvre(const YamlField& field) {
   return m;
 }
 
-TargetConfig read_target(const YamlField& field) {
-  field.allow_only({"initial_position_m", "velocity_mps", "speeds_kmh", "heading_deg", "climb_deg",
-                    "manoeuvres"});
+}  // namespace
+
+namespace detail {
+
+TargetConfig read_target(const YamlField& field, std::span<const std::string_view> also_allowed) {
+  std::vector<std::string_view> allowed = {"initial_position_m", "velocity_mps", "speeds_kmh",
+                                           "heading_deg",        "climb_deg",    "manoeuvres"};
+  allowed.insert(allowed.end(), also_allowed.begin(), also_allowed.end());
+  field.allow_only(allowed);
   TargetConfig target;
   target.initial_position_m = read_vector3(field.required("initial_position_m"));
 
@@ -104,6 +111,12 @@ TargetConfig read_target(const YamlField& field) {
   return target;
 }
 
+}  // namespace detail
+
+namespace {
+
+using detail::read_target;
+
 // "[range_m, azimuth_rad, elevation_rad]": what a sensor's noise_std lists.
 std::string component_list(const SensorInfo& sensor) {
   std::string out;
@@ -140,7 +153,7 @@ SensorConfig read_sensor(const YamlField& field) {
 
 StationConfig read_station(const YamlField& field) {
   // `noise_std` beside the id is paper 000's shorthand for a range/azimuth/elevation sensor.
-  field.allow_only({"id", "position_m", "sensor", "noise_std", "weight"});
+  field.allow_only({"id", "position_m", "sensor", "noise_std", "weight", "detection"});
   StationConfig station;
   const YamlField id = field.required("id");
   const std::int64_t raw_id = id.integer();
@@ -392,9 +405,41 @@ GeoAnchor read_anchor(const YamlField& field) {
   return anchor;
 }
 
+// What a run with many aircraft takes of station i and the filter.
+void check_many_targets(const Scenario& s, std::size_t i, const YamlField& item,
+                        const YamlField& filter_field, const FilterInfo& filter,
+                        const SensorInfo& sensor) {
+  if (!filter.tracks_many) {
+    std::vector<std::string_view> taken;
+    for (const FilterInfo& f : filter_infos()) {
+      if (f.tracks_many && std::ranges::find(taken, f.kind) == taken.end()) taken.push_back(f.kind);
+    }
+    filter_field.fail(
+        fmt::format("filter '{}' keeps no picture of many aircraft yet; with 'traffic' use {}",
+                    filter.kind, fmt::join(taken, " or ")));
+  }
+  if (!sensor.fixes_position) {
+    item.required("sensor").fail(fmt::format(
+        "a {} sensor's detection fixes no position, so no track can start from it; a scenario "
+        "with 'traffic' takes sensors that fix one (range_azimuth_elevation, position_velocity)",
+        sensor.kind));
+  }
+  if (s.stations[i].sensor.kind != s.stations[0].sensor.kind) {
+    item.required("sensor").fail(fmt::format(
+        "a scenario with 'traffic' takes one sensor kind for every station so far; station {} "
+        "has {}, station {} has {}",
+        s.stations[0].id, s.stations[0].sensor.kind, s.stations[i].id, s.stations[i].sensor.kind));
+  }
+  const DetectionConfig& detection = s.stations[i].detection.value_or(s.traffic->detection);
+  if (detection.clutter_per_scan > 0.0 && !std::isfinite(detection.field_of_view.max_range_m)) {
+    item.fail("clutter needs a field of view with a finite detection.max_range_m");
+  }
+}
+
 Scenario read_scenario(const YamlField& root) {
-  root.allow_only({"name", "description", "seed", "time_step_s", "steps", "target", "stations",
-                   "measurement_noise", "filter", "network", "anchor"});
+  root.allow_only({"name", "description", "seed", "time_step_s", "steps", "target", "traffic",
+                   "detection", "tracker", "metrics", "stations", "measurement_noise", "filter",
+                   "network", "anchor"});
   Scenario s;
   s.name = root.required("name").string();
   if (const auto description = root.optional("description")) s.description = description->string();
@@ -412,7 +457,22 @@ Scenario read_scenario(const YamlField& root) {
   }
   s.steps = static_cast<int>(raw_steps);
 
-  s.target = read_target(root.required("target"));
+  const auto target = root.optional("target");
+  const auto traffic = root.optional("traffic");
+  if (target && traffic)
+    traffic->fail("give either 'target' (one aircraft) or 'traffic', not both");
+  if (!target && !traffic) root.fail("missing field 'target' (one aircraft) or 'traffic' (many)");
+  if (target) {
+    s.target = read_target(*target, {});
+    for (const char* key : {"detection", "tracker", "metrics"}) {
+      if (const auto extra = root.optional(key)) {
+        extra->fail("only a scenario with 'traffic' (many aircraft) takes it");
+      }
+    }
+  } else {
+    s.traffic = std::make_shared<const TrafficConfig>(detail::read_traffic(
+        *traffic, root.optional("detection"), root.optional("tracker"), root.optional("metrics")));
+  }
 
   const YamlField stations = root.required("stations");
   const auto station_items = stations.sequence();
@@ -450,6 +510,11 @@ Scenario read_scenario(const YamlField& root) {
           s.stations[i].sensor.kind));
     }
     const SensorInfo sensor = *find_sensor(s.stations[i].sensor.kind);
+    if (const auto detection = station_items[i].optional("detection")) {
+      if (!s.traffic) detection->fail("only a scenario with 'traffic' (many aircraft) takes it");
+      s.stations[i].detection = detail::read_detection(*detection, s.traffic->detection);
+    }
+    if (s.traffic) check_many_targets(s, i, station_items[i], filter, filter_info, sensor);
     if (sensor.state_entries > model.state_dim) {
       station_items[i].fail(
           fmt::format("a {} sensor reads {} state entries; motion model {} has only {}",
@@ -511,7 +576,9 @@ std::string read_scenario_text(const std::filesystem::path& path) {
 }
 
 Scenario load_scenario_file(const std::filesystem::path& path) {
-  return parse_scenario(read_scenario_text(path), path.string());
+  Scenario scenario = parse_scenario(read_scenario_text(path), path.string());
+  scenario.source_path = path.string();
+  return scenario;
 }
 
 Scenario load_default_scenario() {
@@ -520,6 +587,14 @@ Scenario load_default_scenario() {
 
 Scenario load_scenario_or_default(const std::string& path) {
   return path.empty() ? load_default_scenario() : load_scenario_file(path);
+}
+
+void require_one_target(const Scenario& scenario, std::string_view what) {
+  if (!scenario.has_many_targets()) return;
+  throw std::invalid_argument(
+      fmt::format("scenario '{}' has many aircraft ('traffic'): `skyfuse sweep` runs it "
+                  "in-process; {} keep one aircraft so far",
+                  scenario.name, what));
 }
 
 }  // namespace skyfuse

@@ -33,6 +33,7 @@ std::vector<double> RunPlan::weights_of(std::span<const int> ids) const {
 }
 
 RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
+  require_one_target(scenario, "station and center processes");
   RunPlan plan;
   const int available = static_cast<int>(scenario.stations.size());
   plan.stations = overrides.stations.value_or(available);

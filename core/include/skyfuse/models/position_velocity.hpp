@@ -45,6 +45,8 @@ class PositionVelocity {
   Vector3 site() const { return Vector3::Zero(); }
 
   Measurement predict(const State& x) const { return x.template head<kMeasDim>(); }
+  /// The position a measurement puts the target at (multitarget/initiation.hpp).
+  static Vector3 position_of(const Measurement& z) { return z.template head<3>(); }
 
   Jacobian<kMeasDim, StateDim> jacobian(const State& /*x*/) const {
     Jacobian<kMeasDim, StateDim> h = Jacobian<kMeasDim, StateDim>::Zero();

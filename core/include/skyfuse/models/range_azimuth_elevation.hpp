@@ -67,6 +67,15 @@ class RangeAzimuthElevation {
 
   Measurement predict(const State& x) const { return measure_position(x.template head<3>()); }
 
+  /// The position a measurement puts the target at: one detection fixes a position, which is
+  /// what a multi-target tracker starts a track from (multitarget/initiation.hpp).
+  Vector3 position_of(const Measurement& z) const {
+    const double horizontal = z(kRange) * std::cos(z(kElevation));
+    return station_position_ + Vector3(horizontal * std::cos(z(kAzimuth)),
+                                       horizontal * std::sin(z(kAzimuth)),
+                                       z(kRange) * std::sin(z(kElevation)));
+  }
+
   /// Analytic dh/dx. Directly above the station (rho = 0) the azimuth is undefined and the
   /// elevation has a cusp (it falls at 1/r in whichever horizontal direction the aircraft
   /// moves): both rows are left zero instead of dividing by zero, and only the range informs.

@@ -17,6 +17,10 @@ enum class NoiseStream : std::uint64_t {
   kProcess = 4,       ///< process noise of a simulated truth (tests)
   kLinkLoss = 5,      ///< simulated loss of a sample on one link (`skyfuse run --loss`)
   kLinkDelay = 6,     ///< simulated delay of a sample on one link (`--link-delay-ms`)
+  kDetection = 7,     ///< whether a station detects each target in a scan
+  kClutter = 8,       ///< a scan's false alarms: how many, and where
+  kScanOrder = 9,     ///< the order a scan lists its detections in
+  kTraffic = 10,      ///< the traffic generator's aircraft (station 0, step = aircraft index)
 };
 
 struct NoiseKey {
@@ -25,6 +29,9 @@ struct NoiseKey {
   std::uint64_t station = 0;
   std::uint64_t step = 0;
   NoiseStream stream = NoiseStream::kMeasurement;
+  /// Which target of a scenario with many (its index); 0, the first or only one, leaves the
+  /// key as it was before there were many, so a one-target run draws the same numbers.
+  std::uint64_t target = 0;
 };
 
 class CounterRng {

@@ -29,6 +29,9 @@ struct SensorInfo {
   bool needs_site = false;
   /// Names of the measured components, in order (noise_std gives one value for each).
   std::vector<std::string_view> components;
+  /// Whether one detection fixes a position (multitarget/fixes_position.hpp): a run with many
+  /// aircraft takes only such sensors.
+  bool fixes_position = false;
 };
 
 std::vector<MotionModelInfo> motion_model_infos();

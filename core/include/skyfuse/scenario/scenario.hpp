@@ -5,12 +5,14 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/multitarget/detection_model.hpp"
 
 namespace skyfuse {
 
@@ -30,6 +32,9 @@ struct StationConfig {
   SensorConfig sensor;
   /// Fusion weight w_i of this station's increments.
   double weight = 1.0;
+  /// A run with many aircraft: this station's own probability of detection, field of view and
+  /// clutter; none takes the scenario's (TrafficConfig::detection).
+  std::optional<DetectionConfig> detection;
 };
 
 /// A change of the target's motion over a time window, aligned to whole steps.
@@ -143,6 +148,8 @@ struct GeoAnchor {
   double altitude_m = 480.0;
 };
 
+struct TrafficConfig;  // scenario/traffic_config.hpp
+
 struct Scenario {
   std::string name;
   std::string description;
@@ -155,6 +162,13 @@ struct Scenario {
   FilterConfig filter;
   ExchangeConfig exchange;
   GeoAnchor anchor;
+  /// Many aircraft instead of one `target` (scenario/traffic_config.hpp); shared so that a
+  /// Scenario stays cheap to copy and to include.
+  std::shared_ptr<const TrafficConfig> traffic;
+  /// The file it was read from, if any (a recorded-traffic file is found relative to it).
+  std::string source_path;
+
+  bool has_many_targets() const { return traffic != nullptr; }
 };
 
 /// Applies `--exchange` and `--fanout` to `scenario`; throws std::invalid_argument naming the

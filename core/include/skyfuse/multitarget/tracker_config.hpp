@@ -1,0 +1,40 @@
+#pragma once
+/// \file
+/// The multi-target tracker's settings, as a scenario's `tracker:` gives them (plain data; the
+/// rules that use them are in scan_assignment.hpp, initiation.hpp and track_management.hpp).
+
+#include <cstddef>
+
+namespace skyfuse {
+
+struct AssociationConfig {
+  double gate_probability = 0.9999;  ///< of the chi-square(M) gate on a pair's NIS
+  /// The most detections of one scan the assignment takes; the rest (a clutter burst) are
+  /// counted and left out, so that a round's work stays bounded.
+  std::size_t max_detections_per_scan = 4096;
+};
+
+struct InitiationConfig {
+  double gate_probability = 0.999;  ///< of the chi-square(3) test that joins two detections
+  int min_stations = 2;             ///< detections of this many stations start a track
+  /// The initial velocity's standard deviation per axis: wide enough for any aircraft the
+  /// scenario flies, m/s.
+  double velocity_std_mps = 100.0;
+};
+
+struct ManagementConfig {
+  int confirm_hits = 2;    ///< M
+  int confirm_window = 3;  ///< N, at most 32
+  int delete_misses = 5;   ///< K
+  /// A track whose position standard deviation (sqrt of the trace of its position block)
+  /// grows past this is deleted, m.
+  double max_position_std_m = 1000.0;
+};
+
+struct TrackerConfig {
+  AssociationConfig association;
+  InitiationConfig initiation;
+  ManagementConfig management;
+};
+
+}  // namespace skyfuse

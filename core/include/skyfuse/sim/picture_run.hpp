@@ -1,0 +1,51 @@
+#pragma once
+/// \file
+/// One in-process run of a scenario with many aircraft: every station's scan simulated, M peers
+/// that each assign only their own station's scan and fuse everyone's reports
+/// (multitarget/peer_picture.hpp), and the center on the raw scans
+/// (multitarget/central_picture.hpp), all in one process, with the filter part, motion model
+/// and sensor the scenario names. It checks as it goes that every peer holds the same picture
+/// bit for bit and how far the center's is from it, and scores the peers' picture against the
+/// truth (metrics/picture_score.hpp).
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "skyfuse/metrics/picture_score.hpp"
+#include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/traffic/target_truth.hpp"
+
+namespace skyfuse {
+
+struct PictureRunResult {
+  PictureSummary score;
+  std::vector<PictureStep> steps;
+  int stations = 0;
+  /// Every peer's picture (ids, statuses, histories, states) equal bit for bit every round.
+  bool peers_identical = true;
+  int first_divergent_step = -1;
+  /// Association pairs (station, detection, track) the center and the peers decided
+  /// differently, over the run: 0 unless a decision at a gate's edge flipped.
+  std::size_t association_flips = 0;
+  std::size_t associations = 0;  ///< pairs the peers made
+  /// max over rounds and tracks both hold of |x_center - x_p2p| / (1 + |x_center|).
+  double max_state_gap = 0.0;
+  std::size_t detections = 0;
+  std::size_t false_alarms = 0;
+  std::size_t dropped = 0;  ///< detections beyond the assignment's bound
+  /// NEES of the confirmed tracks associated with an aircraft, averaged; dof per sample.
+  double anees = 0.0;
+  int nees_dof = 0;
+  std::size_t nees_samples = 0;
+  std::size_t confirmed_at_end = 0;
+  std::size_t tentative_at_end = 0;
+};
+
+/// Runs `scenario` (has_many_targets()) with its first `stations` stations against `truth`,
+/// Monte-Carlo run `run`; `on_step` hears of each step's figures.
+PictureRunResult run_picture(const Scenario& scenario, const std::vector<TargetTruth>& truth,
+                             int stations, std::uint64_t run,
+                             const std::function<void(const PictureStep&)>& on_step = {});
+
+}  // namespace skyfuse

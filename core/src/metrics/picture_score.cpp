@@ -1,0 +1,126 @@
+#include "skyfuse/metrics/picture_score.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace skyfuse {
+
+PictureScore::PictureScore(const GospaParameters& gospa, std::size_t targets, double time_step_s)
+    : gospa_(gospa),
+      time_step_s_(time_step_s),
+      first_detected_(targets),
+      first_confirmed_(targets),
+      last_track_id_(targets) {}
+
+void PictureScore::detected(std::size_t target, int step) {
+  if (!first_detected_[target]) first_detected_[target] = step;
+}
+
+const PictureStep& PictureScore::add_step(int step, std::span<const TruthPoint> aircraft,
+                                          std::span<const TrackPoint> tracks) {
+  PictureStep row;
+  row.step = step;
+  row.aircraft = aircraft.size();
+  row.tracks = tracks.size();
+  std::vector<Vector3> truths;
+  std::vector<Vector3> estimates;
+  for (const TruthPoint& a : aircraft) truths.push_back(a.position);
+  for (const TrackPoint& t : tracks) estimates.push_back(t.position);
+  row.gospa = gospa(truths, estimates, gospa_);
+
+  // Each track to its nearest aircraft within the cut-off.
+  track_target_.assign(tracks.size(), std::nullopt);
+  std::vector<std::size_t> tracks_of(aircraft.size(), 0);
+  std::vector<std::optional<std::size_t>> nearest_track(aircraft.size());
+  std::vector<double> nearest_distance(aircraft.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t t = 0; t < tracks.size(); ++t) {
+    double best = gospa_.cutoff_m;
+    std::optional<std::size_t> best_aircraft;
+    for (std::size_t a = 0; a < aircraft.size(); ++a) {
+      const double d = (aircraft[a].position - tracks[t].position).norm();
+      if (d < best) {
+        best = d;
+        best_aircraft = a;
+      }
+    }
+    if (!best_aircraft) {
+      ++row.spurious;
+      continue;
+    }
+    track_target_[t] = aircraft[*best_aircraft].target;
+    ++tracks_of[*best_aircraft];
+    if (best < nearest_distance[*best_aircraft]) {
+      nearest_distance[*best_aircraft] = best;
+      nearest_track[*best_aircraft] = t;
+    }
+  }
+  for (std::size_t a = 0; a < aircraft.size(); ++a) {
+    const std::size_t target = aircraft[a].target;
+    const bool tracked = tracks_of[a] > 0;
+    if (tracked) {
+      ++row.tracked;
+      associated_total_ += tracks_of[a];
+      if (!first_confirmed_[target]) first_confirmed_[target] = step;
+      const std::uint64_t id = tracks[*nearest_track[a]].id;
+      if (last_track_id_[target] && *last_track_id_[target] != id) ++number_changes_;
+      last_track_id_[target] = id;
+    }
+    if (aircraft[a].in_view && first_confirmed_[target]) {
+      ++counted_;
+      if (tracked) ++counted_tracked_;
+    }
+  }
+  tracked_total_ += row.tracked;
+  tracks_total_ += row.tracks;
+  spurious_total_ += row.spurious;
+  steps_.push_back(row);
+  return steps_.back();
+}
+
+PictureSummary PictureScore::summary() const {
+  PictureSummary s;
+  if (!steps_.empty()) {
+    double localisation = 0.0;
+    std::size_t pairs = 0;
+    for (const PictureStep& row : steps_) {
+      localisation += row.gospa.localisation;
+      pairs += row.gospa.assigned;
+      s.gospa_mean += row.gospa.distance;
+      s.localisation_mean += row.gospa.localisation;
+      s.missed_mean += row.gospa.missed;
+      s.false_mean += row.gospa.false_tracks;
+    }
+    const auto n = static_cast<double>(steps_.size());
+    s.gospa_mean /= n;
+    s.localisation_mean /= n;
+    s.missed_mean /= n;
+    s.false_mean /= n;
+    if (pairs > 0) {
+      s.localisation_per_pair_m =
+          std::pow(localisation / static_cast<double>(pairs), 1.0 / gospa_.order);
+    }
+  }
+  const auto share = [](std::size_t part, std::size_t whole) {
+    return whole == 0 ? 0.0 : static_cast<double>(part) / static_cast<double>(whole);
+  };
+  s.completeness = share(counted_tracked_, counted_);
+  s.ambiguity = share(associated_total_, tracked_total_);
+  s.spuriousness = share(spurious_total_, tracks_total_);
+  s.track_number_changes = number_changes_;
+  double confirm_steps = 0.0;
+  for (std::size_t t = 0; t < first_detected_.size(); ++t) {
+    if (!first_detected_[t]) continue;
+    ++s.aircraft_detected;
+    if (!first_confirmed_[t]) continue;
+    ++s.aircraft_confirmed;
+    confirm_steps += std::max(0, *first_confirmed_[t] - *first_detected_[t]);
+  }
+  if (s.aircraft_confirmed > 0) {
+    s.mean_time_to_confirm_s =
+        confirm_steps * time_step_s_ / static_cast<double>(s.aircraft_confirmed);
+  }
+  return s;
+}
+
+}  // namespace skyfuse

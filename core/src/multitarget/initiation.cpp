@@ -1,0 +1,80 @@
+#include "skyfuse/multitarget/initiation.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "skyfuse/metrics/chi_square.hpp"
+
+namespace skyfuse {
+namespace {
+
+// A group's fused position, in information form: Y = sum P_i^-1, y = sum P_i^-1 p_i.
+struct Group {
+  Covariance<3> information = Covariance<3>::Zero();
+  Vector3 information_vector = Vector3::Zero();
+  Vector3 position = Vector3::Zero();
+  Covariance<3> covariance = Covariance<3>::Zero();
+  std::vector<int> stations;
+
+  bool add(const PositionFix& fix) {
+    SmallCholesky<3> fix_factor;
+    if (!fix_factor.compute(fix.covariance)) return false;
+    const Covariance<3> fix_information = fix_factor.inverse();
+    Covariance<3> information_after = information + fix_information;
+    symmetrize(information_after);
+    SmallCholesky<3> factor;
+    if (!factor.compute(information_after)) return false;
+    information = information_after;
+    information_vector += fix_information * fix.position;
+    covariance = factor.inverse();
+    position = factor.solve(information_vector);
+    stations.push_back(fix.station_id);
+    return true;
+  }
+  bool has(int station_id) const {
+    return std::find(stations.begin(), stations.end(), station_id) != stations.end();
+  }
+};
+
+bool agrees(const Group& group, const PositionFix& fix, double threshold) {
+  Covariance<3> sum = group.covariance + fix.covariance;
+  symmetrize(sum);
+  SmallCholesky<3> factor;
+  if (!factor.compute(sum)) return false;
+  const Vector3 difference = fix.position - group.position;
+  return difference.dot(factor.solve(difference)) <= threshold;
+}
+
+}  // namespace
+
+std::vector<NewTrack> initiate_tracks(std::span<const PositionFix> fixes, std::uint64_t step,
+                                      const InitiationConfig& config) {
+  for (std::size_t i = 1; i < fixes.size(); ++i) {
+    const auto before = std::pair{fixes[i - 1].station_id, fixes[i - 1].detection};
+    if (!(before < std::pair{fixes[i].station_id, fixes[i].detection})) {
+      throw std::invalid_argument("initiate_tracks: fixes out of (station, detection) order");
+    }
+  }
+  const double threshold = chi_square_quantile(config.gate_probability, 3.0);
+  std::vector<char> used(fixes.size(), 0);
+  std::vector<NewTrack> started;
+  for (std::size_t first = 0; first < fixes.size(); ++first) {
+    if (used[first]) continue;
+    Group group;
+    if (!group.add(fixes[first])) continue;
+    std::vector<std::size_t> members = {first};
+    for (std::size_t other = first + 1; other < fixes.size(); ++other) {
+      if (used[other] || group.has(fixes[other].station_id)) continue;
+      if (agrees(group, fixes[other], threshold) && group.add(fixes[other])) {
+        members.push_back(other);
+      }
+    }
+    if (static_cast<int>(group.stations.size()) < config.min_stations) continue;
+    for (const std::size_t m : members) used[m] = 1;
+    started.push_back({make_track_id(step, fixes[first].station_id, fixes[first].detection),
+                       group.position, group.covariance, group.stations});
+  }
+  return started;
+}
+
+}  // namespace skyfuse

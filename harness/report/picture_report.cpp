@@ -1,0 +1,142 @@
+#include "report/picture_report.hpp"
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "skyfuse/metrics/chi_square.hpp"
+#include "skyfuse/scenario/traffic_config.hpp"
+
+namespace skyfuse::harness {
+namespace {
+
+// The mean of `field` over the runs.
+template <typename Field>
+double mean_over(const std::vector<PictureRunResult>& runs, Field field) {
+  double sum = 0.0;
+  for (const auto& run : runs) sum += field(run);
+  return runs.empty() ? 0.0 : sum / static_cast<double>(runs.size());
+}
+
+}  // namespace
+
+bool picture_guarantees_held(const PictureReport& report) {
+  for (const auto& run : report.runs) {
+    if (!run.peers_identical || run.association_flips != 0) return false;
+  }
+  return true;
+}
+
+void print_picture_table(const PictureReport& report, std::FILE* out) {
+  const TrafficConfig& traffic = *report.scenario.traffic;
+  const int stations = report.runs.empty() ? 0 : report.runs.front().stations;
+  fmt::print(out, "scenario {}: {} aircraft, {} stations, {} steps of {} s\n", report.scenario.name,
+             report.truth.targets.size(), stations, report.scenario.steps,
+             report.scenario.time_step_s);
+  if (report.truth.recorded) {
+    const RecordedTraffic& r = *report.truth.recorded;
+    fmt::print(out,
+               "recorded file: {} rows; skipped {} on the ground, {} without position, {} stale, "
+               "{} repeated; {} single-sample flights dropped\n",
+               r.rows, r.rows_on_ground, r.rows_without_position, r.stale_rows,
+               r.repeated_position_rows, r.single_sample_aircraft);
+  }
+  fmt::print(out,
+             "{:>4} {:>8} {:>8} {:>8} {:>8} {:>7} {:>7} {:>7} {:>6} {:>8} {:>7} {:>6} {:>6} "
+             "{:>9}\n",
+             "run", "GOSPA_m", "loc_m", "missed", "false", "compl", "ambig", "spur", "ids",
+             "confirm_s", "ANEES", "peers", "flips", "gap");
+  for (std::size_t r = 0; r < report.runs.size(); ++r) {
+    const PictureRunResult& run = report.runs[r];
+    const PictureSummary& s = run.score;
+    fmt::print(out,
+               "{:>4} {:>8.3f} {:>8.3f} {:>8.2f} {:>8.2f} {:>7.4f} {:>7.4f} {:>7.4f} {:>6} "
+               "{:>8.2f} {:>7.3f} {:>6} {:>6} {:>9.2e}\n",
+               r, s.gospa_mean, s.localisation_per_pair_m, s.missed_mean, s.false_mean, s.completeness, s.ambiguity,
+               s.spuriousness, s.track_number_changes, s.mean_time_to_confirm_s,
+               run.anees / run.nees_dof, run.peers_identical ? "same" : "DIFF",
+               run.association_flips, run.max_state_gap);
+  }
+  std::size_t samples = 0;
+  for (const auto& run : report.runs) samples += run.nees_samples;
+  if (!report.runs.empty() && samples > 0) {
+    const int dof = report.runs.front().nees_dof;
+    const ChiSquareBand band = average_chi_square_band(dof, static_cast<int>(samples));
+    fmt::print(out,
+               "ANEES per dof over {} samples: {:.3f} (95 % band of a consistent filter: "
+               "[{:.3f}, {:.3f}])\n",
+               samples, mean_over(report.runs, [](const auto& r) { return r.anees; }) / dof,
+               band.lower / dof, band.upper / dof);
+  }
+  fmt::print(out,
+             "GOSPA: cut-off {} m, p = {}, alpha = 2, mean per step; loc_m: the localisation error "
+             "per assigned track (RMS for p = 2); missed/false: their parts, m^p per step\n",
+             traffic.gospa.cutoff_m, traffic.gospa.order);
+  fmt::print(out,
+             "peers: every peer's picture bit-identical every round ({}); flips: "
+             "association pairs the center decided otherwise; gap: max relative state "
+             "difference center vs peers\n",
+             picture_guarantees_held(report) ? "held" : "NOT HELD");
+}
+
+void write_picture_csv(const PictureReport& report, const std::filesystem::path& path) {
+  auto out = fmt::output_file(path.string());
+  out.print(
+      "run,step,aircraft,confirmed_tracks,gospa_m,localisation,missed,false_tracks,tracked,"
+      "spurious\n");
+  for (std::size_t r = 0; r < report.runs.size(); ++r) {
+    for (const PictureStep& row : report.runs[r].steps) {
+      out.print("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{},{}\n", r, row.step, row.aircraft,
+                row.tracks, row.gospa.distance, row.gospa.localisation, row.gospa.missed,
+                row.gospa.false_tracks, row.tracked, row.spurious);
+    }
+  }
+}
+
+void write_picture_json(const PictureReport& report, const std::filesystem::path& path) {
+  nlohmann::json runs = nlohmann::json::array();
+  for (const PictureRunResult& run : report.runs) {
+    const PictureSummary& s = run.score;
+    runs.push_back({{"gospa_mean_m", s.gospa_mean},
+                    {"localisation_mean", s.localisation_mean},
+                    {"localisation_per_pair_m", s.localisation_per_pair_m},
+                    {"missed_mean", s.missed_mean},
+                    {"false_mean", s.false_mean},
+                    {"completeness", s.completeness},
+                    {"ambiguity", s.ambiguity},
+                    {"spuriousness", s.spuriousness},
+                    {"track_number_changes", s.track_number_changes},
+                    {"aircraft_detected", s.aircraft_detected},
+                    {"aircraft_confirmed", s.aircraft_confirmed},
+                    {"mean_time_to_confirm_s", s.mean_time_to_confirm_s},
+                    {"anees", run.anees},
+                    {"nees_dof", run.nees_dof},
+                    {"nees_samples", run.nees_samples},
+                    {"peers_identical", run.peers_identical},
+                    {"association_flips", run.association_flips},
+                    {"associations", run.associations},
+                    {"max_state_gap", run.max_state_gap},
+                    {"detections", run.detections},
+                    {"false_alarms", run.false_alarms},
+                    {"dropped_detections", run.dropped},
+                    {"confirmed_at_end", run.confirmed_at_end},
+                    {"tentative_at_end", run.tentative_at_end}});
+  }
+  const TrafficConfig& traffic = *report.scenario.traffic;
+  const nlohmann::json summary = {
+      {"scenario", report.scenario.name},
+      {"aircraft", report.truth.targets.size()},
+      {"steps", report.scenario.steps},
+      {"gospa", {{"cutoff_m", traffic.gospa.cutoff_m}, {"order", traffic.gospa.order}}},
+      {"guarantees_held", picture_guarantees_held(report)},
+      {"runs", runs}};
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot write", path.string()));
+  out << summary.dump(2) << '\n';
+}
+
+}  // namespace skyfuse::harness

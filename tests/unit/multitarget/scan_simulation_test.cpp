@@ -1,0 +1,145 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <vector>
+
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/multitarget/scan.hpp"
+#include "skyfuse/scenario/measurement_simulation.hpp"
+
+namespace skyfuse {
+namespace {
+
+using Sensor = RangeAzimuthElevation<kKinematicsDim>;
+
+const Vector3 kSite(0.0, 0.0, 10.0);
+
+Covariance<3> radar_noise() {
+  Covariance<3> noise = Covariance<3>::Zero();
+  noise.diagonal() << 25.0, 1e-6, 1e-6;
+  return noise;
+}
+
+// Targets hovering at the given positions for `steps` steps.
+std::vector<TargetTruth> hovering(const std::vector<Vector3>& positions, int steps) {
+  std::vector<TargetTruth> truths;
+  for (const Vector3& p : positions) {
+    Vector<kKinematicsDim> x = Vector<kKinematicsDim>::Zero();
+    x.head<3>() = p;
+    truths.push_back(
+        {"T", 0, std::vector<Vector<kKinematicsDim>>(static_cast<std::size_t>(steps), x)});
+  }
+  return truths;
+}
+
+TEST(ScanSimulation, OneTargetAlwaysSeenWithoutClutterIsTodaysMeasurement) {
+  const auto truths = hovering({{3000.0, 2000.0, 500.0}}, 5);
+  const Sensor sensor(kSite);
+  for (int k = 0; k < 5; ++k) {
+    const Scan<3> scan =
+        simulate_scan(4, sensor, kSite, radar_noise(), DetectionConfig{}, truths, k, 9, 2);
+    ASSERT_EQ(scan.detections.size(), 1U);
+    EXPECT_TRUE(scan.detections[0] == simulate_measurement(sensor, truths[0].at(k), radar_noise(),
+                                                           9, 2, 4, static_cast<std::uint64_t>(k)));
+  }
+}
+
+TEST(ScanSimulation, DetectsWithItsProbabilityOnlyInsideTheFieldOfView) {
+  // Target 0 in view; target 1 beyond the range; target 2 below the minimum elevation.
+  const auto truths =
+      hovering({{3000.0, 0.0, 500.0}, {30000.0, 0.0, 500.0}, {5000.0, 0.0, -100.0}}, 4000);
+  DetectionConfig config;
+  config.probability = 0.7;
+  config.field_of_view.max_range_m = 20000.0;
+  config.field_of_view.min_elevation_rad = 0.0;
+  const Sensor sensor(kSite);
+  int detected = 0;
+  for (int k = 0; k < 4000; ++k) {
+    ScanOrigins origins;
+    const auto scan =
+        simulate_scan(1, sensor, kSite, radar_noise(), config, truths, k, 5, 0, &origins);
+    for (const int o : origins.target) EXPECT_EQ(o, 0);
+    detected += static_cast<int>(scan.detections.size());
+    EXPECT_EQ(static_cast<int>(scan.detections.size()) + static_cast<int>(origins.missed), 1);
+  }
+  // Binomial(4000, 0.7): sd 29; 5 sd either side.
+  EXPECT_NEAR(detected, 2800, 145);
+}
+
+TEST(ScanSimulation, ClutterHasItsPoissonMeanAndStaysInTheFieldOfView) {
+  DetectionConfig config;
+  config.field_of_view.max_range_m = 10000.0;
+  config.field_of_view.min_elevation_rad = 0.05;
+  config.field_of_view.azimuth_sector = AzimuthSector{1.0, 0.5};
+  config.clutter_per_scan = 12.0;
+  const Sensor sensor(kSite);
+  std::size_t total = 0;
+  constexpr int kScans = 2000;
+  for (int k = 0; k < kScans; ++k) {
+    const auto scan = simulate_scan(1, sensor, kSite, radar_noise(), config, {}, k, 5, 0);
+    total += scan.detections.size();
+    for (const auto& z : scan.detections) {
+      EXPECT_LE(z(0), 10000.0);
+      EXPECT_GE(z(2), 0.05 - 1e-12);
+      EXPECT_LE(std::abs(z(1) - 1.0), 0.5 + 1e-12);
+    }
+  }
+  // Poisson(12) over 2000 scans: mean 12, sd of the mean 0.077; 5 sd.
+  EXPECT_NEAR(static_cast<double>(total) / kScans, 12.0, 0.39);
+}
+
+TEST(ScanSimulation, TheOrderSaysNothingOfTheOrigin) {
+  const auto truths =
+      hovering({{1000, 0, 300}, {2000, 0, 300}, {3000, 0, 300}, {4000, 0, 300}}, 200);
+  DetectionConfig config;
+  config.field_of_view.max_range_m = 20000.0;
+  config.clutter_per_scan = 2.0;
+  const Sensor sensor(kSite);
+  std::set<std::vector<int>> orders;
+  int first_is_target_zero = 0;
+  for (int k = 0; k < 200; ++k) {
+    ScanOrigins origins;
+    simulate_scan(1, sensor, kSite, radar_noise(), config, truths, k, 5, 0, &origins);
+    orders.insert(origins.target);
+    first_is_target_zero += origins.target.front() == 0 ? 1 : 0;
+  }
+  EXPECT_GT(orders.size(), 150U);
+  EXPECT_LT(first_is_target_zero, 100);  // about 1 in 5 with ~6 detections a scan
+}
+
+TEST(ScanSimulation, TheSameKeyGivesTheSameScan) {
+  const auto truths = hovering({{1000, 0, 300}, {2000, 500, 300}}, 3);
+  DetectionConfig config;
+  config.probability = 0.5;
+  config.field_of_view.max_range_m = 20000.0;
+  config.clutter_per_scan = 3.0;
+  const Sensor sensor(kSite);
+  const auto a = simulate_scan(2, sensor, kSite, radar_noise(), config, truths, 2, 5, 1);
+  const auto b = simulate_scan(2, sensor, kSite, radar_noise(), config, truths, 2, 5, 1);
+  const auto other_run = simulate_scan(2, sensor, kSite, radar_noise(), config, truths, 2, 5, 2);
+  EXPECT_EQ(a.detections, b.detections);
+  EXPECT_NE(a.detections, other_run.detections);
+}
+
+TEST(Poisson, MeanAndVarianceForSmallAndLargeMeans) {
+  for (const double mean : {0.5, 7.0, 75.0}) {
+    CounterRng rng({1, 2, 3, 4, NoiseStream::kClutter});
+    constexpr int kDraws = 20000;
+    double sum = 0.0;
+    double squares = 0.0;
+    for (int i = 0; i < kDraws; ++i) {
+      const double n = draw_poisson(mean, rng);
+      sum += n;
+      squares += n * n;
+    }
+    const double m = sum / kDraws;
+    const double variance = squares / kDraws - m * m;
+    EXPECT_NEAR(m, mean, 5.0 * std::sqrt(mean / kDraws)) << mean;
+    EXPECT_NEAR(variance / mean, 1.0, 0.06) << mean;
+  }
+}
+
+}  // namespace
+}  // namespace skyfuse

@@ -1,0 +1,160 @@
+// Scenarios with many aircraft: what the loader takes from `traffic:`, `detection:`,
+// `tracker:` and `metrics:`, what it refuses, and the truth the traffic gives.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/scenario/traffic_config.hpp"
+#include "skyfuse/sim/run_plan.hpp"
+#include "skyfuse/traffic/traffic_truth.hpp"
+
+namespace skyfuse {
+namespace {
+
+const std::string kUamCity = std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/uam-city.yaml";
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// uam-city.yaml with one piece of text replaced; the text must be there.
+std::string uam_city_with(const std::string& from, const std::string& to) {
+  std::string text = read_text(kUamCity);
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::logic_error("test fixture: '" + from + "' not found");
+  return text.replace(at, from.size(), to);
+}
+
+std::string rejection(const std::string& yaml) {
+  try {
+    parse_scenario(yaml, "test.yaml");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "accepted";
+  return {};
+}
+
+TEST(TrafficScenario, LoadsUamCity) {
+  const Scenario s = load_scenario_file(kUamCity);
+  ASSERT_TRUE(s.has_many_targets());
+  const TrafficConfig& traffic = *s.traffic;
+  ASSERT_TRUE(traffic.generator);
+  EXPECT_EQ(traffic.generator->aircraft, 20);
+  EXPECT_EQ(s.stations.size(), 8U);
+  EXPECT_DOUBLE_EQ(traffic.detection.probability, 0.9);
+  EXPECT_DOUBLE_EQ(traffic.detection.clutter_per_scan, 5.0);
+  EXPECT_DOUBLE_EQ(traffic.detection.field_of_view.max_range_m, 12000.0);
+  EXPECT_EQ(traffic.tracker.management.confirm_hits, 2);
+  EXPECT_EQ(traffic.tracker.management.confirm_window, 3);
+  EXPECT_EQ(traffic.tracker.management.delete_misses, 5);
+  EXPECT_EQ(traffic.tracker.initiation.min_stations, 2);
+  EXPECT_DOUBLE_EQ(traffic.gospa.cutoff_m, 50.0);
+}
+
+TEST(TrafficScenario, TheGeneratorsAircraftAreAFunctionOfTheSeed) {
+  const Scenario s = load_scenario_file(kUamCity);
+  const TrafficTruth a = build_traffic_truth(s);
+  const TrafficTruth b = build_traffic_truth(s);
+  ASSERT_EQ(a.targets.size(), 20U);
+  for (std::size_t t = 0; t < a.targets.size(); ++t) {
+    EXPECT_EQ(a.targets[t].states, b.targets[t].states);
+    EXPECT_GE(a.targets[t].first_step, 0);
+    EXPECT_LE(a.targets[t].first_step, 60);
+    // Flying at the generator's speeds, at its heights.
+    const auto& x = a.targets[t].states.front();
+    EXPECT_GE(x.segment<3>(3).norm(), 15.0 - 1e-9);
+    EXPECT_LE(x.segment<3>(3).norm(), 45.0 + 1e-9);
+    EXPECT_GE(x(2), 120.0);
+    EXPECT_LE(x(2), 450.0);
+  }
+  Scenario other = s;
+  other.seed += 1;
+  EXPECT_NE(build_traffic_truth(other).targets[0].states.front(), a.targets[0].states.front());
+}
+
+TEST(TrafficScenario, AListedTargetAppearsAndLeavesWhenTold) {
+  const std::string yaml = uam_city_with(R"(traffic:
+  generator:)",
+                                         R"(traffic:
+  targets:
+    - {initial_position_m: [0, 0, 200], velocity_mps: [20, 0, 0], appears_s: 10, leaves_s: 50}
+  generator:)");
+  const TrafficTruth truth = build_traffic_truth(parse_scenario(yaml, "test.yaml"));
+  ASSERT_EQ(truth.targets.size(), 21U);
+  const TargetTruth& listed = truth.targets.front();
+  EXPECT_EQ(listed.label, "T0");
+  EXPECT_FALSE(listed.present_at(9));
+  EXPECT_TRUE(listed.present_at(10));
+  EXPECT_TRUE(listed.present_at(50));
+  EXPECT_FALSE(listed.present_at(51));
+  EXPECT_NEAR((listed.at(20).head<3>() - Vector3(200, 0, 200)).norm(), 0.0, 1e-9);
+}
+
+TEST(TrafficScenario, AStationMayDetectDifferently) {
+  const std::string yaml = uam_city_with(
+      "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar}",
+      "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar, detection: {probability: 0.5, "
+      "azimuth_sector_deg: [90, 60]}}");
+  const Scenario s = parse_scenario(yaml, "test.yaml");
+  ASSERT_TRUE(s.stations[1].detection);
+  EXPECT_DOUBLE_EQ(s.stations[1].detection->probability, 0.5);
+  EXPECT_DOUBLE_EQ(s.stations[1].detection->clutter_per_scan, 5.0);  // the scenario's
+  ASSERT_TRUE(s.stations[1].detection->field_of_view.azimuth_sector);
+  EXPECT_NEAR(s.stations[1].detection->field_of_view.azimuth_sector->half_width_rad,
+              60.0 * std::numbers::pi / 180.0, 1e-12);
+  EXPECT_FALSE(s.stations[0].detection);
+}
+
+TEST(TrafficScenario, RefusesWhatAPictureCannotTake) {
+  EXPECT_NE(rejection(uam_city_with("traffic:",
+                                    "target: {initial_position_m: [0, 0, 100], "
+                                    "velocity_mps: [10, 0, 0]}\ntraffic:"))
+                .find("either 'target' (one aircraft) or 'traffic'"),
+            std::string::npos);
+  EXPECT_NE(rejection(uam_city_with("clutter_per_scan: 5.0", "clutter_per_scan: 5000"))
+                .find("exceeds the bound of 1000"),
+            std::string::npos);
+  EXPECT_NE(rejection(uam_city_with("aircraft: 20", "aircraft: 20000")).find("[1, 10000]"),
+            std::string::npos);
+  EXPECT_NE(rejection(uam_city_with("  max_range_m: 12000.0\n", "")).find("finite"),
+            std::string::npos);
+  EXPECT_NE(rejection(uam_city_with("confirm: [2, 3]", "confirm: [4, 3]")).find("M <= N"),
+            std::string::npos);
+  const std::string imm = rejection(uam_city_with(R"(  kind: ekf
+  motion_model:
+    kind: constant_velocity_3d
+    process_noise_std: {position_m: 0.5, velocity_mps: 2.0})",
+                                                  R"(  kind: imm
+  motion_model:
+    kind: constant_acceleration_3d
+    process_noise_std: {position_m: 0.5, velocity_mps: 2.0, acceleration_mps2: 0.5})"));
+  EXPECT_NE(imm.find("keeps no picture of many aircraft"), std::string::npos) << imm;
+  const std::string tdoa = rejection(uam_city_with(
+      "sensor: &radar {kind: range_azimuth_elevation, noise_std: [5.0, 0.0026, 0.0026]}",
+      "sensor: &radar {kind: tdoa_range_difference, noise_std: [5.0]}"));
+  EXPECT_NE(tdoa.find("fixes no position"), std::string::npos) << tdoa;
+}
+
+TEST(TrafficScenario, AOneTargetScenarioTakesNoTrackerSettings) {
+  std::string text(default_scenario_yaml());
+  text += "\ntracker: {confirm: [2, 3]}\n";
+  EXPECT_NE(rejection(text).find("only a scenario with 'traffic'"), std::string::npos);
+}
+
+TEST(TrafficScenario, ProcessesRefuseManyAircraftWithAPointerToTheSweep) {
+  try {
+    make_run_plan(load_scenario_file(kUamCity), {});
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("skyfuse sweep"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace skyfuse
