@@ -14,6 +14,7 @@
 #include "skyfuse/models/constant_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
 
 namespace skyfuse {
@@ -22,7 +23,8 @@ namespace {
 using Model = ConstantVelocity3D;
 using TrackSensor = RangeAzimuthElevation<Model::kDim>;
 using TruthSensor = RangeAzimuthElevation<kKinematicsDim>;
-using Peer = PeerPicture<Model, TrackSensor>;
+using PeerTracks = PeerModelTracks<Model, EkfIncrementRule>;
+using Peer = PeerPicture<PeerTracks, TrackSensor>;
 
 constexpr int kStations = 8;
 constexpr int kWarmUpSteps = 8;  // rounds for every aircraft to get a confirmed track
@@ -81,8 +83,8 @@ void BM_MultiTargetStationRound(benchmark::State& state) {
   detection.field_of_view.max_range_m = 4.0 * (700.0 * std::sqrt(aircraft) + 2000.0);
   detection.field_of_view.min_elevation_rad = 0.0;
   detection.clutter_per_scan = 10.0;
-  Peer peer(Model(1.0, {0.5, 1.0}), stations, TrackerConfig{},
-            Vector<Model::kDim>::Constant(100.0));
+  Peer peer(PeerTracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0)), stations,
+            TrackerConfig{});
   AssignmentWork work;
   std::vector<Peer::Report> reports(kStations);
   int k = 0;
@@ -98,7 +100,7 @@ void BM_MultiTargetStationRound(benchmark::State& state) {
     const auto scans = scans_of(k);
     peer.predict();
     for (int s = 0; s < kStations; ++s) {
-      reports[s] = station_report<EkfIncrementRule>(peer, stations[s], scans[s], work);
+      reports[s] = peer.report(stations[s], scans[s], work);
     }
     peer.fuse(static_cast<std::uint64_t>(k), reports);
   }
@@ -109,16 +111,16 @@ void BM_MultiTargetStationRound(benchmark::State& state) {
     const auto scans = scans_of(k);
     peer.predict();  // every node does it; timed apart below
     for (int s = 1; s < kStations; ++s) {
-      reports[s] = station_report<EkfIncrementRule>(peer, stations[s], scans[s], work);
+      reports[s] = peer.report(stations[s], scans[s], work);
     }
     state.ResumeTiming();
-    reports[0] = station_report<EkfIncrementRule>(peer, stations[0], scans[0], work);
+    reports[0] = peer.report(stations[0], scans[0], work);
     peer.fuse(static_cast<std::uint64_t>(k), reports);
     benchmark::DoNotOptimize(peer.tracks().data());
     state.PauseTiming();
     tracks = peer.tracks().size();
     const auto assignment =
-        assign_scan(peer.tracks(), stations[0].sensor, scans[0], peer.gate(), 4096, work);
+        assign_scan(peer.estimates(), stations[0].sensor, scans[0], peer.gate(), 4096, work);
     largest_cluster = assignment.largest_cluster;
     ++k;
     state.ResumeTiming();
@@ -136,8 +138,8 @@ BENCHMARK(BM_MultiTargetStationRound)
 // Predicting every track, which every node does once a round.
 void BM_MultiTargetPredict(benchmark::State& state) {
   const int aircraft = static_cast<int>(state.range(0));
-  Peer peer(Model(1.0, {0.5, 1.0}), radars(aircraft), TrackerConfig{},
-            Vector<Model::kDim>::Constant(100.0));
+  Peer peer(PeerTracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0)),
+            radars(aircraft), TrackerConfig{});
   for (int a = 0; a < aircraft; ++a) {
     peer.add_known_track(make_track_id(0, 0, static_cast<std::uint32_t>(a)),
                          GaussianState<Model::kDim>{});

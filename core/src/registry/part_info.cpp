@@ -41,7 +41,13 @@ std::vector<FilterInfo> describe(FilterList<Filters...> /*list*/) {
       Filters::kOneSensorKind, Filters::kTakesRefusionLag, Filters::kTakesNisGate,
       std::vector<std::string_view>(Filters::kModeNames.begin(), Filters::kModeNames.end()),
       Filters::kNodesTakeTree, Filters::kNeesDof,
-      requires { typename Filters::IncrementRule; }}...};
+      // A picture of many aircraft: parts with an increment rule, and the IMM (its modes).
+      requires {typename Filters::IncrementRule;
+}
+|| !Filters::kModeNames.empty()
+}  // namespace
+...
+};  // namespace skyfuse
 }
 
 // Each kind once, in registry order.

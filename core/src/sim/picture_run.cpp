@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <iterator>
 #include <stdexcept>
+#include <type_traits>
 
 #include "skyfuse/multitarget/central_picture.hpp"
 #include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/registry/registry.hpp"
@@ -18,33 +20,72 @@
 namespace skyfuse {
 namespace {
 
-template <int N>
-bool same_bits(std::span<const Track<N>> a, std::span<const Track<N>> b) {
+// The peers' and the center's track filters of filter part `Filter` on `Model`, with stations
+// of `SensorOf`: a part with an increment rule by that rule (the EKF's center stacks, another
+// part's fuses its own increments), the IMM by its network form.
+template <typename Filter, typename Model, template <int> class SensorOf>
+struct PictureParts {
+  using Rule = typename Filter::IncrementRule;
+  using Sensor = SensorOf<Model::kDim>;
+  using Peer = PeerModelTracks<Model, Rule>;
+  using Center =
+      std::conditional_t<std::is_same_v<Filter, EkfFilterPart>, CenterStackedTracks<Model, Sensor>,
+                         CenterIncrementTracks<Model, Sensor, Rule>>;
+  static Peer peer(const Scenario& s) {
+    return Peer(make_motion_model<Model>(s), s.filter.initial_covariance_diag);
+  }
+  static Center center(const Scenario& s) {
+    return Center(make_motion_model<Model>(s), s.filter.initial_covariance_diag);
+  }
+};
+template <typename Set, typename Model, template <int> class SensorOf>
+struct PictureParts<ImmFilterPart<Set>, Model, SensorOf> {
+  using Sensor = SensorOf<KinematicState::kDim>;
+  using Peer = PeerImmTracks<Set>;
+  using Center = CenterImmTracks<Set, Sensor>;
+  static Peer peer(const Scenario& s) { return Peer(s); }
+  static Center center(const Scenario& s) { return Center(s); }
+};
+
+template <typename State>
+bool same_bits(const State& a, const State& b) {
+  if constexpr (requires { a.mean; }) {
+    return a.mean == b.mean && a.covariance == b.covariance;
+  } else {
+    // An IMM: every mode's state and the mode probabilities.
+    const auto& fa = a.filter();
+    const auto& fb = b.filter();
+    bool same = fa.mode_probabilities() == fb.mode_probabilities();
+    State::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      const auto& ma = fa.template mode_state<I>();
+      const auto& mb = fb.template mode_state<I>();
+      same = same && ma.mean == mb.mean && ma.covariance == mb.covariance;
+    });
+    return same;
+  }
+}
+
+template <typename Track>
+bool same_bits(std::span<const Track> a, std::span<const Track> b) {
   if (a.size() != b.size()) return false;
   for (std::size_t t = 0; t < a.size(); ++t) {
     if (a[t].id != b[t].id || a[t].status != b[t].status || !(a[t].history == b[t].history) ||
-        a[t].updated_by != b[t].updated_by || a[t].estimate.mean != b[t].estimate.mean ||
-        a[t].estimate.covariance != b[t].estimate.covariance) {
+        a[t].updated_by != b[t].updated_by || !same_bits(a[t].filter, b[t].filter)) {
       return false;
     }
   }
   return true;
 }
 
-// The EKF's center stacks its detections; another part's fuses its own increments of them.
-template <typename Filter, typename Model, typename Sensor>
-using CenterUpdateOf =
-    std::conditional_t<std::is_same_v<Filter, EkfFilterPart>, StackedUpdate<Model::kDim, Sensor>,
-                       IncrementUpdate<Model::kDim, Sensor, typename Filter::IncrementRule>>;
-
-template <typename Filter, typename Model, typename Sensor>
+template <typename Parts>
 class PictureRun {
  public:
-  static constexpr int N = Model::kDim;
+  using Sensor = typename Parts::Sensor;
+  using PeerTracks = typename Parts::Peer;
+  static constexpr int N = PeerTracks::kDim;
   static constexpr int M = Sensor::kMeasDim;
-  using Rule = typename Filter::IncrementRule;
-  using Peer = PeerPicture<Model, Sensor>;
-  using Center = CentralPicture<Model, Sensor, CenterUpdateOf<Filter, Model, Sensor>>;
+  using Peer = PeerPicture<PeerTracks, Sensor>;
+  using Center = CentralPicture<typename Parts::Center, Sensor>;
   using TruthSensor = TruthSensorOf<Sensor>;
 
   PictureRun(const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
@@ -55,10 +96,8 @@ class PictureRun {
         run_(run),
         known_(known_stations(scenario, stations, run)),
         score_(traffic_.gospa, truth.size(), scenario.time_step_s) {
-    const Model motion = make_motion_model<Model>(scenario);
-    const Vector<N> variance = scenario.filter.initial_covariance_diag;
-    peers_.assign(known_.size(), Peer(motion, known_, traffic_.tracker, variance));
-    center_.emplace(motion, known_, traffic_.tracker, variance);
+    peers_.assign(known_.size(), Peer(Parts::peer(scenario), known_, traffic_.tracker));
+    center_.emplace(Parts::center(scenario), known_, traffic_.tracker);
     for (int s = 0; s < stations; ++s) {
       const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
       detection_.push_back(station.detection.value_or(traffic_.detection));
@@ -77,7 +116,7 @@ class PictureRun {
     result_.steps = score_.steps();
     result_.anees =
         result_.nees_samples == 0 ? 0.0 : nees_sum_ / static_cast<double>(result_.nees_samples);
-    result_.nees_dof = N;
+    result_.nees_dof = PeerTracks::kNeesDof;
     for (const auto& track : peers_.front().tracks()) {
       ++(track.status == TrackStatus::kConfirmed ? result_.confirmed_at_end
                                                  : result_.tentative_at_end);
@@ -119,7 +158,7 @@ class PictureRun {
     center_->predict();
     reports_.clear();
     for (std::size_t s = 0; s < known_.size(); ++s) {
-      reports_.push_back(station_report<Rule>(peers_[s], known_[s], scans_[s], work_));
+      reports_.push_back(peers_[s].report(known_[s], scans_[s], work_));
       result_.dropped += reports_.back().dropped;
     }
     for (Peer& peer : peers_) peer.fuse(step, reports_);
@@ -129,7 +168,7 @@ class PictureRun {
 
   void compare(int k) {
     for (std::size_t p = 1; p < peers_.size() && result_.peers_identical; ++p) {
-      if (!same_bits<N>(peers_.front().tracks(), peers_[p].tracks())) {
+      if (!same_bits(peers_.front().tracks(), peers_[p].tracks())) {
         result_.peers_identical = false;
         result_.first_divergent_step = k;
       }
@@ -155,9 +194,10 @@ class PictureRun {
       } else if (theirs[j].id < mine[i].id) {
         ++j;
       } else {
-        const auto& x = theirs[j].estimate.mean;
+        const auto& x = center_->estimates()[j].mean;
         result_.max_state_gap =
-            std::max(result_.max_state_gap, (mine[i].estimate.mean - x).norm() / (1.0 + x.norm()));
+            std::max(result_.max_state_gap,
+                     (peers_.front().estimates()[i].mean - x).norm() / (1.0 + x.norm()));
         ++i;
         ++j;
       }
@@ -180,25 +220,31 @@ class PictureRun {
 
   const std::vector<TrackPoint>& confirmed_tracks() {
     tracks_.clear();
-    for (const auto& track : peers_.front().tracks()) {
-      if (track.status == TrackStatus::kConfirmed) {
-        tracks_.push_back({track.id, track.estimate.mean.template head<3>()});
+    const auto tracks = peers_.front().tracks();
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+      if (tracks[t].status == TrackStatus::kConfirmed) {
+        tracks_.push_back({tracks[t].id, peers_.front().estimates()[t].mean.template head<3>()});
       }
     }
     return tracks_;
   }
 
-  // NEES of each confirmed track associated with an aircraft, in the model's state.
+  // NEES of each confirmed track associated with an aircraft, over the estimate's leading
+  // kNeesDof entries.
   void score_nees(int k) {
+    constexpr int D = PeerTracks::kNeesDof;
     const auto& associated = score_.last_association();
+    const auto tracks = peers_.front().tracks();
     std::size_t c = 0;
-    for (const auto& track : peers_.front().tracks()) {
-      if (track.status != TrackStatus::kConfirmed) continue;
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+      if (tracks[t].status != TrackStatus::kConfirmed) continue;
       const auto target = associated[c++];
       if (!target) continue;
-      const Vector<N> error = track.estimate.mean - Model::from_kinematics(truth_[*target].at(k));
-      SmallCholesky<N> factor;
-      if (!factor.compute(track.estimate.covariance)) continue;
+      const GaussianState<N>& estimate = peers_.front().estimates()[t];
+      const Vector<D> error =
+          (estimate.mean - PeerTracks::from_kinematics(truth_[*target].at(k))).template head<D>();
+      SmallCholesky<D> factor;
+      if (!factor.compute(estimate.covariance.template topLeftCorner<D, D>())) continue;
       nees_sum_ += error.dot(factor.solve(error));
       ++result_.nees_samples;
     }
@@ -236,20 +282,26 @@ PictureRunResult run_picture(const Scenario& scenario, const std::vector<TargetT
   }
   std::optional<PictureRunResult> result;
   visit_filter(scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
-    if constexpr (requires { typename Filter::IncrementRule; }) {
-      visit_model_kind<MotionModels>(
-          scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
-            visit_sensor_kind<Sensors, Model::kDim>(
+    visit_model_kind<MotionModels>(
+        scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
+          constexpr bool kIncrements = requires {
+            typename Filter::IncrementRule;
+          };
+          constexpr bool kImm = !Filter::kModeNames.empty();
+          if constexpr (kIncrements || kImm) {
+            constexpr int kDim = kImm ? KinematicState::kDim : Model::kDim;
+            visit_sensor_kind<Sensors, kDim>(
                 scenario.stations.front().sensor.kind,
                 [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-                  using Sensor = SensorOf<Model::kDim>;
+                  using Sensor = SensorOf<kDim>;
                   if constexpr (FixesPosition<Sensor> && filter_runs_on<Filter, Model, Sensor>()) {
-                    result = PictureRun<Filter, Model, Sensor>(scenario, truth, stations, run)
+                    result = PictureRun<PictureParts<Filter, Model, SensorOf>>(scenario, truth,
+                                                                               stations, run)
                                  .run(on_step);
                   }
                 });
-          });
-    }
+          }
+        });
   });
   if (!result) {
     throw std::logic_error(fmt::format(

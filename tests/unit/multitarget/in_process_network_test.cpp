@@ -15,6 +15,7 @@
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/multitarget/central_picture.hpp"
 #include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
 
 namespace skyfuse {
@@ -23,8 +24,10 @@ namespace {
 using Model = ConstantVelocity3D;
 using TrackSensor = RangeAzimuthElevation<Model::kDim>;
 using TruthSensor = RangeAzimuthElevation<kKinematicsDim>;
-using Peer = PeerPicture<Model, TrackSensor>;
-using Center = CentralPicture<Model, TrackSensor, StackedUpdate<Model::kDim, TrackSensor>>;
+using PeerTracks = PeerModelTracks<Model, EkfIncrementRule>;
+using CenterTracks = CenterStackedTracks<Model, TrackSensor>;
+using Peer = PeerPicture<PeerTracks, TrackSensor>;
+using Center = CentralPicture<CenterTracks, TrackSensor>;
 
 constexpr double kTimeStepS = 1.0;
 constexpr std::uint64_t kSeed = 2026;
@@ -78,8 +81,8 @@ DetectionConfig detection() {
   return config;
 }
 
-template <int N>
-void expect_same_bits(std::span<const Track<N>> a, std::span<const Track<N>> b, int step) {
+template <typename State>
+void expect_same_bits(std::span<const Track<State>> a, std::span<const Track<State>> b, int step) {
   ASSERT_EQ(a.size(), b.size()) << "step " << step;
   for (std::size_t t = 0; t < a.size(); ++t) {
     EXPECT_EQ(a[t].id, b[t].id) << "step " << step;
@@ -87,8 +90,8 @@ void expect_same_bits(std::span<const Track<N>> a, std::span<const Track<N>> b, 
     EXPECT_EQ(a[t].history, b[t].history);
     EXPECT_EQ(a[t].updated_by, b[t].updated_by);
     // Bit for bit: operator== on doubles.
-    EXPECT_TRUE(a[t].estimate.mean == b[t].estimate.mean) << "step " << step;
-    EXPECT_TRUE(a[t].estimate.covariance == b[t].estimate.covariance) << "step " << step;
+    EXPECT_TRUE(a[t].filter.mean == b[t].filter.mean) << "step " << step;
+    EXPECT_TRUE(a[t].filter.covariance == b[t].filter.covariance) << "step " << step;
   }
 }
 
@@ -99,8 +102,9 @@ TEST(MultiTargetNetwork, PeersHoldOnePictureAndTheCenterAgrees) {
   const Model motion(kTimeStepS, {0.5, 1.0});
   Vector<Model::kDim> initial_variance = Vector<Model::kDim>::Constant(100.0);
   const TrackerConfig config;
-  std::vector<Peer> peers(stations.size(), Peer(motion, stations, config, initial_variance));
-  Center center(motion, stations, config, initial_variance);
+  std::vector<Peer> peers(stations.size(),
+                          Peer(PeerTracks(motion, initial_variance), stations, config));
+  Center center(CenterTracks(motion, initial_variance), stations, config);
   const DetectionConfig sees = detection();
 
   std::size_t compared_associations = 0;
@@ -123,7 +127,7 @@ TEST(MultiTargetNetwork, PeersHoldOnePictureAndTheCenterAgrees) {
     std::vector<Peer::Report> reports;
     AssignmentWork work;
     for (std::size_t s = 0; s < stations.size(); ++s) {
-      reports.push_back(station_report<EkfIncrementRule>(peers[s], stations[s], scans[s], work));
+      reports.push_back(peers[s].report(stations[s], scans[s], work));
     }
     for (Peer& peer : peers) peer.fuse(step, reports);
     center.update(step, scans);
@@ -141,12 +145,11 @@ TEST(MultiTargetNetwork, PeersHoldOnePictureAndTheCenterAgrees) {
     compared_associations += peer_associations.size();
     ASSERT_EQ(peers[0].tracks().size(), center.tracks().size()) << "step " << k;
     for (std::size_t t = 0; t < center.tracks().size(); ++t) {
-      const auto& mine = peers[0].tracks()[t];
-      const auto& theirs = center.tracks()[t];
-      ASSERT_EQ(mine.id, theirs.id);
-      const double scale = 1.0 + theirs.estimate.mean.norm();
-      worst_state_gap =
-          std::max(worst_state_gap, (mine.estimate.mean - theirs.estimate.mean).norm() / scale);
+      ASSERT_EQ(peers[0].tracks()[t].id, center.tracks()[t].id);
+      const auto& mine = peers[0].tracks()[t].filter;
+      const auto& theirs = center.tracks()[t].filter;
+      const double scale = 1.0 + theirs.mean.norm();
+      worst_state_gap = std::max(worst_state_gap, (mine.mean - theirs.mean).norm() / scale);
     }
 
     std::vector<Vector3> present;
@@ -156,7 +159,7 @@ TEST(MultiTargetNetwork, PeersHoldOnePictureAndTheCenterAgrees) {
     std::vector<Vector3> confirmed;
     for (const auto& track : peers[0].tracks()) {
       if (track.status == TrackStatus::kConfirmed) {
-        confirmed.push_back(track.estimate.mean.head<3>());
+        confirmed.push_back(track.filter.mean.head<3>());
       }
     }
     last = gospa(present, confirmed, {.cutoff_m = 100.0, .order = 2.0});

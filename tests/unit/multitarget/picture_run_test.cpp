@@ -60,6 +60,20 @@ TEST(PictureRun, TheUnscentedFilterKeepsOnePictureToo) {
   EXPECT_GE(run.score.aircraft_confirmed, 15U);
 }
 
+TEST(PictureRun, TheImmKeepsOnePictureToo) {
+  Scenario scenario = load_scenario_file(kScenarios + "uam-city.yaml");
+  scenario.steps = 60;
+  scenario.filter.kind = "imm";
+  scenario.filter.motion_model.kind = "constant_acceleration_3d";
+  scenario.filter.motion_model.process_noise_std = Vector3(0.5, 2.0, 1.0);
+  scenario.filter.initial_covariance_diag = Vector<9>::Constant(100.0);
+  const TrafficTruth truth = build_traffic_truth(scenario);
+  const PictureRunResult run = run_picture(scenario, truth.targets, 8, 0);
+  expect_guarantees(run);
+  EXPECT_EQ(run.nees_dof, 6);
+  EXPECT_GE(run.score.aircraft_confirmed, 15U);
+}
+
 // 60 aircraft on straight, level legs through the airport's area, written every 10 s the way
 // OpenSky does (time, position received a second earlier).
 std::filesystem::path write_traffic_file(const GeoAnchor& anchor, double start, int minutes) {

@@ -10,11 +10,12 @@ namespace {
 // A track started by a hit (as initiation starts one), then `rounds` hits and misses.
 std::vector<TrackFate> fates_of(const std::vector<bool>& rounds,
                                 const ManagementConfig& config = {}) {
-  Track<6> track;
-  track.history.record(true);
+  TrackHistory history;
+  TrackStatus status = TrackStatus::kTentative;
+  history.record(true);
   std::vector<TrackFate> fates;
   for (const bool hit : rounds) {
-    fates.push_back(manage_track(track, hit, config));
+    fates.push_back(manage_track(history, status, 3.0, hit, config));
     if (fates.back() == TrackFate::kDeleted) break;
   }
   return fates;
@@ -40,10 +41,10 @@ TEST(TrackManagement, AConfirmedTrackIsDeletedAfterFiveMissesInARow) {
 }
 
 TEST(TrackManagement, ATrackTooUncertainToMeanAnythingIsDeleted) {
-  Track<6> track;
-  track.status = TrackStatus::kConfirmed;
-  track.estimate.covariance *= 2e6;  // sqrt(3 * 2e6) m > 1000 m
-  EXPECT_EQ(manage_track(track, true, ManagementConfig{}), TrackFate::kDeleted);
+  TrackHistory history;
+  TrackStatus status = TrackStatus::kConfirmed;
+  // A position variance of 3 * 2e6 m^2: sqrt(6e6) m > 1000 m.
+  EXPECT_EQ(manage_track(history, status, 6e6, true, ManagementConfig{}), TrackFate::kDeleted);
 }
 
 TEST(TrackIds, AreAFunctionOfTheRoundAndTheDetection) {

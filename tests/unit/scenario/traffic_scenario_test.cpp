@@ -126,19 +126,23 @@ TEST(TrafficScenario, RefusesWhatAPictureCannotTake) {
             std::string::npos);
   EXPECT_NE(rejection(uam_city_with("confirm: [2, 3]", "confirm: [4, 3]")).find("M <= N"),
             std::string::npos);
-  const std::string imm = rejection(uam_city_with(R"(  kind: ekf
+  const std::string tdoa = rejection(uam_city_with(
+      "sensor: &radar {kind: range_azimuth_elevation, noise_std: [5.0, 0.0026, 0.0026]}",
+      "sensor: &radar {kind: tdoa_range_difference, noise_std: [5.0]}"));
+  EXPECT_NE(tdoa.find("fixes no position"), std::string::npos) << tdoa;
+}
+
+TEST(TrafficScenario, TakesTheImmOnItsConstantAccelerationMode) {
+  const Scenario s = parse_scenario(uam_city_with(R"(  kind: ekf
   motion_model:
     kind: constant_velocity_3d
     process_noise_std: {position_m: 0.5, velocity_mps: 2.0})",
                                                   R"(  kind: imm
   motion_model:
     kind: constant_acceleration_3d
-    process_noise_std: {position_m: 0.5, velocity_mps: 2.0, acceleration_mps2: 0.5})"));
-  EXPECT_NE(imm.find("keeps no picture of many aircraft"), std::string::npos) << imm;
-  const std::string tdoa = rejection(uam_city_with(
-      "sensor: &radar {kind: range_azimuth_elevation, noise_std: [5.0, 0.0026, 0.0026]}",
-      "sensor: &radar {kind: tdoa_range_difference, noise_std: [5.0]}"));
-  EXPECT_NE(tdoa.find("fixes no position"), std::string::npos) << tdoa;
+    process_noise_std: {position_m: 0.5, velocity_mps: 2.0, acceleration_mps2: 0.5})"),
+                                    "test.yaml");
+  EXPECT_EQ(s.filter.kind, "imm");
 }
 
 TEST(TrafficScenario, AOneTargetScenarioTakesNoTrackerSettings) {

@@ -54,9 +54,10 @@ struct AssignmentWork {
 };
 
 /// Assigns `scan` (the station's detections; `sensor` its sensor, of the tracks' state
-/// dimension N) to `tracks`' priors with the gate threshold `gate` (chi-square(M) quantile).
+/// dimension N) to the tracks' `priors` with the gate threshold `gate` (chi-square(M)
+/// quantile).
 template <typename Sensor, int N>
-ScanAssignment assign_scan(std::span<const Track<N>> tracks, const Sensor& sensor,
+ScanAssignment assign_scan(std::span<const GaussianState<N>> priors, const Sensor& sensor,
                            const Scan<Sensor::kMeasDim>& scan, double gate,
                            std::size_t max_detections, AssignmentWork& work) {
   constexpr int M = Sensor::kMeasDim;
@@ -81,8 +82,8 @@ ScanAssignment assign_scan(std::span<const Track<N>> tracks, const Sensor& senso
 
   const double reach = std::sqrt(gate);
   work.pairs.clear();
-  for (std::size_t t = 0; t < tracks.size(); ++t) {
-    const GaussianState<N>& prior = tracks[t].estimate;
+  for (std::size_t t = 0; t < priors.size(); ++t) {
+    const GaussianState<N>& prior = priors[t];
     const Vector3 p = prior.mean.template head<3>();
     const double track_std = std::sqrt(prior.covariance.template topLeftCorner<3, 3>().trace());
     const double radius = reach * (track_std + widest);
@@ -104,9 +105,9 @@ ScanAssignment assign_scan(std::span<const Track<N>> tracks, const Sensor& senso
     }
   }
   result.gated_pairs = work.pairs.size();
-  work.unassigned_cost.assign(tracks.size(), gate);
+  work.unassigned_cost.assign(priors.size(), gate);
   const association::GatedAssignment solved =
-      association::solve_gated_assignment(tracks.size(), taken, work.pairs, work.unassigned_cost);
+      association::solve_gated_assignment(priors.size(), taken, work.pairs, work.unassigned_cost);
   result.detection_of_track = solved.column_of_row;
   result.largest_cluster = solved.largest_cluster;
   std::vector<char> associated(taken, 0);

@@ -52,12 +52,13 @@ class TrackHistory {
   std::uint32_t consecutive_misses_ = 0;
 };
 
-template <int N>
+/// A track whose filter is a `State` (multitarget/track_filters.hpp: a Gaussian, an IMM).
+template <typename State>
 struct Track {
   TrackId id = 0;
   TrackStatus status = TrackStatus::kTentative;
   TrackHistory history;
-  GaussianState<N> estimate;
+  State filter;
   /// The stations whose detections updated it in the last round, ascending.
   std::vector<int> updated_by;
 };

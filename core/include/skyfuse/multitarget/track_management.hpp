@@ -15,23 +15,23 @@ namespace skyfuse {
 /// What a round's management decided for a track.
 enum class TrackFate { kKept, kConfirmed, kDeleted };
 
-/// Records the round (hit or miss) in `track`'s history and decides its fate; a confirmed
-/// track has its status set.
-template <int N>
-TrackFate manage_track(Track<N>& track, bool hit, const ManagementConfig& config) {
-  track.history.record(hit);
-  const double position_variance = track.estimate.covariance.template topLeftCorner<3, 3>().trace();
+/// Records the round (hit or miss) in a track's `history` and decides its fate from it, its
+/// `status` and its position variance (the trace of its estimate's position block); a
+/// confirmed track has its status set.
+inline TrackFate manage_track(TrackHistory& history, TrackStatus& status, double position_variance,
+                              bool hit, const ManagementConfig& config) {
+  history.record(hit);
   if (!(position_variance <= config.max_position_std_m * config.max_position_std_m)) {
     return TrackFate::kDeleted;
   }
-  if (track.status == TrackStatus::kConfirmed) {
-    return track.history.consecutive_misses() >= config.delete_misses ? TrackFate::kDeleted
-                                                                      : TrackFate::kKept;
+  if (status == TrackStatus::kConfirmed) {
+    return history.consecutive_misses() >= config.delete_misses ? TrackFate::kDeleted
+                                                                : TrackFate::kKept;
   }
-  const int rounds = std::min(track.history.rounds(), config.confirm_window);
-  const int hits = track.history.hits_in_last(config.confirm_window);
+  const int rounds = std::min(history.rounds(), config.confirm_window);
+  const int hits = history.hits_in_last(config.confirm_window);
   if (hits >= config.confirm_hits) {
-    track.status = TrackStatus::kConfirmed;
+    status = TrackStatus::kConfirmed;
     return TrackFate::kConfirmed;
   }
   // The hits it can still get before its window is full, or deleted for good.

@@ -3,8 +3,9 @@
 /// The table of tracks every node keeps, peer or center, and what every node does with it the
 /// same way: predict every track, and close a round — record which tracks were hit, confirm
 /// and delete by the management rule, start tracks from the round's unassociated detections
-/// by the initiation rule. How a hit track is updated (peers: summed increments; the center:
-/// one stacked update) is the caller's, between the two.
+/// by the initiation rule. How a hit track is updated (peers: summed contributions; the
+/// center: one update of its detections) is the caller's, between the two. `Tracks` says what
+/// a track's filter is (multitarget/track_filters.hpp).
 ///
 /// Tracks are kept in ascending id; a new track's id holds its round in the high bits, so new
 /// tracks go at the end and the order never needs sorting.
@@ -15,7 +16,6 @@
 #include <utility>
 #include <vector>
 
-#include "skyfuse/filters/kalman.hpp"
 #include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/multitarget/initiation.hpp"
 #include "skyfuse/multitarget/scan_assignment.hpp"
@@ -26,8 +26,8 @@
 
 namespace skyfuse {
 
-/// A station as every node knows it: its id, its sensor (of the tracks' state), the noise of
-/// its detections and its fusion weight. Ascending id in every list.
+/// A station as every node knows it: its id, its sensor (of the tracks' estimate), the noise
+/// of its detections and its fusion weight. Ascending id in every list.
 template <typename Sensor>
 struct KnownStation {
   int id = 0;
@@ -51,63 +51,74 @@ struct UnassociatedDetection {
   Vector<M> z;
 };
 
-template <typename Model, typename Sensor>
+template <typename Tracks, typename Sensor>
 class TrackTable {
  public:
-  static constexpr int kDim = Model::kDim;
+  static constexpr int kDim = Tracks::kDim;
   static constexpr int kMeasDim = Sensor::kMeasDim;
+  using State = typename Tracks::State;
+  using TrackType = Track<State>;
 
-  /// `initial_variance`: the diagonal of a new track's covariance outside its position and
-  /// velocity (the scenario's P0 for the model's other entries).
-  TrackTable(const Model& motion, std::vector<KnownStation<Sensor>> stations,
-             const TrackerConfig& config, const Vector<kDim>& initial_variance)
-      : motion_(motion),
+  TrackTable(Tracks filters, std::vector<KnownStation<Sensor>> stations,
+             const TrackerConfig& config)
+      : filters_(std::move(filters)),
         stations_(std::move(stations)),
         config_(config),
-        initial_variance_(initial_variance),
         gate_(chi_square_quantile(config.association.gate_probability, kMeasDim)) {}
 
-  std::span<const Track<kDim>> tracks() const { return tracks_; }
+  std::span<const TrackType> tracks() const { return tracks_; }
+  /// Each track's estimate (tracks()[i]'s), as of the last predict() or close_round().
+  std::span<const GaussianState<kDim>> estimates() const { return estimates_; }
   const std::vector<KnownStation<Sensor>>& stations() const { return stations_; }
   const TrackerConfig& config() const { return config_; }
+  const Tracks& filters() const { return filters_; }
+  Tracks& filters() { return filters_; }
   /// The chi-square(M) gate of a pair.
   double gate() const { return gate_; }
 
   /// A track known before the run (the one aircraft of a single-target scenario), confirmed.
   void add_known_track(TrackId id, const GaussianState<kDim>& estimate) {
-    Track<kDim> track;
-    track.id = id;
-    track.status = TrackStatus::kConfirmed;
-    track.estimate = estimate;
+    TrackType track{id, TrackStatus::kConfirmed, {}, filters_.start(estimate), {}};
     tracks_.push_back(std::move(track));
+    estimates_.push_back(estimate);
   }
 
   void predict() {
-    for (Track<kDim>& track : tracks_) skyfuse::predict(track.estimate, motion_);
+    for (TrackType& track : tracks_) filters_.predict(track.filter);
+    refresh_estimates();
   }
 
   /// Track i, for the caller's update between predict() and close_round().
-  Track<kDim>& track(std::size_t i) { return tracks_[i]; }
+  TrackType& track(std::size_t i) { return tracks_[i]; }
 
   /// Manages every track (hit[i]: whether track i was updated this round), then starts tracks
   /// from `unassociated` (per station, ascending station id as stations(); each ascending).
   template <typename UnassociatedOf>
   RoundOutcome close_round(std::uint64_t step, const std::vector<char>& hit,
                            UnassociatedOf unassociated_of) {
+    refresh_estimates();
     RoundOutcome outcome;
     std::size_t kept = 0;
     for (std::size_t i = 0; i < tracks_.size(); ++i) {
       if (hit[i]) ++outcome.hit;
-      const TrackFate fate = manage_track(tracks_[i], hit[i] != 0, config_.management);
+      TrackType& track = tracks_[i];
+      const double position_variance =
+          estimates_[i].covariance.template topLeftCorner<3, 3>().trace();
+      const TrackFate fate = manage_track(track.history, track.status, position_variance,
+                                          hit[i] != 0, config_.management);
       if (fate == TrackFate::kDeleted) {
         ++outcome.deleted;
         continue;
       }
       if (fate == TrackFate::kConfirmed) ++outcome.confirmed;
-      if (kept != i) tracks_[kept] = std::move(tracks_[i]);
+      if (kept != i) {
+        tracks_[kept] = std::move(tracks_[i]);
+        estimates_[kept] = estimates_[i];
+      }
       ++kept;
     }
-    tracks_.resize(kept);
+    tracks_.erase(tracks_.begin() + static_cast<std::ptrdiff_t>(kept), tracks_.end());
+    estimates_.resize(kept);
 
     fixes_.clear();
     for (std::size_t s = 0; s < stations_.size(); ++s) {
@@ -120,34 +131,45 @@ class TrackTable {
       }
     }
     for (NewTrack& started : initiate_tracks(fixes_, step, config_.initiation)) {
-      tracks_.push_back(new_track(std::move(started)));
+      start_track(std::move(started));
       ++outcome.started;
     }
     return outcome;
   }
 
  private:
-  Track<kDim> new_track(NewTrack&& started) const {
-    Vector<kKinematicsDim> kinematics = Vector<kKinematicsDim>::Zero();
-    kinematics.template head<3>() = started.position;
-    Track<kDim> track;
-    track.id = started.id;
-    track.estimate.mean = Model::from_kinematics(kinematics);
-    track.estimate.covariance = initial_variance_.asDiagonal();
-    track.estimate.covariance.template topLeftCorner<3, 3>() = started.covariance;
-    const double v = config_.initiation.velocity_std_mps;
-    track.estimate.covariance.template block<3, 3>(3, 3) = v * v * Covariance<3>::Identity();
-    track.history.record(true);
-    track.updated_by = std::move(started.stations);
-    return track;
+  void refresh_estimates() {
+    estimates_.resize(tracks_.size());
+    for (std::size_t i = 0; i < tracks_.size(); ++i) {
+      estimates_[i] = filters_.estimate(tracks_[i].filter);
+    }
   }
 
-  Model motion_;
+  void start_track(NewTrack&& started) {
+    Vector<kKinematicsDim> kinematics = Vector<kKinematicsDim>::Zero();
+    kinematics.template head<3>() = started.position;
+    GaussianState<kDim> initial;
+    initial.mean = Tracks::from_kinematics(kinematics);
+    initial.covariance = filters_.initial_variance().asDiagonal();
+    initial.covariance.template topLeftCorner<3, 3>() = started.covariance;
+    const double v = config_.initiation.velocity_std_mps;
+    initial.covariance.template block<3, 3>(3, 3) = v * v * Covariance<3>::Identity();
+    TrackType track{started.id,
+                    TrackStatus::kTentative,
+                    {},
+                    filters_.start(initial),
+                    std::move(started.stations)};
+    track.history.record(true);
+    tracks_.push_back(std::move(track));
+    estimates_.push_back(filters_.estimate(tracks_.back().filter));
+  }
+
+  Tracks filters_;
   std::vector<KnownStation<Sensor>> stations_;
   TrackerConfig config_;
-  Vector<kDim> initial_variance_;
   double gate_;
-  std::vector<Track<kDim>> tracks_;
+  std::vector<TrackType> tracks_;
+  std::vector<GaussianState<kDim>> estimates_;
   std::vector<PositionFix> fixes_;
 };
 

@@ -1,0 +1,213 @@
+#pragma once
+/// \file
+/// What a track's filter is, for each kind of filter part, as the picture's peers and center
+/// use it. The track table (track_table.hpp), the stations' reports (peer_picture.hpp) and the
+/// center's updates (central_picture.hpp) are written once over these:
+///
+///  - peers: `State` (one track's filter), `Contribution` (what a station sends for one track),
+///    `predict`, `estimate` (the Gaussian the gate, management and metrics read, in kDim
+///    entries whose first three are the position), `start` (a new track's filter from a
+///    Gaussian in kDim), `contribute` (a station's contribution for one detection against the
+///    track's prior) and `fuse` (every station's contributions, ascending station id);
+///  - center: the same `State` family with `update` (the detections assigned to a track, in one
+///    update).
+///
+/// A filter part with an increment rule on one motion model needs no line here
+/// (PeerModelTracks, CenterModelTracks); the IMM has its own (PeerImmTracks, CenterImmTracks).
+
+#include <span>
+#include <vector>
+
+#include "skyfuse/core/indirect_view.hpp"
+#include "skyfuse/fusion/increment_fusion.hpp"
+#include "skyfuse/fusion/stacked_ekf.hpp"
+#include "skyfuse/fusion/station_observation.hpp"
+#include "skyfuse/registry/make_parts.hpp"
+#include "skyfuse/scenario/truth.hpp"
+#include "skyfuse/tracking/network_imm.hpp"
+#include "skyfuse/tracking/round_rule.hpp"
+#include "skyfuse/validation/nis_gate.hpp"
+
+namespace skyfuse {
+
+/// A track of one motion model: its Gaussian, predicted by the model.
+template <typename Model>
+class ModelTracks {
+ public:
+  static constexpr int kDim = Model::kDim;
+  static constexpr int kNeesDof = kDim;
+  using State = GaussianState<kDim>;
+
+  /// `initial_variance`: a new track's variances outside its position and velocity.
+  ModelTracks(const Model& motion, const Vector<kDim>& initial_variance)
+      : motion_(motion), initial_variance_(initial_variance) {}
+
+  void predict(State& state) const { skyfuse::predict(state, motion_); }
+  static const GaussianState<kDim>& estimate(const State& state) { return state; }
+  static State start(const GaussianState<kDim>& initial) { return initial; }
+  static Vector<kDim> from_kinematics(const Vector<kKinematicsDim>& x) {
+    return Model::from_kinematics(x);
+  }
+  const Vector<kDim>& initial_variance() const { return initial_variance_; }
+
+ private:
+  Model motion_;
+  Vector<kDim> initial_variance_;
+};
+
+/// The peers' side for a part with an increment rule `Rule`: one increment per detection,
+/// summed in ascending station id.
+template <typename Model, typename Rule>
+class PeerModelTracks : public ModelTracks<Model> {
+ public:
+  using ModelTracks<Model>::ModelTracks;
+  static constexpr int kDim = Model::kDim;
+  using State = GaussianState<kDim>;
+  using Contribution = InformationIncrement<kDim>;
+
+  template <typename Sensor>
+  static NumericalStatus contribute(const State& state, const StationObservation<Sensor>& o,
+                                    Contribution& out) {
+    const NisGate no_gate;  // the assignment's gate screened the pair
+    const OwnContribution own = Rule::contribute(state, o, no_gate, out);
+    return own.refused ? NumericalStatus::kNotPositiveDefinite : own.status;
+  }
+  static NumericalStatus fuse(State& state, std::span<const Contribution* const> contributions,
+                              std::span<const double> weights) {
+    return fuse_increments(state, IndirectView<Contribution>(contributions), weights, state);
+  }
+};
+
+/// The center's side for the EKF: one stacked update of a track's detections, the peers' sum
+/// for weights of 1, as the single-target center's.
+template <typename Model, typename Sensor>
+class CenterStackedTracks : public ModelTracks<Model> {
+ public:
+  using ModelTracks<Model>::ModelTracks;
+  using State = GaussianState<Model::kDim>;
+
+  bool update(State& state, std::span<const StationObservation<Sensor>> observations,
+              std::span<const double> /*weights*/) {
+    State updated = state;
+    if (stacked_.update(updated, observations).status != NumericalStatus::kOk) return false;
+    state = updated;
+    return true;
+  }
+
+ private:
+  StackedEkf<Model::kDim, Sensor> stacked_;
+};
+
+/// The center's side for another part with an increment rule (the unscented filter): its own
+/// increments of the raw detections against its own prior, fused onto it, as the single-target
+/// center does (sim/increment_run_stepper.hpp).
+template <typename Model, typename Sensor, typename Rule>
+class CenterIncrementTracks : public ModelTracks<Model> {
+ public:
+  using ModelTracks<Model>::ModelTracks;
+  static constexpr int kDim = Model::kDim;
+  using State = GaussianState<kDim>;
+
+  bool update(State& state, std::span<const StationObservation<Sensor>> observations,
+              std::span<const double> weights) {
+    increments_.assign(observations.size(), {});
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+      if (PeerModelTracks<Model, Rule>::contribute(state, observations[i], increments_[i]) !=
+          NumericalStatus::kOk) {
+        return false;
+      }
+    }
+    return fuse_increments(state, std::span<const InformationIncrement<kDim>>(increments_), weights,
+                           state) == NumericalStatus::kOk;
+  }
+
+ private:
+  std::vector<InformationIncrement<kDim>> increments_;
+};
+
+/// A track of the network IMM of mode set `Set` (tracking/network_imm.hpp), in its common
+/// state [p; v; a; omega]: the scenario's modes, switching and turn-rate variance.
+template <typename Set, typename Filter>
+class ImmTracks {
+ public:
+  static constexpr int kDim = KinematicState::kDim;
+  /// As the single-target IMM's: the position and velocity every mode keeps.
+  static constexpr int kNeesDof = 6;
+  using State = Filter;
+
+  /// `scenario` must outlive the tracks.
+  explicit ImmTracks(const Scenario& scenario) : scenario_(&scenario) {
+    initial_variance_.template head<ConstantAcceleration3D::kDim>() =
+        scenario.filter.initial_covariance_diag;
+    initial_variance_(KinematicState::kTurnRate) = scenario.filter.imm.initial_turn_rate_variance;
+  }
+
+  static void predict(State& state) { state.predict(); }
+  static GaussianState<kDim> estimate(const State& state) { return filter_of(state).estimate(); }
+  /// Every mode equally likely, each from `initial`'s [p; v; a] and the turn-rate variance.
+  State start(const GaussianState<kDim>& initial) const {
+    GaussianState<ConstantAcceleration3D::kDim> ca;
+    ca.mean = initial.mean.template head<ConstantAcceleration3D::kDim>();
+    ca.covariance =
+        initial.covariance
+            .template topLeftCorner<ConstantAcceleration3D::kDim, ConstantAcceleration3D::kDim>();
+    return State(NetworkImm<Set>::make(*scenario_, ca));
+  }
+  static Vector<kDim> from_kinematics(const Vector<kKinematicsDim>& x) {
+    Vector<kDim> common = Vector<kDim>::Zero();
+    common.template head<kKinematicsDim>() = x;
+    return common;
+  }
+  const Vector<kDim>& initial_variance() const { return initial_variance_; }
+
+ private:
+  static const auto& filter_of(const State& state) {
+    if constexpr (requires { state.filter(); }) {
+      return state.filter();
+    } else {
+      return state;
+    }
+  }
+
+  const Scenario* scenario_;  // a pointer, so that tracks can be copied and assigned
+  Vector<kDim> initial_variance_ = Vector<kDim>::Zero();
+};
+
+/// The peers' side of the IMM: per mode, each station's increment and likelihood terms
+/// against the mode's prior; the modes and probabilities fused as the single-target peers do.
+template <typename Set>
+class PeerImmTracks : public ImmTracks<Set, typename NetworkImm<Set>::Peer> {
+ public:
+  using Peer = typename NetworkImm<Set>::Peer;
+  using ImmTracks<Set, Peer>::ImmTracks;
+  using State = Peer;
+  using Contribution = typename Peer::Contribution;
+
+  template <typename Sensor>
+  static NumericalStatus contribute(const State& state, const StationObservation<Sensor>& o,
+                                    Contribution& out) {
+    const OwnContribution own = state.contribute(o, NisGate{}, out);
+    return own.refused ? NumericalStatus::kNotPositiveDefinite : own.status;
+  }
+  static NumericalStatus fuse(State& state, std::span<const Contribution* const> contributions,
+                              std::span<const double> weights) {
+    return state.fuse_round(contributions, weights).status;
+  }
+};
+
+/// The center's side of the IMM: every mode takes the stacked update of a track's detections,
+/// weighed by the stacked likelihood.
+template <typename Set, typename Sensor>
+class CenterImmTracks : public ImmTracks<Set, typename NetworkImm<Set>::Central> {
+ public:
+  using Central = typename NetworkImm<Set>::Central;
+  using ImmTracks<Set, Central>::ImmTracks;
+  using State = Central;
+
+  static bool update(State& state, std::span<const StationObservation<Sensor>> observations,
+                     std::span<const double> /*weights*/) {
+    return state.update(observations) == NumericalStatus::kOk;
+  }
+};
+
+}  // namespace skyfuse
