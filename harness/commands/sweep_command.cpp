@@ -47,15 +47,12 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
 namespace {
 
 // A scenario with many aircraft: its picture, run in-process --runs times with the first
-// --max-stations stations (all by default).
+// --max-stations stations (all by default), on --threads workers.
 int run_picture_sweep(const SweepOptions& options, const Scenario& scenario, int stations,
                       const std::filesystem::path& out_dir) {
   const TrafficTruth truth = build_traffic_truth(scenario, options.traffic_file);
   PictureReport report{scenario, truth, {}};
-  for (int r = 0; r < options.runs; ++r) {
-    report.runs.push_back(
-        run_picture(scenario, truth.targets, stations, static_cast<std::uint64_t>(r)));
-  }
+  report.runs = run_picture_runs(scenario, truth.targets, options.runs, stations, options.threads);
   print_picture_table(report, stdout);
   write_picture_csv(report, out_dir / "picture.csv");
   write_picture_json(report, out_dir / "picture.json");
