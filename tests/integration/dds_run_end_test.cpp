@@ -170,6 +170,7 @@ TEST(DdsRunEnd, CtrlCStopsTheRunWithItsFiles) {
 
 TEST(DdsRunEnd, AKilledStationStopsTheRunWithItsFiles) {
   const auto dir = test_dir();
+  const auto shared_memory_before = fastdds_shm_entries();  // UDP only: none may appear
   const auto run = start_long_run_of_64(139, dir);
   ASSERT_FALSE(HasFailure());
   const pid_t victim = station_pid(17, 139);
@@ -184,6 +185,7 @@ TEST(DdsRunEnd, AKilledStationStopsTheRunWithItsFiles) {
   const auto summary = expect_files_and_clean_exits(dir / "out", run->output(), "node_failed",
                                                     {{"station 17", SIGKILL}});
   EXPECT_GT(summary.value("steps", 0), 0);
+  EXPECT_EQ(fastdds_shm_entries(), shared_memory_before);
 }
 
 }  // namespace

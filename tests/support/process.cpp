@@ -73,7 +73,10 @@ Completed run_to_completion(const std::vector<std::string>& argv, const std::fil
   return {*status, p.output()};
 }
 
-std::vector<pid_t> find_processes(const std::vector<std::string>& tokens) {
+std::vector<pid_t> find_processes(const std::vector<std::string>& flag_values) {
+  if (flag_values.size() % 2 != 0) {
+    throw std::invalid_argument("find_processes: flags and values in pairs");
+  }
   std::vector<pid_t> found;
   for (const auto& entry : std::filesystem::directory_iterator("/proc")) {
     const std::string name = entry.path().filename().string();
@@ -81,9 +84,14 @@ std::vector<pid_t> find_processes(const std::vector<std::string>& tokens) {
     std::ifstream in(entry.path() / "cmdline", std::ios::binary);
     std::vector<std::string> args;
     for (std::string arg; std::getline(in, arg, '\0');) args.push_back(arg);
-    const bool all = std::all_of(tokens.begin(), tokens.end(), [&](const std::string& t) {
-      return std::find(args.begin(), args.end(), t) != args.end();
-    });
+    bool all = true;
+    for (std::size_t i = 0; all && i < flag_values.size(); i += 2) {
+      bool adjacent = false;
+      for (std::size_t a = 0; !adjacent && a + 1 < args.size(); ++a) {
+        adjacent = args[a] == flag_values[i] && args[a + 1] == flag_values[i + 1];
+      }
+      all = adjacent;
+    }
     if (all && !args.empty()) found.push_back(static_cast<pid_t>(std::stoi(name)));
   }
   return found;

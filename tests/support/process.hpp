@@ -47,8 +47,10 @@ struct Completed {
 Completed run_to_completion(const std::vector<std::string>& argv, const std::filesystem::path& log,
                             std::chrono::milliseconds timeout);
 
-/// Pids of live processes whose command line contains every one of `tokens` as an argument.
-std::vector<pid_t> find_processes(const std::vector<std::string>& tokens);
+/// Pids of live processes whose command line holds every pair of `flag_values` (flag, value,
+/// flag, value, ...) as adjacent arguments: {"--id", "17"} is station 17, not a station whose
+/// peer list names participant 17.
+std::vector<pid_t> find_processes(const std::vector<std::string>& flag_values);
 
 /// Names in /dev/shm that Fast DDS creates (segments, port files, semaphores).
 std::vector<std::string> fastdds_shm_entries();
