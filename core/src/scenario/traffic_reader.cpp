@@ -131,7 +131,7 @@ TrackerConfig read_tracker(const YamlField& field) {
 
 DetectionConfig read_detection(const YamlField& field, const DetectionConfig& defaults) {
   field.allow_only({"probability", "max_range_m", "min_elevation_deg", "azimuth_sector_deg",
-                    "clutter_per_scan"});
+                    "clutter_per_scan", "clutter_max_speed_mps"});
   DetectionConfig d = defaults;
   if (const auto f = field.optional("probability")) d.probability = read_probability(*f);
   if (const auto f = field.optional("max_range_m"))
@@ -148,6 +148,9 @@ DetectionConfig read_detection(const YamlField& field, const DetectionConfig& de
                           f->text()));
     }
     d.field_of_view.azimuth_sector = AzimuthSector{sector(0) * kDegToRad, sector(1) * kDegToRad};
+  }
+  if (const auto f = field.optional("clutter_max_speed_mps")) {
+    d.clutter_max_speed_mps = f->non_negative_number();
   }
   if (const auto f = field.optional("clutter_per_scan")) {
     d.clutter_per_scan = f->non_negative_number();

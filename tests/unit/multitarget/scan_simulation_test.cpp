@@ -1,10 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <set>
 #include <vector>
 
+#include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
@@ -88,6 +90,26 @@ TEST(ScanSimulation, ClutterHasItsPoissonMeanAndStaysInTheFieldOfView) {
   }
   // Poisson(12) over 2000 scans: mean 12, sd of the mean 0.077; 5 sd.
   EXPECT_NEAR(static_cast<double>(total) / kScans, 12.0, 0.39);
+}
+
+TEST(ScanSimulation, APositionVelocitySensorsFalseAlarmsMoveWithinTheBound) {
+  DetectionConfig config;
+  config.field_of_view.max_range_m = 5000.0;
+  config.clutter_per_scan = 20.0;
+  config.clutter_max_speed_mps = 40.0;
+  const PositionVelocity<kKinematicsDim> sensor;
+  double fastest = 0.0;
+  for (int k = 0; k < 50; ++k) {
+    const auto scan =
+        simulate_scan(1, sensor, kSite, 4.0 * Covariance<6>::Identity(), config, {}, k, 5, 0);
+    for (const auto& z : scan.detections) {
+      for (int i = 3; i < 6; ++i) {
+        EXPECT_LE(std::abs(z(i)), 40.0);
+        fastest = std::max(fastest, std::abs(z(i)));
+      }
+    }
+  }
+  EXPECT_GT(fastest, 30.0);  // spread over the bound, not all zero
 }
 
 TEST(ScanSimulation, TheOrderSaysNothingOfTheOrigin) {

@@ -39,6 +39,9 @@ struct DetectionConfig {
   double probability = 1.0;  ///< P_D of a target within the field of view
   FieldOfView field_of_view;
   double clutter_per_scan = 0.0;  ///< the Poisson mean of false alarms per scan
+  /// A false alarm's velocity, for a sensor that measures one (position_velocity): each
+  /// component uniform in [-this, this], m/s.
+  double clutter_max_speed_mps = 100.0;
 
   /// The largest clutter mean a scenario may ask for: beyond it a scan's work is no longer
   /// bounded by the aircraft.

@@ -79,6 +79,11 @@ Scan<Sensor::kMeasDim> simulate_scan(int station_id, const Sensor& sensor, const
     for (std::uint32_t c = 0; c < count; ++c) {
       Vector<kKinematicsDim> x = Vector<kKinematicsDim>::Zero();
       x.head<3>() = detection.field_of_view.draw_point(site, clutter);
+      if constexpr (Sensor::kJacobianCols >= 6) {  // it measures the velocity too
+        for (int i = 3; i < 6; ++i) {
+          x(i) = detection.clutter_max_speed_mps * (2.0 * clutter.uniform() - 1.0);
+        }
+      }
       scan.detections.push_back(Sensor::to_reported(sensor.predict(x)));
       origin.push_back(-1);
     }
