@@ -1,7 +1,12 @@
 #include "run/placement.hpp"
 
+#include <arpa/inet.h>
 #include <fmt/format.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
+#include <cstdint>
 #include <stdexcept>
 
 #include "run/discovery_peers.hpp"
@@ -44,6 +49,41 @@ void check_peer_discovery(const RunOptions& o, std::size_t stations) {
   }
 }
 
+// Whether a UDP socket could bind `port` on `address` now.
+bool udp_port_free(const std::string& address, std::uint16_t port) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd < 0) return true;  // nothing to learn: let Fast DDS try
+  sockaddr_in where{};
+  where.sin_family = AF_INET;
+  where.sin_port = htons(port);
+  const bool parsed = ::inet_pton(AF_INET, address.c_str(), &where.sin_addr) == 1;
+  const bool bound =
+      !parsed || ::bind(fd, reinterpret_cast<const sockaddr*>(&where), sizeof(where)) == 0;
+  ::close(fd);
+  return bound;
+}
+
+// Peer discovery fixes every participant's unicast ports (discovery, then data). One held by
+// another socket - another DDS participant of the domain, or any socket the kernel gave it
+// from its ephemeral range (32768-60999 here, which domains from 102 on reach) - leaves that
+// participant unannounced, and the run times out in discovery: holding participant 42's port
+// of domain 139 (station 41 of ring64) reproduced the one such failure seen. Said before
+// anything starts instead.
+void check_peer_ports(const std::string& address, int domain, std::size_t participants) {
+  for (std::size_t id = 0; id < participants; ++id) {
+    const std::uint16_t discovery = options::discovery_port(domain, static_cast<int>(id));
+    for (const std::uint16_t port : {discovery, static_cast<std::uint16_t>(discovery + 1)}) {
+      if (udp_port_free(address, port)) continue;
+      throw std::invalid_argument(fmt::format(
+          "--discovery peers: UDP port {} on {} (participant {} of domain {}: 0 the harness, 1 "
+          "the center, then the stations in ascending id) is held by another socket; free it "
+          "or take another --domain (below 102 keeps every port out of the kernel's ephemeral "
+          "range)",
+          port, address, id, domain));
+    }
+  }
+}
+
 }  // namespace
 
 void Placement::check(const RunOptions& o, std::size_t stations) {
@@ -81,6 +121,8 @@ Placement::Placement(const RunOptions& o, const ExchangeConfig& exchange, std::s
   }
   if (o.discovery == Discovery::kPeers) {
     peer_lists_ = discovery_peer_lists(exchange, stations);
+    // On one host every port is on the harness's address (simulated hosts have their own).
+    if (!hosts_) check_peer_ports(harness_.interface_address, domain_, stations + 2);
     harness_.participant_id = kHarnessParticipantId;
     for (std::size_t i = 0; i < peer_lists_.size(); ++i) {
       harness_.discovery_peers.push_back(discovery_endpoint(i));

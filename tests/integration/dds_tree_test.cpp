@@ -1,9 +1,15 @@
 // The tree exchange over DDS: station processes in clusters, each cluster's aggregator summing
 // its members' contributions, the aggregators exchanging their sums, every member fusing the
 // round's total its aggregator sends.
+#include <arpa/inet.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
+#include <cstdint>
+#include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -87,6 +93,34 @@ TEST(DdsTree, StationsDiscoveringOnlyTheirPeersKnowTheirClusterAndGiveTheInProce
     EXPECT_EQ(known.at(std::to_string(id)).get<int>(), stand_in ? 2 + 3 + 2 * 3 : 2 + 3)
         << "station " << id;
   }
+}
+
+// Peer discovery fixes every participant's ports: one held by another socket would leave that
+// participant unannounced and the run timing out in discovery. The run refuses before it
+// starts, naming the port.
+TEST(DdsTree, PeerDiscoveryRefusesAPortAnotherSocketHolds) {
+  constexpr int kDomain = 226;
+  // The RTPS well-known discovery port of participant 3 (the second station): 7400 + 250 d +
+  // 10 + 2 id.
+  const std::uint16_t port = 7400 + 250 * kDomain + 10 + 2 * 3;
+  const int holder = ::socket(AF_INET, SOCK_DGRAM, 0);
+  ASSERT_GE(holder, 0);
+  sockaddr_in where{};
+  where.sin_family = AF_INET;
+  where.sin_port = htons(port);
+  where.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(holder, reinterpret_cast<const sockaddr*>(&where), sizeof(where)), 0);
+  const auto dir = test_dir();
+  const Completed run = run_to_completion(
+      {bin("skyfuse"), "run", "--scenario", bin("scenarios/ring64.yaml"), "--stations", "16",
+       "--exchange", "tree", "--fanout", "4", "--discovery", "peers", "--steps", "5", "--domain",
+       std::to_string(kDomain), "--out", (dir / "out").string()},
+      dir / "run.log", 60s);
+  ::close(holder);
+  EXPECT_EQ(run.status.code, 2) << run.output;
+  EXPECT_THAT(run.output, ::testing::HasSubstr("UDP port " + std::to_string(port) +
+                                               " on 127.0.0.1 (participant 3 of domain 226"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.json"));
 }
 
 // The IMM over the tree (paper 000's ten stations in clusters of 3, the last cluster of one,
