@@ -119,8 +119,10 @@ void add_run_command(CLI::App& app, RunOptions& o) {
       ->check(options::whole_number_in(1, SimulatedHosts::kMaxHosts));
   options::add_discovery_option(
       *cmd, o.discovery,
-      "How the processes find each other: auto (multicast on one host, the harness's discovery "
-      "server across --hosts), multicast (every participant announces itself to all), server "
+      "How the processes find each other: auto (on one host peers for a tree of 16 or more "
+      "stations the harness starts, when their fixed ports are free and below the kernel's "
+      "ephemeral range, multicast otherwise; the harness's discovery server across --hosts), "
+      "multicast (every participant announces itself to all), server "
       "(--hosts only), or peers (each announces itself only to the processes it exchanges "
       "with, so a station discovers its cluster, not every station)");
   cmd->add_flag("--external", o.external,

@@ -7,7 +7,10 @@
 #include <unistd.h>
 
 #include <cstdint>
+#include <fstream>
+#include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "run/discovery_peers.hpp"
 #include "skyfuse/transport/node_setup.hpp"
@@ -67,21 +70,61 @@ bool udp_port_free(const std::string& address, std::uint16_t port) {
 // another socket - another DDS participant of the domain, or any socket the kernel gave it
 // from its ephemeral range (32768-60999 here, which domains from 102 on reach) - leaves that
 // participant unannounced, and the run times out in discovery: holding participant 42's port
-// of domain 139 (station 41 of ring64) reproduced the one such failure seen. Said before
-// anything starts instead.
-void check_peer_ports(const std::string& address, int domain, std::size_t participants) {
+// of domain 139 (station 41 of ring64) reproduced the one such failure seen. The first port
+// another socket holds, described; none if every one is free.
+std::optional<std::string> held_peer_port(const std::string& address, int domain,
+                                          std::size_t participants) {
   for (std::size_t id = 0; id < participants; ++id) {
     const std::uint16_t discovery = options::discovery_port(domain, static_cast<int>(id));
     for (const std::uint16_t port : {discovery, static_cast<std::uint16_t>(discovery + 1)}) {
       if (udp_port_free(address, port)) continue;
-      throw std::invalid_argument(fmt::format(
-          "--discovery peers: UDP port {} on {} (participant {} of domain {}: 0 the harness, 1 "
-          "the center, then the stations in ascending id) is held by another socket; free it "
-          "or take another --domain (below 102 keeps every port out of the kernel's ephemeral "
-          "range)",
-          port, address, id, domain));
+      return fmt::format(
+          "UDP port {} on {} (participant {} of domain {}: 0 the harness, 1 the center, then the "
+          "stations in ascending id) is held by another socket",
+          port, address, id, domain);
     }
   }
+  return std::nullopt;
+}
+
+// The first port of the kernel's ephemeral range: a port from there may be any socket's at
+// any moment.
+int ephemeral_ports_from() {
+  std::ifstream range("/proc/sys/net/ipv4/ip_local_port_range");
+  int first = 32768;
+  range >> first;
+  return first > 0 ? first : 32768;
+}
+
+// `auto` on one host: the processes announce themselves to their exchange partners only
+// (peers) for a tree of kPeersFromStations stations or more that the harness starts, without
+// --secure or a network of one's own, when every fixed port lies below the kernel's ephemeral
+// range and is free; multicast otherwise. Ring64, tree of 8, M = 64, 2-core AMD EPYC
+// (2026-11-27): lock-step 113-131 rounds/s with peers against 83 with multicast; at 50 Hz with
+// a 15 ms deadline 99.8-100 % of rounds in time against 96.6-99.6 % (docs/networks.md).
+constexpr std::size_t kPeersFromStations = 16;
+
+Discovery chosen_discovery(const RunOptions& o, const ExchangeConfig& exchange,
+                           std::size_t stations) {
+  if (o.discovery != Discovery::kAutomatic) return o.discovery;
+  const bool one_host_as_started = o.hosts == 0 && !o.external && !o.node.secure_dir &&
+                                   o.node.network == options::NetworkOptions{};
+  if (!one_host_as_started || exchange.kind != ExchangeConfig::Kind::kTree ||
+      stations < kPeersFromStations) {
+    return Discovery::kAutomatic;
+  }
+  const std::size_t participants = stations + 2;
+  if (participants >
+      static_cast<std::size_t>(options::participant_ids_per_address(o.node.domain))) {
+    return Discovery::kAutomatic;
+  }
+  const int last_port =
+      options::discovery_port(o.node.domain, static_cast<int>(participants) - 1) + 1;
+  if (last_port >= ephemeral_ports_from() ||
+      held_peer_port(o.node.network.interface_address, o.node.domain, participants)) {
+    return Discovery::kAutomatic;
+  }
+  return Discovery::kPeers;
 }
 
 }  // namespace
@@ -111,6 +154,7 @@ void Placement::check(const RunOptions& o, std::size_t stations) {
 Placement::Placement(const RunOptions& o, const ExchangeConfig& exchange, std::size_t stations)
     : domain_(o.node.domain), harness_(o.node.network) {
   check(o, stations);
+  const Discovery discovery = chosen_discovery(o, exchange, stations);
   if (o.hosts > 0) {
     hosts_.emplace(o.hosts, multicast_across_hosts(o.discovery));
     harness_.interface_address = hosts_->bridge_address();
@@ -119,10 +163,17 @@ Placement::Placement(const RunOptions& o, const ExchangeConfig& exchange, std::s
           options::Ipv4Endpoint{hosts_->bridge_address(), options::kDefaultDiscoveryPort};
     }
   }
-  if (o.discovery == Discovery::kPeers) {
+  if (discovery == Discovery::kPeers) {
     peer_lists_ = discovery_peer_lists(exchange, stations);
     // On one host every port is on the harness's address (simulated hosts have their own).
-    if (!hosts_) check_peer_ports(harness_.interface_address, domain_, stations + 2);
+    if (!hosts_) {
+      if (const auto held = held_peer_port(harness_.interface_address, domain_, stations + 2)) {
+        throw std::invalid_argument(fmt::format(
+            "--discovery peers: {}; free it or take another --domain (below 102 keeps every "
+            "port out of the kernel's ephemeral range)",
+            *held));
+      }
+    }
     harness_.participant_id = kHarnessParticipantId;
     for (std::size_t i = 0; i < peer_lists_.size(); ++i) {
       harness_.discovery_peers.push_back(discovery_endpoint(i));

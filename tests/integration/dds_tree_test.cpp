@@ -95,6 +95,18 @@ TEST(DdsTree, StationsDiscoveringOnlyTheirPeersKnowTheirClusterAndGiveTheInProce
   }
 }
 
+// `--discovery auto` (the default) picks peers for a tree of 16 on a domain whose ports lie
+// below the kernel's ephemeral range, and the run still equals the in-process tree bit for bit;
+// on a domain in that range it keeps multicast.
+TEST(DdsTree, AutoDiscoveryTakesPeersForALargeTreeOnALowDomain) {
+  const auto low = expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 100, 4, 67);
+  ASSERT_FALSE(low.is_null());
+  EXPECT_EQ(low.at("network").at("discovery"), "peers");
+  const auto high = expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 50, 4, 227);
+  ASSERT_FALSE(high.is_null());
+  EXPECT_EQ(high.at("network").at("discovery"), "multicast");
+}
+
 // Peer discovery fixes every participant's ports: one held by another socket would leave that
 // participant unannounced and the run timing out in discovery. The run refuses before it
 // starts, naming the port.

@@ -92,7 +92,9 @@ inline double lease_seconds(int stations) {
 
 /// How the processes of a run find each other.
 enum class Discovery {
-  kAutomatic,  ///< multicast on one host, the harness's discovery server across hosts
+  kAutomatic,  ///< on one host peers for a large tree when its ports allow
+               ///< (harness/run/placement.cpp), multicast otherwise; the harness's discovery
+               ///< server across hosts
   kMulticast,  ///< every participant announces itself to every other one by multicast
   kServer,     ///< through the harness's discovery server (across hosts only)
   kPeers,      ///< each process announces itself only to the processes it exchanges with
