@@ -56,10 +56,10 @@ void print_picture_table(const PictureReport& report, std::FILE* out) {
     fmt::print(out,
                "{:>4} {:>8.3f} {:>8.3f} {:>8.2f} {:>8.2f} {:>7.4f} {:>7.4f} {:>7.4f} {:>6} "
                "{:>8.2f} {:>7.3f} {:>6} {:>6} {:>9.2e}\n",
-               r, s.gospa_mean, s.localisation_per_pair_m, s.missed_mean, s.false_mean, s.completeness, s.ambiguity,
-               s.spuriousness, s.track_number_changes, s.mean_time_to_confirm_s,
-               run.anees / run.nees_dof, run.peers_identical ? "same" : "DIFF",
-               run.association_flips, run.max_state_gap);
+               r, s.gospa_mean, s.localisation_per_pair_m, s.missed_mean, s.false_mean,
+               s.completeness, s.ambiguity, s.spuriousness, s.track_number_changes,
+               s.mean_time_to_confirm_s, run.anees / run.nees_dof,
+               run.peers_identical ? "same" : "DIFF", run.association_flips, run.max_state_gap);
   }
   std::size_t samples = 0;
   for (const auto& run : report.runs) samples += run.nees_samples;

@@ -33,7 +33,7 @@ struct TrafficGeneratorConfig {
   std::array<double, 2> height_m{100.0, 600.0};
   std::array<double, 2> speed_mps{15.0, 60.0};
   std::array<double, 2> leg_s{30.0, 120.0};
-  std::array<double, 2> turn_deg{30.0, 120.0};        ///< heading change of a turn
+  std::array<double, 2> turn_deg{30.0, 120.0};  ///< heading change of a turn
   std::array<double, 2> turn_rate_deg_s{2.0, 6.0};
   double appear_within_s = 0.0;  ///< each aircraft appears at a uniform time in [0, this]
 };
