@@ -1,24 +1,32 @@
-# Same seed -> byte-identical sweep.csv and sweep.json, whatever the thread count;
-# a different seed -> different bytes.
+# Same seed -> byte-identical files, whatever the thread count; a different seed -> different
+# bytes. For a one-target scenario (sweep.csv, sweep.json) and one with many aircraft
+# (picture.csv, picture.json, and a picture that kept its guarantees: exit 0).
 file(REMOVE_RECURSE "${WORK}")
-set(common sweep --runs 4 --steps 300 --max-stations 3 --no-plot)
-execute_process(COMMAND ${SKYFUSE} ${common} --threads 1 --out ${WORK}/a RESULT_VARIABLE rc_a OUTPUT_QUIET)
-execute_process(COMMAND ${SKYFUSE} ${common} --threads 2 --out ${WORK}/b RESULT_VARIABLE rc_b OUTPUT_QUIET)
-execute_process(COMMAND ${SKYFUSE} ${common} --seed 12345 --out ${WORK}/c RESULT_VARIABLE rc_c OUTPUT_QUIET)
-if(NOT rc_a EQUAL 0 OR NOT rc_b EQUAL 0 OR NOT rc_c EQUAL 0)
-  message(FATAL_ERROR "sweep failed: ${rc_a} ${rc_b} ${rc_c}")
-endif()
-foreach(f sweep.csv sweep.json)
-  file(SHA256 ${WORK}/a/${f} ha)
-  file(SHA256 ${WORK}/b/${f} hb)
-  file(SHA256 ${WORK}/c/${f} hc)
-  if(NOT ha STREQUAL hb)
-    message(FATAL_ERROR "${f}: same seed gave different bytes")
+
+# Runs `skyfuse ARGS` with --threads 1, --threads 2 and --seed 12345 into WORK/<tag>{a,b,c} and
+# checks `files` there.
+function(expect_same_seed_same_bytes tag files)
+  set(args ${ARGN})
+  execute_process(COMMAND ${SKYFUSE} ${args} --threads 1 --out ${WORK}/${tag}a RESULT_VARIABLE rc_a OUTPUT_QUIET)
+  execute_process(COMMAND ${SKYFUSE} ${args} --threads 2 --out ${WORK}/${tag}b RESULT_VARIABLE rc_b OUTPUT_QUIET)
+  execute_process(COMMAND ${SKYFUSE} ${args} --seed 12345 --out ${WORK}/${tag}c RESULT_VARIABLE rc_c OUTPUT_QUIET)
+  if(NOT rc_a EQUAL 0 OR NOT rc_b EQUAL 0 OR NOT rc_c EQUAL 0)
+    message(FATAL_ERROR "${args}: failed: ${rc_a} ${rc_b} ${rc_c}")
   endif()
-  if(ha STREQUAL hc)
-    message(FATAL_ERROR "${f}: a different seed gave the same bytes")
-  endif()
-endforeach()
+  foreach(f ${files})
+    file(SHA256 ${WORK}/${tag}a/${f} ha)
+    file(SHA256 ${WORK}/${tag}b/${f} hb)
+    file(SHA256 ${WORK}/${tag}c/${f} hc)
+    if(NOT ha STREQUAL hb)
+      message(FATAL_ERROR "${f}: same seed gave different bytes")
+    endif()
+    if(ha STREQUAL hc)
+      message(FATAL_ERROR "${f}: a different seed gave the same bytes")
+    endif()
+  endforeach()
+endfunction()
+
+expect_same_seed_same_bytes("" "sweep.csv;sweep.json" sweep --runs 4 --steps 300 --max-stations 3 --no-plot)
 file(STRINGS ${WORK}/a/sweep.csv rows)
 list(LENGTH rows n)
 if(NOT n EQUAL 7)  # header + 3 station counts x 2 speeds
@@ -26,24 +34,6 @@ if(NOT n EQUAL 7)  # header + 3 station counts x 2 speeds
 endif()
 message(STATUS "same seed: identical bytes; other seed: different bytes")
 
-# A scenario with many aircraft: picture.csv and picture.json the same way, and a picture that
-# kept its guarantees (exit 0).
-set(picture sweep --scenario ${SOURCE}/scenarios/uam-city.yaml --runs 4 --steps 60)
-execute_process(COMMAND ${SKYFUSE} ${picture} --threads 1 --out ${WORK}/pa RESULT_VARIABLE rc_a OUTPUT_QUIET)
-execute_process(COMMAND ${SKYFUSE} ${picture} --threads 2 --out ${WORK}/pb RESULT_VARIABLE rc_b OUTPUT_QUIET)
-execute_process(COMMAND ${SKYFUSE} ${picture} --seed 12345 --out ${WORK}/pc RESULT_VARIABLE rc_c OUTPUT_QUIET)
-if(NOT rc_a EQUAL 0 OR NOT rc_b EQUAL 0 OR NOT rc_c EQUAL 0)
-  message(FATAL_ERROR "picture sweep failed: ${rc_a} ${rc_b} ${rc_c}")
-endif()
-foreach(f picture.csv picture.json)
-  file(SHA256 ${WORK}/pa/${f} ha)
-  file(SHA256 ${WORK}/pb/${f} hb)
-  file(SHA256 ${WORK}/pc/${f} hc)
-  if(NOT ha STREQUAL hb)
-    message(FATAL_ERROR "${f}: same seed gave different bytes")
-  endif()
-  if(ha STREQUAL hc)
-    message(FATAL_ERROR "${f}: a different seed gave the same bytes")
-  endif()
-endforeach()
+expect_same_seed_same_bytes(p "picture.csv;picture.json"
+  sweep --scenario ${SOURCE}/scenarios/uam-city.yaml --runs 4 --steps 60)
 message(STATUS "picture: same seed identical bytes; other seed different bytes")

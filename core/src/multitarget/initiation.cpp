@@ -17,15 +17,12 @@ struct Group {
   std::vector<int> stations;
 
   bool add(const PositionFix& fix) {
-    SmallCholesky<3> fix_factor;
-    if (!fix_factor.compute(fix.covariance)) return false;
-    const Covariance<3> fix_information = fix_factor.inverse();
-    Covariance<3> information_after = information + fix_information;
+    Covariance<3> information_after = information + fix.information;
     symmetrize(information_after);
     SmallCholesky<3> factor;
     if (!factor.compute(information_after)) return false;
     information = information_after;
-    information_vector += fix_information * fix.position;
+    information_vector += fix.information * fix.position;
     covariance = factor.inverse();
     position = factor.solve(information_vector);
     stations.push_back(fix.station_id);

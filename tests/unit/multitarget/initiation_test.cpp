@@ -11,7 +11,8 @@ namespace skyfuse {
 namespace {
 
 PositionFix fix_at(int station, std::uint32_t detection, const Vector3& p, double std_m) {
-  return {station, detection, p, std_m * std_m * Covariance<3>::Identity()};
+  return {station, detection, p, std_m * std_m * Covariance<3>::Identity(),
+          Covariance<3>::Identity() / (std_m * std_m)};
 }
 
 TEST(Initiation, DetectionsOfTwoStationsThatAgreeStartOneTrack) {

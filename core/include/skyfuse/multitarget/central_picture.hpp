@@ -38,9 +38,9 @@ class CentralPicture : public TrackTable<Tracks, Sensor> {
   RoundOutcome update(std::uint64_t step, std::span<const Scan<kMeasDim>> scans) {
     const std::size_t count = this->tracks().size();
     associations_.clear();
-    observations_.assign(count, {});
-    weights_.assign(count, {});
-    unassociated_.assign(scans.size(), {});
+    clear_each(observations_, count);
+    clear_each(weights_, count);
+    clear_each(unassociated_, scans.size());
     for (std::size_t s = 0; s < scans.size(); ++s) {
       const KnownStation<Sensor>& station = this->stations()[s];
       const ScanAssignment assignment =
@@ -81,6 +81,14 @@ class CentralPicture : public TrackTable<Tracks, Sensor> {
   const std::vector<Association>& associations() const { return associations_; }
 
  private:
+  // `count` empty lists, keeping the storage of those the last round had: no allocation per
+  // round once the picture has its size.
+  template <typename T>
+  static void clear_each(std::vector<std::vector<T>>& lists, std::size_t count) {
+    lists.resize(count);
+    for (auto& list : lists) list.clear();
+  }
+
   AssignmentWork work_;
   std::vector<Association> associations_;
   std::vector<std::vector<StationObservation<Sensor>>> observations_;

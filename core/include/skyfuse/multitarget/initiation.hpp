@@ -29,6 +29,7 @@ struct PositionFix {
   std::uint32_t detection = 0;  ///< its index in the station's scan
   Vector3 position = Vector3::Zero();
   Covariance<3> covariance = Covariance<3>::Identity();
+  Covariance<3> information = Covariance<3>::Identity();  ///< covariance^-1 = H^T R^-1 H
 };
 
 /// The fix of detection `z` (noise R) of a sensor one of whose detections fixes a position:
@@ -39,7 +40,8 @@ std::optional<PositionFix> fix_position(int station_id, std::uint32_t detection,
                                         const Sensor& sensor, const Vector<Sensor::kMeasDim>& z,
                                         const Covariance<Sensor::kMeasDim>& noise) {
   constexpr int M = Sensor::kMeasDim;
-  PositionFix fix{station_id, detection, sensor.position_of(z), Covariance<3>::Identity()};
+  PositionFix fix{station_id, detection, sensor.position_of(z), Covariance<3>::Identity(),
+                  Covariance<3>::Identity()};
   Vector<Sensor::kStateDim> x = Vector<Sensor::kStateDim>::Zero();
   x.template head<3>() = fix.position;
   const Matrix<M, 3> h = sensor.jacobian(x).template leftCols<3>();
@@ -52,6 +54,7 @@ std::optional<PositionFix> fix_position(int station_id, std::uint32_t detection,
   SmallCholesky<3> info_factor;
   if (!info_factor.compute(information)) return std::nullopt;
   fix.covariance = info_factor.inverse();
+  fix.information = information;
   return fix;
 }
 

@@ -81,6 +81,8 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
     const std::size_t count = this->tracks().size();
     hit_.assign(count, 0);
     cursor_.assign(reports.size(), 0);
+    report_weights_.clear();
+    for (const Report& report : reports) report_weights_.push_back(weight_of(report.station_id));
     for (std::size_t t = 0; t < count; ++t) {
       auto& track = this->track(t);
       contributions_.clear();
@@ -92,7 +94,7 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
         while (at < updates.size() && updates[at].track < track.id) ++at;
         if (at < updates.size() && updates[at].track == track.id) {
           contributions_.push_back(&updates[at].contribution);
-          weights_.push_back(weight_of(reports[r].station_id));
+          weights_.push_back(report_weights_[r]);
           track.updated_by.push_back(reports[r].station_id);
         }
       }
@@ -122,6 +124,7 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
 
   std::vector<char> hit_;
   std::vector<std::size_t> cursor_;
+  std::vector<double> report_weights_;  // reports[r]'s station's weight
   std::vector<const Contribution*> contributions_;
   std::vector<double> weights_;
 };

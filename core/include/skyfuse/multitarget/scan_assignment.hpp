@@ -70,8 +70,8 @@ ScanAssignment assign_scan(std::span<const GaussianState<N>> priors, const Senso
   double widest = 0.0;
   for (std::uint32_t j = 0; j < taken; ++j) {
     const auto fix = fix_position(scan.station_id, j, sensor, scan.detections[j], scan.noise);
-    const Vector3 position = sensor.position_of(scan.detections[j]);
     // A detection whose fix is degenerate is compared with every track.
+    const Vector3 position = fix ? fix->position : sensor.position_of(scan.detections[j]);
     const double std_m = fix ? std::sqrt(fix->covariance.trace()) : kDegenerateFixStdM;
     widest = std::max(widest, std_m);
     work.candidates.push_back({position.x(), std_m, position, j});

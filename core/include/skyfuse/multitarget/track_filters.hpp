@@ -143,7 +143,7 @@ class ImmTracks {
   }
 
   static void predict(State& state) { state.predict(); }
-  static GaussianState<kDim> estimate(const State& state) { return filter_of(state).estimate(); }
+  static GaussianState<kDim> estimate(const State& state) { return state.filter().estimate(); }
   /// Every mode equally likely, each from `initial`'s [p; v; a] and the turn-rate variance.
   State start(const GaussianState<kDim>& initial) const {
     GaussianState<ConstantAcceleration3D::kDim> ca;
@@ -161,14 +161,6 @@ class ImmTracks {
   const Vector<kDim>& initial_variance() const { return initial_variance_; }
 
  private:
-  static const auto& filter_of(const State& state) {
-    if constexpr (requires { state.filter(); }) {
-      return state.filter();
-    } else {
-      return state;
-    }
-  }
-
   const Scenario* scenario_;  // a pointer, so that tracks can be copied and assigned
   Vector<kDim> initial_variance_ = Vector<kDim>::Zero();
 };
