@@ -61,10 +61,10 @@ class FlatExchange {
   void open(std::uint64_t /*k*/, std::uint64_t /*run_id*/) {}
 
   /// This station's contribution, published to every peer.
-  template <typename Observation, typename Gate>
-  OwnContribution contribute(std::uint64_t k, const Observation& observation, const Gate& gate,
+  template <typename Sensing, typename Gate>
+  OwnContribution contribute(std::uint64_t k, const Sensing& sensing, const Gate& gate,
                              std::uint64_t run_id) {
-    return fusion_.contribute(k, observation, gate, run_id,
+    return fusion_.contribute(k, sensing, gate, run_id,
                               [&](const auto& sample) { out_.write(sample); });
   }
 

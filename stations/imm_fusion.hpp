@@ -23,14 +23,17 @@
 #include "skyfuse/transport/imm_wire.hpp"
 #include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
+#include "station_sensing.hpp"
 
 namespace skyfuse::station {
 
-template <typename ModeSet, typename Sensor>
+template <typename ModeSet>
 class ImmFusion {
  public:
   using Peers = typename NetworkImm<ModeSet>::Peer;
   using Contribution = typename Peers::Contribution;
+  /// What makes this station's contribution (station_sensing.hpp).
+  using Sensing = StationSensing<Peers, Contribution>;
   /// The sum the tree adds and fuses.
   using TreeSum = typename Peers::Sum;
   static constexpr int kModes = Peers::kModes;
@@ -68,19 +71,19 @@ class ImmFusion {
     std::apply([&](auto&... c) { (c.start_at(step), ...); }, collectors_);
   }
 
-  /// Screens this station's own measurement against the common mixture prior, writes one
-  /// sample per mode (write(sample)) and keeps them for the round.
+  /// Screens this station's own measurement, last taken by `sensing`, against the common
+  /// mixture prior, writes one sample per mode (write(sample)) and keeps them for the round.
   template <typename Write>
-  OwnContribution contribute(std::uint64_t k, const StationObservation<Sensor>& observation,
-                             const NisGate& gate, std::uint64_t run_id, Write write) {
+  OwnContribution contribute(std::uint64_t k, const Sensing& sensing, const NisGate& gate,
+                             std::uint64_t run_id, Write write) {
     Contribution own;
-    const OwnContribution result = peers_.contribute(observation, gate, own);
+    const OwnContribution result = sensing.contribute(peers_, gate, own);
     if (result.status != NumericalStatus::kOk) return result;
     const auto step = static_cast<std::uint32_t>(k);
     Peers::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
       write(transport::mode_to_wire<I>(own, run_id, step));
       std::get<I>(collectors_)
-          .offer(k, observation.station_id,
+          .offer(k, sensing.station_id(),
                  ModeSample<I>{std::get<I>(own.modes), own.terms[I], own.prior_probabilities});
     });
     return result;

@@ -16,6 +16,7 @@
 #include "skyfuse/transport/imm_wire.hpp"
 #include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
+#include "station_sensing.hpp"
 
 namespace skyfuse::station {
 
@@ -24,6 +25,8 @@ class IncrementRound {
  public:
   static constexpr int kDim = Model::kDim;
   using Contribution = PeerContribution<kDim>;
+  /// What makes this station's increment (station_sensing.hpp).
+  using Sensing = StationSensing<GaussianState<kDim>, InformationIncrement<kDim>>;
 
   IncrementRound(const RunPlan& plan, std::size_t lag)
       : IncrementRound(plan, sorted_ascending(plan.participant_ids()), lag) {}

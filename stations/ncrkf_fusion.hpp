@@ -34,25 +34,20 @@ class NcrkfFusion : public IncrementRound<TdoaRelativeMotion> {
     }
   }
 
-  /// This station's increment for its own measurement (write(sample)), kept for the round. The
-  /// NCRKF has no innovation to screen (its part refuses a NIS gate): a
+  /// This station's increment for its own measurement, last taken by `sensing` (write(sample)),
+  /// kept for the round. The NCRKF has no innovation to screen (its part refuses a NIS gate): a
   /// measurement that fails its sensor's check yields a zero increment, which tells the peers
   /// not to wait for one.
   template <typename Write>
-  OwnContribution contribute(std::uint64_t k, const StationObservation<Sensor>& observation,
-                             const NisGate& /*gate*/, std::uint64_t run_id, Write write) {
+  OwnContribution contribute(std::uint64_t k, const Sensing& sensing, const NisGate& gate,
+                             std::uint64_t run_id, Write write) {
     OwnContribution result;
     result.status = chain_.refresh_prior(fuse_one_round([](int, DropKind) {}));
     if (result.status != NumericalStatus::kOk) return result;
     Contribution own;
     own.prior = chain_.tracker().estimate();
-    result.refused = Sensor::check_reported(observation.z);
-    if (result.refused) {
-      own.increment.set_zero(observation.station_id);
-    } else {
-      own.increment = tdoa_contribution(observation);
-    }
-    publish(k, observation.station_id, own, run_id, write);
+    result = sensing.contribute(own.prior, gate, own.increment);
+    publish(k, sensing.station_id(), own, run_id, write);
     return result;
   }
 

@@ -15,29 +15,29 @@
 
 namespace skyfuse::station {
 
-/// `Rule` makes this station's increment: the filter part's increment rule
-/// (tracking/increment_rules.hpp).
-template <typename Model, typename Sensor, typename Rule>
+/// The station's sensing (station_sensing.hpp) makes its increment by the filter part's rule.
+template <typename Model>
 class SingleModelFusion : public IncrementRound<Model> {
   using Base = IncrementRound<Model>;
 
  public:
   using Base::Base;
   using typename Base::Contribution;
+  using typename Base::Sensing;
 
-  /// Screens this station's own measurement against the common prior, writes its contribution
-  /// (write(sample)) and keeps it for the round.
+  /// Screens this station's own measurement, last taken by `sensing`, against the common prior,
+  /// writes its contribution (write(sample)) and keeps it for the round.
   template <typename Write>
-  OwnContribution contribute(std::uint64_t k, const StationObservation<Sensor>& observation,
-                             const NisGate& gate, std::uint64_t run_id, Write write) {
+  OwnContribution contribute(std::uint64_t k, const Sensing& sensing, const NisGate& gate,
+                             std::uint64_t run_id, Write write) {
     OwnContribution result;
     result.status = this->chain_.refresh_prior(fuse_one_round());
     if (result.status != NumericalStatus::kOk) return result;
     Contribution own;
     own.prior = this->chain_.tracker().estimate();
-    result = Rule::contribute(own.prior, observation, gate, own.increment);
+    result = sensing.contribute(own.prior, gate, own.increment);
     if (result.status != NumericalStatus::kOk) return result;
-    this->publish(k, observation.station_id, own, run_id, write);
+    this->publish(k, sensing.station_id(), own, run_id, write);
     return result;
   }
 

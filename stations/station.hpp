@@ -1,7 +1,7 @@
 #pragma once
-// The station process's rounds, compiled for the filter parts of one shard at a time
-// (registry/filter_shards.hpp): station_shard.cpp instantiates run_station_in_shard once per
-// shard. station_process.cpp, which only declares it, picks the shard of the run's filter.
+// The station process's rounds, compiled once per fusion (station_fusions.hpp) in
+// station_rounds.cpp: the sensor and the filter part's rule are behind the station's sensing
+// (station_sensing.hpp), compiled apart.
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "flat_exchange.hpp"
-#include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/node_loop.hpp"
@@ -23,7 +22,7 @@
 #include "skyfuse/validation/sample_checks.hpp"
 #include "station_fusions.hpp"
 #include "station_process.hpp"
-#include "station_shards.hpp"
+#include "station_sensing.hpp"
 #include "tree_exchange.hpp"
 
 namespace skyfuse::station {
@@ -31,23 +30,23 @@ namespace detail {
 
 using transport::RunEnd;
 
-// A station with a `Sensor` of the run's motion model's state (a radar, the aircraft's GPS, a
-// TDOA receiver), whose rounds `Exchange` carries and its fusion fuses: the flat or the tree
-// exchange (flat_exchange.hpp, tree_exchange.hpp) of the run's filter part's fusion
-// (station_fusions.hpp). The round loop (transport/node_loop.hpp) moves the samples; this is
-// what a station adds to it.
-template <typename Sensor, typename Exchange>
+// A station whose rounds `Exchange` carries and `Fusion` fuses: the flat or the tree exchange
+// (flat_exchange.hpp, tree_exchange.hpp) of the run's filter part's fusion (station_fusions.hpp),
+// with the station's sensing (station_sensing.hpp) behind the fusion's interface. The round
+// loop (transport/node_loop.hpp) moves the samples; this is what a station adds to it.
+template <typename Fusion, typename Exchange>
 class Station {
  public:
   using Sample = typename Exchange::Sample;
+  using Sensing = typename Fusion::Sensing;
 
   // The endpoints are made in a fixed order: the loop's tick and input readers first.
   Station(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
-          std::unique_ptr<SensorSource<Sensor>> source)
+          std::unique_ptr<Sensing> sensing)
       : options_(options),
         plan_(plan),
         me_(me),
-        source_(std::move(source)),
+        sensing_(std::move(sensing)),
         node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", me.id))),
         loop_(node_, options.node, me.id, fmt::format("station {}", me.id), Exchange::kInputName,
               plan.scenario.time_step_s, Exchange::input_partitions(plan, me.id)),
@@ -55,8 +54,6 @@ class Station {
                   options.rejoin_step.has_value()),
         measurements_(node_.make_writer<wire::Measurement>()),
         tracks_(node_.make_writer<wire::TrackEstimate>()),
-        sensor_(make_sensor<Sensor>(me)),
-        noise_(station_noise_covariance<Sensor::kMeasDim>(plan.scenario, me, plan.mc_run)),
         syncing_(options.rejoin_step.has_value()) {
     if (const auto own = exchange_.own_writer()) loop_.skip_own(me_.id, *own);
   }
@@ -92,17 +89,15 @@ class Station {
   // Publishes this station's measurement (for the center) and its contribution (for the
   // exchange).
   RunEnd open_round(std::uint64_t k) {
-    const auto step = static_cast<std::uint32_t>(k);
     exchange_.open(k, options_.node.run_id);
-    const StationObservation<Sensor> observation{me_.id, sensor_, source_->measurement(k), noise_};
-    measurements_.write(transport::to_wire(observation, options_.node.run_id, step));
+    measurements_.write(sensing_->measure(k, options_.node.run_id));
     if (syncing_) return std::nullopt;  // no prior yet: nothing to compute an increment against
 
     // The round rule screens it as the center does, so both architectures fuse the same
     // measurements; screened out, it still yields a zero increment that tells the peers not to
     // wait for one.
     const OwnContribution result =
-        exchange_.contribute(k, observation, options_.node.nis_gate(), options_.node.run_id);
+        exchange_.contribute(k, *sensing_, options_.node.nis_gate(), options_.node.run_id);
     if (result.refused) {
       loop_.count_drop(*result.refused, "own measurement", me_.id, k);
     } else if (result.status != NumericalStatus::kOk) {
@@ -181,91 +176,35 @@ class Station {
   const StationOptions& options_;
   const RunPlan& plan_;
   const StationConfig& me_;
-  std::unique_ptr<SensorSource<Sensor>> source_;
+  std::unique_ptr<Sensing> sensing_;
   transport::DdsNode node_;
   transport::NodeLoop<Sample> loop_;
   Exchange exchange_;
   transport::Writer<wire::Measurement> measurements_;
   transport::Writer<wire::TrackEstimate> tracks_;
-  Sensor sensor_;
-  Covariance<Sensor::kMeasDim> noise_;
   bool syncing_;               // restarted, and no peer's prior taken yet
   std::uint32_t resyncs_ = 0;  // rounds fused onto another station's prior
 };
 
-// Runs `station` of the run's exchange over `Fusion`; the exit code.
-template <typename Sensor, typename Fusion>
+// Runs station `me` of the run's exchange over `Fusion`, with its `sensing`; the exit code.
+template <typename Fusion>
 int run_station_of(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
-                   std::unique_ptr<SensorSource<Sensor>> source) {
+                   std::unique_ptr<typename Fusion::Sensing> sensing) {
   if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
     // load_plan refuses the tree for a filter whose fusion cannot sum partial sums yet.
     if constexpr (requires { &Fusion::admit_contribution; }) {
-      return transport::make_lifelong<Station<Sensor, TreeExchange<Fusion>>>(options, plan, me,
-                                                                             std::move(source))
+      return transport::make_lifelong<Station<Fusion, TreeExchange<Fusion>>>(options, plan, me,
+                                                                             std::move(sensing))
           .run();
     } else {
       throw std::logic_error("the tree exchange for a fusion without partial sums");
     }
   }
-  return transport::make_lifelong<Station<Sensor, FlatExchange<Fusion>>>(options, plan, me,
-                                                                         std::move(source))
+  return transport::make_lifelong<Station<Fusion, FlatExchange<Fusion>>>(options, plan, me,
+                                                                         std::move(sensing))
       .run();
 }
 
-// Runs station `me` with its sensor of type Sensor, on the run's motion model, with the run's
-// filter part `Filter` (which runs on them).
-template <typename Filter, typename Model, typename Sensor>
-int run_with_sensor(const StationOptions& options, const RunPlan& plan, const StationConfig& me) {
-  std::unique_ptr<SensorSource<Sensor>> source;
-  if (options.replay_path.empty()) {
-    source = std::make_unique<SimulatedSensor<Sensor>>(plan, me);
-  } else {
-    source = std::make_unique<ReplayedSensor<Sensor>>(options.replay_path, me.id);
-  }
-  // The round rule screens every value this station reports; its noise and site, fixed for the
-  // run, are checked here once.
-  if (const auto why = check_observation_source(
-          make_sensor<Sensor>(me),
-          station_noise_covariance<Sensor::kMeasDim>(plan.scenario, me, plan.mc_run))) {
-    throw std::invalid_argument(
-        fmt::format("station {}: its noise or site is unusable: {}", me.id, to_string(*why)));
-  }
-  return run_station_of<Sensor, typename StationFusionOf<Filter, Model, Sensor>::type>(
-      options, plan, me, std::move(source));
-}
-
 }  // namespace detail
-
-// The filter part first: a shard compiles the stations of its own parts only, on the models and
-// sensors each runs on, and nothing for the others.
-template <std::size_t Shard>
-int run_station_in_shard(const StationOptions& options, const RunPlan& plan,
-                         const StationConfig& me) {
-  int code = options::kExitError;
-  bool found = false;
-  visit_filter_in_shard<Shard>(
-      plan.scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
-        visit_model_kind<MotionModels>(
-            plan.scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
-              found = visit_sensor_kind<Sensors, Model::kDim>(
-                  me.sensor.kind, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-                    using Sensor = SensorOf<Model::kDim>;
-                    // The loader gives a filter only the models and stations it runs on.
-                    if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
-                      code = detail::run_with_sensor<Filter, Model, Sensor>(options, plan, me);
-                    } else {
-                      throw std::logic_error(
-                          fmt::format("filter {} on {} with a station of sensor kind {}",
-                                      Filter::kKind, Model::kKind, me.sensor.kind));
-                    }
-                  });
-            });
-      });
-  if (!found) {
-    throw std::logic_error(fmt::format("unregistered motion model {} or sensor kind {}",
-                                       plan.scenario.filter.motion_model.kind, me.sensor.kind));
-  }
-  return code;
-}
 
 }  // namespace skyfuse::station

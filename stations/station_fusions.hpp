@@ -1,27 +1,27 @@
 #pragma once
-// What a station fuses for each registered filter part. Each fusion takes the station's own
-// measurement to its contribution, checks its peers' samples and fuses a round
-// (station_process.cpp's round loop moves the samples). A part with an increment rule needs no
-// line here: SingleModelFusion sums its increments. The IMM and the NCRKF have their own.
+// What a station fuses for each registered filter part on each motion model. Each fusion has
+// the station's sensing (station_sensing.hpp) make its contribution, checks its peers' samples
+// and fuses a round (station.hpp's round loop moves the samples). None depends on the sensor:
+// a part with an increment rule needs no line here, as SingleModelFusion sums its increments
+// whichever rule made them. The IMM and the NCRKF have their own.
 
 #include "imm_fusion.hpp"
 #include "ncrkf_fusion.hpp"
 #include "single_model_fusion.hpp"
 #include "skyfuse/registry/registry.hpp"
-#include "skyfuse/tracking/increment_rules.hpp"
 
 namespace skyfuse::station {
 
-template <typename Filter, typename Model, typename Sensor>
+template <typename Filter, typename Model>
 struct StationFusionOf {
-  using type = SingleModelFusion<Model, Sensor, typename Filter::IncrementRule>;
+  using type = SingleModelFusion<Model>;
 };
-template <typename ModeSet, typename Model, typename Sensor>
-struct StationFusionOf<ImmFilterPart<ModeSet>, Model, Sensor> {
-  using type = ImmFusion<ModeSet, Sensor>;
+template <typename ModeSet, typename Model>
+struct StationFusionOf<ImmFilterPart<ModeSet>, Model> {
+  using type = ImmFusion<ModeSet>;
 };
-template <typename Model, typename Sensor>
-struct StationFusionOf<NcrkfFilterPart, Model, Sensor> {
+template <typename Model>
+struct StationFusionOf<NcrkfFilterPart, Model> {
   using type = NcrkfFusion;
 };
 

@@ -7,7 +7,8 @@
 
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/transport/node_setup.hpp"
-#include "station_shards.hpp"
+#include "station_rounds.hpp"
+#include "station_sensing.hpp"
 
 namespace skyfuse::station {
 
@@ -28,9 +29,12 @@ int run_station(const StationOptions& options) {
       throw std::invalid_argument("--rejoin-at-step: lock-step runs only, not real time");
     }
   }
-  return with_filter_shard(plan.scenario.filter, [&](auto shard) {
-    return run_station_in_shard<decltype(shard)::value>(options, plan, *me);
+  // The sensor's arithmetic is compiled by shard of the filter parts, the rounds once per
+  // fusion (station_sensing.hpp).
+  auto sensing = with_filter_shard(plan.scenario.filter, [&](auto shard) {
+    return make_sensing_in_shard<decltype(shard)::value>(options, plan, *me);
   });
+  return run_station_rounds(options, plan, *me, std::move(sensing));
 }
 
 }  // namespace skyfuse::station

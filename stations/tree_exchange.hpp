@@ -166,11 +166,11 @@ class TreeExchange {
   }
 
   /// This station's contribution: kept by an aggregator, sent to it by a member.
-  template <typename Observation, typename Gate>
-  OwnContribution contribute(std::uint64_t k, const Observation& observation, const Gate& gate,
+  template <typename Sensing, typename Gate>
+  OwnContribution contribute(std::uint64_t k, const Sensing& sensing, const Gate& gate,
                              std::uint64_t run_id) {
     const OwnContribution result =
-        fusion_.contribute(k, observation, gate, run_id, [](const auto& /*flat sample*/) {});
+        fusion_.contribute(k, sensing, gate, run_id, [](const auto& /*flat sample*/) {});
     if (aggregating_ || result.status != NumericalStatus::kOk) return result;
     // Unweighted: its aggregator weighs it.
     if (!fusion_.own_sum(id_, outgoing_)) {

@@ -1,0 +1,19 @@
+#pragma once
+// The station's rounds over DDS, once its sensing is made: defined in station_rounds.cpp,
+// which compiles the station once per fusion (station.hpp).
+
+#include <memory>
+
+#include "skyfuse/sim/run_plan.hpp"
+#include "station_process.hpp"
+#include "station_sensing.hpp"
+
+namespace skyfuse::station {
+
+/// Runs station `me` of `plan` to the end of the run, its measurements and contributions made by
+/// `sensing` (made for the run's filter part and model by make_sensing_in_shard); returns an
+/// options::ExitCode.
+int run_station_rounds(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
+                       std::unique_ptr<AnyStationSensing> sensing);
+
+}  // namespace skyfuse::station
