@@ -1,6 +1,7 @@
 #include "center_process.hpp"
 
-#include "center_shards.hpp"
+#include "center.hpp"
+#include "center_rounds.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 
@@ -8,9 +9,12 @@ namespace skyfuse::center {
 
 int run_center(const options::NodeOptions& options) {
   const RunPlan plan = transport::load_plan(options);
-  return with_filter_shard(plan.scenario.filter, [&](auto shard) {
-    return run_center_in_shard<decltype(shard)::value>(options, plan);
+  // What updates the rounds is compiled by shard of the filter parts, the endpoints once
+  // (center_rounds.hpp).
+  auto rounds = with_filter_shard(plan.scenario.filter, [&](auto shard) {
+    return make_center_rounds_in_shard<decltype(shard)::value>(options, plan);
   });
+  return transport::make_lifelong<Center>(options, plan, std::move(rounds)).run();
 }
 
 }  // namespace skyfuse::center

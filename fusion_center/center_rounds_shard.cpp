@@ -1,10 +1,10 @@
 // One shard of the center's rounds: cmake/FilterShards.cmake compiles this file once per shard,
 // with SKYFUSE_SHARD set.
-#include "center.hpp"
+#include "typed_center_rounds.hpp"
 
 namespace skyfuse::center {
 
-template int run_center_in_shard<SKYFUSE_SHARD>(const options::NodeOptions& options,
-                                                const RunPlan& plan);
+template std::unique_ptr<CenterRounds> make_center_rounds_in_shard<SKYFUSE_SHARD>(
+    const options::NodeOptions& options, const RunPlan& plan);
 
 }  // namespace skyfuse::center
