@@ -8,15 +8,13 @@
 # adds SOURCE to TARGET once per shard, through a generated file that defines SKYFUSE_SHARD and
 # includes it, and gives TARGET the shard count as SKYFUSE_FILTER_SHARDS.
 
-# How many shards. One by default: on 2 cores the build is CPU-bound with both cores busy, and
-# every shard compiles again what the parts share (the headers, each dimension's Eigen kernels
-# and checks, the transport), so 6 shards (one per part today) cut the largest file from 141 s
-# and 4.3 GB to 65 s and 2.5 GB but doubled the station's compile time (283 s in all) and made
-# the demo's build 9.1 min instead of 5.6 on the 2-core AMD EPYC (docs/testing.md#build). More
-# shards pay where there are more cores than big files, or little memory: -DSKYFUSE_FILTER_SHARDS=6.
-# A part added to the registry joins a shard (its position modulo the count); nothing here
-# needs changing.
-set(SKYFUSE_FILTER_SHARDS 1 CACHE STRING
+# How many shards: one per registered filter part (6) by default. What a shard compiles again
+# is the headers' parsing only (about 5 s): the DDS side of the node processes is compiled once
+# per fusion, the sensors and filter arithmetic apart from it (stations/station_sensing.hpp,
+# fusion_center/center_rounds.hpp), so shards cost little and keep every file of these under a
+# minute (docs/testing.md#build). A part added to the registry joins a shard (its position
+# modulo the count); nothing here needs changing.
+set(SKYFUSE_FILTER_SHARDS 6 CACHE STRING
     "Translation units per program for the code of every filter part (1: one file each)")
 if(NOT SKYFUSE_FILTER_SHARDS MATCHES "^[1-9][0-9]*$")
   message(FATAL_ERROR "SKYFUSE_FILTER_SHARDS must be a whole number >= 1, got '${SKYFUSE_FILTER_SHARDS}'")

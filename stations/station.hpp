@@ -1,7 +1,7 @@
 #pragma once
-// The station process's rounds, compiled once per fusion (station_fusions.hpp) in
-// station_rounds.cpp: the sensor and the filter part's rule are behind the station's sensing
-// (station_sensing.hpp), compiled apart.
+// The station process's rounds, compiled once per fusion (station_fusions.hpp) and exchange, by
+// shard of the filter parts in station_rounds_shard.cpp: the sensor and the filter part's rule
+// are behind the station's sensing (station_sensing.hpp), compiled apart.
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "flat_exchange.hpp"
+#include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/node_loop.hpp"
@@ -22,6 +23,7 @@
 #include "skyfuse/validation/sample_checks.hpp"
 #include "station_fusions.hpp"
 #include "station_process.hpp"
+#include "station_rounds.hpp"
 #include "station_sensing.hpp"
 #include "tree_exchange.hpp"
 
@@ -206,5 +208,42 @@ int run_station_of(const StationOptions& options, const RunPlan& plan, const Sta
 }
 
 }  // namespace detail
+
+// The filter part and the model pick the fusion; the sensor is the sensing's business.
+template <std::size_t Shard>
+int run_station_rounds_in_shard(const StationOptions& options, const RunPlan& plan,
+                                const StationConfig& me,
+                                std::unique_ptr<AnyStationSensing> sensing) {
+  int code = options::kExitError;
+  bool found = false;
+  visit_filter_in_shard<Shard>(
+      plan.scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
+        found = visit_model_kind<MotionModels>(
+            plan.scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
+              // The loader gives a filter only the models it runs on.
+              if constexpr (Filter::kMotionModel.empty() || Filter::kMotionModel == Model::kKind) {
+                using Fusion = typename StationFusionOf<Filter, Model>::type;
+                using Sensing = typename Fusion::Sensing;
+                auto* typed = dynamic_cast<Sensing*>(sensing.get());
+                if (typed == nullptr) {
+                  throw std::logic_error(
+                      fmt::format("station {}: its sensing was not made for filter {} on {}", me.id,
+                                  Filter::kKind, Model::kKind));
+                }
+                sensing.release();
+                code = detail::run_station_of<Fusion>(options, plan, me,
+                                                      std::unique_ptr<Sensing>(typed));
+              } else {
+                throw std::logic_error(
+                    fmt::format("filter {} on motion model {}", Filter::kKind, Model::kKind));
+              }
+            });
+      });
+  if (!found) {
+    throw std::logic_error(
+        fmt::format("unregistered motion model {}", plan.scenario.filter.motion_model.kind));
+  }
+  return code;
+}
 
 }  // namespace skyfuse::station

@@ -34,7 +34,10 @@ int run_station(const StationOptions& options) {
   auto sensing = with_filter_shard(plan.scenario.filter, [&](auto shard) {
     return make_sensing_in_shard<decltype(shard)::value>(options, plan, *me);
   });
-  return run_station_rounds(options, plan, *me, std::move(sensing));
+  return with_filter_shard(plan.scenario.filter, [&](auto shard) {
+    return run_station_rounds_in_shard<decltype(shard)::value>(options, plan, *me,
+                                                               std::move(sensing));
+  });
 }
 
 }  // namespace skyfuse::station

@@ -1,7 +1,8 @@
 #pragma once
-// The station's rounds over DDS, once its sensing is made: defined in station_rounds.cpp,
-// which compiles the station once per fusion (station.hpp).
+// The station's rounds over DDS, once its sensing is made: defined in station.hpp, compiled by
+// shard of the filter parts in station_rounds_shard.cpp.
 
+#include <cstddef>
 #include <memory>
 
 #include "skyfuse/sim/run_plan.hpp"
@@ -10,10 +11,12 @@
 
 namespace skyfuse::station {
 
-/// Runs station `me` of `plan` to the end of the run, its measurements and contributions made by
-/// `sensing` (made for the run's filter part and model by make_sensing_in_shard); returns an
-/// options::ExitCode.
-int run_station_rounds(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
-                       std::unique_ptr<AnyStationSensing> sensing);
+/// Runs station `me` of `plan`, whose filter part lies in shard `Shard`, to the end of the run,
+/// its measurements and contributions made by `sensing` (made for the run's filter part and
+/// model by make_sensing_in_shard); returns an options::ExitCode.
+template <std::size_t Shard>
+int run_station_rounds_in_shard(const StationOptions& options, const RunPlan& plan,
+                                const StationConfig& me,
+                                std::unique_ptr<AnyStationSensing> sensing);
 
 }  // namespace skyfuse::station

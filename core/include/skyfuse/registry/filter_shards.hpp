@@ -1,11 +1,11 @@
 #pragma once
 /// \file
 /// Code compiled for every registered filter part, on every model and sensor it runs on (a
-/// station's and the center's rounds, the Monte Carlo's steppers), makes the largest translation
-/// units of the build: 105-141 s and up to 4.3 GB each. It can be split into shards by filter
-/// part: shard s of S holds the parts whose position in FilterParts modulo S is s. Each shard
-/// compiles again what the parts share, so more shards cost more CPU in all; S is a build
-/// setting (cmake/FilterShards.cmake says when more pay).
+/// station's sensing and rounds, the center's rounds, the Monte Carlo's steppers), makes the
+/// largest translation units of the build. It is split into shards by filter part: shard s of S
+/// holds the parts whose position in FilterParts modulo S is s. A shard compiles again only the
+/// headers the parts share (the DDS side of the processes is compiled once, apart), so S is the
+/// number of parts by default (cmake/FilterShards.cmake; docs/testing.md#build).
 ///
 /// The code is written once, as a function template over the shard defined in a header:
 ///
