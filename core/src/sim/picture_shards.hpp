@@ -1,0 +1,23 @@
+#pragma once
+// The in-process picture's runs for the scenario's filter part, motion model and sensor kind:
+// compiled by shard of the registered filter parts (registry/filter_shards.hpp), each shard in
+// its own translation unit (picture_run_shard.cpp).
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "skyfuse/sim/picture_run.hpp"
+
+namespace skyfuse {
+
+/// run_picture for a scenario whose filter part lies in shard `Shard`; nothing if no picture
+/// runs that part on the scenario's model and sensor kind.
+template <std::size_t Shard>
+std::optional<PictureRunResult> run_picture_in_shard(
+    const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
+    std::uint64_t run, const std::function<void(const PictureStep&)>& on_step);
+
+}  // namespace skyfuse
