@@ -33,7 +33,7 @@ class ImmFusion {
   using Peers = typename NetworkImm<ModeSet>::Peer;
   using Contribution = typename Peers::Contribution;
   /// What makes this station's contribution (station_sensing.hpp).
-  using Sensing = StationSensing<Peers, Contribution>;
+  using Sensing = ImmSensing<ModeSet>;
   /// The sum the tree adds and fuses.
   using TreeSum = typename Peers::Sum;
   static constexpr int kModes = Peers::kModes;

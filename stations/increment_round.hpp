@@ -26,7 +26,7 @@ class IncrementRound {
   static constexpr int kDim = Model::kDim;
   using Contribution = PeerContribution<kDim>;
   /// What makes this station's increment (station_sensing.hpp).
-  using Sensing = StationSensing<GaussianState<kDim>, InformationIncrement<kDim>>;
+  using Sensing = IncrementSensing<kDim>;
 
   IncrementRound(const RunPlan& plan, std::size_t lag)
       : IncrementRound(plan, sorted_ascending(plan.participant_ids()), lag) {}

@@ -19,8 +19,6 @@
 #include "skyfuse/transport/node_loop.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/source_binding.hpp"
-#include "skyfuse/transport/wire_conversion.hpp"
-#include "skyfuse/validation/sample_checks.hpp"
 #include "station_fusions.hpp"
 #include "station_process.hpp"
 #include "station_rounds.hpp"
@@ -221,7 +219,7 @@ int run_station_rounds_in_shard(const StationOptions& options, const RunPlan& pl
         found = visit_model_kind<MotionModels>(
             plan.scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
               // The loader gives a filter only the models it runs on.
-              if constexpr (Filter::kMotionModel.empty() || Filter::kMotionModel == Model::kKind) {
+              if constexpr (filter_runs_on_model<Filter, Model>()) {
                 using Fusion = typename StationFusionOf<Filter, Model>::type;
                 using Sensing = typename Fusion::Sensing;
                 auto* typed = dynamic_cast<Sensing*>(sensing.get());

@@ -48,15 +48,26 @@ class StationSensing : public AnyStationSensing {
                                      Contribution& out) const = 0;
 };
 
-/// The sensing interface of the run's filter part `Filter` on motion model `Model`.
+/// The sensing of a fusion of one increment per station against the common prior of an N-state
+/// (SingleModelFusion, NcrkfFusion).
+template <int N>
+using IncrementSensing = StationSensing<GaussianState<N>, InformationIncrement<N>>;
+
+/// The sensing of the network IMM of `ModeSet` (ImmFusion): every mode's increment against the
+/// peer's mode priors.
+template <typename ModeSet>
+using ImmSensing = StationSensing<typename NetworkImm<ModeSet>::Peer,
+                                  typename NetworkImm<ModeSet>::Peer::Contribution>;
+
+/// The sensing interface of the run's filter part `Filter` on motion model `Model`: the one its
+/// fusion (station_fusions.hpp) takes.
 template <typename Filter, typename Model>
 struct SensingOf {
-  using type = StationSensing<GaussianState<Model::kDim>, InformationIncrement<Model::kDim>>;
+  using type = IncrementSensing<Model::kDim>;
 };
 template <typename ModeSet, typename Model>
 struct SensingOf<ImmFilterPart<ModeSet>, Model> {
-  using Peer = typename NetworkImm<ModeSet>::Peer;
-  using type = StationSensing<Peer, typename Peer::Contribution>;
+  using type = ImmSensing<ModeSet>;
 };
 
 /// Station `me`'s sensing for the run's filter part, model and its own sensor kind: simulated,

@@ -165,8 +165,9 @@ Placement::Placement(const RunOptions& o, const ExchangeConfig& exchange, std::s
   }
   if (discovery == Discovery::kPeers) {
     peer_lists_ = discovery_peer_lists(exchange, stations);
-    // On one host every port is on the harness's address (simulated hosts have their own).
-    if (!hosts_) {
+    // On one host every port is on the harness's address (simulated hosts have their own);
+    // `auto` chose peers only with every port free.
+    if (!hosts_ && o.discovery == Discovery::kPeers) {
       if (const auto held = held_peer_port(harness_.interface_address, domain_, stations + 2)) {
         throw std::invalid_argument(fmt::format(
             "--discovery peers: {}; free it or take another --domain (below 102 keeps every "
