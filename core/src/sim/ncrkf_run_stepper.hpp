@@ -1,21 +1,21 @@
 #pragma once
 // One run of filter kind "ncrkf" stepping through its measurements: the peers' fused NCRKF and
 // the center's stacked one (tracking/tdoa_round.hpp), by the same rule the processes will
-// follow. Same interface as monte_carlo.cpp's RunStepper.
-
-#include <fmt/format.h>
+// follow. Same interface as monte_carlo.cpp's RunStepper. Its members are compiled once, in
+// ncrkf_run_stepper.cpp: the class is no template, and every shard of the Monte Carlo includes
+// this header.
 
 #include <span>
-#include <stdexcept>
 #include <vector>
 
 #include "sim/run_setup.hpp"
 #include "skyfuse/models/state_position.hpp"
+#include "skyfuse/models/tdoa/range_difference_sensor.hpp"
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
+#include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
-#include "skyfuse/tracking/tdoa_round.hpp"
 
 namespace skyfuse {
 
@@ -27,67 +27,19 @@ class NcrkfRunStepper {
   using Observation = StationObservation<Sensor>;
   using Measurement = Vector<1>;
 
+  /// Refuses a NIS gate: the NCRKF's increments are not an EKF's.
   NcrkfRunStepper(const Scenario& scenario, const TruthTrajectory& truth, int stations,
-                  std::uint64_t run, const NisGate& gate)
-      : motion_(make_motion_model<Model>(scenario)),
-        central_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
-        peers_(motion_, initial_estimate<Model>(scenario, truth.states.front(), run)),
-        order_(run_setup::ascending(scenario, stations)),
-        observations_(run_setup::checked_observations<Sensor>(scenario, order_, run)),
-        // The center sums in the peers' order too, as fusion_center's NcrkfCenter does.
-        central_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_),
-                       round_fanout_for(scenario, static_cast<std::size_t>(stations))),
-        peer_round_(run_setup::ids(scenario, order_), run_setup::weights(scenario, order_),
-                    round_fanout_for(scenario, static_cast<std::size_t>(stations))),
-        trace_(run_setup::sized_trace(scenario.steps)) {
-    if (gate.enabled()) {
-      throw std::invalid_argument(
-          "filter ncrkf: takes no NIS gate (its increments are not an "
-          "EKF's)");
-    }
-    increments_.resize(order_.size());
-    usable_.assign(order_.size(), true);
-  }
+                  std::uint64_t run, const NisGate& gate);
 
   void step(std::size_t k, const Vector<kKinematicsDim>& x, std::span<const Measurement> z,
-            const StepObserver& observer) {
-    for (std::size_t j = 0; j < order_.size(); ++j) {
-      observations_[j].z = z[order_[j]];
-      usable_[j] = !Sensor::check_reported(observations_[j].z);
-      if (!usable_[j]) ++trace_.refused_p2p;
-      increments_[j] = tdoa_contribution(observations_[j]);
-    }
-    // The center computes the same increments from the same measurements: its stacked NCRKF is
-    // their fusion onto its own prior.
-    trace_.refused_central += fuse(central_, central_round_, k, "central");
-    trace_.refused_p2p += fuse(peers_, peer_round_, k, "p2p");
-
-    // The pseudo-linear update has no EKF innovation: no NIS.
-    run_setup::record_step(trace_, k, x, central_.estimate(), peers_, 0.0, observer);
-    central_.predict();
-    peers_.predict();
-  }
+            const StepObserver& observer);
 
   RunTrace take_trace() { return std::move(trace_); }
 
  private:
   // Fuses the usable increments of the round onto `tracker`'s prior by the TDOA round rule.
   // Returns how many indefinite increments it refused.
-  int fuse(PeerTracker<Model>& tracker, PeerRound<Model>& round, std::size_t k, const char* who) {
-    const GaussianState<kDim> prior = tracker.estimate();
-    int refused = 0;
-    const RoundFusion fused = fuse_tdoa_round(
-        round, tracker, order_.size(),
-        [&](std::size_t j) {
-          return usable_[j] ? PeerSlot<kDim>{&increments_[j], &prior} : PeerSlot<kDim>{};
-        },
-        [&](std::size_t) { ++refused; });
-    if (fused.status != NumericalStatus::kOk) {
-      throw NumericalError(
-          fmt::format("{} NCRKF: step {}: fusion failed: {}", who, k, to_string(fused.status)));
-    }
-    return refused;
-  }
+  int fuse(PeerTracker<Model>& tracker, PeerRound<Model>& round, std::size_t k, const char* who);
 
   Model motion_;
   PeerTracker<Model> central_;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>  // inverse(), for the covariance-form reference
 #include <random>
 #include <vector>
 

@@ -24,42 +24,20 @@ namespace skyfuse {
 
 /// Receiver `observation`'s increment: its pseudo-linear row at its own measurement r~ (sigma
 /// from its R), W and V subtracted.
-inline InformationIncrement<PseudoLinearTdoaRow::kDim> tdoa_contribution(
-    const StationObservation<RangeDifferenceSensor<PseudoLinearTdoaRow::kDim>>& observation) {
-  const double sigma = std::sqrt(observation.noise(0, 0));
-  const PseudoLinearTdoaRow row = pseudo_linear_tdoa_row(observation.sensor.offset(),
-                                                         observation.z(0), observation.z(0), sigma);
-  return tdoa_increment(observation.station_id, row, BiasCompensation::kCompensated);
-}
+InformationIncrement<PseudoLinearTdoaRow::kDim> tdoa_contribution(
+    const StationObservation<RangeDifferenceSensor<PseudoLinearTdoaRow::kDim>>& observation);
 
 /// The shape of a TDOA increment, or of a sum of them: finite, and zero outside [dx, dy, d_t1]
 /// (its 3 x 3 block and the first three entries of dy).
-inline std::optional<DropKind> check_tdoa_shape(
-    const InformationIncrement<PseudoLinearTdoaRow::kDim>& increment) {
-  constexpr int kRest = PseudoLinearTdoaRow::kDim - PseudoLinearTdoaRow::kRange - 1;
-  if (!increment.delta_information.allFinite() || !increment.delta_vector.allFinite()) {
-    return DropKind::kNonFinite;
-  }
-  const auto& q = increment.delta_information;
-  if (!q.bottomRows<kRest>().isZero(0.0) || !q.rightCols<kRest>().isZero(0.0) ||
-      !increment.delta_vector.tail<kRest>().isZero(0.0)) {
-    return DropKind::kOutOfRange;
-  }
-  return std::nullopt;
-}
+std::optional<DropKind> check_tdoa_shape(
+    const InformationIncrement<PseudoLinearTdoaRow::kDim>& increment);
 
 /// What a TDOA increment received from a receiver of noise `sigma` must be, since one need not
 /// be positive semi-definite: of check_tdoa_shape()'s shape and within check_increment()'s
 /// bounds; and no more indefinite than bias compensation can make it, ΔQ + (2 / sigma^2) e3 e3^T
 /// positive semi-definite, since H~^T R^-1 H~ is and W_j = 2 / (2 r~^2 + sigma^2) <= 2 / sigma^2.
-inline std::optional<DropKind> check_tdoa_increment(
-    const InformationIncrement<PseudoLinearTdoaRow::kDim>& increment, double sigma) {
-  constexpr int kRange = PseudoLinearTdoaRow::kRange;
-  if (const auto why = check_tdoa_shape(increment)) return why;
-  InformationIncrement<PseudoLinearTdoaRow::kDim> compensated = increment;
-  compensated.delta_information(kRange, kRange) += 2.0 / (sigma * sigma);
-  return check_increment(compensated);
-}
+std::optional<DropKind> check_tdoa_increment(
+    const InformationIncrement<PseudoLinearTdoaRow::kDim>& increment, double sigma);
 
 /// Whether an increment is indefinite: the contributions a round that is not positive definite
 /// is fused again without.

@@ -4,7 +4,6 @@
 /// no knowledge of the run (the run id, step window and station ids are checked by the
 /// receiver and its StepCollector). Each returns the first problem found, or nothing.
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -41,6 +40,13 @@ bool passes_shifted_cholesky(const Covariance<N>& dq) {
   return factor.compute(shifted);
 }
 
+// check_increment's rule decided by the eigenvalues of `scaled` (dQ scaled to a largest entry
+// of 1), when passes_shifted_cholesky could not show it: kNotPositive, or nothing. Out of line
+// and of dynamic size, so that one eigen-solver is compiled for every N, in one file: compiled
+// per N in every file that checks an increment it made a second or more of each, and it runs
+// only for increments the cheap test does not pass (an indefinite one, or one at its edge).
+std::optional<DropKind> check_eigenvalues(const Eigen::Ref<const Eigen::MatrixXd>& scaled);
+
 }  // namespace detail
 
 /// dQ and dy finite; their entries within kMaxInformation (dy: times kMaxRangeM); dQ positive
@@ -64,12 +70,7 @@ std::optional<DropKind> check_increment(const InformationIncrement<N>& increment
   const Covariance<N> scaled = increment.delta_information / largest_entry;
   if (detail::passes_shifted_cholesky<N>(scaled)) return std::nullopt;
   // Not shown positive semi-definite by the cheap test: decide by the eigenvalues themselves.
-  const Eigen::SelfAdjointEigenSolver<Covariance<N>> eigen(scaled, Eigen::EigenvaluesOnly);
-  if (eigen.info() != Eigen::Success) return DropKind::kNotPositive;
-  const double smallest = eigen.eigenvalues().minCoeff();
-  const double scale = eigen.eigenvalues().cwiseAbs().maxCoeff();
-  if (smallest < -1e-9 * scale) return DropKind::kNotPositive;
-  return std::nullopt;
+  return detail::check_eigenvalues(scaled);
 }
 
 /// Mean and covariance finite and within kMaxStateMagnitude; covariance positive definite (a

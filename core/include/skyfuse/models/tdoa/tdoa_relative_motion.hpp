@@ -4,7 +4,9 @@
 /// BlockConstantAcceleration<3> over [dx, dy, d_t1] (block_constant_acceleration.hpp), in the
 /// frame of the reference receiver at the origin, with one noise field, the standard deviation
 /// of each acceleration's increment per step (the paper's q is its square). The position is
-/// [dx, dy] (planar); d_t1 = |[dx, dy]| is a state of its own, not enforced.
+/// [dx, dy] (planar); d_t1 = |[dx, dy]| is a state of its own, not enforced. Its members are
+/// compiled once, in tdoa_relative_motion.cpp: the registry, which every file of the processes
+/// includes, includes this header.
 
 #include <array>
 #include <string_view>
@@ -21,34 +23,18 @@ class TdoaRelativeMotion : public BlockConstantAcceleration<3> {
   /// [dx, dy] is the position; entry 2 is the range d_t1, not a height.
   static constexpr int kPositionDim = 2;
 
-  TdoaRelativeMotion(double time_step_s, const NoiseStd& noise_std)
-      : BlockConstantAcceleration<3>(time_step_s, noise_std[0] * noise_std[0]) {}
+  TdoaRelativeMotion(double time_step_s, const NoiseStd& noise_std);
 
   /// The state of the target's kinematics [p; v; a] (relative to the reference receiver):
   /// [dx, dy, d, dvx, dvy, d', dax, day, d''] with d = |dp|, d' = dp.dv / d and
   /// d'' = (|dv|^2 + dp.da - d'^2) / d, in the horizontal plane.
-  static State from_kinematics(const Vector<9>& kinematics) {
-    const Vector<2> p = kinematics.segment<2>(0);
-    const Vector<2> v = kinematics.segment<2>(3);
-    const Vector<2> a = kinematics.segment<2>(6);
-    const double d = p.norm();
-    const double d_rate = p.dot(v) / d;
-    State x;
-    x << p, d, v, d_rate, a, (v.squaredNorm() + p.dot(a) - d_rate * d_rate) / d;
-    return x;
-  }
+  static State from_kinematics(const Vector<9>& kinematics);
 
   /// `x` with its range entries d, d' and d'' derived from its own [dx, dy], rates and
   /// accelerations, as from_kinematics() derives the truth's. initial_estimate() applies it, so
   /// that an initial estimate starts with d = |dp| (SEEDS.md, paper 002: d0_hat = |dp0_hat|)
   /// rather than with a range error drawn apart from the position's.
-  static State with_derived_range(const State& x) {
-    Vector<9> kinematics = Vector<9>::Zero();
-    kinematics.segment<2>(0) = x.segment<2>(kPosition);
-    kinematics.segment<2>(3) = x.segment<2>(kVelocity);
-    kinematics.segment<2>(6) = x.segment<2>(kAcceleration);
-    return from_kinematics(kinematics);
-  }
+  static State with_derived_range(const State& x);
 };
 
 }  // namespace skyfuse
