@@ -8,16 +8,17 @@
 # adds SOURCE to TARGET once per shard, through a generated file that defines SKYFUSE_SHARD and
 # includes it, and gives TARGET the shard count as SKYFUSE_FILTER_SHARDS.
 
-# How many shards: one per registered filter part (6) by default. A shard compiles again the
-# headers and each part's shared code, not the DDS side of the node processes, which is compiled
-# once per fusion with the sensors and filter arithmetic apart from it
-# (stations/station_sensing.hpp, fusion_center/center_rounds.hpp). Six shards keep every such
-# file under a minute alone (the largest 50 s and 2.1 GB, against 141 s and 4.3 GB in one file)
-# for 14 % more CPU in the whole build (docs/testing.md#the-largest-files); 1 builds one file per
-# program, which ./quickstart demo takes for a newcomer's first build (355 s against 522 s). A
-# part added to the registry joins a shard (its position modulo the count); nothing here needs
-# changing.
-set(SKYFUSE_FILTER_SHARDS 6 CACHE STRING
+# How many shards: one per configuration group (a filter part on one motion model it runs on,
+# registry/configuration_groups.hpp: 10) by default. A shard compiles again the headers and its
+# groups' shared code, not the DDS side of the node processes, which is compiled once per fusion
+# with the sensors and filter arithmetic apart from it (stations/station_sensing.hpp,
+# fusion_center/center_rounds.hpp). What a file costs is mostly its part and model, not its
+# sensors, so one group per file keeps every file under a minute and 1.5 GB alone, against
+# 141 s and 4.3 GB in one file, for more CPU in the whole build
+# (docs/testing.md#the-largest-files); 1 builds one file per program, which ./quickstart demo
+# takes for a newcomer's first build. A group added to the registry joins a shard (its number
+# modulo the count); nothing here needs changing.
+set(SKYFUSE_FILTER_SHARDS 10 CACHE STRING
     "Translation units per program for the code of every filter part (1: one file each)")
 if(NOT SKYFUSE_FILTER_SHARDS MATCHES "^[1-9][0-9]*$")
   message(FATAL_ERROR "SKYFUSE_FILTER_SHARDS must be a whole number >= 1, got '${SKYFUSE_FILTER_SHARDS}'")

@@ -96,23 +96,22 @@ template <std::size_t Shard>
 std::unique_ptr<CenterRounds> make_center_rounds_in_shard(const options::NodeOptions& options,
                                                           const RunPlan& plan) {
   std::unique_ptr<CenterRounds> rounds;
-  dispatch_configuration(
-      plan.scenario, plan.stations,
-      [&]<typename Model, template <int> class SensorOf>(std::type_identity<Model>,
-                                                         SensorTemplate<SensorOf>) {
-        using Sensor = SensorOf<Model::kDim>;
-        visit_filter_in_shard<Shard>(
-            plan.scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
-              // The loader gives a filter only the models and stations it runs on.
-              if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
-                using Fusion = typename CenterFusionOf<Filter, Model, Sensor>::type;
-                rounds = std::make_unique<detail::TypedCenterRounds<Sensor, Fusion>>(options, plan);
-              } else {
-                throw std::logic_error(fmt::format("filter {} on {} with these stations",
-                                                   Filter::kKind, Model::kKind));
-              }
-            });
-      });
+  visit_group_in_shard<Shard>(plan.scenario.filter, [&]<typename Filter, typename Model>(
+                                                        std::type_identity<Filter>,
+                                                        std::type_identity<Model>) {
+    dispatch_sensor<Model::kDim>(
+        plan.scenario, plan.stations, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
+          using Sensor = SensorOf<Model::kDim>;
+          // The loader gives a filter only the stations it runs on.
+          if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
+            using Fusion = typename CenterFusionOf<Filter, Model, Sensor>::type;
+            rounds = std::make_unique<detail::TypedCenterRounds<Sensor, Fusion>>(options, plan);
+          } else {
+            throw std::logic_error(
+                fmt::format("filter {} on {} with these stations", Filter::kKind, Model::kKind));
+          }
+        });
+  });
   return rounds;
 }
 

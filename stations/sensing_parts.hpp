@@ -123,29 +123,25 @@ std::unique_ptr<AnyStationSensing> make_sensing_in_shard(const StationOptions& o
                                                          const RunPlan& plan,
                                                          const StationConfig& me) {
   std::unique_ptr<AnyStationSensing> sensing;
-  bool found = false;
-  visit_filter_in_shard<Shard>(
-      plan.scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
-        visit_model_kind<MotionModels>(
-            plan.scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
-              found = visit_sensor_kind<Sensors, Model::kDim>(
-                  me.sensor.kind, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-                    using Sensor = SensorOf<Model::kDim>;
-                    // The loader gives a filter only the models and stations it runs on.
-                    if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
-                      sensing = detail::make_sensing<Filter, Model, Sensor>(options, plan, me);
-                    } else {
-                      throw std::logic_error(
-                          fmt::format("filter {} on {} with a station of sensor kind {}",
-                                      Filter::kKind, Model::kKind, me.sensor.kind));
-                    }
-                  });
-            });
-      });
-  if (!found) {
-    throw std::logic_error(fmt::format("unregistered motion model {} or sensor kind {}",
-                                       plan.scenario.filter.motion_model.kind, me.sensor.kind));
-  }
+  visit_group_in_shard<Shard>(plan.scenario.filter, [&]<typename Filter, typename Model>(
+                                                        std::type_identity<Filter>,
+                                                        std::type_identity<Model>) {
+    const bool found = visit_sensor_kind<Sensors, Model::kDim>(
+        me.sensor.kind, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
+          using Sensor = SensorOf<Model::kDim>;
+          // The loader gives a filter only the stations it runs on.
+          if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
+            sensing = detail::make_sensing<Filter, Model, Sensor>(options, plan, me);
+          } else {
+            throw std::logic_error(fmt::format("filter {} on {} with a station of sensor kind {}",
+                                               Filter::kKind, Model::kKind, me.sensor.kind));
+          }
+        });
+    if (!found) {
+      throw std::logic_error(
+          fmt::format("station {}: unregistered sensor kind {}", me.id, me.sensor.kind));
+    }
+  });
   return sensing;
 }
 

@@ -213,34 +213,19 @@ int run_station_rounds_in_shard(const StationOptions& options, const RunPlan& pl
                                 const StationConfig& me,
                                 std::unique_ptr<AnyStationSensing> sensing) {
   int code = options::kExitError;
-  bool found = false;
-  visit_filter_in_shard<Shard>(
-      plan.scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
-        found = visit_model_kind<MotionModels>(
-            plan.scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
-              // The loader gives a filter only the models it runs on.
-              if constexpr (filter_runs_on_model<Filter, Model>()) {
-                using Fusion = typename StationFusionOf<Filter, Model>::type;
-                using Sensing = typename Fusion::Sensing;
-                auto* typed = dynamic_cast<Sensing*>(sensing.get());
-                if (typed == nullptr) {
-                  throw std::logic_error(
-                      fmt::format("station {}: its sensing was not made for filter {} on {}", me.id,
-                                  Filter::kKind, Model::kKind));
-                }
-                sensing.release();
-                code = detail::run_station_of<Fusion>(options, plan, me,
-                                                      std::unique_ptr<Sensing>(typed));
-              } else {
-                throw std::logic_error(
-                    fmt::format("filter {} on motion model {}", Filter::kKind, Model::kKind));
-              }
-            });
-      });
-  if (!found) {
-    throw std::logic_error(
-        fmt::format("unregistered motion model {}", plan.scenario.filter.motion_model.kind));
-  }
+  visit_group_in_shard<Shard>(plan.scenario.filter, [&]<typename Filter, typename Model>(
+                                                        std::type_identity<Filter>,
+                                                        std::type_identity<Model>) {
+    using Fusion = typename StationFusionOf<Filter, Model>::type;
+    using Sensing = typename Fusion::Sensing;
+    auto* typed = dynamic_cast<Sensing*>(sensing.get());
+    if (typed == nullptr) {
+      throw std::logic_error(fmt::format("station {}: its sensing was not made for filter {} on {}",
+                                         me.id, Filter::kKind, Model::kKind));
+    }
+    sensing.release();
+    code = detail::run_station_of<Fusion>(options, plan, me, std::unique_ptr<Sensing>(typed));
+  });
   return code;
 }
 

@@ -63,12 +63,11 @@ std::vector<RunTrace> simulate_configured_runs_in_shard(const Scenario& scenario
                                                         const StepObserver& observer) {
   std::vector<RunTrace> traces;
   const int most = *std::max_element(station_counts.begin(), station_counts.end());
-  dispatch_configuration(
-      scenario, most,
-      [&]<typename Model, template <int> class SensorOf>(std::type_identity<Model>,
-                                                         SensorTemplate<SensorOf>) {
-        visit_filter_in_shard<Shard>(scenario.filter, [&]<typename Filter>(
-                                                          std::type_identity<Filter>) {
+  visit_group_in_shard<Shard>(scenario.filter, [&]<typename Filter, typename Model>(
+                                                   std::type_identity<Filter>,
+                                                   std::type_identity<Model>) {
+    dispatch_sensor<Model::kDim>(
+        scenario, most, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
           // The loader allows a filter only on what it runs on.
           if constexpr (filter_runs_on<Filter, Model, SensorOf<Model::kDim>>()) {
             using Stepper = typename RunStepperOf<Filter, Model, SensorOf>::type;
@@ -79,7 +78,7 @@ std::vector<RunTrace> simulate_configured_runs_in_shard(const Scenario& scenario
                                                Filter::kKind, Model::kKind));
           }
         });
-      });
+  });
   return traces;
 }
 

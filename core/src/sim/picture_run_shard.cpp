@@ -279,28 +279,27 @@ std::optional<PictureRunResult> run_picture_in_shard(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
     std::uint64_t run, const std::function<void(const PictureStep&)>& on_step) {
   std::optional<PictureRunResult> result;
-  visit_filter_in_shard<Shard>(scenario.filter, [&]<typename Filter>(std::type_identity<Filter>) {
-    visit_model_kind<MotionModels>(
-        scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model>) {
-          constexpr bool kIncrements = requires {
-            typename Filter::IncrementRule;
-          };
-          constexpr bool kImm = !Filter::kModeNames.empty();
-          if constexpr (kIncrements || kImm) {
-            constexpr int kDim = kImm ? KinematicState::kDim : Model::kDim;
-            visit_sensor_kind<Sensors, kDim>(
-                scenario.stations.front().sensor.kind,
-                [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-                  using Sensor = SensorOf<kDim>;
-                  if constexpr (FixesPosition<Sensor> && filter_runs_on<Filter, Model, Sensor>()) {
-                    result = PictureRun<PictureParts<Filter, Model, SensorOf>>(scenario, truth,
-                                                                               stations, run)
-                                 .run(on_step);
-                  }
-                });
-          }
-        });
-  });
+  visit_group_in_shard<Shard>(
+      scenario.filter,
+      [&]<typename Filter, typename Model>(std::type_identity<Filter>, std::type_identity<Model>) {
+        constexpr bool kIncrements = requires {
+          typename Filter::IncrementRule;
+        };
+        constexpr bool kImm = !Filter::kModeNames.empty();
+        if constexpr (kIncrements || kImm) {
+          constexpr int kDim = kImm ? KinematicState::kDim : Model::kDim;
+          visit_sensor_kind<Sensors, kDim>(
+              scenario.stations.front().sensor.kind,
+              [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
+                using Sensor = SensorOf<kDim>;
+                if constexpr (FixesPosition<Sensor> && filter_runs_on<Filter, Model, Sensor>()) {
+                  result = PictureRun<PictureParts<Filter, Model, SensorOf>>(scenario, truth,
+                                                                             stations, run)
+                               .run(on_step);
+                }
+              });
+        }
+      });
   return result;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// From a scenario's names to code compiled for its types: the motion model it names and the
-/// sensor kind of its stations.
+/// From a scenario's names to code compiled for its types: the sensor kind of its stations
+/// and the filter part it names (filter_shards.hpp adds the motion model).
 
 #include <optional>
 #include <stdexcept>
@@ -16,28 +16,17 @@ namespace skyfuse {
 /// The sensor kind shared by the first `stations` stations; nothing when they differ.
 std::optional<std::string> common_sensor_kind(const Scenario& scenario, int stations);
 
-/// Calls f(std::type_identity<Model>{}, SensorTemplate<Sensor>{}) for the scenario's motion
-/// model and the sensor of its first `stations` stations: their common sensor, or AnySensor
-/// when they differ. The loader has checked every name, so an unknown one here is a programming
-/// error and throws std::logic_error.
-template <typename F>
-void dispatch_configuration(const Scenario& scenario, int stations, F&& f) {
+/// Calls f(SensorTemplate<Sensor>{}) for the sensor of the first `stations` stations on an
+/// N-entry state: their common sensor, or AnySensor when they differ. The loader has checked
+/// every name, so an unknown one here is a programming error and throws std::logic_error.
+template <int N, typename F>
+void dispatch_sensor(const Scenario& scenario, int stations, F&& f) {
   const std::optional<std::string> sensor_kind = common_sensor_kind(scenario, stations);
-  bool sensor_found = false;
-  const bool model_found = visit_model_kind<MotionModels>(
-      scenario.filter.motion_model.kind, [&]<typename Model>(std::type_identity<Model> model) {
-        if (!sensor_kind) {
-          f(model, SensorTemplate<AnySensor>{});
-          sensor_found = true;
-          return;
-        }
-        sensor_found = visit_sensor_kind<Sensors, Model::kDim>(
-            *sensor_kind, [&](auto sensor) { f(model, sensor); });
-      });
-  if (!model_found || !sensor_found) {
-    throw std::logic_error("no registered configuration for motion model '" +
-                           scenario.filter.motion_model.kind + "' with sensor '" +
-                           sensor_kind.value_or("(mixed)") + "'");
+  if (!sensor_kind) {
+    f(SensorTemplate<AnySensor>{});
+  } else if (!visit_sensor_kind<Sensors, N>(*sensor_kind, f)) {
+    throw std::logic_error("no registered sensor '" + *sensor_kind + "' for a " +
+                           std::to_string(N) + "-entry state");
   }
 }
 

@@ -4,11 +4,8 @@
 /// name for a part into its type. The lists themselves are in registry.hpp.
 
 #include <algorithm>
-#include <cstddef>
-#include <optional>
 #include <string_view>
 #include <type_traits>
-#include <utility>
 
 namespace skyfuse {
 
@@ -74,54 +71,23 @@ bool filter_part_is(std::string_view kind, const ModeNames& modes) {
          });
 }
 
-template <typename... Filters, typename ModeNames>
-std::optional<std::size_t> filter_part_index_in(FilterList<Filters...> /*list*/,
-                                                std::string_view kind, const ModeNames& modes) {
-  std::size_t index = 0;
-  const bool found = ((filter_part_is<Filters>(kind, modes) || (++index, false)) || ...);
-  return found ? std::optional(index) : std::nullopt;
-}
-
-/// The position in `List` of the filter part named by `kind` and `modes`; none if none is.
-template <typename List, typename ModeNames>
-std::optional<std::size_t> filter_part_index(std::string_view kind, const ModeNames& modes) {
-  return filter_part_index_in(List{}, kind, modes);
-}
-
-template <std::size_t Shard, std::size_t Shards, typename... Filters, typename ModeNames,
-          typename F>
-bool visit_filter_part_in_shard_in(FilterList<Filters...> /*list*/, std::string_view kind,
-                                   const ModeNames& modes, F& f) {
-  return [&]<std::size_t... I>(std::index_sequence<I...>) {
-    const auto try_part = [&]<std::size_t Index, typename Filter>() {
-      if constexpr (Index % Shards == Shard) {
-        if (filter_part_is<Filter>(kind, modes)) {
-          f(std::type_identity<Filter>{});
-          return true;
-        }
-      }
-      return false;
-    };
-    return (try_part.template operator()<I, Filters>() || ...);
-  }
-  (std::index_sequence_for<Filters...>{});
-}
-
-/// visit_filter_part for the parts of `List` in shard `Shard` of `Shards`: those whose position
-/// modulo Shards is Shard. f is compiled for those parts only, so that code compiled for every
-/// part can be split over Shards translation units (registry/filter_shards.hpp).
-template <typename List, std::size_t Shard, std::size_t Shards, typename ModeNames, typename F>
-bool visit_filter_part_in_shard(std::string_view kind, const ModeNames& modes, F&& f) {
-  return visit_filter_part_in_shard_in<Shard, Shards>(List{}, kind, modes, f);
+template <typename... Filters, typename ModeNames, typename F>
+bool visit_filter_part_in(FilterList<Filters...> /*list*/, std::string_view kind,
+                          const ModeNames& modes, F& f) {
+  const auto try_part = [&]<typename Filter>(std::type_identity<Filter> part) {
+    if (!filter_part_is<Filter>(kind, modes)) return false;
+    f(part);
+    return true;
+  };
+  return (try_part(std::type_identity<Filters>{}) || ...);
 }
 
 /// Calls f(std::type_identity<Filter>{}) for the filter part of `List` named by `kind` and
 /// `modes` (filter_part_is); false, and f not called, when there is none. The one place a
-/// filter's name is compared (dispatch.hpp's visit_filter takes them from a scenario): all the
-/// parts form one shard.
+/// filter's name is compared (dispatch.hpp's visit_filter takes them from a scenario).
 template <typename List, typename ModeNames, typename F>
 bool visit_filter_part(std::string_view kind, const ModeNames& modes, F&& f) {
-  return visit_filter_part_in_shard<List, 0, 1>(kind, modes, f);
+  return visit_filter_part_in(List{}, kind, modes, f);
 }
 
 }  // namespace skyfuse

@@ -44,14 +44,14 @@ using FilterParts =
 template <int N>
 using AnySensor = typename PackOfList<N, Sensors>::type;
 
-/// Whether filter part `Filter` runs on `Model` with stations of `Sensor` (one sensor type, or a
-/// SensorPack when their kinds differ), by what the part states of itself.
 /// Whether `Filter` runs on motion model `Model` (with some station).
 template <typename Filter, typename Model>
 constexpr bool filter_runs_on_model() {
   return Filter::kMotionModel.empty() || Filter::kMotionModel == Model::kKind;
 }
 
+/// Whether filter part `Filter` runs on `Model` with stations of `Sensor` (one sensor type, or a
+/// SensorPack when their kinds differ), by what the part states of itself.
 template <typename Filter, typename Model, typename Sensor>
 constexpr bool filter_runs_on() {
   if (!filter_runs_on_model<Filter, Model>()) return false;
