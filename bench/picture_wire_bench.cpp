@@ -1,0 +1,223 @@
+// Two ways to put a station's round of the multi-target picture on the wire, measured side by
+// side before either goes on DDS (docs/multitarget.md#on-the-wire quotes the numbers with the
+// command that re-measures them: `skyfuse_picture_wire_bench`):
+//
+//  - increments: per track the station updated, (track id, detection index, dQ as its upper
+//    triangle, dy), and its unassociated detections (index, value): what a station sends in a
+//    one-target run, per track;
+//  - detections: the station's scan (every detection's value), its associations (track id,
+//    detection index) and its unassociated detections' indices. Every peer then computes each
+//    station's increments itself: the increment is a function of the common predicted track,
+//    the station's sensor and noise (which every peer knows) and the detection, so the same
+//    code on the same inputs gives the same bits.
+//
+// Both are encoded as Fast CDR encodes a sample (the serializer of the generated wire types),
+// so the byte counts are those a DDS sample would carry. Timed: one peer's round of receiving
+// every station's sample (its own included): decoding them (for the detections, computing every
+// increment) and fusing. Numbers printed, never asserted.
+
+#include <benchmark/benchmark.h>
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "multitarget_setup.hpp"
+
+namespace skyfuse {
+namespace {
+
+using namespace bench;  // NOLINT: the benchmarks' traffic
+
+constexpr int kDim = Model::kDim;
+constexpr int kMeasDim = TrackSensor::kMeasDim;
+constexpr int kUpperTriangle = kDim * (kDim + 1) / 2;
+using Report = Peer::Report;
+using Cdr = eprosima::fastcdr::Cdr;
+
+// One round at N aircraft and M stations: the picture predicted to it, every station's scan and
+// the report it makes of it.
+struct Round {
+  Peer picture;
+  std::vector<KnownStation<TrackSensor>> stations;
+  std::vector<Scan<kMeasDim>> scans;
+  std::vector<Report> reports;
+};
+
+Round make_round(int aircraft, int station_count) {
+  const auto truths = traffic(aircraft, kWarmUpSteps + 1);
+  const auto stations = radars(aircraft, station_count);
+  const DetectionConfig detection = detection_for(aircraft);
+  Round round{warmed_picture(stations, detection, truths),
+              stations,
+              scans_of(stations, detection, truths, kWarmUpSteps),
+              {}};
+  round.picture.predict();
+  AssignmentWork work;
+  for (std::size_t s = 0; s < stations.size(); ++s) {
+    round.reports.push_back(round.picture.report(stations[s], round.scans[s], work));
+  }
+  return round;
+}
+
+// Each encoding into its own buffer, then read back by a peer into the reports it fuses.
+class IncrementEncoding {
+ public:
+  static void encode(Cdr& cdr, const Report& report, const Scan<kMeasDim>& /*scan*/) {
+    cdr << report.station_id << static_cast<std::uint32_t>(report.updates.size());
+    double upper[kUpperTriangle];
+    for (const auto& update : report.updates) {
+      const auto& q = update.contribution.delta_information;
+      int n = 0;
+      for (int r = 0; r < kDim; ++r) {
+        for (int c = r; c < kDim; ++c) upper[n++] = q(r, c);
+      }
+      cdr << update.track << update.detection;
+      cdr.serializeSequence(upper, kUpperTriangle);
+      cdr.serializeSequence(update.contribution.delta_vector.data(), kDim);
+    }
+    encode_unassociated_values(cdr, report);
+  }
+
+  static void decode(Cdr& cdr, const Round& /*round*/, Report& report) {
+    std::uint32_t count = 0;
+    cdr >> report.station_id >> count;
+    report.updates.resize(count);
+    std::vector<double> upper;
+    std::vector<double> vector;
+    for (auto& update : report.updates) {
+      cdr >> update.track >> update.detection;
+      cdr >> upper >> vector;
+      auto& q = update.contribution.delta_information;
+      int n = 0;
+      for (int r = 0; r < kDim; ++r) {
+        for (int c = r; c < kDim; ++c) q(r, c) = q(c, r) = upper[static_cast<std::size_t>(n++)];
+      }
+      update.contribution.delta_vector = Eigen::Map<const Vector<kDim>>(vector.data());
+      update.contribution.station_id = report.station_id;
+    }
+    decode_unassociated_values(cdr, report);
+  }
+
+ private:
+  static void encode_unassociated_values(Cdr& cdr, const Report& report) {
+    cdr << static_cast<std::uint32_t>(report.unassociated.size());
+    for (const auto& d : report.unassociated) {
+      cdr << d.detection;
+      cdr.serializeSequence(d.z.data(), kMeasDim);
+    }
+  }
+  static void decode_unassociated_values(Cdr& cdr, Report& report) {
+    std::uint32_t count = 0;
+    cdr >> count;
+    report.unassociated.resize(count);
+    std::vector<double> z;
+    for (auto& d : report.unassociated) {
+      cdr >> d.detection >> z;
+      d.z = Eigen::Map<const Vector<kMeasDim>>(z.data());
+    }
+  }
+};
+
+class DetectionEncoding {
+ public:
+  static void encode(Cdr& cdr, const Report& report, const Scan<kMeasDim>& scan) {
+    cdr << report.station_id << static_cast<std::uint32_t>(scan.detections.size());
+    for (const auto& z : scan.detections) cdr.serializeSequence(z.data(), kMeasDim);
+    cdr << static_cast<std::uint32_t>(report.updates.size());
+    for (const auto& update : report.updates) cdr << update.track << update.detection;
+    cdr << static_cast<std::uint32_t>(report.unassociated.size());
+    for (const auto& d : report.unassociated) cdr << d.detection;
+  }
+
+  // The station's increments, computed here against the common predicted tracks.
+  static void decode(Cdr& cdr, const Round& round, Report& report) {
+    std::uint32_t count = 0;
+    cdr >> report.station_id >> count;
+    std::vector<Vector<kMeasDim>> detections(count);
+    std::vector<double> z;
+    for (auto& detection : detections) {
+      cdr >> z;
+      detection = Eigen::Map<const Vector<kMeasDim>>(z.data());
+    }
+    const auto& station = *std::find_if(round.stations.begin(), round.stations.end(),
+                                        [&](const auto& s) { return s.id == report.station_id; });
+    const auto tracks = round.picture.tracks();
+    cdr >> count;
+    report.updates.resize(count);
+    for (auto& update : report.updates) {
+      cdr >> update.track >> update.detection;
+      const auto track = std::lower_bound(tracks.begin(), tracks.end(), update.track,
+                                          [](const auto& t, TrackId id) { return t.id < id; });
+      const StationObservation<TrackSensor> observation{
+          station.id, station.sensor, detections[update.detection], station.noise};
+      PeerTracks::contribute(track->filter, observation, update.contribution);
+    }
+    cdr >> count;
+    report.unassociated.resize(count);
+    for (auto& d : report.unassociated) {
+      cdr >> d.detection;
+      d.z = detections[d.detection];
+    }
+  }
+};
+
+// One peer's round under `Encoding`: the M samples decoded into reports, then fused.
+template <typename Encoding>
+void BM_PictureRound(benchmark::State& state) {
+  const Round round =
+      make_round(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const std::size_t stations = round.stations.size();
+  // Every station's sample, encoded once.
+  std::vector<std::vector<char>> samples(stations);
+  double bytes = 0.0;
+  for (std::size_t s = 0; s < stations; ++s) {
+    std::vector<char> memory(1 << 24);
+    eprosima::fastcdr::FastBuffer buffer(memory.data(), memory.size());
+    Cdr cdr(buffer, Cdr::DEFAULT_ENDIAN, Cdr::DDS_CDR);
+    cdr.serialize_encapsulation();
+    Encoding::encode(cdr, round.reports[s], round.scans[s]);
+    memory.resize(cdr.getSerializedDataLength());
+    bytes += static_cast<double>(memory.size());
+    samples[s] = std::move(memory);
+  }
+  std::vector<Report> received(stations);
+  std::size_t tracks = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Peer picture = round.picture;  // the predicted picture, fused afresh each time
+    state.ResumeTiming();
+    for (std::size_t s = 0; s < stations; ++s) {
+      eprosima::fastcdr::FastBuffer buffer(samples[s].data(), samples[s].size());
+      Cdr cdr(buffer, Cdr::DEFAULT_ENDIAN, Cdr::DDS_CDR);
+      cdr.read_encapsulation();
+      Encoding::decode(cdr, round, received[s]);
+    }
+    picture.fuse(kWarmUpSteps, received);
+    benchmark::DoNotOptimize(picture.tracks().data());
+    tracks = picture.tracks().size();
+  }
+  std::size_t updates = 0;
+  for (const Report& report : round.reports) updates += report.updates.size();
+  state.counters["bytes_per_sample"] = bytes / static_cast<double>(stations);
+  state.counters["bytes_per_peer"] = bytes;  // what each peer receives a round
+  state.counters["updates_per_station"] =
+      static_cast<double>(updates) / static_cast<double>(stations);
+  state.counters["tracks"] = static_cast<double>(tracks);
+}
+
+void Sizes(benchmark::internal::Benchmark* b) {
+  for (const int stations : {8, 16}) {
+    for (const int aircraft : {10, 100, 1000}) b->Args({aircraft, stations});
+  }
+  b->ArgNames({"N", "M"})->Unit(benchmark::kMillisecond);
+}
+
+BENCHMARK(BM_PictureRound<IncrementEncoding>)->Apply(Sizes);
+BENCHMARK(BM_PictureRound<DetectionEncoding>)->Apply(Sizes);
+
+}  // namespace
+}  // namespace skyfuse
+
+BENCHMARK_MAIN();
