@@ -1,0 +1,135 @@
+// A station's round of the picture on the wire, there and back: through the generated type's
+// own serializer the values arrive bit for bit with the associations and the unassociated
+// detections as sent, and a sample that is wrong anywhere is refused whole, by the first
+// problem found.
+#include "skyfuse/transport/picture_wire.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include "skyfuse/fusion/information_increment.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/wire/skyfuse_picturePubSubTypes.h"
+
+namespace skyfuse::transport {
+namespace {
+
+using Sensor = RangeAzimuthElevation<6>;
+using Report = StationReport<InformationIncrement<6>, 3>;
+constexpr std::size_t kBound = 64;
+
+// Four detections: tracks 5 and 9 took detections 2 and 0; 1 and 3 are unassociated.
+struct Sent {
+  Scan<3> scan;
+  Report report;
+};
+
+Sent a_round() {
+  Sent sent;
+  sent.scan.station_id = 4;
+  sent.scan.detections = {Vector3(1500.125, 0.25, 0.0625), Vector3(2000.0, -1.5, 0.125),
+                          Vector3(1234.5678901234567, 3.0, -0.5), Vector3(99.0, 0.0, 1.5)};
+  sent.report.station_id = 4;
+  sent.report.updates.resize(2);
+  sent.report.updates[0].track = 5;
+  sent.report.updates[0].detection = 2;
+  sent.report.updates[1].track = 9;
+  sent.report.updates[1].detection = 0;
+  sent.report.unassociated = {{1, sent.scan.detections[1]}, {3, sent.scan.detections[3]}};
+  sent.report.dropped = 1;
+  return sent;
+}
+
+// The sample through the generated type's serializer, as DDS would carry it.
+wire::PictureScan through_cdr(wire::PictureScan sample) {
+  wire::PictureScanPubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&sample)());
+  EXPECT_TRUE(type.serialize(&sample, &payload));
+  wire::PictureScan back;
+  EXPECT_TRUE(type.deserialize(&payload, &back));
+  return back;
+}
+
+TEST(PictureWire, ARoundArrivesAsSentThroughTheSerializer) {
+  const Sent sent = a_round();
+  const wire::PictureScan sample =
+      through_cdr(to_wire<Sensor>(sent.scan, sent.report, 42, 17, 0xfeedfacecafef00dULL));
+  const auto [received, why] = picture_scan_from_wire<Sensor>(sample, kBound);
+  ASSERT_EQ(why, std::nullopt);
+  ASSERT_TRUE(received.has_value());
+  EXPECT_EQ(sample.run_id(), 42U);
+  EXPECT_EQ(received->station_id, 4);
+  EXPECT_EQ(received->step, 17U);
+  EXPECT_EQ(received->picture_digest, 0xfeedfacecafef00dULL);
+  EXPECT_EQ(received->dropped, 1U);
+  ASSERT_EQ(received->detections.size(), sent.scan.detections.size());
+  for (std::size_t j = 0; j < sent.scan.detections.size(); ++j) {
+    EXPECT_EQ(received->detections[j], sent.scan.detections[j]) << "detection " << j;
+  }
+  using Pair = std::pair<TrackId, std::uint32_t>;
+  EXPECT_EQ(received->associations, (std::vector<Pair>{{5, 2}, {9, 0}}));
+  EXPECT_EQ(received->unassociated, (std::vector<std::uint32_t>{1, 3}));
+}
+
+TEST(PictureWire, AnEmptyScanArrivesEmpty) {
+  const wire::PictureScan sample = through_cdr(to_wire<Sensor>(Scan<3>{}, Report{}, 1, 0, 0));
+  const auto [received, why] = picture_scan_from_wire<Sensor>(sample, kBound);
+  ASSERT_TRUE(received.has_value());
+  EXPECT_TRUE(received->detections.empty());
+  EXPECT_TRUE(received->associations.empty());
+  EXPECT_TRUE(received->unassociated.empty());
+}
+
+// The refusals, each on an otherwise good sample.
+struct Forgery {
+  const char* what;
+  std::function<void(wire::PictureScan&)> forge;
+  DropKind why;
+};
+
+TEST(PictureWire, ASampleWrongAnywhereIsRefusedWhole) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<Forgery> forgeries = {
+      {"another sensor kind", [](auto& s) { s.sensor("position_velocity"); },
+       DropKind::kOutOfRange},
+      {"another dimension", [](auto& s) { s.measurement_dim(6); }, DropKind::kOutOfRange},
+      {"a detection cut short", [](auto& s) { s.values().pop_back(); }, DropKind::kOutOfRange},
+      {"a value not finite", [&](auto& s) { s.values()[4] = nan; }, DropKind::kNonFinite},
+      {"a range the sensor cannot report", [](auto& s) { s.values()[3] = -5.0; },
+       DropKind::kOutOfRange},
+      {"more detections than the bound",
+       [](auto& s) { s.values().resize((kBound + 1) * 3, 100.0); }, DropKind::kOutOfRange},
+      {"an association beyond the scan", [](auto& s) { s.associations()[1].detection(4); },
+       DropKind::kOutOfRange},
+      {"a track twice", [](auto& s) { s.associations()[1].track_id(5); }, DropKind::kOutOfRange},
+      {"tracks out of order", [](auto& s) { s.associations()[1].track_id(3); },
+       DropKind::kOutOfRange},
+      {"a detection associated twice", [](auto& s) { s.associations()[1].detection(2); },
+       DropKind::kOutOfRange},
+      {"a detection associated and unassociated", [](auto& s) { s.unassociated()[0] = 2; },
+       DropKind::kOutOfRange},
+      {"unassociated out of order",
+       [](auto& s) {
+         s.unassociated() = {3, 1};
+       },
+       DropKind::kOutOfRange},
+      {"an unassociated index beyond the scan", [](auto& s) { s.unassociated()[1] = 7; },
+       DropKind::kOutOfRange},
+  };
+  const Sent sent = a_round();
+  const wire::PictureScan good = to_wire<Sensor>(sent.scan, sent.report, 42, 17, 0);
+  ASSERT_TRUE(picture_scan_from_wire<Sensor>(good, kBound).first.has_value());
+  for (const Forgery& forgery : forgeries) {
+    wire::PictureScan forged = good;
+    forgery.forge(forged);
+    const auto [received, why] = picture_scan_from_wire<Sensor>(forged, kBound);
+    EXPECT_FALSE(received.has_value()) << forgery.what;
+    EXPECT_EQ(why, forgery.why) << forgery.what;
+  }
+}
+
+}  // namespace
+}  // namespace skyfuse::transport

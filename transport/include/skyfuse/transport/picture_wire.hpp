@@ -1,0 +1,127 @@
+#pragma once
+/// \file
+/// A station's round of the multi-target picture on the wire (wire::PictureScan,
+/// idl/skyfuse_picture.idl) and back: its scan, its associations against the common predicted
+/// picture and its unassociated detections. Values are copied bit for bit, so a peer that
+/// computes an association's increment from a received detection computes the station's own.
+///
+/// A receiver takes a sample only whole: one problem anywhere refuses it, named by the first
+/// found, so that a peer never fuses part of a station's round.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/scan.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
+#include "skyfuse/wire/skyfuse_picture.h"
+
+namespace skyfuse::transport {
+
+/// The sample of station `report.station_id`'s round `step`: `scan`'s values, the report's
+/// associations (ascending track id, as the report keeps them) and unassociated detections.
+/// `picture_digest`: the digest of the predicted picture the report was made against.
+template <typename Sensor, typename Contribution>
+wire::PictureScan to_wire(const Scan<Sensor::kMeasDim>& scan,
+                          const StationReport<Contribution, Sensor::kMeasDim>& report,
+                          std::uint64_t run_id, std::uint32_t step, std::uint64_t picture_digest) {
+  constexpr int M = Sensor::kMeasDim;
+  wire::PictureScan sample;
+  sample.run_id(run_id);
+  sample.step(step);
+  sample.station_id(report.station_id);
+  sample.sensor(std::string(Sensor::kKind));
+  sample.measurement_dim(M);
+  std::vector<double>& values = sample.values();
+  values.reserve(scan.detections.size() * M);
+  for (const Vector<M>& z : scan.detections) values.insert(values.end(), z.data(), z.data() + M);
+  std::vector<wire::Association>& associations = sample.associations();
+  associations.reserve(report.updates.size());
+  for (const auto& update : report.updates) {
+    wire::Association association;
+    association.track_id(update.track);
+    association.detection(update.detection);
+    associations.push_back(association);
+  }
+  std::vector<std::uint32_t>& unassociated = sample.unassociated();
+  unassociated.reserve(report.unassociated.size());
+  for (const auto& d : report.unassociated) unassociated.push_back(d.detection);
+  sample.dropped(static_cast<std::uint32_t>(report.dropped));
+  sample.picture_digest(picture_digest);
+  return sample;
+}
+
+/// What a PictureScan carries, for a station of `Sensor`.
+template <int M>
+struct ReceivedScan {
+  int station_id = 0;
+  std::uint32_t step = 0;
+  std::uint64_t picture_digest = 0;
+  std::vector<Vector<M>> detections;                            ///< in scan order
+  std::vector<std::pair<TrackId, std::uint32_t>> associations;  ///< (track, detection index)
+  std::vector<std::uint32_t> unassociated;                      ///< ascending detection index
+  std::uint32_t dropped = 0;
+};
+
+/// The scan a sample carries for a station of `Sensor` with at most `max_detections` detections,
+/// or why it is refused:
+///  - kOutOfRange: another sensor kind or measurement dimension, values not a whole number of
+///    detections, more detections than the bound, an index beyond the scan, associations not in
+///    strictly ascending track id (a track twice), unassociated indices not strictly ascending,
+///    a detection both associated and unassociated or associated twice, or a detection its
+///    sensor cannot report;
+///  - kNonFinite: a value that is not finite.
+/// Whether each track id is one of the receiver's picture is the receiver's to check.
+template <typename Sensor>
+std::pair<std::optional<ReceivedScan<Sensor::kMeasDim>>, std::optional<DropKind>>
+picture_scan_from_wire(const wire::PictureScan& sample, std::size_t max_detections) {
+  constexpr int M = Sensor::kMeasDim;
+  const auto refuse = [](DropKind why) {
+    return std::pair<std::optional<ReceivedScan<M>>, std::optional<DropKind>>(std::nullopt, why);
+  };
+  if (std::string_view(sample.sensor().c_str()) != Sensor::kKind ||
+      sample.measurement_dim() != static_cast<std::uint32_t>(M) ||
+      sample.values().size() % M != 0) {
+    return refuse(DropKind::kOutOfRange);
+  }
+  const std::size_t count = sample.values().size() / M;
+  if (count > max_detections) return refuse(DropKind::kOutOfRange);
+  ReceivedScan<M> received;
+  received.station_id = sample.station_id();
+  received.step = sample.step();
+  received.picture_digest = sample.picture_digest();
+  received.dropped = sample.dropped();
+  received.detections.reserve(count);
+  for (std::size_t j = 0; j < count; ++j) {
+    const Vector<M> z = Eigen::Map<const Vector<M>>(sample.values().data() + j * M);
+    if (!z.allFinite()) return refuse(DropKind::kNonFinite);
+    if (const auto why = Sensor::check_reported(z)) return refuse(*why);
+    received.detections.push_back(z);
+  }
+  std::vector<char> used(count, 0);
+  const auto take = [&](std::uint32_t j) {
+    if (j >= count || used[j]) return false;
+    used[j] = 1;
+    return true;
+  };
+  received.associations.reserve(sample.associations().size());
+  for (const wire::Association& a : sample.associations()) {
+    const bool ascending =
+        received.associations.empty() || a.track_id() > received.associations.back().first;
+    if (!ascending || !take(a.detection())) return refuse(DropKind::kOutOfRange);
+    received.associations.emplace_back(a.track_id(), a.detection());
+  }
+  received.unassociated.reserve(sample.unassociated().size());
+  for (const std::uint32_t j : sample.unassociated()) {
+    const bool ascending = received.unassociated.empty() || j > received.unassociated.back();
+    if (!ascending || !take(j)) return refuse(DropKind::kOutOfRange);
+    received.unassociated.push_back(j);
+  }
+  return {std::move(received), std::nullopt};
+}
+
+}  // namespace skyfuse::transport
