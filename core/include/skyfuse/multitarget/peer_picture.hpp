@@ -10,7 +10,9 @@
 ///     every station's unassociated detections (PeerPicture::fuse).
 /// Same picture + same reports = same bits at every peer.
 
+#include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -71,6 +73,42 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
     for (const std::uint32_t j : assignment.unassociated) {
       report.unassociated.push_back({j, scan.detections[j]});
     }
+    return report;
+  }
+
+  /// Station `station`'s report rebuilt from what it published (transport/picture_wire.hpp):
+  /// its detections, its associations (ascending track id) and its unassociated detections'
+  /// indices, each association's contribution computed here against this (predicted) picture's
+  /// track — the station's own arithmetic on the same inputs, so its bits when this picture is
+  /// the station's. Nothing when an association names a track this picture does not hold:
+  /// this picture is not the station's. Every index is within `detections` (the receiver
+  /// checked it: picture_scan_from_wire).
+  std::optional<Report> report_of(const KnownStation<Sensor>& station,
+                                  std::span<const Vector<Sensor::kMeasDim>> detections,
+                                  std::span<const std::pair<TrackId, std::uint32_t>> associations,
+                                  std::span<const std::uint32_t> unassociated,
+                                  std::size_t dropped) const {
+    Report report;
+    report.station_id = station.id;
+    report.dropped = dropped;
+    const auto tracks = this->tracks();
+    auto next = tracks.begin();  // associations ascend, as tracks do
+    for (const auto& [id, j] : associations) {
+      next = std::lower_bound(next, tracks.end(), id,
+                              [](const auto& track, TrackId wanted) { return track.id < wanted; });
+      if (next == tracks.end() || next->id != id) return std::nullopt;
+      typename Report::Update update;
+      update.track = id;
+      update.detection = j;
+      const StationObservation<Sensor> observation{station.id, station.sensor, detections[j],
+                                                   station.noise};
+      // A pair the station could not turn into a contribution it did not publish.
+      if (Tracks::contribute(next->filter, observation, update.contribution) ==
+          NumericalStatus::kOk) {
+        report.updates.push_back(std::move(update));
+      }
+    }
+    for (const std::uint32_t j : unassociated) report.unassociated.push_back({j, detections[j]});
     return report;
   }
 
