@@ -184,9 +184,11 @@ TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBit
       sent.push_back(own.report(station, scan, work));
       updates += sent.back().updates.size();
       const auto [scan_back, why] = picture_scan_from_wire<TrackSensor>(
-          through_cdr(to_wire<TrackSensor>(scan, sent.back(), 1, static_cast<std::uint32_t>(k), 0)),
+          through_cdr(to_wire<TrackSensor>(scan, sent.back(), 1, static_cast<std::uint32_t>(k),
+                                           own.digest())),
           kBound);
       ASSERT_TRUE(scan_back.has_value()) << "round " << k;
+      EXPECT_EQ(scan_back->picture_digest, rebuilt.digest()) << "the same predicted picture";
       auto report = rebuilt.report_of(station, scan_back->detections, scan_back->associations,
                                       scan_back->unassociated, scan_back->dropped);
       ASSERT_TRUE(report.has_value()) << "round " << k;
@@ -195,6 +197,7 @@ TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBit
     own.fuse(static_cast<std::uint64_t>(k), sent);
     rebuilt.fuse(static_cast<std::uint64_t>(k), received);
     ASSERT_EQ(own.tracks().size(), rebuilt.tracks().size()) << "round " << k;
+    EXPECT_EQ(own.digest(), rebuilt.digest()) << "round " << k;
     for (std::size_t t = 0; t < own.tracks().size(); ++t) {
       EXPECT_EQ(own.tracks()[t].id, rebuilt.tracks()[t].id);
       EXPECT_EQ(own.tracks()[t].status, rebuilt.tracks()[t].status);

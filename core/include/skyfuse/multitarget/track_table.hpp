@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "skyfuse/core/bit_digest.hpp"
 #include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/multitarget/initiation.hpp"
 #include "skyfuse/multitarget/scan_assignment.hpp"
@@ -86,6 +87,21 @@ class TrackTable {
   void predict() {
     for (TrackType& track : tracks_) filters_.predict(track.filter);
     refresh_estimates();
+  }
+
+  /// A digest of the picture as it stands (every track's id, status and estimate, bit for
+  /// bit): equal at two nodes that hold the same picture, and different, but for a chance of
+  /// 2^-64, where they do not. A station publishes its predicted picture's with its scan.
+  std::uint64_t digest() const {
+    BitDigest digest;
+    digest.add(static_cast<std::uint64_t>(tracks_.size()));
+    for (std::size_t i = 0; i < tracks_.size(); ++i) {
+      digest.add(tracks_[i].id);
+      digest.add(static_cast<std::uint64_t>(tracks_[i].status));
+      digest.add(estimates_[i].mean);
+      digest.add(estimates_[i].covariance);
+    }
+    return digest.value();
   }
 
   /// Track i, for the caller's update between predict() and close_round().
