@@ -55,7 +55,7 @@ wire::PictureScan to_wire(const Scan<Sensor::kMeasDim>& scan,
   return sample;
 }
 
-/// What a PictureScan carries, for a station of `Sensor`.
+/// What a PictureScan carries, for a sensor of M components per detection.
 template <int M>
 struct ReceivedScan {
   int station_id = 0;
