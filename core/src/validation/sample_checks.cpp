@@ -4,8 +4,8 @@
 
 namespace skyfuse::detail {
 
-std::optional<DropKind> check_eigenvalues(const Eigen::Ref<const Eigen::MatrixXd>& scaled) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scaled, Eigen::EigenvaluesOnly);
+std::optional<DropKind> check_eigenvalues(const BoundedSymmetric& scaled) {
+  const Eigen::SelfAdjointEigenSolver<BoundedSymmetric> eigen(scaled, Eigen::EigenvaluesOnly);
   if (eigen.info() != Eigen::Success) return DropKind::kNotPositive;
   const double smallest = eigen.eigenvalues().minCoeff();
   const double scale = eigen.eigenvalues().cwiseAbs().maxCoeff();

@@ -40,12 +40,20 @@ bool passes_shifted_cholesky(const Covariance<N>& dq) {
   return factor.compute(shifted);
 }
 
+// The largest state the out-of-line eigenvalue test takes: the wire's (kMaxStateDim in
+// idl/skyfuse_wire.idl).
+inline constexpr int kMaxCheckedDim = 16;
+// A matrix of any size up to that, held in place: no heap allocation.
+using BoundedSymmetric =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCheckedDim, kMaxCheckedDim>;
+
 // check_increment's rule decided by the eigenvalues of `scaled` (dQ scaled to a largest entry
 // of 1), when passes_shifted_cholesky could not show it: kNotPositive, or nothing. Out of line
-// and of dynamic size, so that one eigen-solver is compiled for every N, in one file: compiled
-// per N in every file that checks an increment it made a second or more of each, and it runs
-// only for increments the cheap test does not pass (an indefinite one, or one at its edge).
-std::optional<DropKind> check_eigenvalues(const Eigen::Ref<const Eigen::MatrixXd>& scaled);
+// and of one bounded size, so that one eigen-solver is compiled for every N, in one file:
+// compiled per N in every file that checks an increment it made a second or more of each, and
+// it runs only for increments the cheap test does not pass (an indefinite one, or one at its
+// edge).
+std::optional<DropKind> check_eigenvalues(const BoundedSymmetric& scaled);
 
 }  // namespace detail
 
@@ -70,6 +78,7 @@ std::optional<DropKind> check_increment(const InformationIncrement<N>& increment
   const Covariance<N> scaled = increment.delta_information / largest_entry;
   if (detail::passes_shifted_cholesky<N>(scaled)) return std::nullopt;
   // Not shown positive semi-definite by the cheap test: decide by the eigenvalues themselves.
+  static_assert(N <= detail::kMaxCheckedDim);
   return detail::check_eigenvalues(scaled);
 }
 
