@@ -59,16 +59,8 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
     for (std::size_t t = 0; t < this->tracks().size(); ++t) {
       const int j = assignment.detection_of_track[t];
       if (j < 0) continue;
-      typename Report::Update update;
-      update.track = this->tracks()[t].id;
-      update.detection = static_cast<std::uint32_t>(j);
-      const StationObservation<Sensor> observation{
-          station.id, station.sensor, scan.detections[static_cast<std::size_t>(j)], station.noise};
-      if (Tracks::contribute(this->tracks()[t].filter, observation, update.contribution) !=
-          NumericalStatus::kOk) {
-        continue;  // nothing to add for this track
-      }
-      report.updates.push_back(std::move(update));
+      add_update(report, station, this->tracks()[t], static_cast<std::uint32_t>(j),
+                 scan.detections[static_cast<std::size_t>(j)]);
     }
     for (const std::uint32_t j : assignment.unassociated) {
       report.unassociated.push_back({j, scan.detections[j]});
@@ -97,16 +89,7 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
       next = std::lower_bound(next, tracks.end(), id,
                               [](const auto& track, TrackId wanted) { return track.id < wanted; });
       if (next == tracks.end() || next->id != id) return std::nullopt;
-      typename Report::Update update;
-      update.track = id;
-      update.detection = j;
-      const StationObservation<Sensor> observation{station.id, station.sensor, detections[j],
-                                                   station.noise};
-      // A pair the station could not turn into a contribution it did not publish.
-      if (Tracks::contribute(next->filter, observation, update.contribution) ==
-          NumericalStatus::kOk) {
-        report.updates.push_back(std::move(update));
-      }
+      add_update(report, station, *next, j, detections[j]);
     }
     for (const std::uint32_t j : unassociated) report.unassociated.push_back({j, detections[j]});
     return report;
@@ -153,6 +136,22 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
   }
 
  private:
+  // Adds `track`'s contribution from `station`'s detection `j` of value `z` to `report`; nothing
+  // for a pair whose contribution fails numerically (the station publishes none for it, so a
+  // peer rebuilding the report skips it too).
+  static void add_update(Report& report, const KnownStation<Sensor>& station,
+                         const typename Table::TrackType& track, std::uint32_t j,
+                         const Vector<Sensor::kMeasDim>& z) {
+    typename Report::Update update;
+    update.track = track.id;
+    update.detection = j;
+    const StationObservation<Sensor> observation{station.id, station.sensor, z, station.noise};
+    if (Tracks::contribute(track.filter, observation, update.contribution) ==
+        NumericalStatus::kOk) {
+      report.updates.push_back(std::move(update));
+    }
+  }
+
   double weight_of(int station_id) const {
     for (const auto& station : this->stations()) {
       if (station.id == station_id) return station.weight;

@@ -98,8 +98,7 @@ picture_scan_from_wire(const wire::PictureScan& sample, std::size_t max_detectio
   received.detections.reserve(count);
   for (std::size_t j = 0; j < count; ++j) {
     const Vector<M> z = Eigen::Map<const Vector<M>>(sample.values().data() + j * M);
-    if (!z.allFinite()) return refuse(DropKind::kNonFinite);
-    if (const auto why = Sensor::check_reported(z)) return refuse(*why);
+    if (const auto why = Sensor::check_reported(z)) return refuse(*why);  // kNonFinite too
     received.detections.push_back(z);
   }
   std::vector<char> used(count, 0);
