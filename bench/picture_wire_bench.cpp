@@ -5,14 +5,16 @@
 //  - increments: per track the station updated, (track id, detection index, dQ as its upper
 //    triangle, dy), and its unassociated detections (index, value): what a station sends in a
 //    one-target run, per track;
-//  - detections: the station's scan (every detection's value), its associations (track id,
-//    detection index) and its unassociated detections' indices. Every peer then computes each
+//  - detections: wire::PictureScan (idl/skyfuse_picture.idl), the station's scan (every
+//    detection's value), its associations (track id, detection index) and its unassociated
+//    detections' indices, with the run, step, sensor kind and digest. Every peer then computes each
 //    station's increments itself: the increment is a function of the common predicted track,
 //    the station's sensor and noise (which every peer knows) and the detection, so the same
 //    code on the same inputs gives the same bits.
 //
-// Both are encoded as Fast CDR encodes a sample (the serializer of the generated wire types),
-// so the byte counts are those a DDS sample would carry. Timed: one peer's round of receiving
+// The increments, which have no wire type, are encoded by hand as Fast CDR encodes a sample (the
+// serializer of the generated wire types), so both byte counts are those a DDS sample would
+// carry. Timed: one peer's round of receiving
 // every station's sample (its own included): decoding them (for the detections, computing every
 // increment) and fusing. Numbers printed, never asserted.
 
@@ -24,6 +26,7 @@
 #include <vector>
 
 #include "multitarget_setup.hpp"
+#include "skyfuse/transport/picture_wire.hpp"
 
 namespace skyfuse {
 namespace {
@@ -122,44 +125,22 @@ class IncrementEncoding {
 
 class DetectionEncoding {
  public:
+  // The wire type itself (transport/picture_wire.hpp). Its digest's 8 bytes travel; their
+  // value does not matter here.
   static void encode(Cdr& cdr, const Report& report, const Scan<kMeasDim>& scan) {
-    cdr << report.station_id << static_cast<std::uint32_t>(scan.detections.size());
-    for (const auto& z : scan.detections) cdr.serializeSequence(z.data(), kMeasDim);
-    cdr << static_cast<std::uint32_t>(report.updates.size());
-    for (const auto& update : report.updates) cdr << update.track << update.detection;
-    cdr << static_cast<std::uint32_t>(report.unassociated.size());
-    for (const auto& d : report.unassociated) cdr << d.detection;
+    transport::to_wire<TrackSensor>(scan, report, 1, kWarmUpSteps, 0).serialize(cdr);
   }
 
-  // The station's increments, computed here against the common predicted tracks.
+  // Checked as a receiver checks it, and the station's increments computed here against the
+  // common predicted tracks (PeerPicture::report_of).
   static void decode(Cdr& cdr, const Round& round, Report& report) {
-    std::uint32_t count = 0;
-    cdr >> report.station_id >> count;
-    std::vector<Vector<kMeasDim>> detections(count);
-    std::vector<double> z;
-    for (auto& detection : detections) {
-      cdr >> z;
-      detection = Eigen::Map<const Vector<kMeasDim>>(z.data());
-    }
+    wire::PictureScan sample;
+    sample.deserialize(cdr);
+    const auto [scan, why] = transport::picture_scan_from_wire<TrackSensor>(sample, 4096);
     const auto& station = *std::find_if(round.stations.begin(), round.stations.end(),
-                                        [&](const auto& s) { return s.id == report.station_id; });
-    const auto tracks = round.picture.tracks();
-    cdr >> count;
-    report.updates.resize(count);
-    for (auto& update : report.updates) {
-      cdr >> update.track >> update.detection;
-      const auto track = std::lower_bound(tracks.begin(), tracks.end(), update.track,
-                                          [](const auto& t, TrackId id) { return t.id < id; });
-      const StationObservation<TrackSensor> observation{
-          station.id, station.sensor, detections[update.detection], station.noise};
-      PeerTracks::contribute(track->filter, observation, update.contribution);
-    }
-    cdr >> count;
-    report.unassociated.resize(count);
-    for (auto& d : report.unassociated) {
-      cdr >> d.detection;
-      d.z = detections[d.detection];
-    }
+                                        [&](const auto& s) { return s.id == scan->station_id; });
+    report = *round.picture.report_of(station, scan->detections, scan->associations,
+                                      scan->unassociated, scan->dropped);
   }
 };
 
