@@ -9,7 +9,7 @@ namespace skyfuse::center {
 
 int run_center(const options::NodeOptions& options) {
   const RunPlan plan = transport::load_plan(options);
-  // What updates the rounds is compiled by shard of the filter parts, the endpoints once
+  // What updates the rounds is compiled by shard of the configuration groups, the endpoints once
   // (center_rounds.hpp).
   auto rounds = with_filter_shard(plan.scenario.filter, [&](auto shard) {
     return make_center_rounds_in_shard<decltype(shard)::value>(options, plan);

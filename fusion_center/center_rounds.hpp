@@ -1,7 +1,7 @@
 #pragma once
 // The center's rounds as the DDS side sees them: measurements in, tracks out. What updates them
 // (the run's filter part on the stations' sensor kind, in the fixed-lag chain) is behind this
-// interface, compiled by shard of the filter parts in files without DDS
+// interface, compiled by shard of the configuration groups in files without DDS
 // (typed_center_rounds.hpp, center_rounds_shard.cpp), so that the center's endpoints and round
 // loop (center.hpp) are compiled once. docs/testing.md#build has what that saves.
 
@@ -58,8 +58,8 @@ class CenterRounds {
   virtual void report() const {}
 };
 
-/// The center's rounds for `plan`, whose filter part lies in shard `Shard`. Defined in
-/// typed_center_rounds.hpp, instantiated per shard by center_rounds_shard.cpp.
+/// The center's rounds for `plan`, whose filter part and motion model lie in shard `Shard`. Defined
+/// in typed_center_rounds.hpp, instantiated per shard by center_rounds_shard.cpp.
 template <std::size_t Shard>
 std::unique_ptr<CenterRounds> make_center_rounds_in_shard(const options::NodeOptions& options,
                                                           const RunPlan& plan);

@@ -2,8 +2,8 @@
 // The center's rounds for stations of one `Sensor` (one sensor type, or a SensorPack when they
 // differ) updated by `Fusion`: what the run's filter part runs at the center (central_fusion.hpp,
 // CenterFusionOf), in the fixed-lag chain (tracking/fixed_lag_center.hpp). Compiled per shard of
-// the filter parts in center_rounds_shard.cpp, with no DDS code in sight; the center process
-// (center.hpp) sees them as CenterRounds.
+// the configuration groups in center_rounds_shard.cpp, with no DDS code in sight; the center
+// process (center.hpp) sees them as CenterRounds.
 
 #include <fmt/format.h>
 

@@ -1,6 +1,6 @@
 #pragma once
 // The typed side of a station's sensing (station_sensing.hpp): a sensor of one kind, its source
-// and the filter part's contribution rule, compiled per shard of the filter parts in
+// and the filter part's contribution rule, compiled per shard of the configuration groups in
 // sensing_shard.cpp, with no DDS code in sight.
 
 #include <fmt/format.h>

@@ -1,7 +1,7 @@
 #pragma once
 // The station process's rounds, compiled once per fusion (station_fusions.hpp) and exchange, by
-// shard of the filter parts in station_rounds_shard.cpp: the sensor and the filter part's rule
-// are behind the station's sensing (station_sensing.hpp), compiled apart.
+// shard of the configuration groups in station_rounds_shard.cpp: the sensor and the filter part's
+// rule are behind the station's sensing (station_sensing.hpp), compiled apart.
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>

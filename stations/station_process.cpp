@@ -29,7 +29,7 @@ int run_station(const StationOptions& options) {
       throw std::invalid_argument("--rejoin-at-step: lock-step runs only, not real time");
     }
   }
-  // The sensor's arithmetic is compiled by shard of the filter parts, the rounds once per
+  // The sensor's arithmetic is compiled by shard of the configuration groups, the rounds once per
   // fusion (station_sensing.hpp).
   auto sensing = with_filter_shard(plan.scenario.filter, [&](auto shard) {
     return make_sensing_in_shard<decltype(shard)::value>(options, plan, *me);

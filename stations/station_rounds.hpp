@@ -1,6 +1,6 @@
 #pragma once
 // The station's rounds over DDS, once its sensing is made: defined in station.hpp, compiled by
-// shard of the filter parts in station_rounds_shard.cpp.
+// shard of the configuration groups in station_rounds_shard.cpp.
 
 #include <cstddef>
 #include <memory>
@@ -11,9 +11,9 @@
 
 namespace skyfuse::station {
 
-/// Runs station `me` of `plan`, whose filter part lies in shard `Shard`, to the end of the run,
-/// its measurements and contributions made by `sensing` (made for the run's filter part and
-/// model by make_sensing_in_shard); returns an options::ExitCode.
+/// Runs station `me` of `plan`, whose filter part and motion model lie in shard `Shard`, to the end
+/// of the run, its measurements and contributions made by `sensing` (made for the run's filter part
+/// and model by make_sensing_in_shard); returns an options::ExitCode.
 template <std::size_t Shard>
 int run_station_rounds_in_shard(const StationOptions& options, const RunPlan& plan,
                                 const StationConfig& me,

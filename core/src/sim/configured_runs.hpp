@@ -1,6 +1,6 @@
 #pragma once
 // The Monte Carlo's runs for the scenario's motion model, sensor kind and filter: compiled by
-// shard of the registered filter parts (registry/filter_shards.hpp), each shard in its own
+// shard of the configuration groups (registry/filter_shards.hpp), each shard in its own
 // translation unit (configured_runs_shard.cpp).
 
 #include <cstddef>
@@ -16,7 +16,8 @@
 namespace skyfuse {
 
 /// One run for each of `station_counts`, all fed from one simulation of the measurements of the
-/// largest count's stations, for a scenario whose filter part lies in shard `Shard`.
+/// largest count's stations, for a scenario whose filter part and motion model lie in shard
+/// `Shard`.
 template <std::size_t Shard>
 std::vector<RunTrace> simulate_configured_runs_in_shard(const Scenario& scenario,
                                                         const TruthTrajectory& truth,

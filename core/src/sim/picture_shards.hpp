@@ -1,6 +1,6 @@
 #pragma once
 // The in-process picture's runs for the scenario's filter part, motion model and sensor kind:
-// compiled by shard of the registered filter parts (registry/filter_shards.hpp), each shard in
+// compiled by shard of the configuration groups (registry/filter_shards.hpp), each shard in
 // its own translation unit (picture_run_shard.cpp).
 
 #include <cstddef>
@@ -13,8 +13,8 @@
 
 namespace skyfuse {
 
-/// run_picture for a scenario whose filter part lies in shard `Shard`; nothing if no picture
-/// runs that part on the scenario's model and sensor kind.
+/// run_picture for a scenario whose filter part and motion model lie in shard `Shard`; nothing if
+/// no picture runs that part on the scenario's model and sensor kind.
 template <std::size_t Shard>
 std::optional<PictureRunResult> run_picture_in_shard(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
