@@ -4,6 +4,8 @@
 // twin bit for bit.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -118,26 +120,45 @@ TEST(DdsImm, AnImmOfTheScenariosTwoModesEqualsTheInProcessRunBitForBit) {
   EXPECT_GT(modes.at({750, 1})[1], 0.8);  // 15 s, in the turn
 }
 
+// 20 % of the samples lost on every link in rounds 100-139: peers fuse different sets and
+// drift apart, then each takes the lowest station's prior again and they agree from there on.
+// The round deadline is the tree tests' 250 ms: at 50 ms a CI machine running two suites' worth
+// of processes on 2 cores once closed every one of the 300 rounds before any peer's sample was
+// in (16 s for the run, no resync, peers apart at the end), which is starvation, not the rule.
 TEST(DdsImm, PeersThatLostDifferentSamplesAgreeAgainAfterTheLossStops) {
+  constexpr int kLossFrom = 100;
+  constexpr int kLossTo = 140;
   const auto dir = test_dir();
   const Completed run = run_to_completion(
-      imm_run(182, dir / "out", 300,
-              {"--round-deadline-ms", "50", "--loss", "0.2", "--loss-steps", "100:200"}),
+      imm_run(182, dir / "out", 240,
+              {"--round-deadline-ms", "250", "--loss", "0.2", "--loss-steps",
+               std::to_string(kLossFrom) + ":" + std::to_string(kLossTo)}),
       dir / "out.log", 180s);
   ASSERT_EQ(run.status.code, 0) << run.output;
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  // What the run says of its links, printed with any failure below.
+  const std::string links = fmt::format(
+      "lost {}, refused {}, resyncs {}, late used {}, round latency p50 {} us\n{}",
+      summary.at("lost_by_node").dump(), summary.at("dropped_by_kind").dump(),
+      summary.at("resyncs_by_station").dump(), summary.at("late_used_by_node").dump(),
+      summary.at("round_latency_us_p50").dump(), run.output);
+  // Before the loss every peer heard every other: the same bits.
+  const auto spread = steps_column(dir / "out" / "steps.csv", "peer_spread");
+  ASSERT_EQ(spread.size(), 240u);
+  for (int k = 0; k < kLossFrom; ++k) ASSERT_EQ(spread[k], 0.0) << "step " << k << "\n" << links;
   EXPECT_GT(summary.at("max_abs_diff_between_peers").get<double>(), 0.0)
-      << "peers that lost different samples cannot agree during the loss";
-  EXPECT_EQ(summary.at("peer_spread_end").get<double>(), 0.0);
+      << "peers that lost different samples cannot agree during the loss\n"
+      << links;
+  EXPECT_EQ(summary.at("peer_spread_end").get<double>(), 0.0) << links;
   int resyncs = 0;
   for (const auto& [station, count] : summary.at("resyncs_by_station").items()) {
     resyncs += count.get<int>();
   }
-  EXPECT_GT(resyncs, 0);
+  EXPECT_GT(resyncs, 0) << links;
   // After the loss every peer holds the same mode probabilities again.
   const auto modes = read_modes(dir / "out" / "modes.csv", kThreeModes);
-  for (int k = 202; k < 300; ++k) {
-    for (int id : {2, 3, 4}) EXPECT_EQ(modes.at({k, id}), modes.at({k, 1})) << k;
+  for (int k = kLossTo + 2; k < 240; ++k) {
+    for (int id : {2, 3, 4}) ASSERT_EQ(modes.at({k, id}), modes.at({k, 1})) << k << "\n" << links;
   }
 }
 
