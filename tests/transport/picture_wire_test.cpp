@@ -16,6 +16,7 @@
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
 #include "skyfuse/wire/skyfuse_picturePubSubTypes.h"
+#include "transport/picture_world.hpp"
 
 namespace skyfuse::transport {
 namespace {
@@ -138,38 +139,13 @@ TEST(PictureWire, ASampleWrongAnywhereIsRefusedWhole) {
 // peer that rebuilds every station's report from the station's sample holds, round after round,
 // the picture of a peer that fused the stations' own reports, bit for bit.
 TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBitForBit) {
-  using Model = ConstantVelocity3D;
-  using TrackSensor = RangeAzimuthElevation<Model::kDim>;
-  using Tracks = PeerModelTracks<Model, EkfIncrementRule>;
-  using Peer = PeerPicture<Tracks, TrackSensor>;
+  using TrackSensor = test::PictureWorld::Sensor;
+  using Peer = test::PictureWorld::Peer;
   constexpr int kRounds = 20;
-
-  std::vector<TargetTruth> truths;
-  for (int a = 0; a < 5; ++a) {
-    TargetTruth truth{"aircraft", 0, {}};
-    for (int k = 0; k < kRounds; ++k) {
-      Vector<kKinematicsDim> x = Vector<kKinematicsDim>::Zero();
-      x.head<3>() = Vector3(-2000.0 + 30.0 * k, 800.0 * a - 1600.0, 300.0 + 50.0 * a);
-      x.segment<3>(3) = Vector3(30.0, 0.0, 0.0);
-      truth.states.push_back(x);
-    }
-    truths.push_back(std::move(truth));
-  }
-  Covariance<3> noise = Covariance<3>::Zero();
-  noise.diagonal() << 25.0, 1e-6, 1e-6;
-  std::vector<KnownStation<TrackSensor>> stations;
-  for (int i = 0; i < 3; ++i) {
-    const Vector3 site(6000.0 * std::cos(2.0 * i), 6000.0 * std::sin(2.0 * i), 30.0);
-    stations.push_back({i + 1, TrackSensor(site), noise, 1.0});
-  }
-  DetectionConfig detection;
-  detection.probability = 0.9;
-  detection.field_of_view.max_range_m = 20000.0;
-  detection.clutter_per_scan = 2.0;
-
-  const Tracks tracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0));
-  Peer own(tracks, stations, TrackerConfig{});      // fuses the stations' own reports
-  Peer rebuilt(tracks, stations, TrackerConfig{});  // fuses the reports rebuilt from the wire
+  const test::PictureWorld world(kRounds);
+  const auto& stations = world.stations;
+  Peer own = world.empty_picture();      // fuses the stations' own reports
+  Peer rebuilt = world.empty_picture();  // fuses the reports rebuilt from the wire
   AssignmentWork work;
   std::size_t updates = 0;
   for (int k = 0; k < kRounds; ++k) {
@@ -177,10 +153,9 @@ TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBit
     rebuilt.predict();
     std::vector<Peer::Report> sent;
     std::vector<Peer::Report> received;
-    for (const auto& station : stations) {
-      const Scan<3> scan =
-          simulate_scan(station.id, RangeAzimuthElevation<kKinematicsDim>(station.sensor.site()),
-                        station.sensor.site(), station.noise, detection, truths, k, 11, 0);
+    for (std::size_t s = 0; s < stations.size(); ++s) {
+      const auto& station = stations[s];
+      const Scan<3> scan = world.scan(s, k);
       sent.push_back(own.report(station, scan, work));
       updates += sent.back().updates.size();
       const auto [scan_back, why] = picture_scan_from_wire<TrackSensor>(

@@ -85,7 +85,7 @@ static_assert(kSamplesPerInstance >= static_cast<int>(options::kMaxRefusionLag))
 // The links fusion tolerates losing: a round closes at its deadline without the sample.
 bool is_data_link_topic(const std::string& topic) {
   return topic == "skyfuse_increment" || topic == "skyfuse_partial" ||
-         topic == "skyfuse_measurement";
+         topic == "skyfuse_measurement" || topic == "skyfuse_picture_scan";
 }
 
 // The RTPS port mapping (options::kRtpsPortBase, kRtpsDomainGain) gives domain d its
@@ -116,9 +116,10 @@ std::optional<std::string> receive_buffer_warning(int stations) {
 
 std::optional<int> multicast_port(std::string_view topic, int domain_id) {
   // Ticks go to every node, measurements to the center and the harness's recorder, increments
-  // to every station. Tracks have one reader, statuses are few: unicast.
+  // and the picture's scans to every station. Tracks have one reader, statuses are few:
+  // unicast.
   constexpr std::string_view kOneToMany[] = {"skyfuse_tick", "skyfuse_measurement",
-                                             "skyfuse_increment"};
+                                             "skyfuse_increment", "skyfuse_picture_scan"};
   for (int i = 0; i < static_cast<int>(std::size(kOneToMany)); ++i) {
     if (topic == kOneToMany[i]) {
       return options::kRtpsPortBase + options::kRtpsDomainGain * domain_id + kFirstFreeOffset + i;

@@ -4,6 +4,7 @@
 /// topic; everything else derives from these traits.
 
 #include <skyfuse/wire/skyfuse_wire.h>
+#include <skyfuse/wire/skyfuse_picturePubSubTypes.h>
 #include <skyfuse/wire/skyfuse_wirePubSubTypes.h>
 
 namespace skyfuse::transport {
@@ -30,6 +31,11 @@ template <>
 struct TopicTraits<wire::PartialSum> {
   using PubSubType = wire::PartialSumPubSubType;
   static constexpr const char* kName = "skyfuse_partial";
+};
+template <>
+struct TopicTraits<wire::PictureScan> {
+  using PubSubType = wire::PictureScanPubSubType;
+  static constexpr const char* kName = "skyfuse_picture_scan";
 };
 template <>
 struct TopicTraits<wire::TrackEstimate> {

@@ -1,0 +1,63 @@
+#pragma once
+// A small multi-target world for the picture's wire and exchange tests: five aircraft flying
+// east in parallel lanes, three radars around them, misses and clutter.
+
+#include <cmath>
+#include <vector>
+
+#include "skyfuse/models/constant_velocity.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/track_filters.hpp"
+#include "skyfuse/scenario/measurement_simulation.hpp"
+#include "skyfuse/tracking/ekf_increment_rule.hpp"
+
+namespace skyfuse::test {
+
+struct PictureWorld {
+  using Model = ConstantVelocity3D;
+  using Sensor = RangeAzimuthElevation<Model::kDim>;
+  using Tracks = PeerModelTracks<Model, EkfIncrementRule>;
+  using Peer = PeerPicture<Tracks, Sensor>;
+
+  explicit PictureWorld(int rounds) {
+    for (int a = 0; a < 5; ++a) {
+      TargetTruth truth{"aircraft", 0, {}};
+      for (int k = 0; k < rounds; ++k) {
+        Vector<kKinematicsDim> x = Vector<kKinematicsDim>::Zero();
+        x.head<3>() = Vector3(-2000.0 + 30.0 * k, 800.0 * a - 1600.0, 300.0 + 50.0 * a);
+        x.segment<3>(3) = Vector3(30.0, 0.0, 0.0);
+        truth.states.push_back(x);
+      }
+      truths.push_back(std::move(truth));
+    }
+    Covariance<3> noise = Covariance<3>::Zero();
+    noise.diagonal() << 25.0, 1e-6, 1e-6;
+    for (int i = 0; i < 3; ++i) {
+      const Vector3 site(6000.0 * std::cos(2.0 * i), 6000.0 * std::sin(2.0 * i), 30.0);
+      stations.push_back({i + 1, Sensor(site), noise, 1.0});
+    }
+    detection.probability = 0.9;
+    detection.field_of_view.max_range_m = 20000.0;
+    detection.clutter_per_scan = 2.0;
+  }
+
+  // An empty picture of the world's filter, at every peer the same.
+  Peer empty_picture() const {
+    return Peer(Tracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0)), stations,
+                TrackerConfig{});
+  }
+
+  // Station `s`'s scan of round k (seeded: the same at every call).
+  Scan<3> scan(std::size_t s, int k) const {
+    const auto& station = stations[s];
+    return simulate_scan(station.id, RangeAzimuthElevation<kKinematicsDim>(station.sensor.site()),
+                         station.sensor.site(), station.noise, detection, truths, k, 11, 0);
+  }
+
+  std::vector<TargetTruth> truths;
+  std::vector<KnownStation<Sensor>> stations;
+  DetectionConfig detection;
+};
+
+}  // namespace skyfuse::test

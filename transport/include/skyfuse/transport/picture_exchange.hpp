@@ -1,0 +1,132 @@
+#pragma once
+/// \file
+/// A station's side of the multi-target picture's exchange over DDS. Each round it publishes
+/// its scan with its associations against the common predicted picture (wire::PictureScan,
+/// transport/picture_wire.hpp) and collects every station's sample of the round, its own
+/// included: every report a peer fuses is rebuilt from the wire, so every peer fuses the same
+/// inputs by the same arithmetic and holds the same picture, bit for bit.
+///
+/// Screening, in order: another run's sample, then a sample wrong anywhere (refused whole by
+/// its first problem), then who it claims to be and when, and whether its writer speaks for
+/// that station (transport/source_binding.hpp). A sample made against another predicted picture
+/// (its digest differs from the receiver's) is kept and counted: it is fused only if every
+/// track it names is in the receiver's picture, and the count tells that peers have parted.
+///
+/// Threading: the node's thread, as every endpoint (dds_node.hpp).
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/scan.hpp"
+#include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/picture_wire.hpp"
+#include "skyfuse/transport/source_binding.hpp"
+#include "skyfuse/transport/topics.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
+
+namespace skyfuse::transport {
+
+template <typename Tracks, typename Sensor>
+class PictureExchange {
+ public:
+  static constexpr int M = Sensor::kMeasDim;
+  using Picture = PeerPicture<Tracks, Sensor>;
+  using Report = typename Picture::Report;
+
+  /// The exchange of `node` among `stations` (every participant of the run; their ids
+  /// ascending), for run `run_id`; a sample of more than `max_detections` is refused.
+  PictureExchange(DdsNode& node, std::span<const KnownStation<Sensor>> stations,
+                  std::uint64_t run_id, std::size_t max_detections)
+      : stations_(stations.begin(), stations.end()),
+        ids_(ids_of(stations)),
+        collector_(ids_),
+        run_id_(run_id),
+        max_detections_(max_detections),
+        out_(node.make_writer<wire::PictureScan>()),
+        in_(node.make_reader<wire::PictureScan>()) {}
+
+  /// Every station's writer and reader matched, this one's own included.
+  bool matched() const {
+    const auto stations = static_cast<int>(stations_.size());
+    return in_.matched() >= stations && out_.matched() >= stations;
+  }
+  Reader<wire::PictureScan>& reader() { return in_; }
+
+  /// Publishes this station's round `step`: `scan`, and `report` of it against the predicted
+  /// picture whose digest is `picture_digest`.
+  void publish(std::uint32_t step, const Scan<M>& scan, const Report& report,
+               std::uint64_t picture_digest) {
+    out_.write(to_wire<Sensor>(scan, report, run_id_, step, picture_digest));
+  }
+
+  /// Takes every sample waiting, keeping those of the current step and the next; each refused
+  /// one is counted by kind (drops()).
+  void take() {
+    wire::PictureScan sample;
+    WriterId writer{};
+    while (in_.take(sample, &writer)) {
+      if (const auto why = screen(sample, writer)) ++drops_[static_cast<std::size_t>(*why)];
+    }
+  }
+
+  /// Every station's sample of the current step is in.
+  bool complete() const { return collector_.count() == ids_.size(); }
+  /// The stations whose sample of the current step is still missing.
+  std::vector<int> missing() const { return collector_.missing(); }
+
+  /// The current step's reports, rebuilt against `picture` (the predicted picture of this
+  /// step), ascending station id: one per station whose sample arrived and names only tracks
+  /// `picture` holds. A sample made against another picture counts in other_pictures().
+  std::vector<Report> reports(const Picture& picture) {
+    std::vector<Report> out;
+    const std::uint64_t digest = picture.digest();
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+      if (!collector_.filled(i)) continue;
+      const ReceivedScan<M>& scan = collector_.payloads()[i];
+      if (scan.picture_digest != digest) ++other_pictures_;
+      auto report = picture.report_of(stations_[i], scan.detections, scan.associations,
+                                      scan.unassociated, scan.dropped);
+      if (report) out.push_back(std::move(*report));
+    }
+    return out;
+  }
+
+  /// Closes the current step; the next one's samples already taken stay.
+  void advance() { collector_.advance(); }
+
+  const DropCounts& drops() const { return drops_; }
+  /// Samples made against a predicted picture other than this peer's.
+  std::uint64_t other_pictures() const { return other_pictures_; }
+
+ private:
+  static std::vector<int> ids_of(std::span<const KnownStation<Sensor>> stations) {
+    std::vector<int> ids;
+    for (const auto& s : stations) ids.push_back(s.id);
+    return ids;
+  }
+
+  std::optional<DropKind> screen(const wire::PictureScan& sample, const WriterId& writer) {
+    if (sample.run_id() != run_id_) return DropKind::kWrongRun;
+    auto [scan, why] = picture_scan_from_wire<Sensor>(sample, max_detections_);
+    if (!scan) return why;
+    return admit(collector_, sources_, scan->step, scan->station_id, writer, *scan);
+  }
+
+  std::vector<KnownStation<Sensor>> stations_;  // ascending id, as ids_
+  std::vector<int> ids_;
+  StepCollector<ReceivedScan<M>> collector_;
+  SourceBinding sources_;
+  std::uint64_t run_id_;
+  std::size_t max_detections_;
+  Writer<wire::PictureScan> out_;
+  Reader<wire::PictureScan> in_;
+  DropCounts drops_{};
+  std::uint64_t other_pictures_ = 0;
+};
+
+}  // namespace skyfuse::transport
