@@ -7,12 +7,18 @@
 
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/transport/node_setup.hpp"
+#include "picture_station.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
 #include "station_rounds.hpp"
 #include "station_sensing.hpp"
 
 namespace skyfuse::station {
 
 int run_station(const StationOptions& options) {
+  if (Scenario scenario = load_scenario_or_default(options.node.scenario_path);
+      scenario.has_many_targets()) {
+    return run_picture_station(options, std::move(scenario));
+  }
   const RunPlan plan = transport::load_plan(options.node);
   const StationConfig* me = plan.participant(options.id);
   if (me == nullptr) {

@@ -7,10 +7,12 @@
 #include <charconv>
 #include <limits>
 
+#include "run/picture_run.hpp"
 #include "run/simulated_hosts.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/node_config.hpp"
 
 namespace skyfuse::harness {
@@ -131,6 +133,13 @@ void add_run_command(CLI::App& app, RunOptions& o) {
 }
 
 int run_run(const RunOptions& o) {
+  if (const Scenario scenario = load_scenario_or_default(o.node.scenario_path);
+      scenario.has_many_targets()) {
+    const PictureRunSummary summary = execute_picture_run(o, scenario);
+    print_picture_run_table(summary, stdout);
+    fmt::print("results in {}\n", o.out_dir);
+    return summary.peers_identical && summary.equals_in_process ? 0 : 1;
+  }
   const RunPlan plan = load_run_plan(o);
   warn_if_receive_buffers_too_small(plan.stations);
   const auto report = [&](const RunSummary& summary) {

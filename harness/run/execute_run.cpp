@@ -244,17 +244,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     }
   };
   const Placement placement(o, plan.scenario.exchange, ids.size());
-  transport::NodeConfig config;
-  config.domain_id = o.node.domain;
-  config.name = "skyfuse-harness";
-  if (o.node.qos_file) config.qos_file = *o.node.qos_file;
-  config.best_effort_data = o.node.best_effort;
-  config.network = placement.harness();
-  config.network.lease_s = options::lease_seconds(plan.stations);
-  config.serves_discovery = config.network.discovery_server.has_value();  // the nodes' server
-  if (o.node.secure_dir) {
-    config.security = transport::SecurityConfig{*o.node.secure_dir, transport::kHarnessIdentity};
-  }
+  const transport::NodeConfig config = harness_node_config(o, placement, plan.stations);
   const TrackShape shape{find_motion_model(plan.scenario.filter.motion_model.kind)->state_dim,
                          find_filter(plan.scenario.filter)->mode_names.size()};
   LockstepDriver driver(config, run_id, plan.participants(), shape, check);
@@ -452,6 +442,22 @@ int exit_status_of(const RunAborted& e) {
   const bool stopped_early =
       e.cause() == StopCause::kFellBehind || e.cause() == StopCause::kRoundTimeout;
   return stopped_early ? kExitStoppedEarly : 1;
+}
+
+transport::NodeConfig harness_node_config(const RunOptions& o, const Placement& placement,
+                                          int stations) {
+  transport::NodeConfig config;
+  config.domain_id = o.node.domain;
+  config.name = "skyfuse-harness";
+  if (o.node.qos_file) config.qos_file = *o.node.qos_file;
+  config.best_effort_data = o.node.best_effort;
+  config.network = placement.harness();
+  config.network.lease_s = options::lease_seconds(stations);
+  config.serves_discovery = config.network.discovery_server.has_value();  // the nodes' server
+  if (o.node.secure_dir) {
+    config.security = transport::SecurityConfig{*o.node.secure_dir, transport::kHarnessIdentity};
+  }
+  return config;
 }
 
 RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {

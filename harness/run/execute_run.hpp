@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "run/lockstep_driver.hpp"
+#include "run/placement.hpp"
 #include "run/run_options.hpp"
 #include "run/run_report.hpp"
 #include "skyfuse/sim/run_plan.hpp"
@@ -23,6 +24,11 @@ void warn_if_receive_buffers_too_small(int stations);
 /// The run's plan from the options' scenario (or the embedded one) and overrides; refuses a
 /// configuration the wire cannot carry yet, before any process starts.
 RunPlan load_run_plan(const RunOptions& options);
+
+/// The harness's own DDS participant for a run of `stations` placed by `placement`: the run's
+/// domain, QoS file, reliability, network, lease, discovery server and security identity.
+transport::NodeConfig harness_node_config(const RunOptions& o, const Placement& placement,
+                                          int stations);
 
 /// A run that stopped before its last round once its rounds had begun: it fell behind real
 /// time, a node went silent past --round-timeout, a signal interrupted it, or a node failed.

@@ -62,11 +62,11 @@ bool is_status_topic(const std::string& topic) {
   return topic == "skyfuse_status";
 }
 
-// Tracks and statuses are keyed by their source (wire types: @key), one instance each, and
-// durable: a reader that joins late - a viewer, a client of another DDS implementation - gets
-// each source's latest track at once, also from a station that has gone silent.
+// Tracks, pictures and statuses are keyed by their source (wire types: @key), one instance each,
+// and durable: a reader that joins late - a viewer, a client of another DDS implementation -
+// gets each source's latest track at once, also from a station that has gone silent.
 bool is_track_topic(const std::string& topic) {
-  return topic == "skyfuse_track";
+  return topic == "skyfuse_track" || topic == "skyfuse_picture_round";
 }
 bool is_keyed_topic(const std::string& topic) {
   return is_status_topic(topic) || is_track_topic(topic);

@@ -165,6 +165,7 @@ class PictureRun {
     }
     for (Peer& peer : peers_) peer.fuse(step, reports_);
     center_->update(step, scans_);
+    result_.peer_digests.push_back(peers_.front().digest());
     compare(k);
   }
 

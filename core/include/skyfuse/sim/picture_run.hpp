@@ -25,6 +25,9 @@ struct PictureRunResult {
   /// Every peer's picture (ids, statuses, histories, states) equal bit for bit every round.
   bool peers_identical = true;
   int first_divergent_step = -1;
+  /// The first peer's picture digest after each round (TrackTable::digest): what a run over
+  /// DDS compares its peers' with.
+  std::vector<std::uint64_t> peer_digests;
   /// Association pairs (station, detection, track) the center and the peers decided
   /// differently, over the run: 0 unless a decision at a gate's edge flipped.
   std::size_t association_flips = 0;

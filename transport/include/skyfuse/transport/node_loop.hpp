@@ -122,11 +122,11 @@ class NodeLoop {
   }
 
   /// Runs rounds [first, steps), settles the lag, announces FINISHED and waits for the
-  /// harness's release; `tracks` is the writer the process publishes on. A released node
-  /// exits here (leave_without_goodbye); otherwise returns the exit code.
-  template <NodeProcess<Sample> Process>
-  int run(Process& process, std::uint64_t first, std::uint64_t steps,
-          Writer<wire::TrackEstimate>& tracks) {
+  /// harness's release; `tracks` is the writer the process publishes its results on (tracks,
+  /// or a picture). A released node exits here (leave_without_goodbye); otherwise returns the
+  /// exit code.
+  template <NodeProcess<Sample> Process, typename Result>
+  int run(Process& process, std::uint64_t first, std::uint64_t steps, Writer<Result>& tracks) {
     if (realtime()) {  // every node counts the steps from the epoch the start tick carries
       if (const RunEnd end = wait_for(
               process, first, options_.first_tick_timeout(), [&] { return epoch_ns_ != 0; },
@@ -203,8 +203,8 @@ class NodeLoop {
 
   // After the last round: in real time, a lag's worth of steps for late samples; then the
   // process's final tracks, acknowledged before FINISHED (the harness stops reading then).
-  template <typename Process>
-  RunEnd settle(Process& process, std::uint64_t steps, Writer<wire::TrackEstimate>& tracks) {
+  template <typename Process, typename Result>
+  RunEnd settle(Process& process, std::uint64_t steps, Writer<Result>& tracks) {
     if (realtime()) {
       const SystemTime until =
           std::chrono::system_clock::now() + steps_duration(options_.refusion_lag, time_step_s_);

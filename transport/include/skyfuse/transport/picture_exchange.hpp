@@ -2,22 +2,24 @@
 /// \file
 /// A station's side of the multi-target picture's exchange over DDS. Each round it publishes
 /// its scan with its associations against the common predicted picture (wire::PictureScan,
-/// transport/picture_wire.hpp) and collects every station's sample of the round, its own
-/// included: every report a peer fuses is rebuilt from the wire, so every peer fuses the same
-/// inputs by the same arithmetic and holds the same picture, bit for bit.
+/// transport/picture_wire.hpp) and collects every station's sample of the round that its
+/// reader of the topic hears, its own included: every report a peer fuses is rebuilt from the
+/// wire, so every peer fuses the same inputs by the same arithmetic and holds the same
+/// picture, bit for bit.
 ///
-/// Screening, in order: another run's sample, then a sample wrong anywhere (refused whole by
-/// its first problem), then who it claims to be and when, and whether its writer speaks for
-/// that station (transport/source_binding.hpp). A sample made against another predicted picture
-/// (its digest differs from the receiver's) is kept and counted: it is fused only if every
-/// track it names is in the receiver's picture, and the count tells that peers have parted.
+/// A sample made against another predicted picture (its digest differs from the receiver's) is
+/// kept and counted: it is fused only if every track it names is in the receiver's picture,
+/// and the count tells that peers have parted.
 ///
 /// Threading: the node's thread, as every endpoint (dds_node.hpp).
+
+#include <fmt/format.h>
 
 #include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "skyfuse/multitarget/peer_picture.hpp"
@@ -47,15 +49,20 @@ class PictureExchange {
         collector_(ids_),
         run_id_(run_id),
         max_detections_(max_detections),
-        out_(node.make_writer<wire::PictureScan>()),
-        in_(node.make_reader<wire::PictureScan>()) {}
+        out_(node.make_writer<wire::PictureScan>()) {}
 
-  /// Every station's writer and reader matched, this one's own included.
-  bool matched() const {
+  /// Every station's writer and reader matched, this one's own included (`in`: the node's
+  /// reader of the topic).
+  bool matched(const Reader<wire::PictureScan>& in) const {
     const auto stations = static_cast<int>(stations_.size());
-    return in_.matched() >= stations && out_.matched() >= stations;
+    return in.matched() >= stations && out_.matched() >= stations;
   }
-  Reader<wire::PictureScan>& reader() { return in_; }
+  std::string describe_matched(const Reader<wire::PictureScan>& in) const {
+    return fmt::format("picture scan writers {}/{}, readers {}/{}", in.matched(), stations_.size(),
+                       out_.matched(), stations_.size());
+  }
+  /// This station's writer, whose samples its own reader hears too.
+  WriterId own_writer() const { return out_.id(); }
 
   /// Publishes this station's round `step`: `scan`, and `report` of it against the predicted
   /// picture whose digest is `picture_digest`.
@@ -64,14 +71,14 @@ class PictureExchange {
     out_.write(to_wire<Sensor>(scan, report, run_id_, step, picture_digest));
   }
 
-  /// Takes every sample waiting, keeping those of the current step and the next; each refused
-  /// one is counted by kind (drops()).
-  void take() {
-    wire::PictureScan sample;
-    WriterId writer{};
-    while (in_.take(sample, &writer)) {
-      if (const auto why = screen(sample, writer)) ++drops_[static_cast<std::size_t>(*why)];
-    }
+  /// Keeps a sample of the current step or the next, or says why not: another run's, one
+  /// wrong anywhere (refused whole by its first problem), then who it claims to be and when,
+  /// and whether its writer speaks for that station.
+  std::optional<DropKind> receive(const wire::PictureScan& sample, const WriterId& writer) {
+    if (sample.run_id() != run_id_) return DropKind::kWrongRun;
+    auto [scan, why] = picture_scan_from_wire<Sensor>(sample, max_detections_);
+    if (!scan) return why;
+    return admit(collector_, sources_, scan->step, scan->station_id, writer, *scan);
   }
 
   /// Every station's sample of the current step is in.
@@ -99,7 +106,6 @@ class PictureExchange {
   /// Closes the current step; the next one's samples already taken stay.
   void advance() { collector_.advance(); }
 
-  const DropCounts& drops() const { return drops_; }
   /// Samples made against a predicted picture other than this peer's.
   std::uint64_t other_pictures() const { return other_pictures_; }
 
@@ -110,13 +116,6 @@ class PictureExchange {
     return ids;
   }
 
-  std::optional<DropKind> screen(const wire::PictureScan& sample, const WriterId& writer) {
-    if (sample.run_id() != run_id_) return DropKind::kWrongRun;
-    auto [scan, why] = picture_scan_from_wire<Sensor>(sample, max_detections_);
-    if (!scan) return why;
-    return admit(collector_, sources_, scan->step, scan->station_id, writer, *scan);
-  }
-
   std::vector<KnownStation<Sensor>> stations_;  // ascending id, as ids_
   std::vector<int> ids_;
   StepCollector<ReceivedScan<M>> collector_;
@@ -124,8 +123,6 @@ class PictureExchange {
   std::uint64_t run_id_;
   std::size_t max_detections_;
   Writer<wire::PictureScan> out_;
-  Reader<wire::PictureScan> in_;
-  DropCounts drops_{};
   std::uint64_t other_pictures_ = 0;
 };
 

@@ -17,6 +17,7 @@
 
 #include "skyfuse/multitarget/peer_picture.hpp"
 #include "skyfuse/multitarget/scan.hpp"
+#include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 #include "skyfuse/wire/skyfuse_picture.h"
 
@@ -121,6 +122,32 @@ picture_scan_from_wire(const wire::PictureScan& sample, std::size_t max_detectio
     received.unassociated.push_back(j);
   }
   return {std::move(received), std::nullopt};
+}
+
+/// Node `source_id`'s picture after round `step`: every track (id, status, estimate) and the
+/// picture's digest. `Table` is a TrackTable, a peer's or the center's.
+template <typename Table>
+wire::PictureRound picture_round_to_wire(const Table& table, std::uint64_t run_id,
+                                         std::uint32_t step, int source_id) {
+  constexpr int N = Table::kDim;
+  wire::PictureRound sample;
+  sample.run_id(run_id);
+  sample.step(step);
+  sample.source_id(source_id);
+  sample.picture_digest(table.digest());
+  const auto tracks = table.tracks();
+  std::vector<wire::PictureTrack>& out = sample.tracks();
+  out.reserve(tracks.size());
+  for (std::size_t t = 0; t < tracks.size(); ++t) {
+    const auto& estimate = table.estimates()[t];
+    wire::PictureTrack track;
+    track.track_id(tracks[t].id);
+    track.confirmed(tracks[t].status == TrackStatus::kConfirmed);
+    track.x(std::vector<double>(estimate.mean.data(), estimate.mean.data() + N));
+    track.covariance(pack_upper<N>(estimate.covariance));
+    out.push_back(std::move(track));
+  }
+  return sample;
 }
 
 }  // namespace skyfuse::transport

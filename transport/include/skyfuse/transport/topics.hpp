@@ -38,6 +38,11 @@ struct TopicTraits<wire::PictureScan> {
   static constexpr const char* kName = "skyfuse_picture_scan";
 };
 template <>
+struct TopicTraits<wire::PictureRound> {
+  using PubSubType = wire::PictureRoundPubSubType;
+  static constexpr const char* kName = "skyfuse_picture_round";
+};
+template <>
 struct TopicTraits<wire::TrackEstimate> {
   using PubSubType = wire::TrackEstimatePubSubType;
   static constexpr const char* kName = "skyfuse_track";

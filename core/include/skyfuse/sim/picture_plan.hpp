@@ -1,0 +1,32 @@
+#pragma once
+/// \file
+/// What one run of a scenario with many aircraft is, for every process that takes part: the
+/// scenario after the command-line overrides, which stations take part (the first M) and which
+/// Monte-Carlo run index selects the noise. Stations and harness build the same plan from the
+/// same options, so they simulate the same run; the in-process picture run (sim/picture_run.hpp)
+/// is its twin.
+
+#include <cstdint>
+#include <span>
+
+#include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/sim/run_plan.hpp"
+
+namespace skyfuse {
+
+struct PicturePlan {
+  Scenario scenario;
+  int stations = 0;
+  std::uint64_t mc_run = 0;
+
+  std::span<const StationConfig> participants() const {
+    return std::span(scenario.stations).first(static_cast<std::size_t>(stations));
+  }
+};
+
+/// Applies the overrides to `scenario` (which has_many_targets()); throws
+/// std::invalid_argument naming an option a run of many aircraft does not take (a speed: each
+/// aircraft flies its own; the tree exchange, not yet) or a value out of range.
+PicturePlan make_picture_plan(Scenario scenario, const RunOverrides& overrides);
+
+}  // namespace skyfuse

@@ -1,0 +1,39 @@
+#include "skyfuse/sim/picture_plan.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace skyfuse {
+
+PicturePlan make_picture_plan(Scenario scenario, const RunOverrides& overrides) {
+  if (!scenario.has_many_targets()) {
+    throw std::logic_error("make_picture_plan: scenario '" + scenario.name + "' has one target");
+  }
+  if (overrides.speed_kmh) {
+    throw std::invalid_argument(fmt::format(
+        "--speed-kmh: scenario '{}' has many aircraft, each flying its own speeds", scenario.name));
+  }
+  if (overrides.exchange && *overrides.exchange == ExchangeConfig::Kind::kTree) {
+    throw std::invalid_argument(
+        "--exchange tree: a run of many aircraft exchanges its scans flat so far");
+  }
+  PicturePlan plan;
+  const int available = static_cast<int>(scenario.stations.size());
+  plan.stations = overrides.stations.value_or(available);
+  if (plan.stations < 1 || plan.stations > available) {
+    throw std::invalid_argument(fmt::format("--stations: must be in [1, {}] for scenario '{}', got {}",
+                                            available, scenario.name, plan.stations));
+  }
+  if (overrides.steps) {
+    if (*overrides.steps < 1) {
+      throw std::invalid_argument(fmt::format("--steps: must be >= 1, got {}", *overrides.steps));
+    }
+    scenario.steps = *overrides.steps;
+  }
+  plan.mc_run = overrides.mc_run;
+  plan.scenario = std::move(scenario);
+  return plan;
+}
+
+}  // namespace skyfuse

@@ -1,0 +1,316 @@
+#include "run/picture_run.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "report/output_files.hpp"
+#include "report/progress.hpp"
+#include "run/child_processes.hpp"
+#include "run/execute_run.hpp"
+#include "run/lockstep_driver.hpp"
+#include "run/placement.hpp"
+#include "skyfuse/options/node_options.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/picture_plan.hpp"
+#include "skyfuse/sim/picture_run.hpp"
+#include "skyfuse/traffic/traffic_truth.hpp"
+#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/shutdown.hpp"
+
+namespace skyfuse::harness {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr auto kPollSlice = std::chrono::milliseconds(50);
+// A station that has not matched the tick writer when the first copy went out gets another.
+constexpr auto kTickRepeat = std::chrono::milliseconds(50);
+
+// What a run of many aircraft does not take yet, each with why; nothing if `o` is fine.
+void refuse_what_a_picture_run_lacks(const RunOptions& o) {
+  const auto refuse = [](const char* option) {
+    throw std::invalid_argument(
+        fmt::format("{}: not for a run of many aircraft yet (docs/multitarget.md says what "
+                    "runs over DDS so far)",
+                    option));
+  };
+  if (o.node.realtime_deadline_ms > 0.0) refuse("--realtime-deadline-ms");
+  if (!o.kills.empty() || !o.restarts.empty()) refuse("--kill/--restart");
+  if (!o.replay_path.empty()) refuse("--replay");
+  if (!o.record_path.empty()) refuse("--record");
+  if (o.live) refuse("--live");
+  if (o.external) refuse("--external");
+  if (o.hosts > 0) refuse("--hosts");
+  if (o.node.secure_dir) refuse("--secure");
+  if (o.node.loss.enabled()) refuse("--loss");
+  if (o.node.refusion_lag != 0) refuse("--refusion-lag");
+}
+
+// The run's DDS side as the harness sees it: ticks out, pictures and statuses in.
+class PictureDriver {
+ public:
+  PictureDriver(const transport::NodeConfig& config, std::uint64_t run_id, std::vector<int> ids,
+                ChildProcesses& children)
+      : run_id_(run_id),
+        ids_(std::move(ids)),
+        children_(children),
+        node_(config),
+        ticks_(node_.make_writer<wire::Tick>()),
+        rounds_(node_.make_reader<wire::PictureRound>()),
+        statuses_(node_.make_reader<wire::StationStatus>()) {
+    wait_set_.attach(rounds_);
+    wait_set_.attach(statuses_);
+  }
+
+  // Until every station announced READY and the harness's endpoints match them.
+  void wait_until_joined(std::chrono::milliseconds timeout) {
+    const auto m = static_cast<int>(ids_.size());
+    const auto start = Clock::now();
+    while (true) {
+      check();
+      if (ready_.size() == ids_.size() && ticks_.matched() >= m && rounds_.matched() >= m) return;
+      if (Clock::now() - start >= timeout) {
+        std::vector<int> missing;
+        for (int id : ids_) {
+          if (!ready_.contains(id)) missing.push_back(id);
+        }
+        throw RunAborted(fmt::format("discovery timed out after {:.1f} s; stations not ready: "
+                                     "{}; tick readers {}/{}, picture writers {}/{}",
+                                     std::chrono::duration<double>(timeout).count(),
+                                     fmt::join(missing, ", "), ticks_.matched(), m,
+                                     rounds_.matched(), m));
+      }
+      wait_set_.wait(std::chrono::milliseconds(10));
+    }
+  }
+
+  // Round k: its tick, then every station's picture of step k (station order), within
+  // `timeout`.
+  std::vector<wire::PictureRound> run_round(std::uint32_t k, std::chrono::milliseconds timeout) {
+    wire::Tick tick;
+    tick.run_id(run_id_);
+    tick.step(k);
+    tick.stop(false);
+    const auto sent = Clock::now();
+    ticks_.write(tick);
+    auto last_sent = sent;
+    std::map<int, wire::PictureRound> got;
+    while (got.size() < ids_.size()) {
+      wire::PictureRound round;
+      while (rounds_.take(round)) {
+        const bool ours = round.run_id() == run_id_ && round.step() == k &&
+                          std::binary_search(ids_.begin(), ids_.end(), round.source_id());
+        if (ours) got.insert_or_assign(round.source_id(), round);
+      }
+      if (got.size() == ids_.size()) break;
+      check();
+      const auto now = Clock::now();
+      if (now - sent >= timeout) {
+        std::vector<int> missing;
+        for (int id : ids_) {
+          if (!got.contains(id)) missing.push_back(id);
+        }
+        throw RunAborted(fmt::format("step {}: no picture from station(s) {} within {:.1f} s", k,
+                                     fmt::join(missing, ", "),
+                                     std::chrono::duration<double>(timeout).count()),
+                         StopCause::kRoundTimeout);
+      }
+      if (now - last_sent >= kTickRepeat) {
+        ticks_.write(tick);
+        last_sent = now;
+      }
+      wait_set_.wait(kPollSlice);
+    }
+    std::vector<wire::PictureRound> out;
+    for (int id : ids_) out.push_back(std::move(got.at(id)));
+    return out;
+  }
+
+  // Releases the stations: they exit once they hear it.
+  void release() {
+    wire::Tick stop;
+    stop.run_id(run_id_);
+    stop.stop(true);
+    ticks_.write(stop);
+  }
+
+ private:
+  void check() {
+    if (transport::shutdown_requested()) {
+      throw RunAborted(fmt::format("interrupted by signal {}", transport::shutdown_signal()),
+                       StopCause::kInterrupted);
+    }
+    for (const ChildExit& e : children_.poll()) {
+      if (!e.success()) throw RunAborted(e.describe(), StopCause::kNodeFailed);
+    }
+    wire::StationStatus s;
+    while (statuses_.take(s)) {
+      if (s.run_id() != run_id_) continue;
+      if (s.state() == wire::FAILED) {
+        throw RunAborted(fmt::format("{} failed at step {}: {}", node_name(s.station_id()),
+                                     s.step(), s.detail()),
+                         StopCause::kNodeFailed);
+      }
+      if (s.state() == wire::READY) ready_.insert(s.station_id());
+    }
+  }
+
+  std::uint64_t run_id_;
+  std::vector<int> ids_;  // ascending
+  ChildProcesses& children_;
+  transport::DdsNode node_;
+  transport::Writer<wire::Tick> ticks_;
+  transport::Reader<wire::PictureRound> rounds_;
+  transport::Reader<wire::StationStatus> statuses_;
+  transport::ReaderWaitSet wait_set_;
+  std::set<int> ready_;
+};
+
+std::string hex(std::uint64_t v) { return fmt::format("{:016x}", v); }
+
+}  // namespace
+
+PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scenario) {
+  refuse_what_a_picture_run_lacks(o);
+  const PicturePlan plan = make_picture_plan(scenario, o.node.overrides);
+  std::vector<int> ids;
+  for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
+  std::sort(ids.begin(), ids.end());
+
+  // The in-process twin first: what every peer's picture must equal, round by round.
+  const TrafficTruth truth = build_traffic_truth(plan.scenario);
+  const PictureRunResult twin =
+      run_picture(plan.scenario, truth.targets, plan.stations, plan.mc_run);
+
+  const std::filesystem::path out(o.out_dir);
+  std::filesystem::create_directories(out);
+  const std::filesystem::path scenario_file = std::filesystem::absolute(out / "scenario.yaml");
+  write_file_atomically(scenario_file, read_scenario_text(o.node.scenario_path));
+  const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
+  const double discovery_timeout = o.discovery_timeout_s.value_or(
+      default_discovery_timeout_s(plan.stations));
+
+  const Placement placement(o, plan.scenario.exchange, ids.size());
+  ChildProcesses children;
+  PictureDriver driver(harness_node_config(o, placement, plan.stations), run_id, ids, children);
+  try {
+    for (std::size_t j = 0; j < plan.participants().size(); ++j) {
+      const StationConfig& station = plan.participants()[j];
+      options::NodeOptions child = o.node;
+      child.network = placement.of(1 + j).first;
+      child.scenario_path = scenario_file.string();
+      child.run_id = run_id;
+      child.overrides.stations = plan.stations;
+      child.overrides.steps = plan.scenario.steps;
+      child.overrides.mc_run = plan.mc_run;
+      child.discovery_timeout_s = discovery_timeout;
+      child.idle_timeout_s = std::max(30.0, 3.0 * o.round_timeout_s);
+      child.log_level = o.verbose ? "info" : "warn";
+      std::vector<std::string> argv{(executable_dir() / "skyfuse-station").string(), "--id",
+                                    std::to_string(station.id)};
+      const std::vector<std::string> common = options::to_arguments(child);
+      argv.insert(argv.end(), common.begin(), common.end());
+      children.spawn(node_name(station.id), argv);
+    }
+    const auto discovery_start = Clock::now();
+    driver.wait_until_joined(std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
+
+    PictureRunSummary summary;
+    summary.scenario = plan.scenario.name;
+    summary.stations = plan.stations;
+    summary.steps = plan.scenario.steps;
+    summary.discovery_s = std::chrono::duration<double>(Clock::now() - discovery_start).count();
+    std::ostringstream csv;
+    csv << "step,station,picture_digest,tracks,confirmed,in_process_digest\n";
+    Progress progress(fmt::format("picture M={}", plan.stations), plan.scenario.steps);
+    const auto round_timeout =
+        std::chrono::milliseconds(std::llround(o.round_timeout_s * 1e3));
+    const auto start = Clock::now();
+    for (int k = 0; k < plan.scenario.steps; ++k) {
+      const auto rounds = driver.run_round(static_cast<std::uint32_t>(k), round_timeout);
+      const std::uint64_t expected = twin.peer_digests.at(static_cast<std::size_t>(k));
+      for (const wire::PictureRound& r : rounds) {
+        const auto confirmed = std::count_if(r.tracks().begin(), r.tracks().end(),
+                                             [](const auto& t) { return t.confirmed(); });
+        csv << fmt::format("{},{},{},{},{},{}\n", k, r.source_id(), hex(r.picture_digest()),
+                           r.tracks().size(), confirmed, hex(expected));
+        if (r.picture_digest() != rounds.front().picture_digest() && summary.peers_identical) {
+          summary.peers_identical = false;
+          summary.first_divergent_step = k;
+        }
+        if (r.picture_digest() != expected && summary.equals_in_process) {
+          summary.equals_in_process = false;
+          summary.first_step_apart_from_in_process = k;
+        }
+      }
+      if (k + 1 == plan.scenario.steps) {
+        const wire::PictureRound& last = rounds.front();
+        summary.tracks_at_end = last.tracks().size();
+        summary.confirmed_at_end = static_cast<std::size_t>(
+            std::count_if(last.tracks().begin(), last.tracks().end(),
+                          [](const auto& t) { return t.confirmed(); }));
+        summary.digest_at_end = last.picture_digest();
+      }
+      progress.advance();
+    }
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    summary.rounds_per_s = plan.scenario.steps / seconds;
+    driver.release();
+    if (!children.wait_all(std::chrono::seconds(10))) {
+      spdlog::warn("station processes still running 10 s after the run; stopping them");
+      children.terminate_all(std::chrono::seconds(2));
+    }
+
+    write_file_atomically(out / "picture_rounds.csv", csv.str());
+    nlohmann::json json = {
+        {"scenario", summary.scenario},
+        {"stations", summary.stations},
+        {"steps", summary.steps},
+        {"run_id", run_id},
+        {"peers_identical", summary.peers_identical},
+        {"first_divergent_step", summary.first_divergent_step},
+        {"equals_in_process", summary.equals_in_process},
+        {"first_step_apart_from_in_process", summary.first_step_apart_from_in_process},
+        {"discovery_s", summary.discovery_s},
+        {"rounds_per_s", summary.rounds_per_s},
+        {"tracks_at_end", summary.tracks_at_end},
+        {"confirmed_at_end", summary.confirmed_at_end},
+        {"picture_digest_at_end", hex(summary.digest_at_end)},
+        {"in_process",
+         {{"peers_identical", twin.peers_identical},
+          {"confirmed_at_end", twin.confirmed_at_end},
+          {"gospa_mean", twin.score.gospa_mean}}}};
+    write_file_atomically(out / "summary.json", json.dump(2) + "\n");
+    return summary;
+  } catch (...) {
+    children.terminate_all(std::chrono::seconds(2));
+    throw;
+  }
+}
+
+void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
+  fmt::print(out, "many aircraft over DDS: scenario '{}', {} station processes, {} rounds\n",
+             s.scenario, s.stations, s.steps);
+  fmt::print(out, "  peers' pictures          {}\n",
+             s.peers_identical ? "bit-identical in every round"
+                               : fmt::format("apart from round {}", s.first_divergent_step));
+  fmt::print(out, "  equal to in-process run  {}\n",
+             s.equals_in_process
+                 ? "yes, every round"
+                 : fmt::format("no, from round {}", s.first_step_apart_from_in_process));
+  fmt::print(out, "  tracks at the end        {} ({} confirmed)\n", s.tracks_at_end,
+             s.confirmed_at_end);
+  fmt::print(out, "  discovery                {:.2f} s\n", s.discovery_s);
+  fmt::print(out, "  rounds per second        {:.0f}\n", s.rounds_per_s);
+}
+
+}  // namespace skyfuse::harness

@@ -1,0 +1,42 @@
+#pragma once
+// `skyfuse run` of a scenario with many aircraft: one station process per participant over DDS,
+// in lock-step. Each round the harness publishes the tick and waits for every station's
+// picture (every track and the picture's digest); it compares the digests of every peer with
+// each other and with the in-process run's (sim/picture_run.hpp), round by round, and writes
+// them. The fusion center, real time, faults, recordings and the live view do not take a run of
+// many aircraft yet: they are refused with a message.
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "run/run_options.hpp"
+#include "skyfuse/scenario/scenario.hpp"
+
+namespace skyfuse::harness {
+
+struct PictureRunSummary {
+  std::string scenario;
+  int stations = 0;
+  int steps = 0;
+  /// Every station's picture digest equal in every round.
+  bool peers_identical = true;
+  int first_divergent_step = -1;
+  /// Every round's digest equal to the in-process run's.
+  bool equals_in_process = true;
+  int first_step_apart_from_in_process = -1;
+  double discovery_s = 0.0;
+  double rounds_per_s = 0.0;
+  std::size_t tracks_at_end = 0;
+  std::size_t confirmed_at_end = 0;
+  std::uint64_t digest_at_end = 0;
+};
+
+/// Runs `scenario` (which has_many_targets()) as `o` says, writing picture_rounds.csv and
+/// summary.json into o.out_dir. Throws std::invalid_argument for an option it does not take,
+/// RunAborted when the run fails.
+PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scenario);
+
+void print_picture_run_table(const PictureRunSummary& summary, std::FILE* out);
+
+}  // namespace skyfuse::harness

@@ -1,0 +1,199 @@
+#include "picture_station.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include <stdexcept>
+#include <vector>
+
+#include "skyfuse/filters/parts/ekf_part.hpp"
+#include "skyfuse/models/constant_velocity.hpp"
+#include "skyfuse/multitarget/fixes_position.hpp"
+#include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/track_filters.hpp"
+#include "skyfuse/registry/make_parts.hpp"
+#include "skyfuse/registry/registry.hpp"
+#include "skyfuse/scenario/measurement_simulation.hpp"
+#include "skyfuse/scenario/traffic_config.hpp"
+#include "skyfuse/sim/picture_plan.hpp"
+#include "skyfuse/tracking/ekf_increment_rule.hpp"
+#include "skyfuse/traffic/traffic_truth.hpp"
+#include "skyfuse/transport/node_loop.hpp"
+#include "skyfuse/transport/node_presence.hpp"
+#include "skyfuse/transport/node_setup.hpp"
+#include "skyfuse/transport/picture_exchange.hpp"
+
+namespace skyfuse::station {
+namespace {
+
+using transport::RunEnd;
+
+// Over DDS the picture runs the EKF on constant velocity so far (the in-process run, `skyfuse
+// sweep`, runs every filter part); the sensor is any that fixes a position.
+using Model = ConstantVelocity3D;
+using Tracks = PeerModelTracks<Model, EkfIncrementRule>;
+
+template <typename Sensor>
+class PictureStation {
+ public:
+  static constexpr int M = Sensor::kMeasDim;
+  using Picture = PeerPicture<Tracks, Sensor>;
+  using Exchange = transport::PictureExchange<Tracks, Sensor>;
+
+  // The endpoints are made in a fixed order: the loop's tick and input readers first.
+  PictureStation(const StationOptions& options, PicturePlan plan, std::vector<TargetTruth> truth)
+      : options_(options),
+        plan_(std::move(plan)),
+        truth_(std::move(truth)),
+        known_(known_stations(plan_)),
+        me_(index_of(plan_, options.id)),
+        detection_(
+            plan_.participants()[me_].detection.value_or(plan_.scenario.traffic->detection)),
+        node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", options.id))),
+        loop_(node_, options.node, options.id, fmt::format("station {}", options.id),
+              "picture scan", plan_.scenario.time_step_s),
+        exchange_(node_, known_, options.node.run_id,
+                  plan_.scenario.traffic->tracker.association.max_detections_per_scan),
+        rounds_(node_.make_writer<wire::PictureRound>()),
+        picture_(Tracks(make_motion_model<Model>(plan_.scenario),
+                        plan_.scenario.filter.initial_covariance_diag),
+                 known_, plan_.scenario.traffic->tracker) {}
+
+  int run() {
+    auto& inputs = loop_.inputs();
+    auto& ticks = loop_.ticks();
+    if (const RunEnd end = loop_.join(
+            [&] {
+              return exchange_.matched(inputs) && ticks.matched() >= 1 && rounds_.matched() >= 1;
+            },
+            [&] {
+              return fmt::format("{}, tick writer {}/1, picture readers {}/1 (harness)",
+                                 exchange_.describe_matched(inputs), ticks.matched(),
+                                 rounds_.matched());
+            })) {
+      return *end;
+    }
+    spdlog::info("joined run {} with {} stations; waiting for ticks", options_.node.run_id,
+                 plan_.stations);
+    return loop_.run(*this, 0, static_cast<std::uint64_t>(plan_.scenario.steps), rounds_);
+  }
+
+  // What the round loop asks of a station (transport::NodeProcess).
+
+  // Predicts the picture, scans, assigns the scan to the predicted tracks and publishes it.
+  RunEnd open_round(std::uint64_t k) {
+    picture_.predict();
+    const StationConfig& station = plan_.participants()[me_];
+    const Scan<M> scan =
+        simulate_scan(station.id, make_sensor<TruthSensorOf<Sensor>>(station), station.position_m,
+                      known_[me_].noise, detection_, truth_, static_cast<int>(k),
+                      plan_.scenario.seed, plan_.mc_run);
+    exchange_.publish(static_cast<std::uint32_t>(k), scan,
+                      picture_.report(known_[me_], scan, work_), picture_.digest());
+    return std::nullopt;
+  }
+
+  std::optional<DropKind> receive(const wire::PictureScan& sample,
+                                  const transport::WriterId& writer) {
+    return exchange_.receive(sample, writer);
+  }
+
+  bool round_complete() { return exchange_.complete(); }
+
+  // Fuses every station's report that arrived, rebuilt against the predicted picture, and
+  // publishes the picture.
+  RunEnd close_round(std::uint64_t k) {
+    if (!exchange_.complete()) {
+      spdlog::warn("step {}: fusing without station(s) {}", k, fmt::join(exchange_.missing(), ", "));
+    }
+    picture_.fuse(k, exchange_.reports(picture_));
+    rounds_.write(transport::picture_round_to_wire(picture_, options_.node.run_id,
+                                                   static_cast<std::uint32_t>(k), options_.id));
+    exchange_.advance();
+    return std::nullopt;
+  }
+
+  RunEnd settle(std::uint64_t /*steps*/) { return std::nullopt; }
+  transport::ProcessCounts counts() const { return {}; }
+
+ private:
+  static std::vector<KnownStation<Sensor>> known_stations(const PicturePlan& plan) {
+    std::vector<KnownStation<Sensor>> known;
+    for (const StationConfig& station : plan.participants()) {
+      known.push_back({station.id, make_sensor<Sensor>(station),
+                       station_noise_covariance<M>(plan.scenario, station, plan.mc_run),
+                       station.weight});
+    }
+    return known;
+  }
+  static std::size_t index_of(const PicturePlan& plan, int id) {
+    const auto participants = plan.participants();
+    for (std::size_t i = 0; i < participants.size(); ++i) {
+      if (participants[i].id == id) return i;
+    }
+    throw std::logic_error("picture station: not a participant");
+  }
+
+  const StationOptions& options_;
+  PicturePlan plan_;
+  std::vector<TargetTruth> truth_;
+  std::vector<KnownStation<Sensor>> known_;
+  std::size_t me_;
+  DetectionConfig detection_;
+  transport::DdsNode node_;
+  transport::NodeLoop<wire::PictureScan> loop_;
+  Exchange exchange_;
+  transport::Writer<wire::PictureRound> rounds_;
+  Picture picture_;
+  AssignmentWork work_;
+};
+
+}  // namespace
+
+int run_picture_station(const StationOptions& options, Scenario scenario) {
+  PicturePlan plan = make_picture_plan(std::move(scenario), options.node.overrides);
+  bool participates = false;
+  std::vector<int> ids;
+  for (const StationConfig& s : plan.participants()) {
+    ids.push_back(s.id);
+    participates = participates || s.id == options.id;
+  }
+  if (!participates) {
+    throw std::invalid_argument(fmt::format(
+        "--id: station {} is not one of the {} participating stations of scenario '{}' (ids {})",
+        options.id, plan.stations, plan.scenario.name, fmt::join(ids, ", ")));
+  }
+  if (options.rejoin_step || !options.replay_path.empty()) {
+    throw std::invalid_argument(
+        "--rejoin-at-step, --replay: not for a run of many aircraft yet");
+  }
+  if (plan.scenario.filter.kind != EkfFilterPart::kKind ||
+      plan.scenario.filter.motion_model.kind != Model::kKind) {
+    throw std::invalid_argument(fmt::format(
+        "scenario '{}': over DDS a run of many aircraft runs the EKF on constant velocity so "
+        "far, not '{}' on '{}' (`skyfuse sweep` runs it in-process)",
+        plan.scenario.name, plan.scenario.filter.kind, plan.scenario.filter.motion_model.kind));
+  }
+  std::vector<TargetTruth> truth = build_traffic_truth(plan.scenario).targets;
+  int code = options::kExitError;
+  const bool known_kind = visit_sensor_kind<Sensors, Model::kDim>(
+      plan.scenario.stations.front().sensor.kind,
+      [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
+        using Sensor = SensorOf<Model::kDim>;
+        if constexpr (FixesPosition<Sensor>) {
+          code = transport::make_lifelong<PictureStation<Sensor>>(options, std::move(plan),
+                                                                  std::move(truth))
+                     .run();
+        } else {
+          throw std::invalid_argument(fmt::format(
+              "sensor '{}': a run of many aircraft takes sensors one detection of which fixes "
+              "a position",
+              Sensor::kKind));
+        }
+      });
+  if (!known_kind) throw std::logic_error("picture station: unknown sensor kind");
+  return code;
+}
+
+}  // namespace skyfuse::station

@@ -1,0 +1,20 @@
+#pragma once
+// One ground station of a run with many aircraft, as a process (docs/multitarget.md):
+//   tick k -> predict every track of the common picture -> scan k (misses, clutter)
+//          -> assign the scan's detections to the predicted tracks -> publish PictureScan
+//          -> collect every station's PictureScan of step k (its own from the wire too)
+//          -> rebuild each station's report against the same predicted picture and fuse
+//             every track's contributions in ascending station id; manage and initiate
+//          -> publish PictureRound (every track and the picture's digest).
+// Every station holds the same picture bit for bit: the same inputs, the same arithmetic.
+
+#include "skyfuse/scenario/scenario.hpp"
+#include "station_process.hpp"
+
+namespace skyfuse::station {
+
+/// Runs station `options.id` of `scenario` (which has_many_targets()) to the end of the run;
+/// returns an options::ExitCode.
+int run_picture_station(const StationOptions& options, Scenario scenario);
+
+}  // namespace skyfuse::station

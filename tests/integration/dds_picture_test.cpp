@@ -1,0 +1,98 @@
+// Many aircraft over DDS: `skyfuse run` of a scenario with traffic starts one station process
+// per radar; each associates only its own scan against the common predicted picture, publishes
+// it, and fuses every station's report rebuilt from the wire. Every station's picture must be
+// the in-process run's bit for bit in every round, which this test checks against its own
+// in-process run, not the harness's word.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "integration/run_fixture.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/picture_plan.hpp"
+#include "skyfuse/sim/picture_run.hpp"
+#include "skyfuse/traffic/traffic_truth.hpp"
+
+namespace skyfuse::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+const std::string kCity = bin("scenarios/uam-city.yaml");
+
+TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
+  constexpr int kStations = 4;
+  constexpr int kSteps = 120;
+  const auto dir = test_dir();
+  const Completed run = run_to_completion(
+      {bin("skyfuse"), "run", "--scenario", kCity, "--stations", std::to_string(kStations),
+       "--steps", std::to_string(kSteps), "--domain", "98", "--out", (dir / "out").string()},
+      dir / "out.log", 180s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+
+  const PicturePlan plan =
+      make_picture_plan(load_scenario_file(kCity), stations_and_steps(kStations, kSteps));
+  const PictureRunResult twin =
+      run_picture(plan.scenario, build_traffic_truth(plan.scenario).targets, kStations, 0);
+  ASSERT_EQ(twin.peer_digests.size(), static_cast<std::size_t>(kSteps));
+
+  // picture_rounds.csv: step,station,picture_digest,tracks,confirmed,in_process_digest
+  std::istringstream csv(read_file(dir / "out" / "picture_rounds.csv"));
+  std::string line;
+  std::getline(csv, line);
+  ASSERT_EQ(line, "step,station,picture_digest,tracks,confirmed,in_process_digest");
+  std::map<int, int> rows_per_step;
+  std::size_t confirmed_seen = 0;
+  while (std::getline(csv, line)) {
+    int step = 0;
+    int station = 0;
+    char digest[17] = {};
+    std::size_t tracks = 0;
+    std::size_t confirmed = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d,%16[0-9a-f],%zu,%zu", &step, &station, digest,
+                          &tracks, &confirmed),
+              5)
+        << line;
+    ASSERT_LT(step, kSteps);
+    EXPECT_EQ(digest, fmt::format("{:016x}", twin.peer_digests[static_cast<std::size_t>(step)]))
+        << "station " << station << ", step " << step;
+    ++rows_per_step[step];
+    confirmed_seen = std::max(confirmed_seen, confirmed);
+  }
+  ASSERT_EQ(rows_per_step.size(), static_cast<std::size_t>(kSteps));
+  for (const auto& [step, rows] : rows_per_step) EXPECT_EQ(rows, kStations) << "step " << step;
+  EXPECT_GE(confirmed_seen, 10U) << "the stations confirmed tracks of the city's aircraft";
+
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_TRUE(summary.at("peers_identical").get<bool>());
+  EXPECT_TRUE(summary.at("equals_in_process").get<bool>());
+  EXPECT_EQ(summary.at("picture_digest_at_end").get<std::string>(),
+            fmt::format("{:016x}", twin.peer_digests.back()));
+}
+
+// What a run of many aircraft does not take yet is refused before any process starts, by name.
+TEST(DdsPicture, OptionsThatDoNotTakeManyAircraftYetAreRefusedByName) {
+  const auto dir = test_dir();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> refused = {
+      {{"--realtime-deadline-ms", "15"}, "--realtime-deadline-ms"},
+      {{"--loss", "0.2"}, "--loss"},
+      {{"--speed-kmh", "100"}, "--speed-kmh"},
+      {{"--exchange", "tree"}, "--exchange tree"},
+  };
+  for (const auto& [extra, name] : refused) {
+    std::vector<std::string> args = {bin("skyfuse"), "run", "--scenario", kCity, "--steps", "5",
+                                     "--domain", "98", "--out", (dir / "out").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Completed run = run_to_completion(args, dir / "refused.log", 60s);
+    EXPECT_NE(run.status.code, 0) << name;
+    EXPECT_NE(run.output.find(name), std::string::npos) << run.output;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.json")) << name;
+  }
+}
+
+}  // namespace
+}  // namespace skyfuse::test
