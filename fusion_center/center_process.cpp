@@ -2,12 +2,18 @@
 
 #include "center.hpp"
 #include "center_rounds.hpp"
+#include "picture_center.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 
 namespace skyfuse::center {
 
 int run_center(const options::NodeOptions& options) {
+  if (Scenario scenario = load_scenario_or_default(options.scenario_path);
+      scenario.has_many_targets()) {
+    return run_picture_center(options, std::move(scenario));
+  }
   const RunPlan plan = transport::load_plan(options);
   // What updates the rounds is compiled by shard of the configuration groups, the endpoints once
   // (center_rounds.hpp).

@@ -7,31 +7,25 @@
 #include <stdexcept>
 #include <vector>
 
-#include "skyfuse/filters/parts/ekf_part.hpp"
-#include "skyfuse/models/constant_velocity.hpp"
-#include "skyfuse/multitarget/fixes_position.hpp"
 #include "skyfuse/multitarget/peer_picture.hpp"
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/registry/make_parts.hpp"
-#include "skyfuse/registry/registry.hpp"
-#include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
-#include "skyfuse/tracking/ekf_increment_rule.hpp"
+#include "skyfuse/sim/picture_stations.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 #include "skyfuse/transport/node_loop.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/picture_exchange.hpp"
+#include "skyfuse/transport/picture_nodes.hpp"
 
 namespace skyfuse::station {
 namespace {
 
 using transport::RunEnd;
 
-// Over DDS the picture runs the EKF on constant velocity so far (the in-process run, `skyfuse
-// sweep`, runs every filter part); the sensor is any that fixes a position.
-using Model = ConstantVelocity3D;
+using Model = transport::PictureModel;
 using Tracks = PeerModelTracks<Model, EkfIncrementRule>;
 
 template <typename Sensor>
@@ -46,7 +40,7 @@ class PictureStation {
       : options_(options),
         plan_(std::move(plan)),
         truth_(std::move(truth)),
-        known_(known_stations(plan_)),
+        known_(known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run)),
         me_(index_of(plan_, options.id)),
         detection_(
             plan_.participants()[me_].detection.value_or(plan_.scenario.traffic->detection)),
@@ -118,15 +112,6 @@ class PictureStation {
   transport::ProcessCounts counts() const { return {}; }
 
  private:
-  static std::vector<KnownStation<Sensor>> known_stations(const PicturePlan& plan) {
-    std::vector<KnownStation<Sensor>> known;
-    for (const StationConfig& station : plan.participants()) {
-      known.push_back({station.id, make_sensor<Sensor>(station),
-                       station_noise_covariance<M>(plan.scenario, station, plan.mc_run),
-                       station.weight});
-    }
-    return known;
-  }
   static std::size_t index_of(const PicturePlan& plan, int id) {
     const auto participants = plan.participants();
     for (std::size_t i = 0; i < participants.size(); ++i) {
@@ -168,32 +153,12 @@ int run_picture_station(const StationOptions& options, Scenario scenario) {
     throw std::invalid_argument(
         "--rejoin-at-step, --replay: not for a run of many aircraft yet");
   }
-  if (plan.scenario.filter.kind != EkfFilterPart::kKind ||
-      plan.scenario.filter.motion_model.kind != Model::kKind) {
-    throw std::invalid_argument(fmt::format(
-        "scenario '{}': over DDS a run of many aircraft runs the EKF on constant velocity so "
-        "far, not '{}' on '{}' (`skyfuse sweep` runs it in-process)",
-        plan.scenario.name, plan.scenario.filter.kind, plan.scenario.filter.motion_model.kind));
-  }
   std::vector<TargetTruth> truth = build_traffic_truth(plan.scenario).targets;
-  int code = options::kExitError;
-  const bool known_kind = visit_sensor_kind<Sensors, Model::kDim>(
-      plan.scenario.stations.front().sensor.kind,
-      [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-        using Sensor = SensorOf<Model::kDim>;
-        if constexpr (FixesPosition<Sensor>) {
-          code = transport::make_lifelong<PictureStation<Sensor>>(options, std::move(plan),
-                                                                  std::move(truth))
-                     .run();
-        } else {
-          throw std::invalid_argument(fmt::format(
-              "sensor '{}': a run of many aircraft takes sensors one detection of which fixes "
-              "a position",
-              Sensor::kKind));
-        }
-      });
-  if (!known_kind) throw std::logic_error("picture station: unknown sensor kind");
-  return code;
+  return transport::with_picture_sensor(plan, [&]<typename Sensor>(std::type_identity<Sensor>) {
+    return transport::make_lifelong<PictureStation<Sensor>>(options, std::move(plan),
+                                                            std::move(truth))
+        .run();
+  });
 }
 
 }  // namespace skyfuse::station

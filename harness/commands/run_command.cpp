@@ -138,7 +138,9 @@ int run_run(const RunOptions& o) {
     const PictureRunSummary summary = execute_picture_run(o, scenario);
     print_picture_run_table(summary, stdout);
     fmt::print("results in {}\n", o.out_dir);
-    return summary.peers_identical && summary.equals_in_process ? 0 : 1;
+    const bool held =
+        summary.peers_identical && summary.equals_in_process && summary.center_equals_in_process;
+    return held ? 0 : 1;
   }
   const RunPlan plan = load_run_plan(o);
   warn_if_receive_buffers_too_small(plan.stations);

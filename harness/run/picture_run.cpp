@@ -5,11 +5,13 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <string_view>
 #include <sstream>
 #include <vector>
 
@@ -177,6 +179,35 @@ class PictureDriver {
 
 std::string hex(std::uint64_t v) { return fmt::format("{:016x}", v); }
 
+// The center's picture against a peer's: rounds whose tracks (ids and statuses) differ, and the
+// largest |x_center - x_p2p| / (1 + |x_center|) over the tracks both hold.
+void compare_center(const wire::PictureRound& center, const wire::PictureRound& peer,
+                    PictureRunSummary& summary) {
+  const auto& mine = peer.tracks();
+  const auto& theirs = center.tracks();
+  bool same_tracks = mine.size() == theirs.size();
+  for (std::size_t i = 0, j = 0; i < mine.size() && j < theirs.size();) {
+    if (mine[i].track_id() < theirs[j].track_id()) {
+      ++i;
+    } else if (theirs[j].track_id() < mine[i].track_id()) {
+      ++j;
+    } else {
+      same_tracks = same_tracks && mine[i].confirmed() == theirs[j].confirmed();
+      double gap = 0.0;
+      double norm = 0.0;
+      for (std::size_t e = 0; e < theirs[j].x().size() && e < mine[i].x().size(); ++e) {
+        gap += (theirs[j].x()[e] - mine[i].x()[e]) * (theirs[j].x()[e] - mine[i].x()[e]);
+        norm += theirs[j].x()[e] * theirs[j].x()[e];
+      }
+      summary.max_state_gap_center_vs_p2p =
+          std::max(summary.max_state_gap_center_vs_p2p, std::sqrt(gap) / (1.0 + std::sqrt(norm)));
+      ++i;
+      ++j;
+    }
+  }
+  if (!same_tracks) ++summary.rounds_center_tracks_differ;
+}
+
 }  // namespace
 
 PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scenario) {
@@ -200,13 +231,15 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
       default_discovery_timeout_s(plan.stations));
 
   const Placement placement(o, plan.scenario.exchange, ids.size());
+  std::vector<int> nodes = ids;  // the center (0) first, then the stations ascending
+  nodes.insert(nodes.begin(), kCenterNodeId);
   ChildProcesses children;
-  PictureDriver driver(harness_node_config(o, placement, plan.stations), run_id, ids, children);
+  PictureDriver driver(harness_node_config(o, placement, plan.stations), run_id, nodes, children);
   try {
-    for (std::size_t j = 0; j < plan.participants().size(); ++j) {
-      const StationConfig& station = plan.participants()[j];
+    // Process 0 is the center, process 1 + j the j-th station: each with the run's options.
+    const auto spawn = [&](std::size_t process, std::vector<std::string> argv, int id) {
       options::NodeOptions child = o.node;
-      child.network = placement.of(1 + j).first;
+      child.network = placement.of(process).first;
       child.scenario_path = scenario_file.string();
       child.run_id = run_id;
       child.overrides.stations = plan.stations;
@@ -215,11 +248,15 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
       child.discovery_timeout_s = discovery_timeout;
       child.idle_timeout_s = std::max(30.0, 3.0 * o.round_timeout_s);
       child.log_level = o.verbose ? "info" : "warn";
-      std::vector<std::string> argv{(executable_dir() / "skyfuse-station").string(), "--id",
-                                    std::to_string(station.id)};
       const std::vector<std::string> common = options::to_arguments(child);
       argv.insert(argv.end(), common.begin(), common.end());
-      children.spawn(node_name(station.id), argv);
+      children.spawn(node_name(id), argv);
+    };
+    spawn(0, {(executable_dir() / "skyfuse-center").string()}, kCenterNodeId);
+    for (std::size_t j = 0; j < plan.participants().size(); ++j) {
+      const int id = plan.participants()[j].id;
+      spawn(1 + j, {(executable_dir() / "skyfuse-station").string(), "--id", std::to_string(id)},
+            id);
     }
     const auto discovery_start = Clock::now();
     driver.wait_until_joined(std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
@@ -237,13 +274,25 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     const auto start = Clock::now();
     for (int k = 0; k < plan.scenario.steps; ++k) {
       const auto rounds = driver.run_round(static_cast<std::uint32_t>(k), round_timeout);
-      const std::uint64_t expected = twin.peer_digests.at(static_cast<std::size_t>(k));
+      const auto step = static_cast<std::size_t>(k);
+      const wire::PictureRound& center = rounds.front();
+      const wire::PictureRound& first_peer = rounds[1];
       for (const wire::PictureRound& r : rounds) {
+        const bool is_center = r.source_id() == kCenterNodeId;
+        const std::uint64_t expected =
+            is_center ? twin.center_digests.at(step) : twin.peer_digests.at(step);
         const auto confirmed = std::count_if(r.tracks().begin(), r.tracks().end(),
                                              [](const auto& t) { return t.confirmed(); });
         csv << fmt::format("{},{},{},{},{},{}\n", k, r.source_id(), hex(r.picture_digest()),
                            r.tracks().size(), confirmed, hex(expected));
-        if (r.picture_digest() != rounds.front().picture_digest() && summary.peers_identical) {
+        if (is_center) {
+          if (r.picture_digest() != expected && summary.center_equals_in_process) {
+            summary.center_equals_in_process = false;
+            summary.first_step_center_apart_from_in_process = k;
+          }
+          continue;
+        }
+        if (r.picture_digest() != first_peer.picture_digest() && summary.peers_identical) {
           summary.peers_identical = false;
           summary.first_divergent_step = k;
         }
@@ -252,8 +301,9 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
           summary.first_step_apart_from_in_process = k;
         }
       }
+      compare_center(center, first_peer, summary);
       if (k + 1 == plan.scenario.steps) {
-        const wire::PictureRound& last = rounds.front();
+        const wire::PictureRound& last = first_peer;
         summary.tracks_at_end = last.tracks().size();
         summary.confirmed_at_end = static_cast<std::size_t>(
             std::count_if(last.tracks().begin(), last.tracks().end(),
@@ -280,6 +330,11 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
         {"first_divergent_step", summary.first_divergent_step},
         {"equals_in_process", summary.equals_in_process},
         {"first_step_apart_from_in_process", summary.first_step_apart_from_in_process},
+        {"center_equals_in_process", summary.center_equals_in_process},
+        {"first_step_center_apart_from_in_process",
+         summary.first_step_center_apart_from_in_process},
+        {"max_state_gap_center_vs_p2p", summary.max_state_gap_center_vs_p2p},
+        {"rounds_center_tracks_differ", summary.rounds_center_tracks_differ},
         {"discovery_s", summary.discovery_s},
         {"rounds_per_s", summary.rounds_per_s},
         {"tracks_at_end", summary.tracks_at_end},
@@ -288,6 +343,8 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
         {"in_process",
          {{"peers_identical", twin.peers_identical},
           {"confirmed_at_end", twin.confirmed_at_end},
+          {"max_state_gap_center_vs_p2p", twin.max_state_gap},
+          {"association_flips", twin.association_flips},
           {"gospa_mean", twin.score.gospa_mean}}}};
     write_file_atomically(out / "summary.json", json.dump(2) + "\n");
     return summary;
@@ -298,19 +355,30 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
 }
 
 void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
-  fmt::print(out, "many aircraft over DDS: scenario '{}', {} station processes, {} rounds\n",
+  fmt::print(out,
+             "many aircraft over DDS: scenario '{}', {} station processes and the center, {} "
+             "rounds\n",
              s.scenario, s.stations, s.steps);
-  fmt::print(out, "  peers' pictures          {}\n",
-             s.peers_identical ? "bit-identical in every round"
-                               : fmt::format("apart from round {}", s.first_divergent_step));
-  fmt::print(out, "  equal to in-process run  {}\n",
-             s.equals_in_process
-                 ? "yes, every round"
-                 : fmt::format("no, from round {}", s.first_step_apart_from_in_process));
-  fmt::print(out, "  tracks at the end        {} ({} confirmed)\n", s.tracks_at_end,
-             s.confirmed_at_end);
-  fmt::print(out, "  discovery                {:.2f} s\n", s.discovery_s);
-  fmt::print(out, "  rounds per second        {:.0f}\n", s.rounds_per_s);
+  const auto row = [&](std::string_view what, const std::string& value) {
+    fmt::print(out, "  {:<36} {}\n", what, value);
+  };
+  row("peers' pictures", s.peers_identical
+                             ? "bit-identical in every round"
+                             : fmt::format("apart from round {}", s.first_divergent_step));
+  row("peers equal to the in-process run",
+      s.equals_in_process ? "yes, every round"
+                          : fmt::format("no, from round {}", s.first_step_apart_from_in_process));
+  row("center equal to its in-process run",
+      s.center_equals_in_process
+          ? "yes, every round"
+          : fmt::format("no, from round {}", s.first_step_center_apart_from_in_process));
+  row("center vs peer-to-peer", fmt::format("max |dx| / (1 + |x|) {:.2e}; {} rounds with other "
+                                            "tracks",
+                                            s.max_state_gap_center_vs_p2p,
+                                            s.rounds_center_tracks_differ));
+  row("tracks at the end", fmt::format("{} ({} confirmed)", s.tracks_at_end, s.confirmed_at_end));
+  row("discovery", fmt::format("{:.2f} s", s.discovery_s));
+  row("rounds per second", fmt::format("{:.0f}", s.rounds_per_s));
 }
 
 }  // namespace skyfuse::harness

@@ -1,10 +1,11 @@
 #pragma once
-// `skyfuse run` of a scenario with many aircraft: one station process per participant over DDS,
-// in lock-step. Each round the harness publishes the tick and waits for every station's
-// picture (every track and the picture's digest); it compares the digests of every peer with
-// each other and with the in-process run's (sim/picture_run.hpp), round by round, and writes
-// them. The fusion center, real time, faults, recordings and the live view do not take a run of
-// many aircraft yet: they are refused with a message.
+// `skyfuse run` of a scenario with many aircraft: one station process per participant and the
+// fusion center over DDS, in lock-step. Each round the harness publishes the tick and waits for
+// every node's picture (every track and the picture's digest); it compares the digests of every
+// peer with each other and with the in-process run's (sim/picture_run.hpp), the center's with
+// its in-process twin's and its states with the peers', round by round, and writes them. Real
+// time, faults, recordings and the live view do not take a run of many aircraft yet: they are
+// refused with a message.
 
 #include <cstdint>
 #include <cstdio>
@@ -25,6 +26,13 @@ struct PictureRunSummary {
   /// Every round's digest equal to the in-process run's.
   bool equals_in_process = true;
   int first_step_apart_from_in_process = -1;
+  /// The center's digest equal to its in-process run's in every round.
+  bool center_equals_in_process = true;
+  int first_step_center_apart_from_in_process = -1;
+  /// Over rounds and the tracks both hold: |x_center - x_p2p| / (1 + |x_center|).
+  double max_state_gap_center_vs_p2p = 0.0;
+  /// Rounds whose center holds other tracks (ids, statuses) than the peers.
+  int rounds_center_tracks_differ = 0;
   double discovery_s = 0.0;
   double rounds_per_s = 0.0;
   std::size_t tracks_at_end = 0;

@@ -1,8 +1,9 @@
 // Many aircraft over DDS: `skyfuse run` of a scenario with traffic starts one station process
-// per radar; each associates only its own scan against the common predicted picture, publishes
-// it, and fuses every station's report rebuilt from the wire. Every station's picture must be
-// the in-process run's bit for bit in every round, which this test checks against its own
-// in-process run, not the harness's word.
+// per radar and the center; each station associates only its own scan against the common
+// predicted picture, publishes it, and fuses every station's report rebuilt from the wire; the
+// center assigns the raw scans jointly. Every station's picture must be the in-process run's
+// bit for bit in every round, and the center's its in-process center's, which this test checks
+// against its own in-process run, not the harness's word.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -39,6 +40,7 @@ TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
   const PictureRunResult twin =
       run_picture(plan.scenario, build_traffic_truth(plan.scenario).targets, kStations, 0);
   ASSERT_EQ(twin.peer_digests.size(), static_cast<std::size_t>(kSteps));
+  ASSERT_EQ(twin.center_digests.size(), static_cast<std::size_t>(kSteps));
 
   // picture_rounds.csv: step,station,picture_digest,tracks,confirmed,in_process_digest
   std::istringstream csv(read_file(dir / "out" / "picture_rounds.csv"));
@@ -58,18 +60,26 @@ TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
               5)
         << line;
     ASSERT_LT(step, kSteps);
-    EXPECT_EQ(digest, fmt::format("{:016x}", twin.peer_digests[static_cast<std::size_t>(step)]))
-        << "station " << station << ", step " << step;
+    const auto& expected = station == 0 ? twin.center_digests : twin.peer_digests;
+    EXPECT_EQ(digest, fmt::format("{:016x}", expected[static_cast<std::size_t>(step)]))
+        << (station == 0 ? "the center" : "station " + std::to_string(station)) << ", step "
+        << step;
     ++rows_per_step[step];
     confirmed_seen = std::max(confirmed_seen, confirmed);
   }
   ASSERT_EQ(rows_per_step.size(), static_cast<std::size_t>(kSteps));
-  for (const auto& [step, rows] : rows_per_step) EXPECT_EQ(rows, kStations) << "step " << step;
+  for (const auto& [step, rows] : rows_per_step) {
+    EXPECT_EQ(rows, kStations + 1) << "step " << step;  // the stations and the center
+  }
   EXPECT_GE(confirmed_seen, 10U) << "the stations confirmed tracks of the city's aircraft";
 
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   EXPECT_TRUE(summary.at("peers_identical").get<bool>());
   EXPECT_TRUE(summary.at("equals_in_process").get<bool>());
+  EXPECT_TRUE(summary.at("center_equals_in_process").get<bool>());
+  // Central and peer-to-peer: the same tracks, states within 1e-9.
+  EXPECT_EQ(summary.at("rounds_center_tracks_differ").get<int>(), 0);
+  EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
   EXPECT_EQ(summary.at("picture_digest_at_end").get<std::string>(),
             fmt::format("{:016x}", twin.peer_digests.back()));
 }

@@ -17,6 +17,7 @@
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
+#include "skyfuse/sim/picture_stations.hpp"
 #include "skyfuse/tracking/increment_rules.hpp"
 
 namespace skyfuse {
@@ -96,7 +97,7 @@ class PictureRun {
         traffic_(*scenario.traffic),
         truth_(truth),
         run_(run),
-        known_(known_stations(scenario, stations, run)),
+        known_(known_stations<Sensor>(scenario, stations, run)),
         score_(traffic_.gospa, truth.size(), scenario.time_step_s) {
     peers_.assign(known_.size(), Peer(Parts::peer(scenario), known_, traffic_.tracker));
     center_.emplace(Parts::center(scenario), known_, traffic_.tracker);
@@ -127,17 +128,6 @@ class PictureRun {
   }
 
  private:
-  static std::vector<KnownStation<Sensor>> known_stations(const Scenario& scenario, int stations,
-                                                          std::uint64_t run) {
-    std::vector<KnownStation<Sensor>> known;
-    for (int s = 0; s < stations; ++s) {
-      const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
-      known.push_back({station.id, make_sensor<Sensor>(station),
-                       station_noise_covariance<M>(scenario, station, run), station.weight});
-    }
-    return known;
-  }
-
   void round(int k) {
     const auto step = static_cast<std::uint64_t>(k);
     scans_.clear();
@@ -166,6 +156,7 @@ class PictureRun {
     for (Peer& peer : peers_) peer.fuse(step, reports_);
     center_->update(step, scans_);
     result_.peer_digests.push_back(peers_.front().digest());
+    result_.center_digests.push_back(center_->digest());
     compare(k);
   }
 

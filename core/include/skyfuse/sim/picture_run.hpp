@@ -28,6 +28,8 @@ struct PictureRunResult {
   /// The first peer's picture digest after each round (TrackTable::digest): what a run over
   /// DDS compares its peers' with.
   std::vector<std::uint64_t> peer_digests;
+  /// The center's picture digest after each round.
+  std::vector<std::uint64_t> center_digests;
   /// Association pairs (station, detection, track) the center and the peers decided
   /// differently, over the run: 0 unless a decision at a gate's edge flipped.
   std::size_t association_flips = 0;

@@ -15,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -24,10 +25,9 @@
 
 #include "skyfuse/multitarget/peer_picture.hpp"
 #include "skyfuse/multitarget/scan.hpp"
-#include "skyfuse/tracking/step_collector.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/picture_scans.hpp"
 #include "skyfuse/transport/picture_wire.hpp"
-#include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/transport/topics.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
@@ -40,15 +40,14 @@ class PictureExchange {
   using Picture = PeerPicture<Tracks, Sensor>;
   using Report = typename Picture::Report;
 
-  /// The exchange of `node` among `stations` (every participant of the run; their ids
-  /// ascending), for run `run_id`; a sample of more than `max_detections` is refused.
+  /// The exchange of `node` among `stations` (every participant of the run), for run `run_id`;
+  /// a sample of more than `max_detections` is refused.
   PictureExchange(DdsNode& node, std::span<const KnownStation<Sensor>> stations,
                   std::uint64_t run_id, std::size_t max_detections)
       : stations_(stations.begin(), stations.end()),
         ids_(ids_of(stations)),
-        collector_(ids_),
+        scans_(ids_, run_id, max_detections),
         run_id_(run_id),
-        max_detections_(max_detections),
         out_(node.make_writer<wire::PictureScan>()) {}
 
   /// Every station's writer and reader matched, this one's own included (`in`: the node's
@@ -71,20 +70,15 @@ class PictureExchange {
     out_.write(to_wire<Sensor>(scan, report, run_id_, step, picture_digest));
   }
 
-  /// Keeps a sample of the current step or the next, or says why not: another run's, one
-  /// wrong anywhere (refused whole by its first problem), then who it claims to be and when,
-  /// and whether its writer speaks for that station.
+  /// Keeps a sample of the current step or the next, or says why not (picture_scans.hpp).
   std::optional<DropKind> receive(const wire::PictureScan& sample, const WriterId& writer) {
-    if (sample.run_id() != run_id_) return DropKind::kWrongRun;
-    auto [scan, why] = picture_scan_from_wire<Sensor>(sample, max_detections_);
-    if (!scan) return why;
-    return admit(collector_, sources_, scan->step, scan->station_id, writer, *scan);
+    return scans_.receive(sample, writer);
   }
 
   /// Every station's sample of the current step is in.
-  bool complete() const { return collector_.count() == ids_.size(); }
+  bool complete() const { return scans_.complete(); }
   /// The stations whose sample of the current step is still missing.
-  std::vector<int> missing() const { return collector_.missing(); }
+  std::vector<int> missing() const { return scans_.missing(); }
 
   /// The current step's reports, rebuilt against `picture` (the predicted picture of this
   /// step), ascending station id: one per station whose sample arrived and names only tracks
@@ -92,19 +86,21 @@ class PictureExchange {
   std::vector<Report> reports(const Picture& picture) {
     std::vector<Report> out;
     const std::uint64_t digest = picture.digest();
-    for (std::size_t i = 0; i < ids_.size(); ++i) {
-      if (!collector_.filled(i)) continue;
-      const ReceivedScan<M>& scan = collector_.payloads()[i];
-      if (scan.picture_digest != digest) ++other_pictures_;
-      auto report = picture.report_of(stations_[i], scan.detections, scan.associations,
-                                      scan.unassociated, scan.dropped);
+    for (const int id : scans_.station_ids()) {  // ascending, as fusing wants them
+      const ReceivedScan<M>* scan = scans_.scan_of(id);
+      if (scan == nullptr) continue;
+      if (scan->picture_digest != digest) ++other_pictures_;
+      const auto station = std::find_if(stations_.begin(), stations_.end(),
+                                        [&](const auto& s) { return s.id == id; });
+      auto report = picture.report_of(*station, scan->detections, scan->associations,
+                                      scan->unassociated, scan->dropped);
       if (report) out.push_back(std::move(*report));
     }
     return out;
   }
 
   /// Closes the current step; the next one's samples already taken stay.
-  void advance() { collector_.advance(); }
+  void advance() { scans_.advance(); }
 
   /// Samples made against a predicted picture other than this peer's.
   std::uint64_t other_pictures() const { return other_pictures_; }
@@ -116,12 +112,10 @@ class PictureExchange {
     return ids;
   }
 
-  std::vector<KnownStation<Sensor>> stations_;  // ascending id, as ids_
+  std::vector<KnownStation<Sensor>> stations_;
   std::vector<int> ids_;
-  StepCollector<ReceivedScan<M>> collector_;
-  SourceBinding sources_;
+  PictureScans<Sensor> scans_;
   std::uint64_t run_id_;
-  std::size_t max_detections_;
   Writer<wire::PictureScan> out_;
   std::uint64_t other_pictures_ = 0;
 };

@@ -1,0 +1,16 @@
+#pragma once
+// The fusion center of a run with many aircraft, as a process: each round it takes every
+// station's PictureScan as the raw scan it is (the detections; the station's own decisions are
+// the peers' business), assigns all of them jointly to its predicted picture and updates it
+// (multitarget/central_picture.hpp), and publishes its picture (PictureRound, source 0). The
+// same inputs as the peers': the architectures are compared on identical data.
+
+#include "skyfuse/options/node_options.hpp"
+#include "skyfuse/scenario/scenario.hpp"
+
+namespace skyfuse::center {
+
+/// Runs the center of `scenario` (which has_many_targets()); returns an options::ExitCode.
+int run_picture_center(const options::NodeOptions& options, Scenario scenario);
+
+}  // namespace skyfuse::center

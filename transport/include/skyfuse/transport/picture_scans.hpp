@@ -1,0 +1,66 @@
+#pragma once
+/// \file
+/// The stations' PictureScans of the current round as a receiver collects them (a peer's
+/// exchange, transport/picture_exchange.hpp, and the center alike). Screening, in order: another
+/// run's sample, then a sample wrong anywhere (refused whole by its first problem:
+/// picture_scan_from_wire), then who it claims to be and when (the current step or the next),
+/// and whether its writer speaks for that station (source_binding.hpp).
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "skyfuse/tracking/step_collector.hpp"
+#include "skyfuse/transport/picture_wire.hpp"
+#include "skyfuse/transport/source_binding.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
+
+namespace skyfuse::transport {
+
+template <typename Sensor>
+class PictureScans {
+ public:
+  static constexpr int M = Sensor::kMeasDim;
+
+  /// The scans of stations `ids` (ascending) in run `run_id`; a sample of more than
+  /// `max_detections` is refused.
+  PictureScans(std::span<const int> ids, std::uint64_t run_id, std::size_t max_detections)
+      : collector_(ids), run_id_(run_id), max_detections_(max_detections) {}
+
+  /// Keeps a sample of the current step or the next, or says why not.
+  std::optional<DropKind> receive(const wire::PictureScan& sample, const WriterId& writer) {
+    if (sample.run_id() != run_id_) return DropKind::kWrongRun;
+    auto [scan, why] = picture_scan_from_wire<Sensor>(sample, max_detections_);
+    if (!scan) return why;
+    return admit(collector_, sources_, scan->step, scan->station_id, writer, *scan);
+  }
+
+  /// Every station's scan of the current step is in.
+  bool complete() const { return collector_.count() == collector_.station_ids().size(); }
+  /// The stations whose scan of the current step is still missing.
+  std::vector<int> missing() const { return collector_.missing(); }
+  /// The stations, ascending id.
+  std::span<const int> station_ids() const { return collector_.station_ids(); }
+  /// Station `station_id`'s scan of the current step, or nullptr if it has not arrived.
+  const ReceivedScan<M>* scan_of(int station_id) const {
+    const auto ids = collector_.station_ids();
+    const auto it = std::lower_bound(ids.begin(), ids.end(), station_id);
+    if (it == ids.end() || *it != station_id) return nullptr;
+    const auto i = static_cast<std::size_t>(it - ids.begin());
+    return collector_.filled(i) ? &collector_.payloads()[i] : nullptr;
+  }
+
+  /// Closes the current step; the next one's scans already taken stay.
+  void advance() { collector_.advance(); }
+
+ private:
+  StepCollector<ReceivedScan<M>> collector_;
+  SourceBinding sources_;
+  std::uint64_t run_id_;
+  std::size_t max_detections_;
+};
+
+}  // namespace skyfuse::transport
