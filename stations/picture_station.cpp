@@ -153,7 +153,8 @@ int run_picture_station(const StationOptions& options, Scenario scenario) {
     throw std::invalid_argument(
         "--rejoin-at-step, --replay: not for a run of many aircraft yet");
   }
-  std::vector<TargetTruth> truth = build_traffic_truth(plan.scenario).targets;
+  std::vector<TargetTruth> truth =
+      build_traffic_truth(plan.scenario, options.node.traffic_file).targets;
   return transport::with_picture_sensor(plan, [&]<typename Sensor>(std::type_identity<Sensor>) {
     return transport::make_lifelong<PictureStation<Sensor>>(options, std::move(plan),
                                                             std::move(truth))

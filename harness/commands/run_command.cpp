@@ -57,6 +57,7 @@ void add_run_command(CLI::App& app, RunOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "run", "Run the stations and the fusion center as processes over DDS, in lock-step");
   options::add_scenario_option(*cmd, o.node.scenario_path);
+  options::add_traffic_file_option(*cmd, o.node.traffic_file);
   options::add_plan_options(*cmd, o.node.overrides);
   cmd->add_option("--out", o.out_dir, "Folder for the per-step CSVs and summary.json")
       ->capture_default_str();
@@ -141,6 +142,10 @@ int run_run(const RunOptions& o) {
     const bool held =
         summary.peers_identical && summary.equals_in_process && summary.center_equals_in_process;
     return held ? 0 : 1;
+  }
+  if (!o.node.traffic_file.empty()) {
+    throw std::invalid_argument(
+        "--traffic-file: the scenario has one target; the option is for one with 'traffic'");
   }
   const RunPlan plan = load_run_plan(o);
   warn_if_receive_buffers_too_small(plan.stations);

@@ -218,7 +218,10 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
   std::sort(ids.begin(), ids.end());
 
   // The in-process twin first: what every peer's picture must equal, round by round.
-  const TrafficTruth truth = build_traffic_truth(plan.scenario);
+  const TrafficTruth truth = build_traffic_truth(plan.scenario, o.node.traffic_file);
+  // The nodes read the scenario's copy in the results folder: a recorded file it names relative
+  // to itself is passed to them by its absolute path.
+  const auto recorded = recorded_traffic_file(plan.scenario, o.node.traffic_file);
   const PictureRunResult twin =
       run_picture(plan.scenario, truth.targets, plan.stations, plan.mc_run);
 
@@ -241,6 +244,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
       options::NodeOptions child = o.node;
       child.network = placement.of(process).first;
       child.scenario_path = scenario_file.string();
+      if (recorded) child.traffic_file = std::filesystem::absolute(*recorded).string();
       child.run_id = run_id;
       child.overrides.stations = plan.stations;
       child.overrides.steps = plan.scenario.steps;

@@ -94,8 +94,17 @@ void add_deadline_options(CLI::App& app, NodeOptions& o) {
       ->capture_default_str();
 }
 
+void add_traffic_file_option(CLI::App& app, std::string& traffic_file) {
+  app.add_option("--traffic-file", traffic_file,
+                 "An OpenSky state-vector CSV for a scenario with 'traffic: recorded', instead of "
+                 "the file it names")
+      ->check(CLI::ExistingFile)
+      ->type_name("FILE.csv");
+}
+
 void add_node_options(CLI::App& app, NodeOptions& o) {
   add_scenario_option(app, o.scenario_path);
+  add_traffic_file_option(app, o.traffic_file);
   add_domain_option(app, o.domain);
   app.add_option("--run-id", o.run_id, "Run id shared by every process of the run")
       ->capture_default_str();
@@ -129,6 +138,7 @@ std::vector<std::string> to_arguments(const NodeOptions& o) {
     args.push_back(std::move(value));
   };
   if (!o.scenario_path.empty()) add("--scenario", o.scenario_path);
+  if (!o.traffic_file.empty()) add("--traffic-file", o.traffic_file);
   add("--domain", std::to_string(o.domain));
   add("--run-id", std::to_string(o.run_id));
   if (o.overrides.stations) add("--stations", std::to_string(*o.overrides.stations));

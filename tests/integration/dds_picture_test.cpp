@@ -17,6 +17,7 @@
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_run.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
+#include "support/opensky_states.hpp"
 
 namespace skyfuse::test {
 namespace {
@@ -82,6 +83,28 @@ TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
   EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
   EXPECT_EQ(summary.at("picture_digest_at_end").get<std::string>(),
             fmt::format("{:016x}", twin.peer_digests.back()));
+}
+
+// recorded-airport.yaml on a file of 60 aircraft in OpenSky's format, given by --traffic-file:
+// the stations read it by its absolute path (they run on the scenario's copy in the results
+// folder), and the run goes to its end with the same guarantees.
+TEST(DdsPicture, RecordedTrafficOfSixtyAircraftRunsToTheEndBitForBit) {
+  const auto dir = test_dir();
+  const Scenario scenario = load_scenario_file(bin("scenarios/recorded-airport.yaml"));
+  const auto file = dir / "states.csv";
+  write_opensky_states(file, scenario.anchor, 1700000000.0, 5);
+  const Completed run = run_to_completion(
+      {bin("skyfuse"), "run", "--scenario", bin("scenarios/recorded-airport.yaml"),
+       "--traffic-file", file.string(), "--stations", "4", "--steps", "60", "--domain", "94",
+       "--out", (dir / "out").string()},
+      dir / "out.log", 180s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_TRUE(summary.at("peers_identical").get<bool>());
+  EXPECT_TRUE(summary.at("equals_in_process").get<bool>());
+  EXPECT_TRUE(summary.at("center_equals_in_process").get<bool>());
+  EXPECT_EQ(summary.at("steps").get<int>(), 60);
+  EXPECT_GE(summary.at("confirmed_at_end").get<int>(), 50) << "most of the 60 aircraft tracked";
 }
 
 // What a run of many aircraft does not take yet is refused before any process starts, by name.

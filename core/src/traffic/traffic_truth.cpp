@@ -59,6 +59,17 @@ TargetTruth generated_aircraft(const TrafficGeneratorConfig& g, std::uint64_t se
 
 }  // namespace
 
+std::optional<std::filesystem::path> recorded_traffic_file(const Scenario& scenario,
+                                                           const std::string& recorded_file) {
+  if (!recorded_file.empty()) return std::filesystem::path(recorded_file);
+  if (!scenario.traffic || !scenario.traffic->recorded) return std::nullopt;
+  std::filesystem::path file = scenario.traffic->recorded->file;
+  if (file.is_relative() && !scenario.source_path.empty()) {
+    file = std::filesystem::path(scenario.source_path).parent_path() / file;
+  }
+  return file;
+}
+
 TrafficTruth build_traffic_truth(const Scenario& scenario, const std::string& recorded_file) {
   if (!scenario.traffic) throw std::logic_error("build_traffic_truth: a scenario with one target");
   const TrafficConfig& traffic = *scenario.traffic;
@@ -79,14 +90,7 @@ TrafficTruth build_traffic_truth(const Scenario& scenario, const std::string& re
           generated_aircraft(*traffic.generator, scenario.seed, a, dt, scenario.steps));
     }
   }
-  if (traffic.recorded || !recorded_file.empty()) {
-    std::filesystem::path file = recorded_file;
-    if (file.empty()) {
-      file = traffic.recorded->file;
-      if (file.is_relative() && !scenario.source_path.empty()) {
-        file = std::filesystem::path(scenario.source_path).parent_path() / file;
-      }
-    }
+  if (const auto file = recorded_traffic_file(scenario, recorded_file)) {
     RecordedTrafficOptions options;
     options.time_step_s = dt;
     options.steps = scenario.steps;
@@ -94,7 +98,7 @@ TrafficTruth build_traffic_truth(const Scenario& scenario, const std::string& re
       if (traffic.recorded->start_time_s) options.start_time_s = *traffic.recorded->start_time_s;
       options.max_staleness_s = traffic.recorded->max_staleness_s;
     }
-    truth.recorded = read_opensky_states(file, scenario.anchor, options);
+    truth.recorded = read_opensky_states(*file, scenario.anchor, options);
     for (const TargetTruth& flight : truth.recorded->targets) truth.targets.push_back(flight);
   }
   return truth;

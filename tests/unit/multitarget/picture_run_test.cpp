@@ -16,6 +16,7 @@
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/traffic/geodesy.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
+#include "support/opensky_states.hpp"
 
 namespace skyfuse {
 namespace {
@@ -74,31 +75,10 @@ TEST(PictureRun, TheImmKeepsOnePictureToo) {
   EXPECT_GE(run.score.aircraft_confirmed, 15U);
 }
 
-// 60 aircraft on straight, level legs through the airport's area, written every 10 s the way
-// OpenSky does (time, position received a second earlier).
 std::filesystem::path write_traffic_file(const GeoAnchor& anchor, double start, int minutes) {
   const std::filesystem::path path =
       std::filesystem::path(::testing::TempDir()) / "skyfuse_picture_run_states.csv";
-  std::ofstream out(path, std::ios::trunc);
-  out << "time,icao24,lat,lon,velocity,heading,vertrate,callsign,onground,alert,spi,squawk,"
-         "baroaltitude,geoaltitude,lastposupdate,lastcontact\n";
-  for (int t = 0; t <= minutes * 60; t += 10) {
-    for (int a = 0; a < 60; ++a) {
-      const double heading_deg = 6.0 * a;  // clockwise from north
-      const double speed = 120.0 + 2.0 * a;
-      const double h = heading_deg * std::numbers::pi / 180.0;
-      const Vector3 velocity(speed * std::sin(h), speed * std::cos(h), 0.0);
-      const Vector3 start_at(-40000.0 * std::sin(h) + 300.0 * (a % 7),
-                             -40000.0 * std::cos(h) - 200.0 * (a % 5), 1500.0 + 150.0 * a);
-      const Vector3 p = start_at + (t - 1.0) * velocity;  // the position is a second old
-      const Vector3 geo = from_local_enu(anchor, p);
-      out << fmt::format(
-          "{},{:06x},{:.9f},{:.9f},{},{},0,TEST{:02d}  ,false,false,false,1000,{},{},"
-          "{},{}\n",
-          start + t, 0x3c0000 + a, geo(0), geo(1), speed, heading_deg, a, geo(2), geo(2),
-          start + t - 1.0, start + t);
-    }
-  }
+  test::write_opensky_states(path, anchor, start, minutes);
   return path;
 }
 

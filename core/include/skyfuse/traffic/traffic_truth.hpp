@@ -4,6 +4,7 @@
 /// targets, the generator's aircraft, a recorded file's flights — together, in that order.
 
 #include <cstddef>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,5 +26,10 @@ struct TrafficTruth {
 /// the scenario file. The generator's aircraft are the same in every Monte-Carlo run: a
 /// function of the scenario's seed.
 TrafficTruth build_traffic_truth(const Scenario& scenario, const std::string& recorded_file = {});
+
+/// The recorded file build_traffic_truth reads: `recorded_file` if given, otherwise the
+/// scenario's own, relative to the scenario file; none if the scenario records no traffic.
+std::optional<std::filesystem::path> recorded_traffic_file(const Scenario& scenario,
+                                                           const std::string& recorded_file = {});
 
 }  // namespace skyfuse

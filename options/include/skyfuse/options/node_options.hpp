@@ -29,6 +29,9 @@ inline constexpr int kMaxDomainId = 232;
 
 struct NodeOptions {
   std::string scenario_path;  ///< empty: the embedded paper000 scenario
+  /// A recorded traffic file (OpenSky state vectors) for a scenario with 'traffic: recorded',
+  /// instead of the one it names; empty: its own.
+  std::string traffic_file;
   int domain = 0;
   std::uint64_t run_id = 1;
   RunOverrides overrides;
@@ -75,6 +78,8 @@ void add_node_options(CLI::App& app, NodeOptions& options);
 /// The options of add_node_options that `skyfuse run` (and the other commands that start or
 /// drive nodes) pass on unchanged: declared once, here.
 void add_domain_option(CLI::App& app, int& domain);
+/// `--traffic-file FILE.csv`: a recorded traffic file for a scenario with 'traffic: recorded'.
+void add_traffic_file_option(CLI::App& app, std::string& traffic_file);
 void add_qos_option(CLI::App& app, std::optional<std::string>& qos_file);
 void add_secure_option(CLI::App& app, std::optional<std::string>& secure_dir);
 /// `--realtime-deadline-ms D` and `--round-deadline-ms D`.
