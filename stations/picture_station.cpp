@@ -50,21 +50,32 @@ class PictureStation {
         exchange_(node_, known_, options.node.run_id,
                   plan_.scenario.traffic->tracker.association.max_detections_per_scan),
         rounds_(node_.make_writer<wire::PictureRound>()),
+        states_out_(node_.make_writer<wire::PictureState>()),
+        states_in_(node_.make_reader<wire::PictureState>()),
         picture_(Tracks(make_motion_model<Model>(plan_.scenario),
                         plan_.scenario.filter.initial_covariance_diag),
-                 known_, plan_.scenario.traffic->tracker) {}
+                 known_, plan_.scenario.traffic->tracker) {
+    // Its own scan never crosses the simulated link: the exchange keeps it as it goes out.
+    exchange_.keep_own();
+    loop_.skip_own(options.id, exchange_.own_writer());
+  }
 
   int run() {
     auto& inputs = loop_.inputs();
     auto& ticks = loop_.ticks();
     if (const RunEnd end = loop_.join(
             [&] {
-              return exchange_.matched(inputs) && ticks.matched() >= 1 && rounds_.matched() >= 1;
+              const int m = plan_.stations;
+              return exchange_.matched(inputs) && ticks.matched() >= 1 &&
+                     rounds_.matched() >= 1 && states_out_.matched() >= m &&
+                     states_in_.matched() >= m;
             },
             [&] {
-              return fmt::format("{}, tick writer {}/1, picture readers {}/1 (harness)",
-                                 exchange_.describe_matched(inputs), ticks.matched(),
-                                 rounds_.matched());
+              return fmt::format(
+                  "{}, tick writer {}/1, picture readers {}/1 (harness), picture state readers "
+                  "{}/{}, writers {}/{}",
+                  exchange_.describe_matched(inputs), ticks.matched(), rounds_.matched(),
+                  states_out_.matched(), plan_.stations, states_in_.matched(), plan_.stations);
             })) {
       return *end;
     }
@@ -95,23 +106,75 @@ class PictureStation {
 
   bool round_complete() { return exchange_.complete(); }
 
-  // Fuses every station's report that arrived, rebuilt against the predicted picture, and
-  // publishes the picture.
+  // Fuses every station's report that arrived and was made against this picture, rebuilt
+  // against it, and publishes the picture. The rule that brings parted peers together again:
+  // every peer fuses onto the predicted picture of the round's lowest-id station. One whose
+  // picture is another takes that station's whole picture of the round before (which the
+  // station sends once it sees a scan made against another picture), predicts it as every peer
+  // did, and fuses the round with the others.
   RunEnd close_round(std::uint64_t k) {
     if (!exchange_.complete()) {
-      spdlog::warn("step {}: fusing without station(s) {}", k, fmt::join(exchange_.missing(), ", "));
+      spdlog::info("step {}: fusing without station(s) {}", k,
+                   fmt::join(exchange_.missing(), ", "));
     }
+    take_states();
+    const auto lowest = exchange_.lowest();
+    if (lowest && lowest->second != picture_.digest()) take_picture_of(*lowest, k);
+    const std::uint64_t predicted = picture_.digest();
     picture_.fuse(k, exchange_.reports(picture_));
-    rounds_.write(transport::picture_round_to_wire(picture_, options_.node.run_id,
-                                                   static_cast<std::uint32_t>(k), options_.id));
+    const auto step = static_cast<std::uint32_t>(k);
+    if (lowest && lowest->first == options_.id && exchange_.any_other_picture(predicted)) {
+      states_out_.write(
+          transport::picture_state_to_wire(picture_, options_.node.run_id, step, options_.id));
+    }
+    rounds_.write(
+        transport::picture_round_to_wire(picture_, options_.node.run_id, step, options_.id));
     exchange_.advance();
     return std::nullopt;
   }
 
   RunEnd settle(std::uint64_t /*steps*/) { return std::nullopt; }
-  transport::ProcessCounts counts() const { return {}; }
+  transport::ProcessCounts counts() const { return {resyncs_, 0}; }
 
  private:
+  // The latest whole picture a peer sent, kept until a newer one comes.
+  struct PeerState {
+    std::uint64_t step = 0;
+    int station_id = 0;
+    std::vector<typename Picture::TrackType> tracks;
+  };
+
+  void take_states() {
+    wire::PictureState sample;
+    while (states_in_.take(sample)) {
+      if (sample.run_id() != options_.node.run_id || sample.station_id() == options_.id) continue;
+      auto tracks = transport::picture_state_from_wire<Model::kDim>(sample);
+      if (!tracks) {
+        spdlog::warn("step {}: a picture from station {} that is wrong; refused", sample.step(),
+                     sample.station_id());
+        continue;
+      }
+      latest_ = PeerState{sample.step(), static_cast<int>(sample.station_id()), std::move(*tracks)};
+    }
+  }
+
+  // Takes the picture `lowest` (station, digest of its predicted picture) made its scan of
+  // round k against: its picture of round k - 1, predicted. Nothing if that has not come (the
+  // next round tries again) or does not predict to the digest.
+  void take_picture_of(const std::pair<int, std::uint64_t>& lowest, std::uint64_t k) {
+    if (!latest_ || latest_->station_id != lowest.first || latest_->step + 1 != k) return;
+    Picture candidate = picture_;
+    candidate.restore(latest_->tracks);
+    candidate.predict();
+    if (candidate.digest() != lowest.second) {
+      spdlog::warn("step {}: station {}'s picture does not predict to its scan's", k, lowest.first);
+      return;
+    }
+    picture_ = std::move(candidate);
+    ++resyncs_;
+    spdlog::info("step {}: took station {}'s picture", k, lowest.first);
+  }
+
   static std::size_t index_of(const PicturePlan& plan, int id) {
     const auto participants = plan.participants();
     for (std::size_t i = 0; i < participants.size(); ++i) {
@@ -130,8 +193,12 @@ class PictureStation {
   transport::NodeLoop<wire::PictureScan> loop_;
   Exchange exchange_;
   transport::Writer<wire::PictureRound> rounds_;
+  transport::Writer<wire::PictureState> states_out_;
+  transport::Reader<wire::PictureState> states_in_;
   Picture picture_;
   AssignmentWork work_;
+  std::optional<PeerState> latest_;
+  std::uint32_t resyncs_ = 0;  // rounds in which this station took another's picture
 };
 
 }  // namespace

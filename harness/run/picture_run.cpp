@@ -53,7 +53,6 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
   if (o.external) refuse("--external");
   if (o.hosts > 0) refuse("--hosts");
   if (o.node.secure_dir) refuse("--secure");
-  if (o.node.loss.enabled()) refuse("--loss");
   if (o.node.refusion_lag != 0) refuse("--refusion-lag");
 }
 
@@ -137,6 +136,18 @@ class PictureDriver {
     return out;
   }
 
+  // Waits up to `timeout` for every node's FINISHED status; what each reported: (rounds it took
+  // another's picture, samples the simulated loss removed).
+  std::map<int, std::pair<std::uint32_t, std::uint64_t>> wait_finished(
+      std::chrono::milliseconds timeout) {
+    const auto start = Clock::now();
+    while (finished_.size() < ids_.size() && Clock::now() - start < timeout) {
+      check();
+      wait_set_.wait(std::chrono::milliseconds(10));
+    }
+    return finished_;
+  }
+
   // Releases the stations: they exit once they hear it.
   void release() {
     wire::Tick stop;
@@ -163,6 +174,7 @@ class PictureDriver {
                          StopCause::kNodeFailed);
       }
       if (s.state() == wire::READY) ready_.insert(s.station_id());
+      if (s.state() == wire::FINISHED) finished_[s.station_id()] = {s.resyncs(), s.lost()};
     }
   }
 
@@ -175,6 +187,7 @@ class PictureDriver {
   transport::Reader<wire::StationStatus> statuses_;
   transport::ReaderWaitSet wait_set_;
   std::set<int> ready_;
+  std::map<int, std::pair<std::uint32_t, std::uint64_t>> finished_;
 };
 
 std::string hex(std::uint64_t v) { return fmt::format("{:016x}", v); }
@@ -276,6 +289,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     const auto round_timeout =
         std::chrono::milliseconds(std::llround(o.round_timeout_s * 1e3));
     const auto start = Clock::now();
+    int apart_at = -1;  // the last round found with peers apart
     for (int k = 0; k < plan.scenario.steps; ++k) {
       const auto rounds = driver.run_round(static_cast<std::uint32_t>(k), round_timeout);
       const auto step = static_cast<std::size_t>(k);
@@ -296,9 +310,14 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
           }
           continue;
         }
-        if (r.picture_digest() != first_peer.picture_digest() && summary.peers_identical) {
-          summary.peers_identical = false;
-          summary.first_divergent_step = k;
+        if (r.picture_digest() != first_peer.picture_digest() && apart_at != k) {
+          apart_at = k;
+          ++summary.rounds_peers_apart;
+          summary.last_round_peers_apart = k;
+          if (summary.peers_identical) {
+            summary.peers_identical = false;
+            summary.first_divergent_step = k;
+          }
         }
         if (r.picture_digest() != expected && summary.equals_in_process) {
           summary.equals_in_process = false;
@@ -318,6 +337,11 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     }
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     summary.rounds_per_s = plan.scenario.steps / seconds;
+    summary.loss = o.node.loss.enabled();
+    for (const auto& [id, counts] : driver.wait_finished(std::chrono::seconds(5))) {
+      if (id != kCenterNodeId) summary.resyncs += counts.first;
+      summary.lost += counts.second;
+    }
     driver.release();
     if (!children.wait_all(std::chrono::seconds(10))) {
       spdlog::warn("station processes still running 10 s after the run; stopping them");
@@ -332,6 +356,11 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
         {"run_id", run_id},
         {"peers_identical", summary.peers_identical},
         {"first_divergent_step", summary.first_divergent_step},
+        {"rounds_peers_apart", summary.rounds_peers_apart},
+        {"last_round_peers_apart", summary.last_round_peers_apart},
+        {"loss", summary.loss},
+        {"samples_lost", summary.lost},
+        {"resyncs", summary.resyncs},
         {"equals_in_process", summary.equals_in_process},
         {"first_step_apart_from_in_process", summary.first_step_apart_from_in_process},
         {"center_equals_in_process", summary.center_equals_in_process},
@@ -366,9 +395,16 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
   const auto row = [&](std::string_view what, const std::string& value) {
     fmt::print(out, "  {:<36} {}\n", what, value);
   };
-  row("peers' pictures", s.peers_identical
-                             ? "bit-identical in every round"
-                             : fmt::format("apart from round {}", s.first_divergent_step));
+  row("peers' pictures",
+      s.peers_identical
+          ? "bit-identical in every round"
+          : fmt::format("apart in {} rounds ({}-{}), bit-identical in the others",
+                        s.rounds_peers_apart, s.first_divergent_step, s.last_round_peers_apart));
+  if (s.loss) {
+    row("samples lost (--loss)",
+        fmt::format("{}; {} rounds a station took the lowest station's picture", s.lost,
+                    s.resyncs));
+  }
   row("peers equal to the in-process run",
       s.equals_in_process ? "yes, every round"
                           : fmt::format("no, from round {}", s.first_step_apart_from_in_process));

@@ -4,8 +4,9 @@
 // every node's picture (every track and the picture's digest); it compares the digests of every
 // peer with each other and with the in-process run's (sim/picture_run.hpp), the center's with
 // its in-process twin's and its states with the peers', round by round, and writes them. Real
-// time, faults, recordings and the live view do not take a run of many aircraft yet: they are
-// refused with a message.
+// time, kills and restarts, recordings and the live view do not take a run of many aircraft yet:
+// they are refused with a message. With --loss peers part when they miss different scans and
+// come together again by taking the lowest station's picture (stations/picture_station.cpp).
 
 #include <cstdint>
 #include <cstdio>
@@ -23,6 +24,12 @@ struct PictureRunSummary {
   /// Every station's picture digest equal in every round.
   bool peers_identical = true;
   int first_divergent_step = -1;
+  /// Rounds in which some station's picture differed from another's, and the last of them.
+  int rounds_peers_apart = 0;
+  int last_round_peers_apart = -1;
+  bool loss = false;         ///< --loss: stations and center missed samples
+  std::uint64_t lost = 0;    ///< samples the simulated loss removed, every node
+  std::uint32_t resyncs = 0; ///< rounds a station took the lowest station's picture
   /// Every round's digest equal to the in-process run's.
   bool equals_in_process = true;
   int first_step_apart_from_in_process = -1;

@@ -185,6 +185,58 @@ TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBit
   EXPECT_GT(updates, 100U) << "the rounds associated detections to tracks";
 }
 
+// A station's whole picture, sent to a peer that has parted from it: taken back through the
+// serializer, it is the same picture bit for bit (ids, statuses, histories, states, updaters),
+// and a sample wrong anywhere is refused whole.
+TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
+  using Peer = test::PictureWorld::Peer;
+  const test::PictureWorld world(12);
+  Peer sender = world.empty_picture();
+  AssignmentWork work;
+  for (int k = 0; k < 12; ++k) {
+    sender.predict();
+    std::vector<Peer::Report> reports;
+    for (std::size_t s = 0; s < world.stations.size(); ++s) {
+      reports.push_back(sender.report(world.stations[s], world.scan(s, k), work));
+    }
+    sender.fuse(static_cast<std::uint64_t>(k), reports);
+  }
+  ASSERT_GE(sender.tracks().size(), 5U);
+  wire::PictureStatePubSubType type;
+  const wire::PictureState sent = picture_state_to_wire(sender, 1, 11, 2);
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(
+      type.getSerializedSizeProvider(const_cast<wire::PictureState*>(&sent))());
+  ASSERT_TRUE(type.serialize(const_cast<wire::PictureState*>(&sent), &payload));
+  wire::PictureState back;
+  ASSERT_TRUE(type.deserialize(&payload, &back));
+  auto tracks = picture_state_from_wire<test::PictureWorld::Model::kDim>(back);
+  ASSERT_TRUE(tracks.has_value());
+
+  Peer taker = world.empty_picture();
+  taker.restore(std::move(*tracks));
+  EXPECT_EQ(taker.digest(), sender.digest());
+  EXPECT_EQ(back.picture_digest(), sender.digest());
+  for (std::size_t t = 0; t < sender.tracks().size(); ++t) {
+    EXPECT_EQ(taker.tracks()[t].history, sender.tracks()[t].history);
+    EXPECT_EQ(taker.tracks()[t].updated_by, sender.tracks()[t].updated_by);
+  }
+  taker.predict();
+  sender.predict();
+  EXPECT_EQ(taker.digest(), sender.digest()) << "and predicts to the same picture";
+
+  const auto refused = [&](const std::function<void(wire::PictureState&)>& forge) {
+    wire::PictureState wrong = back;
+    forge(wrong);
+    return !picture_state_from_wire<test::PictureWorld::Model::kDim>(wrong).has_value();
+  };
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[1].track_id(w.tracks()[0].track_id()); }));
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].x().pop_back(); }));
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].covariance().pop_back(); }));
+  EXPECT_TRUE(refused(
+      [](auto& w) { w.tracks()[0].x()[0] = std::numeric_limits<double>::quiet_NaN(); }));
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].history_rounds(33); }));
+}
+
 TEST(PictureWire, AReportNamingATrackThePictureLacksIsNotRebuilt) {
   using Model = ConstantVelocity3D;
   using TrackSensor = RangeAzimuthElevation<Model::kDim>;

@@ -5,6 +5,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,23 @@ class TrackHistory {
   int rounds() const { return static_cast<int>(rounds_); }
   int consecutive_misses() const { return static_cast<int>(consecutive_misses_); }
   bool operator==(const TrackHistory&) const = default;
+
+  /// The history as three words, and back: what a peer sends of it to another that must hold
+  /// the same picture (transport/picture_state_wire.hpp). nullopt for words no history has.
+  struct Words {
+    std::uint32_t hits = 0;  ///< bit i: a hit i rounds ago
+    std::uint32_t rounds = 0;
+    std::uint32_t consecutive_misses = 0;
+  };
+  Words words() const { return {hits_, rounds_, consecutive_misses_}; }
+  static std::optional<TrackHistory> from_words(const Words& w) {
+    if (w.rounds > 32) return std::nullopt;  // it counts rounds up to 32
+    TrackHistory history;
+    history.hits_ = w.hits;
+    history.rounds_ = w.rounds;
+    history.consecutive_misses_ = w.consecutive_misses;
+    return history;
+  }
 
  private:
   std::uint32_t hits_ = 0;  // bit i: a hit i rounds ago

@@ -89,6 +89,13 @@ class TrackTable {
     refresh_estimates();
   }
 
+  /// Replaces the whole picture with `tracks` (ascending id): another peer's, taken when this
+  /// one's has parted from it.
+  void restore(std::vector<TrackType> tracks) {
+    tracks_ = std::move(tracks);
+    refresh_estimates();
+  }
+
   /// A digest of the picture as it stands (every track's id, status and estimate, bit for
   /// bit): equal at two nodes that hold the same picture, and different, but for a chance of
   /// 2^-64, where they do not. A station publishes its predicted picture's with its scan.

@@ -8,8 +8,8 @@
 /// picture, bit for bit.
 ///
 /// A sample made against another predicted picture (its digest differs from the receiver's) is
-/// kept and counted: it is fused only if every track it names is in the receiver's picture,
-/// and the count tells that peers have parted.
+/// not fused and is counted: the count tells that peers have parted, and lowest() which
+/// picture the peers come back to (the lowest-id station's).
 ///
 /// Threading: the node's thread, as every endpoint (dds_node.hpp).
 
@@ -21,6 +21,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "skyfuse/multitarget/peer_picture.hpp"
@@ -64,11 +65,16 @@ class PictureExchange {
   WriterId own_writer() const { return out_.id(); }
 
   /// Publishes this station's round `step`: `scan`, and `report` of it against the predicted
-  /// picture whose digest is `picture_digest`.
+  /// picture whose digest is `picture_digest`. It is also kept here as it went out, for a
+  /// station whose reader skips its own samples (a simulated link must not lose them).
   void publish(std::uint32_t step, const Scan<M>& scan, const Report& report,
                std::uint64_t picture_digest) {
-    out_.write(to_wire<Sensor>(scan, report, run_id_, step, picture_digest));
+    const wire::PictureScan sample = to_wire<Sensor>(scan, report, run_id_, step, picture_digest);
+    out_.write(sample);
+    if (keep_own_) scans_.receive(sample, out_.id());
   }
+  /// Keeps this station's own samples as publish() sends them instead of from its reader.
+  void keep_own() { keep_own_ = true; }
 
   /// Keeps a sample of the current step or the next, or says why not (picture_scans.hpp).
   std::optional<DropKind> receive(const wire::PictureScan& sample, const WriterId& writer) {
@@ -81,15 +87,20 @@ class PictureExchange {
   std::vector<int> missing() const { return scans_.missing(); }
 
   /// The current step's reports, rebuilt against `picture` (the predicted picture of this
-  /// step), ascending station id: one per station whose sample arrived and names only tracks
-  /// `picture` holds. A sample made against another picture counts in other_pictures().
+  /// step), ascending station id: one per station whose sample arrived, was made against this
+  /// same picture (its digest) and names only tracks it holds. A sample made against another
+  /// picture is left out, as every peer holding this picture leaves it out, and counts in
+  /// other_pictures().
   std::vector<Report> reports(const Picture& picture) {
     std::vector<Report> out;
     const std::uint64_t digest = picture.digest();
     for (const int id : scans_.station_ids()) {  // ascending, as fusing wants them
       const ReceivedScan<M>* scan = scans_.scan_of(id);
       if (scan == nullptr) continue;
-      if (scan->picture_digest != digest) ++other_pictures_;
+      if (scan->picture_digest != digest) {
+        ++other_pictures_;
+        continue;
+      }
       const auto station = std::find_if(stations_.begin(), stations_.end(),
                                         [&](const auto& s) { return s.id == id; });
       auto report = picture.report_of(*station, scan->detections, scan->associations,
@@ -97,6 +108,25 @@ class PictureExchange {
       if (report) out.push_back(std::move(*report));
     }
     return out;
+  }
+
+  /// The lowest-id station whose sample of the current step arrived, and the digest of the
+  /// predicted picture it made it against; nothing if none arrived.
+  std::optional<std::pair<int, std::uint64_t>> lowest() const {
+    for (const int id : scans_.station_ids()) {
+      if (const ReceivedScan<M>* scan = scans_.scan_of(id)) {
+        return std::pair(id, scan->picture_digest);
+      }
+    }
+    return std::nullopt;
+  }
+  /// Whether a sample of the current step was made against a picture other than `digest`'s.
+  bool any_other_picture(std::uint64_t digest) const {
+    for (const int id : scans_.station_ids()) {
+      const ReceivedScan<M>* scan = scans_.scan_of(id);
+      if (scan != nullptr && scan->picture_digest != digest) return true;
+    }
+    return false;
   }
 
   /// Closes the current step; the next one's samples already taken stay.
@@ -118,6 +148,7 @@ class PictureExchange {
   std::uint64_t run_id_;
   Writer<wire::PictureScan> out_;
   std::uint64_t other_pictures_ = 0;
+  bool keep_own_ = false;
 };
 
 }  // namespace skyfuse::transport

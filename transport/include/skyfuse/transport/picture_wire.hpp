@@ -150,4 +150,64 @@ wire::PictureRound picture_round_to_wire(const Table& table, std::uint64_t run_i
   return sample;
 }
 
+/// Station `station_id`'s whole picture after round `step`, for a peer that must take it: every
+/// track's id, status, history, filter state and last updaters. `Table` is a TrackTable whose
+/// tracks' filters are Gaussian states (a single-model part).
+template <typename Table>
+wire::PictureState picture_state_to_wire(const Table& table, std::uint64_t run_id,
+                                         std::uint32_t step, int station_id) {
+  constexpr int N = Table::kDim;
+  wire::PictureState sample;
+  sample.run_id(run_id);
+  sample.step(step);
+  sample.station_id(station_id);
+  sample.picture_digest(table.digest());
+  std::vector<wire::PictureStateTrack>& out = sample.tracks();
+  out.reserve(table.tracks().size());
+  for (const auto& track : table.tracks()) {
+    const auto words = track.history.words();
+    wire::PictureStateTrack t;
+    t.track_id(track.id);
+    t.confirmed(track.status == TrackStatus::kConfirmed);
+    t.history_hits(words.hits);
+    t.history_rounds(words.rounds);
+    t.history_misses(words.consecutive_misses);
+    t.x(std::vector<double>(track.filter.mean.data(), track.filter.mean.data() + N));
+    t.covariance(pack_upper<N>(track.filter.covariance));
+    t.updated_by(track.updated_by);
+    out.push_back(std::move(t));
+  }
+  return sample;
+}
+
+/// The tracks of a PictureState with Gaussian states of N entries, or nothing if anything in
+/// it is wrong: a dimension, a value that is not finite, track ids not strictly ascending, a
+/// history no track has.
+template <int N>
+std::optional<std::vector<Track<GaussianState<N>>>> picture_state_from_wire(
+    const wire::PictureState& sample) {
+  std::vector<Track<GaussianState<N>>> tracks;
+  tracks.reserve(sample.tracks().size());
+  for (const wire::PictureStateTrack& t : sample.tracks()) {
+    if (!tracks.empty() && t.track_id() <= tracks.back().id) return std::nullopt;
+    if (t.x().size() != static_cast<std::size_t>(N)) return std::nullopt;
+    const auto covariance = unpack_upper<N>(t.covariance());
+    const auto history = TrackHistory::from_words(
+        {t.history_hits(), t.history_rounds(), t.history_misses()});
+    if (!covariance || !history) return std::nullopt;
+    Track<GaussianState<N>> track;
+    track.id = t.track_id();
+    track.status = t.confirmed() ? TrackStatus::kConfirmed : TrackStatus::kTentative;
+    track.history = *history;
+    track.filter.mean = Eigen::Map<const Vector<N>>(t.x().data());
+    track.filter.covariance = *covariance;
+    if (!track.filter.mean.allFinite() || !track.filter.covariance.allFinite()) {
+      return std::nullopt;
+    }
+    track.updated_by.assign(t.updated_by().begin(), t.updated_by().end());
+    tracks.push_back(std::move(track));
+  }
+  return tracks;
+}
+
 }  // namespace skyfuse::transport

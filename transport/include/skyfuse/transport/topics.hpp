@@ -38,6 +38,11 @@ struct TopicTraits<wire::PictureScan> {
   static constexpr const char* kName = "skyfuse_picture_scan";
 };
 template <>
+struct TopicTraits<wire::PictureState> {
+  using PubSubType = wire::PictureStatePubSubType;
+  static constexpr const char* kName = "skyfuse_picture_state";
+};
+template <>
 struct TopicTraits<wire::PictureRound> {
   using PubSubType = wire::PictureRoundPubSubType;
   static constexpr const char* kName = "skyfuse_picture_round";
