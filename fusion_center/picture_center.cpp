@@ -43,7 +43,7 @@ class PictureCenter {
                   plan_.scenario.traffic->tracker.association.max_detections_per_scan),
         rounds_(node_.make_writer<wire::PictureRound>()),
         picture_(CenterStackedTracks<Model, Sensor>(make_motion_model<Model>(plan_.scenario),
-                                                     plan_.scenario.filter.initial_covariance_diag),
+                                                    plan_.scenario.filter.initial_covariance_diag),
                  known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run),
                  plan_.scenario.traffic->tracker) {}
 

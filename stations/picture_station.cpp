@@ -42,8 +42,7 @@ class PictureStation {
         truth_(std::move(truth)),
         known_(known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run)),
         me_(index_of(plan_, options.id)),
-        detection_(
-            plan_.participants()[me_].detection.value_or(plan_.scenario.traffic->detection)),
+        detection_(plan_.participants()[me_].detection.value_or(plan_.scenario.traffic->detection)),
         node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", options.id))),
         loop_(node_, options.node, options.id, fmt::format("station {}", options.id),
               "picture scan", plan_.scenario.time_step_s),
@@ -66,9 +65,8 @@ class PictureStation {
     if (const RunEnd end = loop_.join(
             [&] {
               const int m = plan_.stations;
-              return exchange_.matched(inputs) && ticks.matched() >= 1 &&
-                     rounds_.matched() >= 1 && states_out_.matched() >= m &&
-                     states_in_.matched() >= m;
+              return exchange_.matched(inputs) && ticks.matched() >= 1 && rounds_.matched() >= 1 &&
+                     states_out_.matched() >= m && states_in_.matched() >= m;
             },
             [&] {
               return fmt::format(
@@ -90,10 +88,9 @@ class PictureStation {
   RunEnd open_round(std::uint64_t k) {
     picture_.predict();
     const StationConfig& station = plan_.participants()[me_];
-    const Scan<M> scan =
-        simulate_scan(station.id, make_sensor<TruthSensorOf<Sensor>>(station), station.position_m,
-                      known_[me_].noise, detection_, truth_, static_cast<int>(k),
-                      plan_.scenario.seed, plan_.mc_run);
+    const Scan<M> scan = simulate_scan(station.id, make_sensor<TruthSensorOf<Sensor>>(station),
+                                       station.position_m, known_[me_].noise, detection_, truth_,
+                                       static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
     exchange_.publish(static_cast<std::uint32_t>(k), scan,
                       picture_.report(known_[me_], scan, work_), picture_.digest());
     return std::nullopt;
@@ -217,8 +214,7 @@ int run_picture_station(const StationOptions& options, Scenario scenario) {
         options.id, plan.stations, plan.scenario.name, fmt::join(ids, ", ")));
   }
   if (options.rejoin_step || !options.replay_path.empty()) {
-    throw std::invalid_argument(
-        "--rejoin-at-step, --replay: not for a run of many aircraft yet");
+    throw std::invalid_argument("--rejoin-at-step, --replay: not for a run of many aircraft yet");
   }
   std::vector<TargetTruth> truth =
       build_traffic_truth(plan.scenario, options.node.traffic_file).targets;

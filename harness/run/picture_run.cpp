@@ -5,14 +5,14 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <string_view>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "report/output_files.hpp"
@@ -23,8 +23,10 @@
 #include "run/placement.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_run.hpp"
+#include "skyfuse/sim/picture_truth.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -84,11 +86,11 @@ class PictureDriver {
         for (int id : ids_) {
           if (!ready_.contains(id)) missing.push_back(id);
         }
-        throw RunAborted(fmt::format("discovery timed out after {:.1f} s; stations not ready: "
-                                     "{}; tick readers {}/{}, picture writers {}/{}",
-                                     std::chrono::duration<double>(timeout).count(),
-                                     fmt::join(missing, ", "), ticks_.matched(), m,
-                                     rounds_.matched(), m));
+        throw RunAborted(
+            fmt::format("discovery timed out after {:.1f} s; stations not ready: "
+                        "{}; tick readers {}/{}, picture writers {}/{}",
+                        std::chrono::duration<double>(timeout).count(), fmt::join(missing, ", "),
+                        ticks_.matched(), m, rounds_.matched(), m));
       }
       wait_set_.wait(std::chrono::milliseconds(10));
     }
@@ -120,10 +122,10 @@ class PictureDriver {
         for (int id : ids_) {
           if (!got.contains(id)) missing.push_back(id);
         }
-        throw RunAborted(fmt::format("step {}: no picture from station(s) {} within {:.1f} s", k,
-                                     fmt::join(missing, ", "),
-                                     std::chrono::duration<double>(timeout).count()),
-                         StopCause::kRoundTimeout);
+        throw RunAborted(
+            fmt::format("step {}: no picture from station(s) {} within {:.1f} s", k,
+                        fmt::join(missing, ", "), std::chrono::duration<double>(timeout).count()),
+            StopCause::kRoundTimeout);
       }
       if (now - last_sent >= kTickRepeat) {
         ticks_.write(tick);
@@ -190,7 +192,9 @@ class PictureDriver {
   std::map<int, std::pair<std::uint32_t, std::uint64_t>> finished_;
 };
 
-std::string hex(std::uint64_t v) { return fmt::format("{:016x}", v); }
+std::string hex(std::uint64_t v) {
+  return fmt::format("{:016x}", v);
+}
 
 // The center's picture against a peer's: rounds whose tracks (ids and statuses) differ, and the
 // largest |x_center - x_p2p| / (1 + |x_center|) over the tracks both hold.
@@ -243,8 +247,8 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
   const std::filesystem::path scenario_file = std::filesystem::absolute(out / "scenario.yaml");
   write_file_atomically(scenario_file, read_scenario_text(o.node.scenario_path));
   const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
-  const double discovery_timeout = o.discovery_timeout_s.value_or(
-      default_discovery_timeout_s(plan.stations));
+  const double discovery_timeout =
+      o.discovery_timeout_s.value_or(default_discovery_timeout_s(plan.stations));
 
   const Placement placement(o, plan.scenario.exchange, ids.size());
   std::vector<int> nodes = ids;  // the center (0) first, then the stations ascending
@@ -286,10 +290,15 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     std::ostringstream csv;
     csv << "step,station,picture_digest,tracks,confirmed,in_process_digest\n";
     Progress progress(fmt::format("picture M={}", plan.stations), plan.scenario.steps);
-    const auto round_timeout =
-        std::chrono::milliseconds(std::llround(o.round_timeout_s * 1e3));
+    const auto round_timeout = std::chrono::milliseconds(std::llround(o.round_timeout_s * 1e3));
     const auto start = Clock::now();
     int apart_at = -1;  // the last round found with peers apart
+    // The first station's picture scored against the truth, as the in-process run scores its
+    // peers' (GOSPA of the confirmed tracks against the aircraft present).
+    PictureScore score(plan.scenario.traffic->gospa, truth.targets.size(),
+                       plan.scenario.time_step_s);
+    std::vector<TruthPoint> aircraft;
+    std::vector<TrackPoint> confirmed_tracks;
     for (int k = 0; k < plan.scenario.steps; ++k) {
       const auto rounds = driver.run_round(static_cast<std::uint32_t>(k), round_timeout);
       const auto step = static_cast<std::size_t>(k);
@@ -325,12 +334,19 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
         }
       }
       compare_center(center, first_peer, summary);
+      aircraft_at_step(plan.scenario, plan.stations, truth.targets, k, aircraft);
+      confirmed_tracks.clear();
+      for (const wire::PictureTrack& t : first_peer.tracks()) {
+        if (t.confirmed())
+          confirmed_tracks.push_back({t.track_id(), Vector3(t.x()[0], t.x()[1], t.x()[2])});
+      }
+      score.add_step(k, aircraft, confirmed_tracks);
       if (k + 1 == plan.scenario.steps) {
         const wire::PictureRound& last = first_peer;
         summary.tracks_at_end = last.tracks().size();
-        summary.confirmed_at_end = static_cast<std::size_t>(
-            std::count_if(last.tracks().begin(), last.tracks().end(),
-                          [](const auto& t) { return t.confirmed(); }));
+        summary.confirmed_at_end =
+            static_cast<std::size_t>(std::count_if(last.tracks().begin(), last.tracks().end(),
+                                                   [](const auto& t) { return t.confirmed(); }));
         summary.digest_at_end = last.picture_digest();
       }
       progress.advance();
@@ -338,6 +354,8 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     summary.rounds_per_s = plan.scenario.steps / seconds;
     summary.loss = o.node.loss.enabled();
+    summary.gospa_mean = score.summary().gospa_mean;
+    summary.in_process_gospa_mean = twin.score.gospa_mean;
     for (const auto& [id, counts] : driver.wait_finished(std::chrono::seconds(5))) {
       if (id != kCenterNodeId) summary.resyncs += counts.first;
       summary.lost += counts.second;
@@ -361,6 +379,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
         {"loss", summary.loss},
         {"samples_lost", summary.lost},
         {"resyncs", summary.resyncs},
+        {"gospa_mean", summary.gospa_mean},
         {"equals_in_process", summary.equals_in_process},
         {"first_step_apart_from_in_process", summary.first_step_apart_from_in_process},
         {"center_equals_in_process", summary.center_equals_in_process},
@@ -412,11 +431,13 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
       s.center_equals_in_process
           ? "yes, every round"
           : fmt::format("no, from round {}", s.first_step_center_apart_from_in_process));
-  row("center vs peer-to-peer", fmt::format("max |dx| / (1 + |x|) {:.2e}; {} rounds with other "
-                                            "tracks",
-                                            s.max_state_gap_center_vs_p2p,
-                                            s.rounds_center_tracks_differ));
+  row("center vs peer-to-peer",
+      fmt::format("max |dx| / (1 + |x|) {:.2e}; {} rounds with other "
+                  "tracks",
+                  s.max_state_gap_center_vs_p2p, s.rounds_center_tracks_differ));
   row("tracks at the end", fmt::format("{} ({} confirmed)", s.tracks_at_end, s.confirmed_at_end));
+  row("GOSPA, mean over rounds", fmt::format("{:.2f} (the in-process run without loss: {:.2f})",
+                                             s.gospa_mean, s.in_process_gospa_mean));
   row("discovery", fmt::format("{:.2f} s", s.discovery_s));
   row("rounds per second", fmt::format("{:.0f}", s.rounds_per_s));
 }

@@ -27,9 +27,12 @@ struct PictureRunSummary {
   /// Rounds in which some station's picture differed from another's, and the last of them.
   int rounds_peers_apart = 0;
   int last_round_peers_apart = -1;
-  bool loss = false;         ///< --loss: stations and center missed samples
-  std::uint64_t lost = 0;    ///< samples the simulated loss removed, every node
-  std::uint32_t resyncs = 0; ///< rounds a station took the lowest station's picture
+  bool loss = false;          ///< --loss: stations and center missed samples
+  std::uint64_t lost = 0;     ///< samples the simulated loss removed, every node
+  std::uint32_t resyncs = 0;  ///< rounds a station took the lowest station's picture
+  /// GOSPA of the first station's confirmed tracks, mean over rounds, and the in-process run's.
+  double gospa_mean = 0.0;
+  double in_process_gospa_mean = 0.0;
   /// Every round's digest equal to the in-process run's.
   bool equals_in_process = true;
   int first_step_apart_from_in_process = -1;

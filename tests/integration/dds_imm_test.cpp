@@ -2,9 +2,8 @@
 // publish per-mode increments with their likelihood terms, every peer fuses them into the same
 // mode probabilities and mixture as the center's stacked IMM, and the run equals its in-process
 // twin bit for bit.
-#include <gtest/gtest.h>
-
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -129,19 +128,19 @@ TEST(DdsImm, PeersThatLostDifferentSamplesAgreeAgainAfterTheLossStops) {
   constexpr int kLossFrom = 100;
   constexpr int kLossTo = 140;
   const auto dir = test_dir();
-  const Completed run = run_to_completion(
-      imm_run(182, dir / "out", 240,
-              {"--round-deadline-ms", "250", "--loss", "0.2", "--loss-steps",
-               std::to_string(kLossFrom) + ":" + std::to_string(kLossTo)}),
-      dir / "out.log", 180s);
+  const Completed run =
+      run_to_completion(imm_run(182, dir / "out", 240,
+                                {"--round-deadline-ms", "250", "--loss", "0.2", "--loss-steps",
+                                 std::to_string(kLossFrom) + ":" + std::to_string(kLossTo)}),
+                        dir / "out.log", 180s);
   ASSERT_EQ(run.status.code, 0) << run.output;
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   // What the run says of its links, printed with any failure below.
-  const std::string links = fmt::format(
-      "lost {}, refused {}, resyncs {}, late used {}, round latency p50 {} us\n{}",
-      summary.at("lost_by_node").dump(), summary.at("dropped_by_kind").dump(),
-      summary.at("resyncs_by_station").dump(), summary.at("late_used_by_node").dump(),
-      summary.at("round_latency_us_p50").dump(), run.output);
+  const std::string links =
+      fmt::format("lost {}, refused {}, resyncs {}, late used {}, round latency p50 {} us\n{}",
+                  summary.at("lost_by_node").dump(), summary.at("dropped_by_kind").dump(),
+                  summary.at("resyncs_by_station").dump(), summary.at("late_used_by_node").dump(),
+                  summary.at("round_latency_us_p50").dump(), run.output);
   // Before the loss every peer heard every other: the same bits.
   const auto spread = steps_column(dir / "out" / "steps.csv", "peer_spread");
   ASSERT_EQ(spread.size(), 240u);

@@ -4,13 +4,12 @@
 // center assigns the raw scans jointly. Every station's picture must be the in-process run's
 // bit for bit in every round, and the center's its in-process center's, which this test checks
 // against its own in-process run, not the harness's word.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <fmt/format.h>
-
 #include <map>
-#include <set>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "integration/run_fixture.hpp"
@@ -133,6 +132,9 @@ TEST(DdsPicture, PeersThatMissedDifferentScansAgreeAgainWithinTwoRoundsOfTheLoss
       << "peers that missed different scans hold different pictures";
   EXPECT_GT(summary.at("resyncs").get<int>(), 0);
   EXPECT_LT(summary.at("last_round_peers_apart").get<int>(), kLossTo + 2) << run.output;
+  // The picture is no worse for it than 1.2 times the run without loss (GOSPA, mean over rounds).
+  EXPECT_LE(summary.at("gospa_mean").get<double>(),
+            1.2 * summary.at("in_process").at("gospa_mean").get<double>());
 
   const PicturePlan plan =
       make_picture_plan(load_scenario_file(kCity), stations_and_steps(kStations, kSteps));
@@ -170,8 +172,9 @@ TEST(DdsPicture, OptionsThatDoNotTakeManyAircraftYetAreRefusedByName) {
       {{"--exchange", "tree"}, "--exchange tree"},
   };
   for (const auto& [extra, name] : refused) {
-    std::vector<std::string> args = {bin("skyfuse"), "run", "--scenario", kCity, "--steps", "5",
-                                     "--domain", "98", "--out", (dir / "out").string()};
+    std::vector<std::string> args = {
+        bin("skyfuse"), "run",   "--scenario",          kCity, "--steps", "5", "--domain",
+        "98",           "--out", (dir / "out").string()};
     args.insert(args.end(), extra.begin(), extra.end());
     const Completed run = run_to_completion(args, dir / "refused.log", 60s);
     EXPECT_NE(run.status.code, 0) << name;

@@ -232,8 +232,8 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[1].track_id(w.tracks()[0].track_id()); }));
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].x().pop_back(); }));
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].covariance().pop_back(); }));
-  EXPECT_TRUE(refused(
-      [](auto& w) { w.tracks()[0].x()[0] = std::numeric_limits<double>::quiet_NaN(); }));
+  EXPECT_TRUE(
+      refused([](auto& w) { w.tracks()[0].x()[0] = std::numeric_limits<double>::quiet_NaN(); }));
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].history_rounds(33); }));
 }
 

@@ -22,8 +22,9 @@ PicturePlan make_picture_plan(Scenario scenario, const RunOverrides& overrides) 
   const int available = static_cast<int>(scenario.stations.size());
   plan.stations = overrides.stations.value_or(available);
   if (plan.stations < 1 || plan.stations > available) {
-    throw std::invalid_argument(fmt::format("--stations: must be in [1, {}] for scenario '{}', got {}",
-                                            available, scenario.name, plan.stations));
+    throw std::invalid_argument(
+        fmt::format("--stations: must be in [1, {}] for scenario '{}', got {}", available,
+                    scenario.name, plan.stations));
   }
   if (overrides.steps) {
     if (*overrides.steps < 1) {

@@ -18,6 +18,7 @@
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_stations.hpp"
+#include "skyfuse/sim/picture_truth.hpp"
 #include "skyfuse/tracking/increment_rules.hpp"
 
 namespace skyfuse {
@@ -199,16 +200,7 @@ class PictureRun {
   }
 
   const std::vector<TruthPoint>& aircraft_at(int k) {
-    aircraft_.clear();
-    for (std::size_t t = 0; t < truth_.size(); ++t) {
-      if (!truth_[t].present_at(k)) continue;
-      const Vector3 p = truth_[t].at(k).template head<3>();
-      bool in_view = false;
-      for (std::size_t s = 0; s < known_.size() && !in_view; ++s) {
-        in_view = detection_[s].field_of_view.contains(scenario_.stations[s].position_m, p);
-      }
-      aircraft_.push_back({t, p, in_view});
-    }
+    aircraft_at_step(scenario_, static_cast<int>(known_.size()), truth_, k, aircraft_);
     return aircraft_;
   }
 

@@ -8,8 +8,8 @@
 /// picture, bit for bit.
 ///
 /// A sample made against another predicted picture (its digest differs from the receiver's) is
-/// not fused and is counted: the count tells that peers have parted, and lowest() which
-/// picture the peers come back to (the lowest-id station's).
+/// assigned again here against the receiver's picture and counted: the count tells that peers
+/// have parted, and lowest() which picture the peers come back to (the lowest-id station's).
 ///
 /// Threading: the node's thread, as every endpoint (dds_node.hpp).
 
@@ -86,23 +86,30 @@ class PictureExchange {
   /// The stations whose sample of the current step is still missing.
   std::vector<int> missing() const { return scans_.missing(); }
 
-  /// The current step's reports, rebuilt against `picture` (the predicted picture of this
-  /// step), ascending station id: one per station whose sample arrived, was made against this
-  /// same picture (its digest) and names only tracks it holds. A sample made against another
-  /// picture is left out, as every peer holding this picture leaves it out, and counts in
-  /// other_pictures().
+  /// The current step's reports against `picture` (the predicted picture of this step),
+  /// ascending station id, one per station whose sample arrived:
+  ///  - made against this same picture (its digest): rebuilt from the station's own
+  ///    associations;
+  ///  - made against another picture (the station had parted): its detections assigned here to
+  ///    this picture by the station's own rule (PeerPicture::report), as every peer holding this
+  ///    picture assigns them, so that a parted station's scan still counts; counted in
+  ///    other_pictures().
   std::vector<Report> reports(const Picture& picture) {
     std::vector<Report> out;
     const std::uint64_t digest = picture.digest();
     for (const int id : scans_.station_ids()) {  // ascending, as fusing wants them
       const ReceivedScan<M>* scan = scans_.scan_of(id);
       if (scan == nullptr) continue;
-      if (scan->picture_digest != digest) {
-        ++other_pictures_;
-        continue;
-      }
       const auto station = std::find_if(stations_.begin(), stations_.end(),
                                         [&](const auto& s) { return s.id == id; });
+      if (scan->picture_digest != digest) {
+        ++other_pictures_;
+        reassigned_.station_id = id;
+        reassigned_.noise = station->noise;
+        reassigned_.detections = scan->detections;
+        out.push_back(picture.report(*station, reassigned_, work_));
+        continue;
+      }
       auto report = picture.report_of(*station, scan->detections, scan->associations,
                                       scan->unassociated, scan->dropped);
       if (report) out.push_back(std::move(*report));
@@ -149,6 +156,8 @@ class PictureExchange {
   Writer<wire::PictureScan> out_;
   std::uint64_t other_pictures_ = 0;
   bool keep_own_ = false;
+  Scan<M> reassigned_;   // a parted station's detections, assigned here
+  AssignmentWork work_;
 };
 
 }  // namespace skyfuse::transport

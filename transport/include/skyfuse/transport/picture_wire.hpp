@@ -192,8 +192,8 @@ std::optional<std::vector<Track<GaussianState<N>>>> picture_state_from_wire(
     if (!tracks.empty() && t.track_id() <= tracks.back().id) return std::nullopt;
     if (t.x().size() != static_cast<std::size_t>(N)) return std::nullopt;
     const auto covariance = unpack_upper<N>(t.covariance());
-    const auto history = TrackHistory::from_words(
-        {t.history_hits(), t.history_rounds(), t.history_misses()});
+    const auto history =
+        TrackHistory::from_words({t.history_hits(), t.history_rounds(), t.history_misses()});
     if (!covariance || !history) return std::nullopt;
     Track<GaussianState<N>> track;
     track.id = t.track_id();
