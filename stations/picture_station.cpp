@@ -79,7 +79,11 @@ class PictureStation {
     }
     spdlog::info("joined run {} with {} stations; waiting for ticks", options_.node.run_id,
                  plan_.stations);
-    return loop_.run(*this, 0, static_cast<std::uint64_t>(plan_.scenario.steps), rounds_);
+    // A station that rejoins starts with an empty picture: its first scan is made against that,
+    // the lowest station sends its picture on seeing it, and the next round this one takes it.
+    const std::uint64_t first = options_.rejoin_step.value_or(0);
+    exchange_.start_at(first);
+    return loop_.run(*this, first, static_cast<std::uint64_t>(plan_.scenario.steps), rounds_);
   }
 
   // What the round loop asks of a station (transport::NodeProcess).
@@ -213,8 +217,13 @@ int run_picture_station(const StationOptions& options, Scenario scenario) {
         "--id: station {} is not one of the {} participating stations of scenario '{}' (ids {})",
         options.id, plan.stations, plan.scenario.name, fmt::join(ids, ", ")));
   }
-  if (options.rejoin_step || !options.replay_path.empty()) {
-    throw std::invalid_argument("--rejoin-at-step, --replay: not for a run of many aircraft yet");
+  if (!options.replay_path.empty()) {
+    throw std::invalid_argument("--replay: not for a run of many aircraft yet");
+  }
+  if (options.rejoin_step &&
+      *options.rejoin_step >= static_cast<std::uint64_t>(plan.scenario.steps)) {
+    throw std::invalid_argument(fmt::format("--rejoin-at-step: {} is past the run's last step {}",
+                                            *options.rejoin_step, plan.scenario.steps - 1));
   }
   std::vector<TargetTruth> truth =
       build_traffic_truth(plan.scenario, options.node.traffic_file).targets;

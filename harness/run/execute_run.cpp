@@ -117,49 +117,6 @@ std::optional<std::string> missing_from(const RoundRecord& r, std::size_t statio
   return fmt::format("{}", fmt::join(short_of, ", "));
 }
 
-// Kills and restarts must name participants, fit in the run, and alternate per station:
-// kill, restart later, kill again later, ...
-void check_station_events(const RunOptions& o, const RunPlan& plan) {
-  const auto steps = static_cast<std::uint64_t>(plan.scenario.steps);
-  for (const auto* list : {&o.kills, &o.restarts}) {
-    for (const StationEvent& e : *list) {
-      const char* option = list == &o.kills ? "--kill" : "--restart";
-      if (plan.participant(e.station_id) == nullptr) {
-        throw std::invalid_argument(
-            fmt::format("{} {}@{}: station {} does not take part in the run", option, e.station_id,
-                        e.step, e.station_id));
-      }
-      if (e.step == 0 || e.step >= steps) {
-        throw std::invalid_argument(fmt::format("{} {}@{}: the step must be in [1, {}]", option,
-                                                e.station_id, e.step, steps - 1));
-      }
-    }
-  }
-  if ((!o.kills.empty()) && (o.external || o.node.realtime_deadline_ms > 0.0)) {
-    throw std::invalid_argument("--kill/--restart: lock-step runs with started processes only");
-  }
-  for (int id : plan.participant_ids()) {
-    std::vector<std::pair<std::uint64_t, bool>> events;  // step, is_kill
-    for (const StationEvent& e : o.kills) {
-      if (e.station_id == id) events.emplace_back(e.step, true);
-    }
-    for (const StationEvent& e : o.restarts) {
-      if (e.station_id == id) events.emplace_back(e.step, false);
-    }
-    std::sort(events.begin(), events.end());
-    bool up = true;
-    for (const auto& [step, is_kill] : events) {
-      if (is_kill != up) {
-        throw std::invalid_argument(fmt::format(
-            "--kill/--restart: station {} at step {}: {} (kill and restart must alternate, a "
-            "restart later than its kill)",
-            id, step, is_kill ? "is already down" : "is not down"));
-      }
-      up = !is_kill;
-    }
-  }
-}
-
 // With best-effort samples, the first rounds that may all be incomplete (a lost sample each)
 // before the run is stopped as not fully connected.
 constexpr int kBestEffortConnectionRounds = 5;
@@ -219,7 +176,7 @@ void run_lockstep_rounds(const RunOptions& o, const RunPlan& plan, LockstepDrive
 
 RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   // Refusals first: a refused command leaves an earlier run's folder as it was.
-  check_station_events(o, plan);
+  check_station_events(o, plan.participant_ids(), plan.scenario.steps);
   Placement::check(o, static_cast<std::size_t>(plan.stations));
   const std::vector<int> ids = plan.participant_ids();
   if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
@@ -442,6 +399,49 @@ int exit_status_of(const RunAborted& e) {
   const bool stopped_early =
       e.cause() == StopCause::kFellBehind || e.cause() == StopCause::kRoundTimeout;
   return stopped_early ? kExitStoppedEarly : 1;
+}
+
+void check_station_events(const RunOptions& o, const std::vector<int>& participant_ids,
+                          int run_steps) {
+  const auto steps = static_cast<std::uint64_t>(run_steps);
+  for (const auto* list : {&o.kills, &o.restarts}) {
+    for (const StationEvent& e : *list) {
+      const char* option = list == &o.kills ? "--kill" : "--restart";
+      if (std::find(participant_ids.begin(), participant_ids.end(), e.station_id) ==
+          participant_ids.end()) {
+        throw std::invalid_argument(
+            fmt::format("{} {}@{}: station {} does not take part in the run", option, e.station_id,
+                        e.step, e.station_id));
+      }
+      if (e.step == 0 || e.step >= steps) {
+        throw std::invalid_argument(fmt::format("{} {}@{}: the step must be in [1, {}]", option,
+                                                e.station_id, e.step, steps - 1));
+      }
+    }
+  }
+  if ((!o.kills.empty()) && (o.external || o.node.realtime_deadline_ms > 0.0)) {
+    throw std::invalid_argument("--kill/--restart: lock-step runs with started processes only");
+  }
+  for (int id : participant_ids) {
+    std::vector<std::pair<std::uint64_t, bool>> events;  // step, is_kill
+    for (const StationEvent& e : o.kills) {
+      if (e.station_id == id) events.emplace_back(e.step, true);
+    }
+    for (const StationEvent& e : o.restarts) {
+      if (e.station_id == id) events.emplace_back(e.step, false);
+    }
+    std::sort(events.begin(), events.end());
+    bool up = true;
+    for (const auto& [step, is_kill] : events) {
+      if (is_kill != up) {
+        throw std::invalid_argument(fmt::format(
+            "--kill/--restart: station {} at step {}: {} (kill and restart must alternate, a "
+            "restart later than its kill)",
+            id, step, is_kill ? "is already down" : "is not down"));
+      }
+      up = !is_kill;
+    }
+  }
 }
 
 transport::NodeConfig harness_node_config(const RunOptions& o, const Placement& placement,

@@ -4,6 +4,7 @@
 // `skyfuse demo` and `skyfuse bench` all run the system through this.
 
 #include <utility>
+#include <vector>
 
 #include "run/lockstep_driver.hpp"
 #include "run/placement.hpp"
@@ -24,6 +25,11 @@ void warn_if_receive_buffers_too_small(int stations);
 /// The run's plan from the options' scenario (or the embedded one) and overrides; refuses a
 /// configuration the wire cannot carry yet, before any process starts.
 RunPlan load_run_plan(const RunOptions& options);
+
+/// Kills and restarts must name participants (`participant_ids`), fit in a run of `steps`,
+/// and alternate per station: kill, restart later, kill again later, ... Throws
+/// std::invalid_argument naming the option otherwise.
+void check_station_events(const RunOptions& o, const std::vector<int>& participant_ids, int steps);
 
 /// The harness's own DDS participant for a run of `stations` placed by `placement`: the run's
 /// domain, QoS file, reliability, network, lease, discovery server and security identity.

@@ -48,7 +48,6 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
                     option));
   };
   if (o.node.realtime_deadline_ms > 0.0) refuse("--realtime-deadline-ms");
-  if (!o.kills.empty() || !o.restarts.empty()) refuse("--kill/--restart");
   if (!o.replay_path.empty()) refuse("--replay");
   if (!o.record_path.empty()) refuse("--record");
   if (o.live) refuse("--live");
@@ -107,23 +106,26 @@ class PictureDriver {
     ticks_.write(tick);
     auto last_sent = sent;
     std::map<int, wire::PictureRound> got;
-    while (got.size() < ids_.size()) {
+    const std::size_t up = ids_.size() - down_.size();
+    while (got.size() < up) {
       wire::PictureRound round;
       while (rounds_.take(round)) {
         const bool ours = round.run_id() == run_id_ && round.step() == k &&
                           std::binary_search(ids_.begin(), ids_.end(), round.source_id());
-        if (ours) got.insert_or_assign(round.source_id(), round);
+        if (ours && !down_.contains(round.source_id())) {
+          got.insert_or_assign(round.source_id(), round);
+        }
       }
-      if (got.size() == ids_.size()) break;
+      if (got.size() == up) break;
       check();
       const auto now = Clock::now();
       if (now - sent >= timeout) {
         std::vector<int> missing;
         for (int id : ids_) {
-          if (!got.contains(id)) missing.push_back(id);
+          if (!got.contains(id) && !down_.contains(id)) missing.push_back(id);
         }
         throw RunAborted(
-            fmt::format("step {}: no picture from station(s) {} within {:.1f} s", k,
+            fmt::format("step {}: no picture from node(s) {} within {:.1f} s", k,
                         fmt::join(missing, ", "), std::chrono::duration<double>(timeout).count()),
             StopCause::kRoundTimeout);
       }
@@ -133,9 +135,35 @@ class PictureDriver {
       }
       wait_set_.wait(kPollSlice);
     }
-    std::vector<wire::PictureRound> out;
-    for (int id : ids_) out.push_back(std::move(got.at(id)));
+    std::vector<wire::PictureRound> out;  // node order: the center, then the stations up
+    for (auto& [id, round] : got) out.push_back(std::move(round));
     return out;
+  }
+
+  // The harness killed station `id` (true) or started it again (false).
+  void set_down(int id, bool down) {
+    if (down) {
+      down_.insert(id);
+      if (const auto it = ready_.find(id); it != ready_.end()) {
+        killed_instance_[id] = it->second;
+        ready_.erase(it);
+      }
+    } else {
+      down_.erase(id);
+    }
+  }
+
+  // Until a restarted station has announced READY again.
+  void wait_until_ready(int id, std::chrono::milliseconds timeout) {
+    const auto start = Clock::now();
+    while (!ready_.contains(id)) {
+      check();
+      if (Clock::now() - start >= timeout) {
+        throw RunAborted(fmt::format("restarted {} not ready after {:.1f} s", node_name(id),
+                                     std::chrono::duration<double>(timeout).count()));
+      }
+      wait_set_.wait(std::chrono::milliseconds(10));
+    }
   }
 
   // Waits up to `timeout` for every node's FINISHED status; what each reported: (rounds it took
@@ -143,7 +171,7 @@ class PictureDriver {
   std::map<int, std::pair<std::uint32_t, std::uint64_t>> wait_finished(
       std::chrono::milliseconds timeout) {
     const auto start = Clock::now();
-    while (finished_.size() < ids_.size() && Clock::now() - start < timeout) {
+    while (finished_.size() < ids_.size() - down_.size() && Clock::now() - start < timeout) {
       check();
       wait_set_.wait(std::chrono::milliseconds(10));
     }
@@ -175,7 +203,12 @@ class PictureDriver {
                                      s.step(), s.detail()),
                          StopCause::kNodeFailed);
       }
-      if (s.state() == wire::READY) ready_.insert(s.station_id());
+      // A killed process's own READY (durable) must not count for its replacement.
+      const auto killed = killed_instance_.find(s.station_id());
+      if (s.state() == wire::READY &&
+          (killed == killed_instance_.end() || killed->second != s.instance())) {
+        ready_[s.station_id()] = s.instance();
+      }
       if (s.state() == wire::FINISHED) finished_[s.station_id()] = {s.resyncs(), s.lost()};
     }
   }
@@ -188,7 +221,9 @@ class PictureDriver {
   transport::Reader<wire::PictureRound> rounds_;
   transport::Reader<wire::StationStatus> statuses_;
   transport::ReaderWaitSet wait_set_;
-  std::set<int> ready_;
+  std::map<int, std::uint64_t> ready_;  // node -> the process instance that announced READY
+  std::map<int, std::uint64_t> killed_instance_;
+  std::set<int> down_;  // stations killed and not restarted: not waited for
   std::map<int, std::pair<std::uint32_t, std::uint64_t>> finished_;
 };
 
@@ -233,6 +268,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
   std::vector<int> ids;
   for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
   std::sort(ids.begin(), ids.end());
+  check_station_events(o, ids, plan.scenario.steps);
 
   // The in-process twin first: what every peer's picture must equal, round by round.
   const TrafficTruth truth = build_traffic_truth(plan.scenario, o.node.traffic_file);
@@ -273,12 +309,22 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
       argv.insert(argv.end(), common.begin(), common.end());
       children.spawn(node_name(id), argv);
     };
+    const auto spawn_station = [&](int id, std::optional<int> rejoin_step) {
+      const auto participants = plan.participants();
+      const auto j = static_cast<std::size_t>(
+          std::find_if(participants.begin(), participants.end(),
+                       [&](const StationConfig& c) { return c.id == id; }) -
+          participants.begin());
+      std::vector<std::string> argv{(executable_dir() / "skyfuse-station").string(), "--id",
+                                    std::to_string(id)};
+      if (rejoin_step) {
+        argv.push_back("--rejoin-at-step");
+        argv.push_back(std::to_string(*rejoin_step));
+      }
+      spawn(1 + j, std::move(argv), id);
+    };
     spawn(0, {(executable_dir() / "skyfuse-center").string()}, kCenterNodeId);
-    for (std::size_t j = 0; j < plan.participants().size(); ++j) {
-      const int id = plan.participants()[j].id;
-      spawn(1 + j, {(executable_dir() / "skyfuse-station").string(), "--id", std::to_string(id)},
-            id);
-    }
+    for (const int id : ids) spawn_station(id, std::nullopt);
     const auto discovery_start = Clock::now();
     driver.wait_until_joined(std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
 
@@ -300,6 +346,20 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     std::vector<TruthPoint> aircraft;
     std::vector<TrackPoint> confirmed_tracks;
     for (int k = 0; k < plan.scenario.steps; ++k) {
+      for (const StationEvent& e : o.kills) {
+        if (e.step != static_cast<std::uint64_t>(k)) continue;
+        children.kill_now(node_name(e.station_id));
+        driver.set_down(e.station_id, true);
+        spdlog::info("killed station {} before step {}", e.station_id, k);
+      }
+      for (const StationEvent& e : o.restarts) {
+        if (e.step != static_cast<std::uint64_t>(k)) continue;
+        spawn_station(e.station_id, k);
+        driver.wait_until_ready(e.station_id,
+                                std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
+        driver.set_down(e.station_id, false);
+        spdlog::info("restarted station {} before step {}", e.station_id, k);
+      }
       const auto rounds = driver.run_round(static_cast<std::uint32_t>(k), round_timeout);
       const auto step = static_cast<std::size_t>(k);
       const wire::PictureRound& center = rounds.front();
@@ -354,6 +414,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     summary.rounds_per_s = plan.scenario.steps / seconds;
     summary.loss = o.node.loss.enabled();
+    summary.faults = summary.loss || !o.kills.empty();
     summary.gospa_mean = score.summary().gospa_mean;
     summary.in_process_gospa_mean = twin.score.gospa_mean;
     for (const auto& [id, counts] : driver.wait_finished(std::chrono::seconds(5))) {
@@ -377,6 +438,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
         {"rounds_peers_apart", summary.rounds_peers_apart},
         {"last_round_peers_apart", summary.last_round_peers_apart},
         {"loss", summary.loss},
+        {"faults", summary.faults},
         {"samples_lost", summary.lost},
         {"resyncs", summary.resyncs},
         {"gospa_mean", summary.gospa_mean},
@@ -436,7 +498,7 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
                   "tracks",
                   s.max_state_gap_center_vs_p2p, s.rounds_center_tracks_differ));
   row("tracks at the end", fmt::format("{} ({} confirmed)", s.tracks_at_end, s.confirmed_at_end));
-  row("GOSPA, mean over rounds", fmt::format("{:.2f} (the in-process run without loss: {:.2f})",
+  row("GOSPA, mean over rounds", fmt::format("{:.2f} (the in-process run, without faults: {:.2f})",
                                              s.gospa_mean, s.in_process_gospa_mean));
   row("discovery", fmt::format("{:.2f} s", s.discovery_s));
   row("rounds per second", fmt::format("{:.0f}", s.rounds_per_s));

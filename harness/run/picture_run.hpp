@@ -28,6 +28,7 @@ struct PictureRunSummary {
   int rounds_peers_apart = 0;
   int last_round_peers_apart = -1;
   bool loss = false;          ///< --loss: stations and center missed samples
+  bool faults = false;        ///< --loss or --kill: the pictures part from the in-process run
   std::uint64_t lost = 0;     ///< samples the simulated loss removed, every node
   std::uint32_t resyncs = 0;  ///< rounds a station took the lowest station's picture
   /// GOSPA of the first station's confirmed tracks, mean over rounds, and the in-process run's.

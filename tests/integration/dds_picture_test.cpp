@@ -162,6 +162,48 @@ TEST(DdsPicture, PeersThatMissedDifferentScansAgreeAgainWithinTwoRoundsOfTheLoss
   }
 }
 
+// Station 2 killed before round 40 and started again before round 50: the others keep one
+// picture meanwhile; the restarted station starts with an empty one, its first scan shows it,
+// the lowest station sends its picture and the restarted one takes it in the next round.
+TEST(DdsPicture, ARestartedStationRejoinsWithThePictureWithinTwoRounds) {
+  constexpr int kSteps = 80;
+  const auto dir = test_dir();
+  const Completed run = run_to_completion(
+      {bin("skyfuse"), "run", "--scenario", kCity, "--stations", "4", "--steps",
+       std::to_string(kSteps), "--kill", "2@40", "--restart", "2@50",
+       // Rounds without station 2 wait for their deadline: 250 ms, as the loss tests.
+       "--round-deadline-ms", "250", "--domain", "92", "--out", (dir / "out").string()},
+      dir / "out.log", 180s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  EXPECT_EQ(run.output.find("was killed by signal"), std::string::npos) << run.output;
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_GE(summary.at("resyncs").get<int>(), 1) << "the restarted station took the picture";
+  EXPECT_LE(summary.at("last_round_peers_apart").get<int>(), 51) << run.output;
+
+  std::istringstream csv(read_file(dir / "out" / "picture_rounds.csv"));
+  std::string line;
+  std::getline(csv, line);
+  std::map<int, std::map<int, std::string>> digests;  // step -> station -> digest
+  while (std::getline(csv, line)) {
+    int step = 0;
+    int station = 0;
+    char digest[17] = {};
+    ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d,%16[0-9a-f]", &step, &station, digest), 3);
+    if (station != 0) digests[step][station] = digest;
+  }
+  ASSERT_EQ(digests.size(), static_cast<std::size_t>(kSteps));
+  for (int k = 0; k < kSteps; ++k) {
+    const bool down = k >= 40 && k < 50;
+    EXPECT_EQ(digests[k].size(), down ? 3U : 4U) << "step " << k;
+    EXPECT_EQ(digests[k].contains(2), !down) << "step " << k;
+    if (k >= 52 || k < 50) {
+      std::set<std::string> distinct;
+      for (const auto& [station, digest] : digests[k]) distinct.insert(digest);
+      EXPECT_EQ(distinct.size(), 1U) << "step " << k << ": every station up, one picture";
+    }
+  }
+}
+
 // What a run of many aircraft does not take yet is refused before any process starts, by name.
 TEST(DdsPicture, OptionsThatDoNotTakeManyAircraftYetAreRefusedByName) {
   const auto dir = test_dir();

@@ -138,6 +138,8 @@ class PictureExchange {
 
   /// Closes the current step; the next one's samples already taken stay.
   void advance() { scans_.advance(); }
+  /// Makes `step` the current one (a station that rejoins a run starts there).
+  void start_at(std::uint64_t step) { scans_.start_at(step); }
 
   /// Samples made against a predicted picture other than this peer's.
   std::uint64_t other_pictures() const { return other_pictures_; }
@@ -156,7 +158,7 @@ class PictureExchange {
   Writer<wire::PictureScan> out_;
   std::uint64_t other_pictures_ = 0;
   bool keep_own_ = false;
-  Scan<M> reassigned_;   // a parted station's detections, assigned here
+  Scan<M> reassigned_;  // a parted station's detections, assigned here
   AssignmentWork work_;
 };
 

@@ -55,6 +55,8 @@ class PictureScans {
 
   /// Closes the current step; the next one's scans already taken stay.
   void advance() { collector_.advance(); }
+  /// Makes `step` the current one (a station that rejoins a run starts there).
+  void start_at(std::uint64_t step) { collector_.start_at(step); }
 
  private:
   StepCollector<ReceivedScan<M>> collector_;
