@@ -160,5 +160,21 @@ TEST(TrafficScenario, ProcessesRefuseManyAircraftWithAPointerToTheSweep) {
   }
 }
 
+// The scenarios of the throughput goals load as their comments say: 100 and 1 000 aircraft,
+// 16 radars scanning at 10 Hz with 10 false alarms a scan.
+TEST(TrafficScenario, TheMetroAndCrowdScenariosCarryTheirLoads) {
+  for (const auto& [file, aircraft] :
+       {std::pair<const char*, int>{"uam-metro.yaml", 100}, {"uam-crowd.yaml", 1000}}) {
+    const Scenario s =
+        load_scenario_file(std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/" + file);
+    ASSERT_TRUE(s.has_many_targets()) << file;
+    EXPECT_EQ(s.traffic->generator->aircraft, aircraft) << file;
+    EXPECT_EQ(s.stations.size(), 16U) << file;
+    EXPECT_DOUBLE_EQ(s.time_step_s, 0.1) << file;
+    EXPECT_DOUBLE_EQ(s.traffic->detection.clutter_per_scan, 10.0) << file;
+    EXPECT_DOUBLE_EQ(s.traffic->detection.probability, 0.9) << file;
+  }
+}
+
 }  // namespace
 }  // namespace skyfuse
