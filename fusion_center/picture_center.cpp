@@ -91,8 +91,9 @@ class PictureCenter {
     }
     picture_.predict();
     picture_.update(k, scans_);
-    rounds_.write(transport::picture_round_to_wire(picture_, options_.run_id,
-                                                   static_cast<std::uint32_t>(k), kCenterSourceId));
+    rounds_.write(transport::picture_round_to_wire(
+        picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
+        static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size())));
     scans_in_.advance();
     return std::nullopt;
   }

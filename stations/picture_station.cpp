@@ -122,14 +122,16 @@ class PictureStation {
     const auto lowest = exchange_.lowest();
     if (lowest && lowest->second != picture_.digest()) take_picture_of(*lowest, k);
     const std::uint64_t predicted = picture_.digest();
-    picture_.fuse(k, exchange_.reports(picture_));
+    const auto reports = exchange_.reports(picture_);
+    picture_.fuse(k, reports);
     const auto step = static_cast<std::uint32_t>(k);
     if (lowest && lowest->first == options_.id && exchange_.any_other_picture(predicted)) {
       states_out_.write(
           transport::picture_state_to_wire(picture_, options_.node.run_id, step, options_.id));
     }
-    rounds_.write(
-        transport::picture_round_to_wire(picture_, options_.node.run_id, step, options_.id));
+    rounds_.write(transport::picture_round_to_wire(picture_, options_.node.run_id, step,
+                                                   options_.id,
+                                                   static_cast<std::uint32_t>(reports.size())));
     exchange_.advance();
     return std::nullopt;
   }

@@ -139,11 +139,12 @@ int run_run(const RunOptions& o) {
     const PictureRunSummary summary = execute_picture_run(o, scenario);
     print_picture_run_table(summary, stdout);
     fmt::print("results in {}\n", o.out_dir);
-    // Without faults every picture is its in-process twin's; with loss or a kill the peers must
-    // agree again by the end.
-    const bool held = summary.faults ? summary.last_round_peers_apart + 1 < summary.steps
-                                     : summary.peers_identical && summary.equals_in_process &&
-                                           summary.center_equals_in_process;
+    // Without faults every picture is its in-process twin's; with loss, a kill or the wall
+    // clock (a late scan) the peers must agree again by the end.
+    const bool held = summary.faults || summary.realtime
+                          ? summary.last_round_peers_apart + 1 < summary.steps
+                          : summary.peers_identical && summary.equals_in_process &&
+                                summary.center_equals_in_process;
     return held ? 0 : 1;
   }
   if (!o.node.traffic_file.empty()) {

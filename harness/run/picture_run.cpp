@@ -20,6 +20,7 @@
 #include "run/child_processes.hpp"
 #include "run/execute_run.hpp"
 #include "run/lockstep_driver.hpp"
+#include "run/picture_driver.hpp"
 #include "run/placement.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -35,9 +36,12 @@ namespace skyfuse::harness {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr auto kPollSlice = std::chrono::milliseconds(50);
-// A station that has not matched the tick writer when the first copy went out gets another.
-constexpr auto kTickRepeat = std::chrono::milliseconds(50);
+// Real time: step 0 begins this long after every node joined, so that the start tick reaches
+// every node first (the single-target run's head start).
+constexpr std::chrono::milliseconds kRealtimeHeadStart{1000};
+// Real time: a round whose pictures have not all come this long after its scheduled end is
+// handed over with those that did.
+constexpr std::chrono::milliseconds kLateAfter{2000};
 
 // What a run of many aircraft does not take yet, each with why; nothing if `o` is fine.
 void refuse_what_a_picture_run_lacks(const RunOptions& o) {
@@ -47,7 +51,6 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
                     "runs over DDS so far)",
                     option));
   };
-  if (o.node.realtime_deadline_ms > 0.0) refuse("--realtime-deadline-ms");
   if (!o.replay_path.empty()) refuse("--replay");
   if (!o.record_path.empty()) refuse("--record");
   if (o.live) refuse("--live");
@@ -56,176 +59,6 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
   if (o.node.secure_dir) refuse("--secure");
   if (o.node.refusion_lag != 0) refuse("--refusion-lag");
 }
-
-// The run's DDS side as the harness sees it: ticks out, pictures and statuses in.
-class PictureDriver {
- public:
-  PictureDriver(const transport::NodeConfig& config, std::uint64_t run_id, std::vector<int> ids,
-                ChildProcesses& children)
-      : run_id_(run_id),
-        ids_(std::move(ids)),
-        children_(children),
-        node_(config),
-        ticks_(node_.make_writer<wire::Tick>()),
-        rounds_(node_.make_reader<wire::PictureRound>()),
-        statuses_(node_.make_reader<wire::StationStatus>()) {
-    wait_set_.attach(rounds_);
-    wait_set_.attach(statuses_);
-  }
-
-  // Until every station announced READY and the harness's endpoints match them.
-  void wait_until_joined(std::chrono::milliseconds timeout) {
-    const auto m = static_cast<int>(ids_.size());
-    const auto start = Clock::now();
-    while (true) {
-      check();
-      if (ready_.size() == ids_.size() && ticks_.matched() >= m && rounds_.matched() >= m) return;
-      if (Clock::now() - start >= timeout) {
-        std::vector<int> missing;
-        for (int id : ids_) {
-          if (!ready_.contains(id)) missing.push_back(id);
-        }
-        throw RunAborted(
-            fmt::format("discovery timed out after {:.1f} s; stations not ready: "
-                        "{}; tick readers {}/{}, picture writers {}/{}",
-                        std::chrono::duration<double>(timeout).count(), fmt::join(missing, ", "),
-                        ticks_.matched(), m, rounds_.matched(), m));
-      }
-      wait_set_.wait(std::chrono::milliseconds(10));
-    }
-  }
-
-  // Round k: its tick, then every station's picture of step k (station order), within
-  // `timeout`.
-  std::vector<wire::PictureRound> run_round(std::uint32_t k, std::chrono::milliseconds timeout) {
-    wire::Tick tick;
-    tick.run_id(run_id_);
-    tick.step(k);
-    tick.stop(false);
-    const auto sent = Clock::now();
-    ticks_.write(tick);
-    auto last_sent = sent;
-    std::map<int, wire::PictureRound> got;
-    const std::size_t up = ids_.size() - down_.size();
-    while (got.size() < up) {
-      wire::PictureRound round;
-      while (rounds_.take(round)) {
-        const bool ours = round.run_id() == run_id_ && round.step() == k &&
-                          std::binary_search(ids_.begin(), ids_.end(), round.source_id());
-        if (ours && !down_.contains(round.source_id())) {
-          got.insert_or_assign(round.source_id(), round);
-        }
-      }
-      if (got.size() == up) break;
-      check();
-      const auto now = Clock::now();
-      if (now - sent >= timeout) {
-        std::vector<int> missing;
-        for (int id : ids_) {
-          if (!got.contains(id) && !down_.contains(id)) missing.push_back(id);
-        }
-        throw RunAborted(
-            fmt::format("step {}: no picture from node(s) {} within {:.1f} s", k,
-                        fmt::join(missing, ", "), std::chrono::duration<double>(timeout).count()),
-            StopCause::kRoundTimeout);
-      }
-      if (now - last_sent >= kTickRepeat) {
-        ticks_.write(tick);
-        last_sent = now;
-      }
-      wait_set_.wait(kPollSlice);
-    }
-    std::vector<wire::PictureRound> out;  // node order: the center, then the stations up
-    for (auto& [id, round] : got) out.push_back(std::move(round));
-    return out;
-  }
-
-  // The harness killed station `id` (true) or started it again (false).
-  void set_down(int id, bool down) {
-    if (down) {
-      down_.insert(id);
-      if (const auto it = ready_.find(id); it != ready_.end()) {
-        killed_instance_[id] = it->second;
-        ready_.erase(it);
-      }
-    } else {
-      down_.erase(id);
-    }
-  }
-
-  // Until a restarted station has announced READY again.
-  void wait_until_ready(int id, std::chrono::milliseconds timeout) {
-    const auto start = Clock::now();
-    while (!ready_.contains(id)) {
-      check();
-      if (Clock::now() - start >= timeout) {
-        throw RunAborted(fmt::format("restarted {} not ready after {:.1f} s", node_name(id),
-                                     std::chrono::duration<double>(timeout).count()));
-      }
-      wait_set_.wait(std::chrono::milliseconds(10));
-    }
-  }
-
-  // Waits up to `timeout` for every node's FINISHED status; what each reported: (rounds it took
-  // another's picture, samples the simulated loss removed).
-  std::map<int, std::pair<std::uint32_t, std::uint64_t>> wait_finished(
-      std::chrono::milliseconds timeout) {
-    const auto start = Clock::now();
-    while (finished_.size() < ids_.size() - down_.size() && Clock::now() - start < timeout) {
-      check();
-      wait_set_.wait(std::chrono::milliseconds(10));
-    }
-    return finished_;
-  }
-
-  // Releases the stations: they exit once they hear it.
-  void release() {
-    wire::Tick stop;
-    stop.run_id(run_id_);
-    stop.stop(true);
-    ticks_.write(stop);
-  }
-
- private:
-  void check() {
-    if (transport::shutdown_requested()) {
-      throw RunAborted(fmt::format("interrupted by signal {}", transport::shutdown_signal()),
-                       StopCause::kInterrupted);
-    }
-    for (const ChildExit& e : children_.poll()) {
-      if (!e.success()) throw RunAborted(e.describe(), StopCause::kNodeFailed);
-    }
-    wire::StationStatus s;
-    while (statuses_.take(s)) {
-      if (s.run_id() != run_id_) continue;
-      if (s.state() == wire::FAILED) {
-        throw RunAborted(fmt::format("{} failed at step {}: {}", node_name(s.station_id()),
-                                     s.step(), s.detail()),
-                         StopCause::kNodeFailed);
-      }
-      // A killed process's own READY (durable) must not count for its replacement.
-      const auto killed = killed_instance_.find(s.station_id());
-      if (s.state() == wire::READY &&
-          (killed == killed_instance_.end() || killed->second != s.instance())) {
-        ready_[s.station_id()] = s.instance();
-      }
-      if (s.state() == wire::FINISHED) finished_[s.station_id()] = {s.resyncs(), s.lost()};
-    }
-  }
-
-  std::uint64_t run_id_;
-  std::vector<int> ids_;  // ascending
-  ChildProcesses& children_;
-  transport::DdsNode node_;
-  transport::Writer<wire::Tick> ticks_;
-  transport::Reader<wire::PictureRound> rounds_;
-  transport::Reader<wire::StationStatus> statuses_;
-  transport::ReaderWaitSet wait_set_;
-  std::map<int, std::uint64_t> ready_;  // node -> the process instance that announced READY
-  std::map<int, std::uint64_t> killed_instance_;
-  std::set<int> down_;  // stations killed and not restarted: not waited for
-  std::map<int, std::pair<std::uint32_t, std::uint64_t>> finished_;
-};
 
 std::string hex(std::uint64_t v) {
   return fmt::format("{:016x}", v);
@@ -334,7 +167,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     summary.steps = plan.scenario.steps;
     summary.discovery_s = std::chrono::duration<double>(Clock::now() - discovery_start).count();
     std::ostringstream csv;
-    csv << "step,station,picture_digest,tracks,confirmed,in_process_digest\n";
+    csv << "step,station,picture_digest,tracks,confirmed,scans_fused,in_process_digest\n";
     Progress progress(fmt::format("picture M={}", plan.stations), plan.scenario.steps);
     const auto round_timeout = std::chrono::milliseconds(std::llround(o.round_timeout_s * 1e3));
     const auto start = Clock::now();
@@ -345,33 +178,35 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
                        plan.scenario.time_step_s);
     std::vector<TruthPoint> aircraft;
     std::vector<TrackPoint> confirmed_tracks;
-    for (int k = 0; k < plan.scenario.steps; ++k) {
-      for (const StationEvent& e : o.kills) {
-        if (e.step != static_cast<std::uint64_t>(k)) continue;
-        children.kill_now(node_name(e.station_id));
-        driver.set_down(e.station_id, true);
-        spdlog::info("killed station {} before step {}", e.station_id, k);
-      }
-      for (const StationEvent& e : o.restarts) {
-        if (e.step != static_cast<std::uint64_t>(k)) continue;
-        spawn_station(e.station_id, k);
-        driver.wait_until_ready(e.station_id,
-                                std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
-        driver.set_down(e.station_id, false);
-        spdlog::info("restarted station {} before step {}", e.station_id, k);
-      }
-      const auto rounds = driver.run_round(static_cast<std::uint32_t>(k), round_timeout);
+    const int stations_up_all = plan.stations;
+    // Everything a round's pictures are checked for: every station's against the others' and
+    // its in-process twin's, the center's against its twin's and a peer's; the first station's
+    // scored. `rounds`: the pictures that came, in node order (the center first).
+    const auto check_round = [&](int k, const std::vector<wire::PictureRound>& rounds) {
       const auto step = static_cast<std::size_t>(k);
-      const wire::PictureRound& center = rounds.front();
-      const wire::PictureRound& first_peer = rounds[1];
+      const wire::PictureRound* center = nullptr;
+      const wire::PictureRound* first_peer = nullptr;
+      bool in_time = rounds.size() == ids.size() + 1;
+      for (const wire::PictureRound& r : rounds) {
+        if (r.source_id() == kCenterNodeId) {
+          center = &r;
+        } else if (first_peer == nullptr) {
+          first_peer = &r;
+        }
+        if (r.source_id() != kCenterNodeId &&
+            r.scans_fused() != static_cast<std::uint32_t>(stations_up_all)) {
+          in_time = false;
+        }
+      }
+      if (in_time) ++summary.rounds_in_time;
       for (const wire::PictureRound& r : rounds) {
         const bool is_center = r.source_id() == kCenterNodeId;
         const std::uint64_t expected =
             is_center ? twin.center_digests.at(step) : twin.peer_digests.at(step);
         const auto confirmed = std::count_if(r.tracks().begin(), r.tracks().end(),
                                              [](const auto& t) { return t.confirmed(); });
-        csv << fmt::format("{},{},{},{},{},{}\n", k, r.source_id(), hex(r.picture_digest()),
-                           r.tracks().size(), confirmed, hex(expected));
+        csv << fmt::format("{},{},{},{},{},{},{}\n", k, r.source_id(), hex(r.picture_digest()),
+                           r.tracks().size(), confirmed, r.scans_fused(), hex(expected));
         if (is_center) {
           if (r.picture_digest() != expected && summary.center_equals_in_process) {
             summary.center_equals_in_process = false;
@@ -379,7 +214,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
           }
           continue;
         }
-        if (r.picture_digest() != first_peer.picture_digest() && apart_at != k) {
+        if (r.picture_digest() != first_peer->picture_digest() && apart_at != k) {
           apart_at = k;
           ++summary.rounds_peers_apart;
           summary.last_round_peers_apart = k;
@@ -393,28 +228,57 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
           summary.first_step_apart_from_in_process = k;
         }
       }
-      compare_center(center, first_peer, summary);
+      if (first_peer == nullptr) {
+        ++summary.rounds_without_a_picture;
+        return;
+      }
+      if (center != nullptr) compare_center(*center, *first_peer, summary);
       aircraft_at_step(plan.scenario, plan.stations, truth.targets, k, aircraft);
       confirmed_tracks.clear();
-      for (const wire::PictureTrack& t : first_peer.tracks()) {
-        if (t.confirmed())
+      for (const wire::PictureTrack& t : first_peer->tracks()) {
+        if (t.confirmed()) {
           confirmed_tracks.push_back({t.track_id(), Vector3(t.x()[0], t.x()[1], t.x()[2])});
+        }
       }
       score.add_step(k, aircraft, confirmed_tracks);
       if (k + 1 == plan.scenario.steps) {
-        const wire::PictureRound& last = first_peer;
-        summary.tracks_at_end = last.tracks().size();
-        summary.confirmed_at_end =
-            static_cast<std::size_t>(std::count_if(last.tracks().begin(), last.tracks().end(),
-                                                   [](const auto& t) { return t.confirmed(); }));
-        summary.digest_at_end = last.picture_digest();
+        summary.tracks_at_end = first_peer->tracks().size();
+        summary.confirmed_at_end = confirmed_tracks.size();
+        summary.digest_at_end = first_peer->picture_digest();
       }
-      progress.advance();
+    };
+    if (o.node.realtime_deadline_ms > 0.0) {
+      const auto epoch = std::chrono::system_clock::now() + kRealtimeHeadStart;
+      driver.run_realtime(plan.scenario.steps, plan.scenario.time_step_s, epoch, kLateAfter,
+                          [&](int k, std::vector<wire::PictureRound> rounds) {
+                            check_round(k, rounds);
+                            progress.advance();
+                          });
+    } else {
+      for (int k = 0; k < plan.scenario.steps; ++k) {
+        for (const StationEvent& e : o.kills) {
+          if (e.step != static_cast<std::uint64_t>(k)) continue;
+          children.kill_now(node_name(e.station_id));
+          driver.set_down(e.station_id, true);
+          spdlog::info("killed station {} before step {}", e.station_id, k);
+        }
+        for (const StationEvent& e : o.restarts) {
+          if (e.step != static_cast<std::uint64_t>(k)) continue;
+          spawn_station(e.station_id, k);
+          driver.wait_until_ready(e.station_id,
+                                  std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
+          driver.set_down(e.station_id, false);
+          spdlog::info("restarted station {} before step {}", e.station_id, k);
+        }
+        check_round(k, driver.run_round(static_cast<std::uint32_t>(k), round_timeout));
+        progress.advance();
+      }
     }
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     summary.rounds_per_s = plan.scenario.steps / seconds;
     summary.loss = o.node.loss.enabled();
     summary.faults = summary.loss || !o.kills.empty();
+    summary.realtime = o.node.realtime_deadline_ms > 0.0;
     summary.gospa_mean = score.summary().gospa_mean;
     summary.in_process_gospa_mean = twin.score.gospa_mean;
     for (const auto& [id, counts] : driver.wait_finished(std::chrono::seconds(5))) {
@@ -436,6 +300,10 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
         {"peers_identical", summary.peers_identical},
         {"first_divergent_step", summary.first_divergent_step},
         {"rounds_peers_apart", summary.rounds_peers_apart},
+        {"realtime", summary.realtime},
+        {"rounds_in_time", summary.rounds_in_time},
+        {"share_of_rounds_in_time", static_cast<double>(summary.rounds_in_time) / summary.steps},
+        {"rounds_without_a_picture", summary.rounds_without_a_picture},
         {"last_round_peers_apart", summary.last_round_peers_apart},
         {"loss", summary.loss},
         {"faults", summary.faults},
@@ -497,6 +365,12 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
       fmt::format("max |dx| / (1 + |x|) {:.2e}; {} rounds with other "
                   "tracks",
                   s.max_state_gap_center_vs_p2p, s.rounds_center_tracks_differ));
+  row(s.realtime ? "rounds in time" : "rounds with every scan fused",
+      fmt::format(
+          "{} of {} ({:.1f} %){}", s.rounds_in_time, s.steps, 100.0 * s.rounds_in_time / s.steps,
+          s.rounds_without_a_picture > 0
+              ? fmt::format("; {} rounds without any station's picture", s.rounds_without_a_picture)
+              : std::string()));
   row("tracks at the end", fmt::format("{} ({} confirmed)", s.tracks_at_end, s.confirmed_at_end));
   row("GOSPA, mean over rounds", fmt::format("{:.2f} (the in-process run, without faults: {:.2f})",
                                              s.gospa_mean, s.in_process_gospa_mean));

@@ -29,6 +29,7 @@ struct PictureRunSummary {
   int last_round_peers_apart = -1;
   bool loss = false;          ///< --loss: stations and center missed samples
   bool faults = false;        ///< --loss or --kill: the pictures part from the in-process run
+  bool realtime = false;      ///< on the wall clock: a late scan parts the pictures too
   std::uint64_t lost = 0;     ///< samples the simulated loss removed, every node
   std::uint32_t resyncs = 0;  ///< rounds a station took the lowest station's picture
   /// GOSPA of the first station's confirmed tracks, mean over rounds, and the in-process run's.
@@ -44,6 +45,10 @@ struct PictureRunSummary {
   double max_state_gap_center_vs_p2p = 0.0;
   /// Rounds whose center holds other tracks (ids, statuses) than the peers.
   int rounds_center_tracks_differ = 0;
+  /// Rounds whose every node's picture came and every station fused every station's scan
+  /// (in real time: in time), and rounds no station's picture came for.
+  int rounds_in_time = 0;
+  int rounds_without_a_picture = 0;
   double discovery_s = 0.0;
   double rounds_per_s = 0.0;
   std::size_t tracks_at_end = 0;

@@ -124,17 +124,20 @@ picture_scan_from_wire(const wire::PictureScan& sample, std::size_t max_detectio
   return {std::move(received), std::nullopt};
 }
 
-/// Node `source_id`'s picture after round `step`: every track (id, status, estimate) and the
-/// picture's digest. `Table` is a TrackTable, a peer's or the center's.
+/// Node `source_id`'s picture after round `step`: every track (id, status, estimate), the
+/// picture's digest and how many stations' scans the round fused. `Table` is a TrackTable, a
+/// peer's or the center's.
 template <typename Table>
 wire::PictureRound picture_round_to_wire(const Table& table, std::uint64_t run_id,
-                                         std::uint32_t step, int source_id) {
+                                         std::uint32_t step, int source_id,
+                                         std::uint32_t scans_fused) {
   constexpr int N = Table::kDim;
   wire::PictureRound sample;
   sample.run_id(run_id);
   sample.step(step);
   sample.source_id(source_id);
   sample.picture_digest(table.digest());
+  sample.scans_fused(scans_fused);
   const auto tracks = table.tracks();
   std::vector<wire::PictureTrack>& out = sample.tracks();
   out.reserve(tracks.size());
