@@ -7,6 +7,7 @@
 #include <charconv>
 #include <limits>
 
+#include "report/picture_run_report.hpp"
 #include "run/picture_run.hpp"
 #include "run/simulated_hosts.hpp"
 #include "skyfuse/options/node_options.hpp"

@@ -9,25 +9,24 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <string_view>
 #include <vector>
 
 #include "report/output_files.hpp"
+#include "report/picture_run_report.hpp"
 #include "report/progress.hpp"
 #include "run/child_processes.hpp"
 #include "run/execute_run.hpp"
 #include "run/lockstep_driver.hpp"
 #include "run/picture_driver.hpp"
+#include "run/picture_round_check.hpp"
 #include "run/placement.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_run.hpp"
-#include "skyfuse/sim/picture_truth.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -58,39 +57,6 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
   if (o.hosts > 0) refuse("--hosts");
   if (o.node.secure_dir) refuse("--secure");
   if (o.node.refusion_lag != 0) refuse("--refusion-lag");
-}
-
-std::string hex(std::uint64_t v) {
-  return fmt::format("{:016x}", v);
-}
-
-// The center's picture against a peer's: rounds whose tracks (ids and statuses) differ, and the
-// largest |x_center - x_p2p| / (1 + |x_center|) over the tracks both hold.
-void compare_center(const wire::PictureRound& center, const wire::PictureRound& peer,
-                    PictureRunSummary& summary) {
-  const auto& mine = peer.tracks();
-  const auto& theirs = center.tracks();
-  bool same_tracks = mine.size() == theirs.size();
-  for (std::size_t i = 0, j = 0; i < mine.size() && j < theirs.size();) {
-    if (mine[i].track_id() < theirs[j].track_id()) {
-      ++i;
-    } else if (theirs[j].track_id() < mine[i].track_id()) {
-      ++j;
-    } else {
-      same_tracks = same_tracks && mine[i].confirmed() == theirs[j].confirmed();
-      double gap = 0.0;
-      double norm = 0.0;
-      for (std::size_t e = 0; e < theirs[j].x().size() && e < mine[i].x().size(); ++e) {
-        gap += (theirs[j].x()[e] - mine[i].x()[e]) * (theirs[j].x()[e] - mine[i].x()[e]);
-        norm += theirs[j].x()[e] * theirs[j].x()[e];
-      }
-      summary.max_state_gap_center_vs_p2p =
-          std::max(summary.max_state_gap_center_vs_p2p, std::sqrt(gap) / (1.0 + std::sqrt(norm)));
-      ++i;
-      ++j;
-    }
-  }
-  if (!same_tracks) ++summary.rounds_center_tracks_differ;
 }
 
 }  // namespace
@@ -166,92 +132,15 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     summary.stations = plan.stations;
     summary.steps = plan.scenario.steps;
     summary.discovery_s = std::chrono::duration<double>(Clock::now() - discovery_start).count();
-    std::ostringstream csv;
-    csv << "step,station,picture_digest,tracks,confirmed,scans_fused,in_process_digest\n";
     Progress progress(fmt::format("picture M={}", plan.stations), plan.scenario.steps);
     const auto round_timeout = std::chrono::milliseconds(std::llround(o.round_timeout_s * 1e3));
     const auto start = Clock::now();
-    int apart_at = -1;  // the last round found with peers apart
-    // The first station's picture scored against the truth, as the in-process run scores its
-    // peers' (GOSPA of the confirmed tracks against the aircraft present).
-    PictureScore score(plan.scenario.traffic->gospa, truth.targets.size(),
-                       plan.scenario.time_step_s);
-    std::vector<TruthPoint> aircraft;
-    std::vector<TrackPoint> confirmed_tracks;
-    const int stations_up_all = plan.stations;
-    // Everything a round's pictures are checked for: every station's against the others' and
-    // its in-process twin's, the center's against its twin's and a peer's; the first station's
-    // scored. `rounds`: the pictures that came, in node order (the center first).
-    const auto check_round = [&](int k, const std::vector<wire::PictureRound>& rounds) {
-      const auto step = static_cast<std::size_t>(k);
-      const wire::PictureRound* center = nullptr;
-      const wire::PictureRound* first_peer = nullptr;
-      bool in_time = rounds.size() == ids.size() + 1;
-      for (const wire::PictureRound& r : rounds) {
-        if (r.source_id() == kCenterNodeId) {
-          center = &r;
-        } else if (first_peer == nullptr) {
-          first_peer = &r;
-        }
-        if (r.source_id() != kCenterNodeId &&
-            r.scans_fused() != static_cast<std::uint32_t>(stations_up_all)) {
-          in_time = false;
-        }
-      }
-      if (in_time) ++summary.rounds_in_time;
-      for (const wire::PictureRound& r : rounds) {
-        const bool is_center = r.source_id() == kCenterNodeId;
-        const std::uint64_t expected =
-            is_center ? twin.center_digests.at(step) : twin.peer_digests.at(step);
-        const auto confirmed = std::count_if(r.tracks().begin(), r.tracks().end(),
-                                             [](const auto& t) { return t.confirmed(); });
-        csv << fmt::format("{},{},{},{},{},{},{}\n", k, r.source_id(), hex(r.picture_digest()),
-                           r.tracks().size(), confirmed, r.scans_fused(), hex(expected));
-        if (is_center) {
-          if (r.picture_digest() != expected && summary.center_equals_in_process) {
-            summary.center_equals_in_process = false;
-            summary.first_step_center_apart_from_in_process = k;
-          }
-          continue;
-        }
-        if (r.picture_digest() != first_peer->picture_digest() && apart_at != k) {
-          apart_at = k;
-          ++summary.rounds_peers_apart;
-          summary.last_round_peers_apart = k;
-          if (summary.peers_identical) {
-            summary.peers_identical = false;
-            summary.first_divergent_step = k;
-          }
-        }
-        if (r.picture_digest() != expected && summary.equals_in_process) {
-          summary.equals_in_process = false;
-          summary.first_step_apart_from_in_process = k;
-        }
-      }
-      if (first_peer == nullptr) {
-        ++summary.rounds_without_a_picture;
-        return;
-      }
-      if (center != nullptr) compare_center(*center, *first_peer, summary);
-      aircraft_at_step(plan.scenario, plan.stations, truth.targets, k, aircraft);
-      confirmed_tracks.clear();
-      for (const wire::PictureTrack& t : first_peer->tracks()) {
-        if (t.confirmed()) {
-          confirmed_tracks.push_back({t.track_id(), Vector3(t.x()[0], t.x()[1], t.x()[2])});
-        }
-      }
-      score.add_step(k, aircraft, confirmed_tracks);
-      if (k + 1 == plan.scenario.steps) {
-        summary.tracks_at_end = first_peer->tracks().size();
-        summary.confirmed_at_end = confirmed_tracks.size();
-        summary.digest_at_end = first_peer->picture_digest();
-      }
-    };
+    PictureRoundCheck check(plan, truth.targets, twin, summary);
     if (o.node.realtime_deadline_ms > 0.0) {
       const auto epoch = std::chrono::system_clock::now() + kRealtimeHeadStart;
       driver.run_realtime(plan.scenario.steps, plan.scenario.time_step_s, epoch, kLateAfter,
                           [&](int k, std::vector<wire::PictureRound> rounds) {
-                            check_round(k, rounds);
+                            check.add(k, rounds);
                             progress.advance();
                           });
     } else {
@@ -270,7 +159,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
           driver.set_down(e.station_id, false);
           spdlog::info("restarted station {} before step {}", e.station_id, k);
         }
-        check_round(k, driver.run_round(static_cast<std::uint32_t>(k), round_timeout));
+        check.add(k, driver.run_round(static_cast<std::uint32_t>(k), round_timeout));
         progress.advance();
       }
     }
@@ -279,7 +168,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     summary.loss = o.node.loss.enabled();
     summary.faults = summary.loss || !o.kills.empty();
     summary.realtime = o.node.realtime_deadline_ms > 0.0;
-    summary.gospa_mean = score.summary().gospa_mean;
+    summary.gospa_mean = check.gospa_mean();
     summary.in_process_gospa_mean = twin.score.gospa_mean;
     for (const auto& [id, counts] : driver.wait_finished(std::chrono::seconds(5))) {
       if (id != kCenterNodeId) summary.resyncs += counts.first;
@@ -291,91 +180,13 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
       children.terminate_all(std::chrono::seconds(2));
     }
 
-    write_file_atomically(out / "picture_rounds.csv", csv.str());
-    nlohmann::json json = {
-        {"scenario", summary.scenario},
-        {"stations", summary.stations},
-        {"steps", summary.steps},
-        {"run_id", run_id},
-        {"peers_identical", summary.peers_identical},
-        {"first_divergent_step", summary.first_divergent_step},
-        {"rounds_peers_apart", summary.rounds_peers_apart},
-        {"realtime", summary.realtime},
-        {"rounds_in_time", summary.rounds_in_time},
-        {"share_of_rounds_in_time", static_cast<double>(summary.rounds_in_time) / summary.steps},
-        {"rounds_without_a_picture", summary.rounds_without_a_picture},
-        {"last_round_peers_apart", summary.last_round_peers_apart},
-        {"loss", summary.loss},
-        {"faults", summary.faults},
-        {"samples_lost", summary.lost},
-        {"resyncs", summary.resyncs},
-        {"gospa_mean", summary.gospa_mean},
-        {"equals_in_process", summary.equals_in_process},
-        {"first_step_apart_from_in_process", summary.first_step_apart_from_in_process},
-        {"center_equals_in_process", summary.center_equals_in_process},
-        {"first_step_center_apart_from_in_process",
-         summary.first_step_center_apart_from_in_process},
-        {"max_state_gap_center_vs_p2p", summary.max_state_gap_center_vs_p2p},
-        {"rounds_center_tracks_differ", summary.rounds_center_tracks_differ},
-        {"discovery_s", summary.discovery_s},
-        {"rounds_per_s", summary.rounds_per_s},
-        {"tracks_at_end", summary.tracks_at_end},
-        {"confirmed_at_end", summary.confirmed_at_end},
-        {"picture_digest_at_end", hex(summary.digest_at_end)},
-        {"in_process",
-         {{"peers_identical", twin.peers_identical},
-          {"confirmed_at_end", twin.confirmed_at_end},
-          {"max_state_gap_center_vs_p2p", twin.max_state_gap},
-          {"association_flips", twin.association_flips},
-          {"gospa_mean", twin.score.gospa_mean}}}};
-    write_file_atomically(out / "summary.json", json.dump(2) + "\n");
+    write_file_atomically(out / "picture_rounds.csv", check.csv());
+    write_file_atomically(out / "summary.json", picture_run_json(summary, run_id, twin) + "\n");
     return summary;
   } catch (...) {
     children.terminate_all(std::chrono::seconds(2));
     throw;
   }
-}
-
-void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
-  fmt::print(out,
-             "many aircraft over DDS: scenario '{}', {} station processes and the center, {} "
-             "rounds\n",
-             s.scenario, s.stations, s.steps);
-  const auto row = [&](std::string_view what, const std::string& value) {
-    fmt::print(out, "  {:<36} {}\n", what, value);
-  };
-  row("peers' pictures",
-      s.peers_identical
-          ? "bit-identical in every round"
-          : fmt::format("apart in {} rounds ({}-{}), bit-identical in the others",
-                        s.rounds_peers_apart, s.first_divergent_step, s.last_round_peers_apart));
-  if (s.loss) {
-    row("samples lost (--loss)",
-        fmt::format("{}; {} rounds a station took the lowest station's picture", s.lost,
-                    s.resyncs));
-  }
-  row("peers equal to the in-process run",
-      s.equals_in_process ? "yes, every round"
-                          : fmt::format("no, from round {}", s.first_step_apart_from_in_process));
-  row("center equal to its in-process run",
-      s.center_equals_in_process
-          ? "yes, every round"
-          : fmt::format("no, from round {}", s.first_step_center_apart_from_in_process));
-  row("center vs peer-to-peer",
-      fmt::format("max |dx| / (1 + |x|) {:.2e}; {} rounds with other "
-                  "tracks",
-                  s.max_state_gap_center_vs_p2p, s.rounds_center_tracks_differ));
-  row(s.realtime ? "rounds in time" : "rounds with every scan fused",
-      fmt::format(
-          "{} of {} ({:.1f} %){}", s.rounds_in_time, s.steps, 100.0 * s.rounds_in_time / s.steps,
-          s.rounds_without_a_picture > 0
-              ? fmt::format("; {} rounds without any station's picture", s.rounds_without_a_picture)
-              : std::string()));
-  row("tracks at the end", fmt::format("{} ({} confirmed)", s.tracks_at_end, s.confirmed_at_end));
-  row("GOSPA, mean over rounds", fmt::format("{:.2f} (the in-process run, without faults: {:.2f})",
-                                             s.gospa_mean, s.in_process_gospa_mean));
-  row("discovery", fmt::format("{:.2f} s", s.discovery_s));
-  row("rounds per second", fmt::format("{:.0f}", s.rounds_per_s));
 }
 
 }  // namespace skyfuse::harness

@@ -61,6 +61,4 @@ struct PictureRunSummary {
 /// RunAborted when the run fails.
 PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scenario);
 
-void print_picture_run_table(const PictureRunSummary& summary, std::FILE* out);
-
 }  // namespace skyfuse::harness

@@ -1,0 +1,94 @@
+#include "report/picture_run_report.hpp"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+#include "run/picture_round_check.hpp"
+
+namespace skyfuse::harness {
+
+void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
+  fmt::print(out,
+             "many aircraft over DDS: scenario '{}', {} station processes and the center, {} "
+             "rounds\n",
+             s.scenario, s.stations, s.steps);
+  const auto row = [&](std::string_view what, const std::string& value) {
+    fmt::print(out, "  {:<36} {}\n", what, value);
+  };
+  row("peers' pictures",
+      s.peers_identical
+          ? "bit-identical in every round"
+          : fmt::format("apart in {} rounds ({}-{}), bit-identical in the others",
+                        s.rounds_peers_apart, s.first_divergent_step, s.last_round_peers_apart));
+  if (s.loss) {
+    row("samples lost (--loss)",
+        fmt::format("{}; {} rounds a station took the lowest station's picture", s.lost,
+                    s.resyncs));
+  }
+  row("peers equal to the in-process run",
+      s.equals_in_process ? "yes, every round"
+                          : fmt::format("no, from round {}", s.first_step_apart_from_in_process));
+  row("center equal to its in-process run",
+      s.center_equals_in_process
+          ? "yes, every round"
+          : fmt::format("no, from round {}", s.first_step_center_apart_from_in_process));
+  row("center vs peer-to-peer",
+      fmt::format("max |dx| / (1 + |x|) {:.2e}; {} rounds with other "
+                  "tracks",
+                  s.max_state_gap_center_vs_p2p, s.rounds_center_tracks_differ));
+  row(s.realtime ? "rounds in time" : "rounds with every scan fused",
+      fmt::format(
+          "{} of {} ({:.1f} %){}", s.rounds_in_time, s.steps, 100.0 * s.rounds_in_time / s.steps,
+          s.rounds_without_a_picture > 0
+              ? fmt::format("; {} rounds without any station's picture", s.rounds_without_a_picture)
+              : std::string()));
+  row("tracks at the end", fmt::format("{} ({} confirmed)", s.tracks_at_end, s.confirmed_at_end));
+  row("GOSPA, mean over rounds", fmt::format("{:.2f} (the in-process run, without faults: {:.2f})",
+                                             s.gospa_mean, s.in_process_gospa_mean));
+  row("discovery", fmt::format("{:.2f} s", s.discovery_s));
+  row("rounds per second", fmt::format("{:.0f}", s.rounds_per_s));
+}
+
+std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run_id,
+                             const PictureRunResult& twin) {
+  const nlohmann::json json = {
+      {"scenario", summary.scenario},
+      {"stations", summary.stations},
+      {"steps", summary.steps},
+      {"run_id", run_id},
+      {"peers_identical", summary.peers_identical},
+      {"first_divergent_step", summary.first_divergent_step},
+      {"rounds_peers_apart", summary.rounds_peers_apart},
+      {"realtime", summary.realtime},
+      {"rounds_in_time", summary.rounds_in_time},
+      {"share_of_rounds_in_time", static_cast<double>(summary.rounds_in_time) / summary.steps},
+      {"rounds_without_a_picture", summary.rounds_without_a_picture},
+      {"last_round_peers_apart", summary.last_round_peers_apart},
+      {"loss", summary.loss},
+      {"faults", summary.faults},
+      {"samples_lost", summary.lost},
+      {"resyncs", summary.resyncs},
+      {"gospa_mean", summary.gospa_mean},
+      {"equals_in_process", summary.equals_in_process},
+      {"first_step_apart_from_in_process", summary.first_step_apart_from_in_process},
+      {"center_equals_in_process", summary.center_equals_in_process},
+      {"first_step_center_apart_from_in_process", summary.first_step_center_apart_from_in_process},
+      {"max_state_gap_center_vs_p2p", summary.max_state_gap_center_vs_p2p},
+      {"rounds_center_tracks_differ", summary.rounds_center_tracks_differ},
+      {"discovery_s", summary.discovery_s},
+      {"rounds_per_s", summary.rounds_per_s},
+      {"tracks_at_end", summary.tracks_at_end},
+      {"confirmed_at_end", summary.confirmed_at_end},
+      {"picture_digest_at_end", hex_digest(summary.digest_at_end)},
+      {"in_process",
+       {{"peers_identical", twin.peers_identical},
+        {"confirmed_at_end", twin.confirmed_at_end},
+        {"max_state_gap_center_vs_p2p", twin.max_state_gap},
+        {"association_flips", twin.association_flips},
+        {"gospa_mean", twin.score.gospa_mean}}}};
+  return json.dump(2);
+}
+
+}  // namespace skyfuse::harness
