@@ -49,6 +49,12 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
                                              s.gospa_mean, s.in_process_gospa_mean));
   row("discovery", fmt::format("{:.2f} s", s.discovery_s));
   row("rounds per second", fmt::format("{:.0f}", s.rounds_per_s));
+  row("datagrams received per round",
+      s.datagrams_per_round
+          ? fmt::format("{:.0f}  (kernel's count, every process)", *s.datagrams_per_round)
+          : std::string("unknown"));
+  row("CPU per station-round",
+      fmt::format("{:.2f} ms  (stations, center and harness)", s.cpu_ms_per_station_round));
 }
 
 std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run_id,
@@ -79,6 +85,10 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
       {"rounds_center_tracks_differ", summary.rounds_center_tracks_differ},
       {"discovery_s", summary.discovery_s},
       {"rounds_per_s", summary.rounds_per_s},
+      {"datagrams_received_per_round", summary.datagrams_per_round
+                                           ? nlohmann::json(*summary.datagrams_per_round)
+                                           : nlohmann::json(nullptr)},
+      {"cpu_ms_per_station_round", summary.cpu_ms_per_station_round},
       {"tracks_at_end", summary.tracks_at_end},
       {"confirmed_at_end", summary.confirmed_at_end},
       {"picture_digest_at_end", hex_digest(summary.digest_at_end)},

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -18,6 +19,7 @@
 #include "report/progress.hpp"
 #include "run/child_processes.hpp"
 #include "run/execute_run.hpp"
+#include "run/kernel_counters.hpp"
 #include "run/lockstep_driver.hpp"
 #include "run/picture_driver.hpp"
 #include "run/picture_round_check.hpp"
@@ -126,6 +128,13 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     for (const int id : ids) spawn_station(id, std::nullopt);
     const auto discovery_start = Clock::now();
     driver.wait_until_joined(std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
+    // The kernel's counts over every process of the run (one host: the harness's namespace).
+    const auto kernel_snapshot = [&] {
+      std::vector<pid_t> processes = children.pids();
+      processes.push_back(getpid());
+      return take_snapshot(processes, {getpid()});
+    };
+    const KernelSnapshot before_rounds = kernel_snapshot();
 
     PictureRunSummary summary;
     summary.scenario = plan.scenario.name;
@@ -163,7 +172,15 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
         progress.advance();
       }
     }
+    const KernelSnapshot after_rounds = kernel_snapshot();
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    const double rounds = plan.scenario.steps;
+    if (before_rounds.udp_datagrams && after_rounds.udp_datagrams) {
+      summary.datagrams_per_round =
+          static_cast<double>(*after_rounds.udp_datagrams - *before_rounds.udp_datagrams) / rounds;
+    }
+    summary.cpu_ms_per_station_round =
+        1e3 * (after_rounds.cpu_s - before_rounds.cpu_s) / (plan.stations * rounds);
     summary.rounds_per_s = plan.scenario.steps / seconds;
     summary.loss = o.node.loss.enabled();
     summary.faults = summary.loss || !o.kills.empty();

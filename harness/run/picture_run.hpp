@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "run/run_options.hpp"
@@ -50,6 +51,10 @@ struct PictureRunSummary {
   int rounds_in_time = 0;
   int rounds_without_a_picture = 0;
   double discovery_s = 0.0;
+  /// UDP datagrams the kernel delivered to the run's sockets per round (none if unreadable),
+  /// and CPU per station and round of every process (stations, center, harness), ms.
+  std::optional<double> datagrams_per_round;
+  double cpu_ms_per_station_round = 0.0;
   double rounds_per_s = 0.0;
   std::size_t tracks_at_end = 0;
   std::size_t confirmed_at_end = 0;
