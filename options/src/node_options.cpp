@@ -46,6 +46,9 @@ void add_plan_options(CLI::App& app, RunOverrides& overrides) {
                  "Monte-Carlo run index; selects the noise realisation")
       ->capture_default_str();
   add_exchange_options(app, overrides.exchange, overrides.fanout);
+  app.add_option("--aircraft", overrides.aircraft,
+                 "A scenario with generated traffic: how many aircraft (default: the scenario's)")
+      ->check(whole_number_at_least(1));
 }
 
 void add_exchange_options(CLI::App& app, std::optional<ExchangeConfig::Kind>& exchange,
@@ -147,6 +150,7 @@ std::vector<std::string> to_arguments(const NodeOptions& o) {
   add("--mc-run", std::to_string(o.overrides.mc_run));
   if (o.overrides.exchange) add("--exchange", std::string(to_string(*o.overrides.exchange)));
   if (o.overrides.fanout) add("--fanout", std::to_string(*o.overrides.fanout));
+  if (o.overrides.aircraft) add("--aircraft", std::to_string(*o.overrides.aircraft));
   if (o.qos_file) add("--qos", *o.qos_file);
   if (o.secure_dir) add("--secure", *o.secure_dir);
   add("--discovery-timeout", fmt::format("{}", o.discovery_timeout_s));

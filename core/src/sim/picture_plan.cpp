@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <memory>
 #include <stdexcept>
+
+#include "skyfuse/scenario/traffic_config.hpp"
 
 namespace skyfuse {
 
@@ -31,6 +34,21 @@ PicturePlan make_picture_plan(Scenario scenario, const RunOverrides& overrides) 
       throw std::invalid_argument(fmt::format("--steps: must be >= 1, got {}", *overrides.steps));
     }
     scenario.steps = *overrides.steps;
+  }
+  if (overrides.aircraft) {
+    if (!scenario.traffic->generator) {
+      throw std::invalid_argument(fmt::format(
+          "--aircraft: scenario '{}' generates no traffic (its aircraft are listed or recorded)",
+          scenario.name));
+    }
+    if (*overrides.aircraft < 1) {
+      throw std::invalid_argument(
+          fmt::format("--aircraft: must be >= 1, got {}", *overrides.aircraft));
+    }
+    // The scenario is shared: the traffic config is copied before it is changed.
+    auto traffic = std::make_shared<TrafficConfig>(*scenario.traffic);
+    traffic->generator->aircraft = *overrides.aircraft;
+    scenario.traffic = std::move(traffic);
   }
   plan.mc_run = overrides.mc_run;
   plan.scenario = std::move(scenario);

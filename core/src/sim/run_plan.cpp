@@ -34,6 +34,11 @@ std::vector<double> RunPlan::weights_of(std::span<const int> ids) const {
 
 RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
   require_one_target(scenario, "station and center processes");
+  if (overrides.aircraft) {
+    throw std::invalid_argument(fmt::format(
+        "--aircraft: scenario '{}' has one target; the option is for one with generated traffic",
+        scenario.name));
+  }
   RunPlan plan;
   const int available = static_cast<int>(scenario.stations.size());
   plan.stations = overrides.stations.value_or(available);

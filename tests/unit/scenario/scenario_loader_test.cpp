@@ -346,9 +346,9 @@ TEST(ScenarioLoader, AutoChoosesTheTreeFromSixteenStationsWhereTheStationsTakeIt
             ExchangeConfig::Kind::kFlat);
   EXPECT_EQ(make_run_plan(ring, stations_and_steps(16, 10)).scenario.exchange.kind,
             ExchangeConfig::Kind::kTree);
-  EXPECT_EQ(
-      make_run_plan(ring, {64, 10, {}, 0, ExchangeConfig::Kind::kFlat, {}}).scenario.exchange.kind,
-      ExchangeConfig::Kind::kFlat);
+  EXPECT_EQ(make_run_plan(ring, {64, 10, {}, 0, ExchangeConfig::Kind::kFlat, {}, {}})
+                .scenario.exchange.kind,
+            ExchangeConfig::Kind::kFlat);
 
   const Scenario imm = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper000-imm.yaml");
   EXPECT_EQ(chosen_exchange(imm, 15), ExchangeConfig::Kind::kFlat);

@@ -9,6 +9,7 @@
 
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
+#include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 
@@ -165,8 +166,7 @@ TEST(TrafficScenario, ProcessesRefuseManyAircraftWithAPointerToTheSweep) {
 TEST(TrafficScenario, TheMetroAndCrowdScenariosCarryTheirLoads) {
   for (const auto& [file, aircraft] :
        {std::pair<const char*, int>{"uam-metro.yaml", 100}, {"uam-crowd.yaml", 1000}}) {
-    const Scenario s =
-        load_scenario_file(std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/" + file);
+    const Scenario s = load_scenario_file(std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/" + file);
     ASSERT_TRUE(s.has_many_targets()) << file;
     EXPECT_EQ(s.traffic->generator->aircraft, aircraft) << file;
     EXPECT_EQ(s.stations.size(), 16U) << file;
@@ -174,6 +174,37 @@ TEST(TrafficScenario, TheMetroAndCrowdScenariosCarryTheirLoads) {
     EXPECT_DOUBLE_EQ(s.traffic->detection.clutter_per_scan, 10.0) << file;
     EXPECT_DOUBLE_EQ(s.traffic->detection.probability, 0.9) << file;
   }
+}
+
+// --aircraft sets a generated scenario's aircraft count for the run's plan, leaving the loaded
+// scenario as it was; a scenario with one target or with recorded traffic refuses it.
+TEST(TrafficScenario, AircraftOverridesTheGeneratorsCountOnly) {
+  const Scenario city = load_scenario_file(kUamCity);
+  RunOverrides overrides;
+  overrides.aircraft = 7;
+  const PicturePlan plan = make_picture_plan(city, overrides);
+  EXPECT_EQ(plan.scenario.traffic->generator->aircraft, 7);
+  EXPECT_EQ(city.traffic->generator->aircraft, 20) << "the loaded scenario is unchanged";
+  EXPECT_EQ(build_traffic_truth(plan.scenario).targets.size(), 7U);
+
+  const auto refusal = [&](const Scenario& scenario, bool picture) -> std::string {
+    try {
+      if (picture) {
+        make_picture_plan(scenario, overrides);
+      } else {
+        make_run_plan(scenario, overrides);
+      }
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(refusal(load_default_scenario(), false).find("--aircraft"), std::string::npos);
+  const Scenario recorded =
+      load_scenario_file(std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/recorded-airport.yaml");
+  EXPECT_NE(refusal(recorded, true).find("--aircraft"), std::string::npos);
+  overrides.aircraft = 0;
+  EXPECT_NE(refusal(city, true).find("--aircraft"), std::string::npos);
 }
 
 }  // namespace

@@ -57,6 +57,8 @@ struct RunOverrides {
   std::uint64_t mc_run = 0;
   std::optional<ExchangeConfig::Kind> exchange;  ///< default: the scenario's network.exchange
   std::optional<int> fanout;                     ///< default: the scenario's network.fanout
+  /// A scenario with generated traffic: how many aircraft (default: the generator's).
+  std::optional<int> aircraft;
 };
 
 /// The overrides of a run of `stations` stations for `steps` steps; everything else the
