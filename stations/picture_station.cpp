@@ -4,7 +4,9 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "skyfuse/multitarget/peer_picture.hpp"
@@ -120,7 +122,14 @@ class PictureStation {
     }
     take_states();
     const auto lowest = exchange_.lowest();
-    if (lowest && lowest->second != picture_.digest()) take_picture_of(*lowest, k);
+    const bool parted = lowest && lowest->second != picture_.digest();
+    if (parted) {
+      // Parted last round too, the lowest station saw it then and sent its picture of that
+      // round: wait for it (a datagram of it lost waits for its repair) rather than stay apart.
+      if (parted_last_round_ && !realtime()) wait_for_state_of(lowest->first, k - 1);
+      take_picture_of(*lowest, k);
+    }
+    parted_last_round_ = parted;
     const std::uint64_t predicted = picture_.digest();
     const auto reports = exchange_.reports(picture_);
     picture_.fuse(k, reports);
@@ -158,6 +167,21 @@ class PictureStation {
         continue;
       }
       latest_ = PeerState{sample.step(), static_cast<int>(sample.station_id()), std::move(*tracks)};
+    }
+  }
+
+  bool realtime() const { return options_.node.realtime_deadline_ms > 0.0; }
+
+  // Lock-step: takes pictures that come until station `station`'s of round `step` is in, or
+  // the round's deadline passes.
+  void wait_for_state_of(int station, std::uint64_t step) {
+    const auto give_up = std::chrono::steady_clock::now() + options_.node.round_deadline();
+    const auto have = [&] {
+      return latest_ && latest_->station_id == station && latest_->step == step;
+    };
+    while (!have() && std::chrono::steady_clock::now() < give_up) {
+      std::this_thread::sleep_for(std::chrono::microseconds(500));
+      take_states();
     }
   }
 
@@ -201,7 +225,8 @@ class PictureStation {
   Picture picture_;
   AssignmentWork work_;
   std::optional<PeerState> latest_;
-  std::uint32_t resyncs_ = 0;  // rounds in which this station took another's picture
+  bool parted_last_round_ = false;  // this picture was not the lowest station's last round
+  std::uint32_t resyncs_ = 0;       // rounds in which this station took another's picture
 };
 
 }  // namespace

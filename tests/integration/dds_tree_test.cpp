@@ -228,22 +228,6 @@ void expect_aggregator_replaced_and_restored(int domain, const std::vector<std::
   ASSERT_EQ(run.status.code, 0) << run.output;
   EXPECT_EQ(run.output.find("was killed by signal"), std::string::npos) << run.output;
 
-  const auto spread = steps_column(dir / "out" / "steps.csv", "peer_spread");
-  const auto apart = steps_column(dir / "out" / "steps.csv", "central_minus_p2p_m");
-  ASSERT_EQ(spread.size(), static_cast<std::size_t>(kSteps));
-  for (int k = 0; k < kSteps; ++k) {
-    const bool changing = k == 100 || k == 101 || k == 150 || k == 151;
-    if (!changing) {
-      EXPECT_EQ(spread[k], 0.0) << "step " << k;
-    }
-    // After a fault the center and the peers hold different histories, and drift together
-    // again only slowly (the flat exchange too: about 1e-7 m a hundred rounds after a station's
-    // restart); a station counted twice would set them millimetres apart.
-    const bool settling = (k >= 100 && k < 110) || (k >= 150 && k < 160);
-    if (!settling) {
-      EXPECT_LT(apart[k], 1e-4) << "step " << k;
-    }
-  }
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   // Station 1 rejoins in round 151 once its readers match the writers it needs in round 150;
   // the harness waits for one of them only (the cluster may have another aggregator by now),
@@ -253,6 +237,28 @@ void expect_aggregator_replaced_and_restored(int domain, const std::vector<std::
   EXPECT_GE(rejoin, 151);
   EXPECT_LE(rejoin, 160);
   EXPECT_EQ(summary["rounds_missing_by_station"]["1"].get<int>(), rejoin - 100);
+
+  const auto spread = steps_column(dir / "out" / "steps.csv", "peer_spread");
+  const auto apart = steps_column(dir / "out" / "steps.csv", "central_minus_p2p_m");
+  ASSERT_EQ(spread.size(), static_cast<std::size_t>(kSteps));
+  for (int k = 0; k < kSteps; ++k) {
+    // Peers disagree in the rounds of a change: the kill's, and from the restart to the
+    // rejoin's next (151-152 on an idle machine). While a late rejoin is pending, members that
+    // already hear station 1 send to it and the others to station 2, so cluster 0's sum misses
+    // some contributions (a full -j2 suite on the EPYC: rejoin late, peers apart in rounds
+    // 152-162, central vs p2p up to 0.18 m at round 160, then together again).
+    const bool changing = k == 100 || k == 101 || (k >= 150 && k <= rejoin + 2);
+    if (!changing) {
+      EXPECT_EQ(spread[k], 0.0) << "step " << k;
+    }
+    // After a fault the center and the peers hold different histories, and drift together
+    // again only slowly (the flat exchange too: about 1e-7 m a hundred rounds after a station's
+    // restart); a station counted twice would set them millimetres apart.
+    const bool settling = (k >= 100 && k < 110) || (k >= 150 && k < rejoin + 10);
+    if (!settling) {
+      EXPECT_LT(apart[k], 1e-4) << "step " << k;
+    }
+  }
   for (const auto& [station, rounds] : summary["rounds_missing_by_station"].items()) {
     if (station != "1") {
       EXPECT_LE(rounds.get<int>(), 2) << station;
