@@ -5,10 +5,10 @@
 
 #include <stdexcept>
 
-#include "skyfuse/registry/filter_shards.hpp"
-#include "skyfuse/transport/node_setup.hpp"
 #include "picture_station.hpp"
+#include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/node_setup.hpp"
 #include "station_rounds.hpp"
 #include "station_sensing.hpp"
 

@@ -3,8 +3,8 @@
 /// Which wire type travels on which topic, and the name of its QoS profiles. One line per
 /// topic; everything else derives from these traits.
 
-#include <skyfuse/wire/skyfuse_wire.h>
 #include <skyfuse/wire/skyfuse_picturePubSubTypes.h>
+#include <skyfuse/wire/skyfuse_wire.h>
 #include <skyfuse/wire/skyfuse_wirePubSubTypes.h>
 
 namespace skyfuse::transport {
