@@ -70,7 +70,7 @@ std::vector<wire::PictureRound> PictureDriver::run_round(std::uint32_t k,
       const bool ours = round.run_id() == run_id_ && round.step() == k &&
                         std::binary_search(ids_.begin(), ids_.end(), round.source_id());
       if (ours && !down_.contains(round.source_id())) {
-        got.insert_or_assign(round.source_id(), round);
+        got.insert_or_assign(round.source_id(), std::move(round));
       }
     }
     if (got.size() == up) break;

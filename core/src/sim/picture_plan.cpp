@@ -22,19 +22,7 @@ PicturePlan make_picture_plan(Scenario scenario, const RunOverrides& overrides) 
         "--exchange tree: a run of many aircraft exchanges its scans flat so far");
   }
   PicturePlan plan;
-  const int available = static_cast<int>(scenario.stations.size());
-  plan.stations = overrides.stations.value_or(available);
-  if (plan.stations < 1 || plan.stations > available) {
-    throw std::invalid_argument(
-        fmt::format("--stations: must be in [1, {}] for scenario '{}', got {}", available,
-                    scenario.name, plan.stations));
-  }
-  if (overrides.steps) {
-    if (*overrides.steps < 1) {
-      throw std::invalid_argument(fmt::format("--steps: must be >= 1, got {}", *overrides.steps));
-    }
-    scenario.steps = *overrides.steps;
-  }
+  plan.stations = apply_stations_and_steps(scenario, overrides);
   if (overrides.aircraft) {
     if (!scenario.traffic->generator) {
       throw std::invalid_argument(fmt::format(

@@ -32,6 +32,23 @@ std::vector<double> RunPlan::weights_of(std::span<const int> ids) const {
   return weights;
 }
 
+int apply_stations_and_steps(Scenario& scenario, const RunOverrides& overrides) {
+  const int available = static_cast<int>(scenario.stations.size());
+  const int stations = overrides.stations.value_or(available);
+  if (stations < 1 || stations > available) {
+    throw std::invalid_argument(
+        fmt::format("--stations: must be in [1, {}] for scenario '{}', got {}", available,
+                    scenario.name, stations));
+  }
+  if (overrides.steps) {
+    if (*overrides.steps < 1) {
+      throw std::invalid_argument(fmt::format("--steps: must be >= 1, got {}", *overrides.steps));
+    }
+    scenario.steps = *overrides.steps;
+  }
+  return stations;
+}
+
 RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
   require_one_target(scenario, "station and center processes");
   if (overrides.aircraft) {
@@ -40,19 +57,7 @@ RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
         scenario.name));
   }
   RunPlan plan;
-  const int available = static_cast<int>(scenario.stations.size());
-  plan.stations = overrides.stations.value_or(available);
-  if (plan.stations < 1 || plan.stations > available) {
-    throw std::invalid_argument(
-        fmt::format("--stations: must be in [1, {}] for scenario '{}', got {}", available,
-                    scenario.name, plan.stations));
-  }
-  if (overrides.steps) {
-    if (*overrides.steps < 1) {
-      throw std::invalid_argument(fmt::format("--steps: must be >= 1, got {}", *overrides.steps));
-    }
-    scenario.steps = *overrides.steps;
-  }
+  plan.stations = apply_stations_and_steps(scenario, overrides);
   if (overrides.speed_kmh) {
     if (!(*overrides.speed_kmh > 0.0)) {
       throw std::invalid_argument(

@@ -73,4 +73,9 @@ inline RunOverrides stations_and_steps(int stations, int steps) {
 /// Applies the overrides; throws std::invalid_argument naming the option and the value.
 RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides);
 
+/// The overrides every kind of run takes: `--steps` into `scenario`, and how many of its
+/// stations take part (`--stations`, default all). Throws std::invalid_argument naming the
+/// option and the value.
+int apply_stations_and_steps(Scenario& scenario, const RunOverrides& overrides);
+
 }  // namespace skyfuse

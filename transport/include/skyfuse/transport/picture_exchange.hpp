@@ -46,8 +46,7 @@ class PictureExchange {
   PictureExchange(DdsNode& node, std::span<const KnownStation<Sensor>> stations,
                   std::uint64_t run_id, std::size_t max_detections)
       : stations_(stations.begin(), stations.end()),
-        ids_(ids_of(stations)),
-        scans_(ids_, run_id, max_detections),
+        scans_(ids_of(stations), run_id, max_detections),
         run_id_(run_id),
         out_(node.make_writer<wire::PictureScan>()) {}
 
@@ -152,7 +151,6 @@ class PictureExchange {
   }
 
   std::vector<KnownStation<Sensor>> stations_;
-  std::vector<int> ids_;
   PictureScans<Sensor> scans_;
   std::uint64_t run_id_;
   Writer<wire::PictureScan> out_;

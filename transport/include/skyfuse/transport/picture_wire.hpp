@@ -146,7 +146,7 @@ wire::PictureRound picture_round_to_wire(const Table& table, std::uint64_t run_i
     wire::PictureTrack track;
     track.track_id(tracks[t].id);
     track.confirmed(tracks[t].status == TrackStatus::kConfirmed);
-    track.x(std::vector<double>(estimate.mean.data(), estimate.mean.data() + N));
+    track.x(pack_vector<N>(estimate.mean));
     track.covariance(pack_upper<N>(estimate.covariance));
     out.push_back(std::move(track));
   }
@@ -175,7 +175,7 @@ wire::PictureState picture_state_to_wire(const Table& table, std::uint64_t run_i
     t.history_hits(words.hits);
     t.history_rounds(words.rounds);
     t.history_misses(words.consecutive_misses);
-    t.x(std::vector<double>(track.filter.mean.data(), track.filter.mean.data() + N));
+    t.x(pack_vector<N>(track.filter.mean));
     t.covariance(pack_upper<N>(track.filter.covariance));
     t.updated_by(track.updated_by);
     out.push_back(std::move(t));
@@ -193,16 +193,16 @@ std::optional<std::vector<Track<GaussianState<N>>>> picture_state_from_wire(
   tracks.reserve(sample.tracks().size());
   for (const wire::PictureStateTrack& t : sample.tracks()) {
     if (!tracks.empty() && t.track_id() <= tracks.back().id) return std::nullopt;
-    if (t.x().size() != static_cast<std::size_t>(N)) return std::nullopt;
+    const auto mean = unpack_vector<N>(t.x());
     const auto covariance = unpack_upper<N>(t.covariance());
     const auto history =
         TrackHistory::from_words({t.history_hits(), t.history_rounds(), t.history_misses()});
-    if (!covariance || !history) return std::nullopt;
+    if (!mean || !covariance || !history) return std::nullopt;
     Track<GaussianState<N>> track;
     track.id = t.track_id();
     track.status = t.confirmed() ? TrackStatus::kConfirmed : TrackStatus::kTentative;
     track.history = *history;
-    track.filter.mean = Eigen::Map<const Vector<N>>(t.x().data());
+    track.filter.mean = *mean;
     track.filter.covariance = *covariance;
     if (!track.filter.mean.allFinite() || !track.filter.covariance.allFinite()) {
       return std::nullopt;
