@@ -4,6 +4,7 @@
 #include "center_rounds.hpp"
 #include "picture_center.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
+#include "skyfuse/registry/sensor_parts.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 
@@ -18,7 +19,10 @@ int run_center(const options::NodeOptions& options) {
   // What updates the rounds is compiled by shard of the configuration groups, the endpoints once
   // (center_rounds.hpp).
   auto rounds = with_filter_shard(plan.scenario.filter, [&](auto shard) {
-    return make_center_rounds_in_shard<decltype(shard)::value>(options, plan);
+    return with_sensor_part<kCenterSensorParts>(plan.scenario, plan.stations, [&](auto part) {
+      return make_center_rounds_in_shard<decltype(shard)::value, decltype(part)::value>(options,
+                                                                                        plan);
+    });
   });
   return transport::make_lifelong<Center>(options, plan, std::move(rounds)).run();
 }

@@ -1,10 +1,14 @@
-// One shard of the center's rounds: cmake/FilterShards.cmake compiles this file once per shard,
-// with SKYFUSE_SHARD set.
+// One shard of the center's rounds: cmake/FilterShards.cmake compiles this file once per shard
+// and sensor part, with SKYFUSE_SHARD and SKYFUSE_SENSOR_PART set.
 #include "typed_center_rounds.hpp"
+
+static_assert(SKYFUSE_SENSOR_PARTS == skyfuse::center::kCenterSensorParts,
+              "fusion_center/CMakeLists.txt and center_rounds.hpp disagree on the sensor parts");
 
 namespace skyfuse::center {
 
-template std::unique_ptr<CenterRounds> make_center_rounds_in_shard<SKYFUSE_SHARD>(
-    const options::NodeOptions& options, const RunPlan& plan);
+template std::unique_ptr<CenterRounds>
+make_center_rounds_in_shard<SKYFUSE_SHARD, SKYFUSE_SENSOR_PART>(const options::NodeOptions& options,
+                                                                const RunPlan& plan);
 
 }  // namespace skyfuse::center

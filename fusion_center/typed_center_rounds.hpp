@@ -16,6 +16,7 @@
 #include "center_rounds.hpp"
 #include "central_fusion.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
+#include "skyfuse/registry/sensor_parts.hpp"
 #include "skyfuse/tracking/fixed_lag_center.hpp"
 #include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
@@ -92,7 +93,7 @@ class TypedCenterRounds final : public CenterRounds {
 
 }  // namespace detail
 
-template <std::size_t Shard>
+template <std::size_t Shard, std::size_t Part>
 std::unique_ptr<CenterRounds> make_center_rounds_in_shard(const options::NodeOptions& options,
                                                           const RunPlan& plan) {
   std::unique_ptr<CenterRounds> rounds;
@@ -102,8 +103,14 @@ std::unique_ptr<CenterRounds> make_center_rounds_in_shard(const options::NodeOpt
     dispatch_sensor<Model::kDim>(
         plan.scenario, plan.stations, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
           using Sensor = SensorOf<Model::kDim>;
-          // The loader gives a filter only the stations it runs on.
-          if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
+          // The caller chose the part by with_sensor_part; the loader gives a filter only the
+          // stations it runs on.
+          if constexpr (!in_sensor_part<SensorOf, Part, kCenterSensorParts>) {
+            throw std::logic_error(
+                fmt::format("sensor part {} of the center's shard {} holds no "
+                            "'{}' stations",
+                            Part, Shard, plan.scenario.stations.front().sensor.kind));
+          } else if constexpr (filter_runs_on<Filter, Model, Sensor>()) {
             using Fusion = typename CenterFusionOf<Filter, Model, Sensor>::type;
             rounds = std::make_unique<detail::TypedCenterRounds<Sensor, Fusion>>(options, plan);
           } else {

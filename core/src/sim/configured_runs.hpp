@@ -1,7 +1,7 @@
 #pragma once
 // The Monte Carlo's runs for the scenario's motion model, sensor kind and filter: compiled by
 // shard of the configuration groups (registry/filter_shards.hpp), each shard in its own
-// translation unit (configured_runs_shard.cpp).
+// translation unit per sensor part (configured_runs_shard.cpp, registry/sensor_parts.hpp).
 
 #include <cstddef>
 #include <cstdint>
@@ -15,10 +15,14 @@
 
 namespace skyfuse {
 
+/// How many sensor parts the Monte Carlo's shards are compiled in (core/CMakeLists.txt says the
+/// same): the IMM's steppers for every sensor kind together made a 1.62 GB file.
+inline constexpr std::size_t kMonteCarloSensorParts = 2;
+
 /// One run for each of `station_counts`, all fed from one simulation of the measurements of the
 /// largest count's stations, for a scenario whose filter part and motion model lie in shard
-/// `Shard`.
-template <std::size_t Shard>
+/// `Shard` and the sensor of whose first max(station_counts) stations lies in sensor part `Part`.
+template <std::size_t Shard, std::size_t Part>
 std::vector<RunTrace> simulate_configured_runs_in_shard(const Scenario& scenario,
                                                         const TruthTrajectory& truth,
                                                         std::span<const int> station_counts,

@@ -1,5 +1,6 @@
 // One shard of the Monte Carlo's runs (registry/filter_shards.hpp): cmake/FilterShards.cmake
-// compiles this file once per shard, with SKYFUSE_SHARD set.
+// compiles this file once per shard and sensor part (registry/sensor_parts.hpp), with
+// SKYFUSE_SHARD and SKYFUSE_SENSOR_PART set.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,7 +11,11 @@
 #include "sim/run_setup.hpp"
 #include "sim/run_steppers.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
+#include "skyfuse/registry/sensor_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
+
+static_assert(SKYFUSE_SENSOR_PARTS == skyfuse::kMonteCarloSensorParts,
+              "core/CMakeLists.txt and configured_runs.hpp disagree on the sensor parts");
 
 namespace skyfuse {
 namespace {
@@ -55,7 +60,7 @@ std::vector<RunTrace> simulate_runs(const Scenario& scenario, const TruthTraject
 
 }  // namespace
 
-template <std::size_t Shard>
+template <std::size_t Shard, std::size_t Part>
 std::vector<RunTrace> simulate_configured_runs_in_shard(const Scenario& scenario,
                                                         const TruthTrajectory& truth,
                                                         std::span<const int> station_counts,
@@ -68,8 +73,14 @@ std::vector<RunTrace> simulate_configured_runs_in_shard(const Scenario& scenario
                                                    std::type_identity<Model>) {
     dispatch_sensor<Model::kDim>(
         scenario, most, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-          // The loader allows a filter only on what it runs on.
-          if constexpr (filter_runs_on<Filter, Model, SensorOf<Model::kDim>>()) {
+          // The caller chose the part by with_sensor_part; the loader allows a filter only on
+          // what it runs on.
+          if constexpr (!in_sensor_part<SensorOf, Part, kMonteCarloSensorParts>) {
+            throw std::logic_error(
+                fmt::format("sensor part {} of the Monte Carlo's shard {} "
+                            "holds no '{}' stations",
+                            Part, Shard, scenario.stations.front().sensor.kind));
+          } else if constexpr (filter_runs_on<Filter, Model, SensorOf<Model::kDim>>()) {
             using Stepper = typename RunStepperOf<Filter, Model, SensorOf>::type;
             traces = simulate_runs<Stepper, SensorOf>(scenario, truth, station_counts, run, gate,
                                                       observer);
@@ -82,7 +93,8 @@ std::vector<RunTrace> simulate_configured_runs_in_shard(const Scenario& scenario
   return traces;
 }
 
-template std::vector<RunTrace> simulate_configured_runs_in_shard<SKYFUSE_SHARD>(
+template std::vector<RunTrace>
+simulate_configured_runs_in_shard<SKYFUSE_SHARD, SKYFUSE_SENSOR_PART>(
     const Scenario& scenario, const TruthTrajectory& truth, std::span<const int> station_counts,
     std::uint64_t run, const NisGate& gate, const StepObserver& observer);
 

@@ -14,6 +14,7 @@
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/part_info.hpp"
+#include "skyfuse/registry/sensor_parts.hpp"
 
 namespace skyfuse {
 
@@ -25,9 +26,12 @@ std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
                                                std::span<const int> station_counts,
                                                std::uint64_t run, const NisGate& gate,
                                                const StepObserver& observer = {}) {
+  const int most = *std::max_element(station_counts.begin(), station_counts.end());
   return with_filter_shard(scenario.filter, [&](auto shard) {
-    return simulate_configured_runs_in_shard<decltype(shard)::value>(
-        scenario, truth, station_counts, run, gate, observer);
+    return with_sensor_part<kMonteCarloSensorParts>(scenario, most, [&](auto part) {
+      return simulate_configured_runs_in_shard<decltype(shard)::value, decltype(part)::value>(
+          scenario, truth, station_counts, run, gate, observer);
+    });
   });
 }
 

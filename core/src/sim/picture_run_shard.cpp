@@ -1,5 +1,6 @@
 // One shard of the in-process picture's runs (registry/filter_shards.hpp): cmake/FilterShards.cmake
-// compiles this file once per shard, with SKYFUSE_SHARD set.
+// compiles this file once per shard and sensor part (registry/sensor_parts.hpp), with
+// SKYFUSE_SHARD and SKYFUSE_SENSOR_PART set.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,11 +16,15 @@
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/registry/registry.hpp"
+#include "skyfuse/registry/sensor_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_stations.hpp"
 #include "skyfuse/sim/picture_truth.hpp"
 #include "skyfuse/tracking/increment_rules.hpp"
+
+static_assert(SKYFUSE_SENSOR_PARTS == skyfuse::kPictureSensorParts,
+              "core/CMakeLists.txt and picture_shards.hpp disagree on the picture's sensor parts");
 
 namespace skyfuse {
 namespace {
@@ -258,7 +263,7 @@ class PictureRun {
 
 }  // namespace
 
-template <std::size_t Shard>
+template <std::size_t Shard, std::size_t Part>
 std::optional<PictureRunResult> run_picture_in_shard(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
     std::uint64_t run, const std::function<void(const PictureStep&)>& on_step) {
@@ -276,7 +281,8 @@ std::optional<PictureRunResult> run_picture_in_shard(
               scenario.stations.front().sensor.kind,
               [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
                 using Sensor = SensorOf<kDim>;
-                if constexpr (FixesPosition<Sensor> && filter_runs_on<Filter, Model, Sensor>()) {
+                if constexpr (in_sensor_part<SensorOf, Part, kPictureSensorParts> &&
+                              FixesPosition<Sensor> && filter_runs_on<Filter, Model, Sensor>()) {
                   result = PictureRun<PictureParts<Filter, Model, SensorOf>>(scenario, truth,
                                                                              stations, run)
                                .run(on_step);
@@ -287,7 +293,7 @@ std::optional<PictureRunResult> run_picture_in_shard(
   return result;
 }
 
-template std::optional<PictureRunResult> run_picture_in_shard<SKYFUSE_SHARD>(
+template std::optional<PictureRunResult> run_picture_in_shard<SKYFUSE_SHARD, SKYFUSE_SENSOR_PART>(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
     std::uint64_t run, const std::function<void(const PictureStep&)>& on_step);
 

@@ -26,6 +26,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "skyfuse/core/index_constant.hpp"
 #include "skyfuse/registry/configuration_groups.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 
@@ -79,14 +80,7 @@ auto with_filter_shard(const FilterConfig& filter, F&& f) {
     throw std::logic_error("no registered filter part '" + filter.kind + "' on motion model '" +
                            filter.motion_model.kind + "'");
   }
-  const std::size_t shard = *group % kFilterShards;
-  using Result = decltype(f(std::integral_constant<std::size_t, 0>{}));
-  Result result{};
-  [&]<std::size_t... S>(std::index_sequence<S...>) {
-    ((S == shard ? (result = f(std::integral_constant<std::size_t, S>{}), true) : false) || ...);
-  }
-  (std::make_index_sequence<kFilterShards>{});
-  return result;
+  return with_index_constant<kFilterShards>(*group % kFilterShards, std::forward<F>(f));
 }
 
 }  // namespace skyfuse
