@@ -140,6 +140,7 @@ int run_run(const RunOptions& o) {
     const PictureRunSummary summary = execute_picture_run(o, scenario);
     print_picture_run_table(summary, stdout);
     fmt::print("results in {}\n", o.out_dir);
+    if (!o.record_path.empty()) fmt::print("recording in {}\n", o.record_path);
     // Without faults every picture is its in-process twin's; with loss, a kill or the wall
     // clock (a late scan) the peers must agree again by the end.
     const bool held = summary.faults || summary.realtime

@@ -57,7 +57,7 @@ PictureRoundCheck::PictureRoundCheck(const PicturePlan& plan, const std::vector<
   csv_ << "step,station,picture_digest,tracks,confirmed,scans_fused,in_process_digest\n";
 }
 
-void PictureRoundCheck::add(int k, const std::vector<wire::PictureRound>& rounds) {
+const PictureStep* PictureRoundCheck::add(int k, const std::vector<wire::PictureRound>& rounds) {
   const auto step = static_cast<std::size_t>(k);
   const wire::PictureRound* center = nullptr;
   const wire::PictureRound* first_peer = nullptr;
@@ -105,7 +105,7 @@ void PictureRoundCheck::add(int k, const std::vector<wire::PictureRound>& rounds
   }
   if (first_peer == nullptr) {
     ++summary_.rounds_without_a_picture;
-    return;
+    return nullptr;
   }
   if (center != nullptr) compare_center(*center, *first_peer, summary_);
   aircraft_at_step(plan_.scenario, plan_.stations, truth_, k, aircraft_);
@@ -115,12 +115,13 @@ void PictureRoundCheck::add(int k, const std::vector<wire::PictureRound>& rounds
       confirmed_.push_back({t.track_id(), Vector3(t.x()[0], t.x()[1], t.x()[2])});
     }
   }
-  score_.add_step(k, aircraft_, confirmed_);
+  const PictureStep& scored = score_.add_step(k, aircraft_, confirmed_);
   if (k + 1 == plan_.scenario.steps) {
     summary_.tracks_at_end = first_peer->tracks().size();
     summary_.confirmed_at_end = confirmed_.size();
     summary_.digest_at_end = first_peer->picture_digest();
   }
+  return &scored;
 }
 
 }  // namespace skyfuse::harness

@@ -27,8 +27,10 @@ class PictureRoundCheck {
   PictureRoundCheck(const PicturePlan& plan, const std::vector<TargetTruth>& truth,
                     const PictureRunResult& twin, PictureRunSummary& summary);
 
-  /// Round k's pictures: those that came, in node order (the center first).
-  void add(int k, const std::vector<wire::PictureRound>& rounds);
+  /// Round k's pictures: those that came, in node order (the center first). Returns the first
+  /// station's score against the aircraft (valid until the next add), or nothing when no
+  /// station's picture came.
+  const PictureStep* add(int k, const std::vector<wire::PictureRound>& rounds);
 
   /// picture_rounds.csv: a row per node and round.
   std::string csv() const { return csv_.str(); }

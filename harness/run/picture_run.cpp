@@ -10,11 +10,13 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <string_view>
 #include <vector>
 
 #include "report/output_files.hpp"
+#include "report/picture_recording.hpp"
 #include "report/picture_run_report.hpp"
 #include "report/progress.hpp"
 #include "run/child_processes.hpp"
@@ -22,6 +24,7 @@
 #include "run/kernel_counters.hpp"
 #include "run/lockstep_driver.hpp"
 #include "run/picture_driver.hpp"
+#include "run/picture_frame.hpp"
 #include "run/picture_round_check.hpp"
 #include "run/placement.hpp"
 #include "skyfuse/options/node_options.hpp"
@@ -35,6 +38,8 @@
 
 namespace skyfuse::harness {
 namespace {
+
+using namespace std::chrono_literals;
 
 using Clock = std::chrono::steady_clock;
 // Real time: step 0 begins this long after every node joined, so that the start tick reaches
@@ -53,7 +58,6 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
                     option));
   };
   if (!o.replay_path.empty()) refuse("--replay");
-  if (!o.record_path.empty()) refuse("--record");
   if (o.live) refuse("--live");
   if (o.external) refuse("--external");
   if (o.hosts > 0) refuse("--hosts");
@@ -145,13 +149,37 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     const auto round_timeout = std::chrono::milliseconds(std::llround(o.round_timeout_s * 1e3));
     const auto start = Clock::now();
     PictureRoundCheck check(plan, truth.targets, twin, summary);
-    if (o.node.realtime_deadline_ms > 0.0) {
-      const auto epoch = std::chrono::system_clock::now() + kRealtimeHeadStart;
-      driver.run_realtime(plan.scenario.steps, plan.scenario.time_step_s, epoch, kLateAfter,
-                          [&](int k, std::vector<wire::PictureRound> rounds) {
-                            check.add(k, rounds);
-                            progress.advance();
-                          });
+    const bool realtime = o.node.realtime_deadline_ms > 0.0;
+    const auto epoch = std::chrono::system_clock::now() + (realtime ? kRealtimeHeadStart : 0s);
+    std::optional<PictureRecording> recording;
+    if (!o.record_path.empty()) {
+      recording.emplace(
+          o.record_path, plan,
+          static_cast<std::uint64_t>(
+              std::chrono::duration_cast<std::chrono::nanoseconds>(epoch.time_since_epoch())
+                  .count()));
+    }
+    // `latency`: lock-step, from the tick to the last picture; real time, from the round's
+    // scheduled end to its hand-over.
+    const auto take_round = [&](int k, const std::vector<wire::PictureRound>& rounds,
+                                std::chrono::duration<double, std::milli> latency) {
+      const PictureStep* scored = check.add(k, rounds);
+      if (recording && scored != nullptr) {
+        PictureFrame frame = picture_frame(plan, truth.targets, k, rounds, nodes, *scored);
+        frame.latency_ms = latency.count();
+        recording->add(frame);
+      }
+      progress.advance();
+    };
+    if (realtime) {
+      driver.run_realtime(
+          plan.scenario.steps, plan.scenario.time_step_s, epoch, kLateAfter,
+          [&](int k, std::vector<wire::PictureRound> rounds) {
+            const auto scheduled_end =
+                epoch + std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                            std::chrono::duration<double>((k + 1) * plan.scenario.time_step_s));
+            take_round(k, rounds, std::chrono::system_clock::now() - scheduled_end);
+          });
     } else {
       for (int k = 0; k < plan.scenario.steps; ++k) {
         for (const StationEvent& e : o.kills) {
@@ -168,8 +196,9 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
           driver.set_down(e.station_id, false);
           spdlog::info("restarted station {} before step {}", e.station_id, k);
         }
-        check.add(k, driver.run_round(static_cast<std::uint32_t>(k), round_timeout));
-        progress.advance();
+        const auto tick = Clock::now();
+        const auto rounds = driver.run_round(static_cast<std::uint32_t>(k), round_timeout);
+        take_round(k, rounds, Clock::now() - tick);
       }
     }
     const KernelSnapshot after_rounds = kernel_snapshot();
@@ -198,7 +227,9 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     }
 
     write_file_atomically(out / "picture_rounds.csv", check.csv());
-    write_file_atomically(out / "summary.json", picture_run_json(summary, run_id, twin) + "\n");
+    const std::string summary_json = picture_run_json(summary, run_id, twin);
+    write_file_atomically(out / "summary.json", summary_json + "\n");
+    if (recording) recording->finish(summary_json, plan.scenario.steps);
     return summary;
   } catch (...) {
     children.terminate_all(std::chrono::seconds(2));

@@ -1,12 +1,14 @@
 #pragma once
 // `skyfuse run` of a scenario with many aircraft: one station process per participant and the
-// fusion center over DDS, in lock-step. Each round the harness publishes the tick and waits for
-// every node's picture (every track and the picture's digest); it compares the digests of every
-// peer with each other and with the in-process run's (sim/picture_run.hpp), the center's with
-// its in-process twin's and its states with the peers', round by round, and writes them. Real
-// time, kills and restarts, recordings and the live view do not take a run of many aircraft yet:
-// they are refused with a message. With --loss peers part when they miss different scans and
-// come together again by taking the lowest station's picture (stations/picture_station.cpp).
+// fusion center over DDS, in lock-step or in real time. Each round the harness publishes the tick
+// (lock-step) and waits for every node's picture (every track and the picture's digest); it
+// compares the digests of every peer with each other and with the in-process run's
+// (sim/picture_run.hpp), the center's with its in-process twin's and its states with the peers',
+// round by round, and writes them, and with --record every round's picture, scans and scores
+// (report/picture_recording.hpp). With --loss, or a station killed and restarted, peers part
+// when they miss different scans and come together again by taking the lowest station's picture
+// (stations/picture_station.cpp). The options a run of many aircraft does not take yet are
+// refused with a message.
 
 #include <cstdint>
 #include <cstdio>

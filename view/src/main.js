@@ -1,13 +1,16 @@
 // skyfuse's own view of a run: connects to the server that served this page (`skyfuse run
 // --live`) over the Foxglove WebSocket protocol, subscribes to every channel and draws the
 // scene top-down, each track's error against time, who contributed to each round, the IMM's
-// mode probabilities and the run's figures. With ?recording=FILE (`skyfuse view FILE.mcap`) it
+// mode probabilities and the run's figures, and for a run of many aircraft its picture
+// (picture.js). With ?recording=FILE (`skyfuse view FILE.mcap`) it
 // reads a recording instead and shows it up to the time its slider is set to. Built with
 // esbuild from locked npm packages; no CDN.
 import { McapIndexedReader } from "@mcap/core";
 import uPlot from "uplot";
 import "uplot/dist/uPlot.min.css";
 import "./page.css";
+import { drawDetections, drawPicturePlots, drawTrackLabel, emptyPicture, onPicture, onPictureDeletion,
+  onPictureEntity } from "./picture.js";
 
 window.NODRAW = new URLSearchParams(location.search).has("nodraw");
 window.NOMSG = new URLSearchParams(location.search).has("nomsg");
@@ -24,6 +27,7 @@ const view = {
   strip: [],                 // per round: [state of the center, of each station]
   stripNodes: [],            // the strip's rows: the center (0), then each station's id
   modes: null, summary: null,
+  picture: emptyPicture(),   // a run of many aircraft: its tracks' series and last scans
 };
 window.skyfuseView = view;
 
@@ -50,7 +54,9 @@ function topDownEllipse(sphere) {
 }
 
 function onScene(update) {
+  for (const d of update.deletions ?? []) onPictureDeletion(view, d.id);
   for (const e of update.entities) {
+    if (onPictureEntity(view, e, topDownEllipse)) continue;
     // Peers below, the center above them, the truth on top: the tracks lie within decimetres
     // of each other and of the truth, so each is drawn smaller than the one beneath.
     const [color, layer] = e.id === "truth" || e.id === "trail/truth" ? [COLORS.truth, 2]
@@ -77,7 +83,9 @@ function onRound(round) {
   view.rounds += 1;
   view.latencyMs = round.latency_ms;
   view.firstRoundAt ??= performance.now();
-  view.strip.push(round.nodes.map((n) => (!n.delivered ? "none" : n.missing.length > 0 ? "some" : "all")));
+  // A run of many aircraft names no missing station, only how many scans a node fused.
+  const some = (n) => n.missing.length > 0 || (n.scans_fused !== undefined && n.scans_fused < round.stations);
+  view.strip.push(round.nodes.map((n) => (!n.delivered ? "none" : some(n) ? "some" : "all")));
   view.stripNodes = round.nodes.map((n) => n.node);
   if (view.strip.length > STRIP_ROUNDS) view.strip.shift();
 }
@@ -155,6 +163,7 @@ function drawScene() {
   for (const s of view.sites.values()) {
     drawSite(g, at(s), s.label);
   }
+  drawDetections(g, at, view);
   const layered = layeredEntities();
   drawTrails(g, at, layered);
   for (const e of layered) {
@@ -171,6 +180,7 @@ function drawScene() {
       g.stroke();
     }
     drawMarker(g, [u, v], e);
+    drawTrackLabel(g, [u, v], e);
   }
 }
 
@@ -310,7 +320,11 @@ function drawFigures() {
   const parts = view.recordingRounds ? [`${view.recordingRounds} rounds recorded`]
     : [`${rate} rounds/s received`];
   if (view.latencyMs !== null) parts.push(`round latency ${view.latencyMs.toFixed(2)} ms`);
-  if (view.summary) parts.push(`RMSE center ${view.summary.rmse_central_m.toFixed(3)} m, peers ${view.summary.rmse_p2p_m.toFixed(3)} m`);
+  if (view.summary?.rmse_central_m !== undefined) {
+    parts.push(`RMSE center ${view.summary.rmse_central_m.toFixed(3)} m, peers ${view.summary.rmse_p2p_m.toFixed(3)} m`);
+  } else if (view.summary?.gospa_mean !== undefined) {
+    parts.push(`GOSPA mean ${view.summary.gospa_mean.toFixed(2)}, peers ${view.summary.peers_identical ? "bit-identical" : "apart"} in every round`);
+  }
   document.getElementById("figures").textContent = parts.join(" · ");
   if (view.modes) {
     document.getElementById("modes-section").hidden = false;
@@ -328,6 +342,7 @@ function draw() {
   drawErrors();
   drawStrip();
   drawFigures();
+  drawPicturePlots(view);
 }
 
 // Drawn only when something changed, and at most DRAWS_PER_SECOND: a page open beside a run on
@@ -355,11 +370,12 @@ const handlers = {
   "/skyfuse/track_error": onTrackError,
   "/skyfuse/modes": (m) => { view.modes = m; },
   "/skyfuse/summary": (m) => { view.summary = m; },
+  "/skyfuse/picture": (m) => onPicture(view, m),
 };
 
 function resetView() {
   Object.assign(view, { round: null, rounds: 0, firstRoundAt: null, latencyMs: null,
-    modes: null, summary: null, strip: [], stripNodes: [] });
+    modes: null, summary: null, strip: [], stripNodes: [], picture: emptyPicture() });
   view.entities.clear();
   view.series.clear();
 }

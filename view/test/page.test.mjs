@@ -1,7 +1,9 @@
 // skyfuse's own page as a person sees it: Debian's Chromium, driven by playwright-core, opens the
 // page a live run serves, follows the run to its last round, and must show one error series per
 // peer plus the center, a drawn scene and the strip of contributions. It saves a screenshot
-// (SKYFUSE_SCREENSHOT, default in the test's folder), which the docs show.
+// (SKYFUSE_SCREENSHOT, default in the test's folder), which the docs show. A recording of many
+// aircraft must show every track with its id, the scans, the GOSPA series and the counts
+// (screenshot: SKYFUSE_PICTURE_SCREENSHOT).
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
@@ -12,6 +14,7 @@ import { chromium } from "playwright-core";
 
 const skyfuse = process.env.SKYFUSE_BIN;
 const browserPath = process.env.SKYFUSE_CHROMIUM ?? "/usr/bin/chromium";
+const scenarios = process.env.SKYFUSE_SCENARIOS;
 const domain = process.env.SKYFUSE_DOMAIN ?? "215";
 const stations = 4;
 const steps = 400;
@@ -81,6 +84,55 @@ test("skyfuse view shows a recording, and its slider moves through the rounds", 
     await page.reload();
     await page.waitForFunction(() => window.skyfuseView?.recordingError, null, { timeout: 30_000 });
     assert.match(await page.textContent("#source"), /^recording run\.mcap cannot be shown: /);
+  } finally {
+    server?.kill("SIGINT");
+    await browser.close();
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+test("skyfuse view shows a run of many aircraft: every track labelled, the scans, GOSPA and counts", { skip: !existsSync(browserPath) && `no ${browserPath}` }, async () => {
+  assert.ok(skyfuse && scenarios, "SKYFUSE_BIN and SKYFUSE_SCENARIOS name the build's skyfuse and scenarios/");
+  const dir = mkdtempSync(join(tmpdir(), "skyfuse-view-"));
+  const browser = await chromium.launch(launchOptions);
+  let server = null;
+  try {
+    const file = join(dir, "run.mcap");
+    const rounds = 120;
+    const recorded = spawn(skyfuse, ["run", "--scenario", join(scenarios, "uam-city.yaml"), "--steps", String(rounds),
+      "--domain", domain, "--out", join(dir, "out"), "--record", file], { stdio: "ignore" });
+    assert.equal(await new Promise((resolve) => recorded.on("exit", resolve)), 0);
+    server = spawn(skyfuse, ["view", file, "--port", "0"], { stdio: ["ignore", "pipe", "pipe"] });
+    const [url] = await untilLine(server, /http:\/\/127\.0\.0\.1:\d+\/\?recording=run\.mcap&name=run\.mcap/);
+    const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+    const errors = [];
+    page.on("pageerror", (e) => errors.push(e.message));
+    await page.goto(url);
+    await page.waitForFunction((n) => window.skyfuseView?.recordingRounds === n, rounds, { timeout: 30_000 });
+    await page.waitForFunction((n) => document.getElementById("round-counter").textContent === String(n - 1), rounds);
+    const seen = await page.evaluate(() => {
+      const v = window.skyfuseView;
+      const tracks = [...v.entities.entries()].filter(([id, e]) => id.startsWith("track/") && !e.trail);
+      return { last: v.picture.last, gospa: v.picture.gospa.length, scans: v.picture.detections.size,
+        labels: tracks.map(([id, e]) => [id, e.label]),
+        aircraft: [...v.entities.keys()].filter((id) => id.startsWith("aircraft/")).length,
+        figures: document.getElementById("picture-figures").textContent,
+        pictureShown: !document.getElementById("picture-section").hidden };
+    });
+    // Every track of the last round drawn with its id, as many as the picture holds.
+    assert.equal(seen.labels.length, seen.last.confirmed + seen.last.tentative);
+    for (const [id, label] of seen.labels) assert.equal(label.replace(/[?]$/, ""), `T${id.slice(6)}`);
+    assert.equal(seen.aircraft, seen.last.aircraft);
+    assert.ok(seen.last.confirmed >= 18, `${seen.last.confirmed} confirmed tracks of uam-city's 20 aircraft`);
+    assert.equal(seen.gospa, rounds, "a GOSPA point per round");
+    assert.equal(seen.scans, 8, "the last scan of each of the eight radars");
+    assert.ok(seen.pictureShown);
+    assert.match(seen.figures, /confirmed and \d+ tentative tracks, \d+ aircraft; GOSPA [\d.]+ m/);
+    // The scene holds confirmed tracks' blue and the aircraft's green.
+    const colours = await opaqueColours(page, "#scene");
+    assert.ok(colours.includes("51,115,230") && colours.includes("38,179,64"), colours.slice(0, 20).join(" "));
+    assert.deepEqual(errors, []);
+    await page.screenshot({ path: process.env.SKYFUSE_PICTURE_SCREENSHOT ?? join(dir, "view-picture.png"), fullPage: true });
   } finally {
     server?.kill("SIGINT");
     await browser.close();

@@ -52,8 +52,35 @@ async function readRecording(path) {
   return { reader, messages, streamed };
 }
 
-// Scenarios with many aircraft (`traffic:`) run in-process only so far (`skyfuse sweep`);
-// `skyfuse run` refuses them with a message, which the unit tests check.
+// Every channel's payloads, checked: JSON with JSON schemas, as many as the statistics count,
+// each valid against the schema recorded with it and a foxglove.* one against @foxglove/schemas.
+function topicsOf(reader, messages) {
+  const topics = new Map();  // topic -> { channel, schema, payloads }
+  for (const channel of reader.channelsById.values()) {
+    const schema = reader.schemasById.get(channel.schemaId);
+    assert.equal(channel.messageEncoding, "json", channel.topic);
+    assert.equal(schema.encoding, "jsonschema", channel.topic);
+    topics.set(channel.topic, { channel, schema, payloads: [] });
+  }
+  const byId = new Map([...topics.values()].map((t) => [t.channel.id, t]));
+  const decoder = new TextDecoder();
+  for (const m of messages) byId.get(m.channelId).payloads.push(JSON.parse(decoder.decode(m.data)));
+  for (const count of reader.statistics.channelMessageCounts.entries()) {
+    assert.equal(BigInt(byId.get(count[0]).payloads.length), count[1]);
+  }
+  for (const [topic, { schema, payloads }] of topics) {
+    const own = ajv.compile(JSON.parse(decoder.decode(schema.data)));
+    const check = schema.name.startsWith("foxglove.") ? officialValidator(schema.name) : null;
+    for (const p of payloads) {
+      assert.ok(own(p), `${topic} against its recorded schema: ${ajv.errorsText(own.errors)}`);
+      if (check) assert.ok(check(p), `${topic} against @foxglove/schemas: ${ajv.errorsText(check.errors)}`);
+    }
+  }
+
+  return topics;
+}
+
+// Scenarios with one aircraft here; a run of many (`traffic:`) has channels of its own, below.
 const names = readdirSync(scenarios)
   .filter((f) => f.endsWith(".yaml"))
   .filter((f) => !/^traffic:/m.test(readFileSync(join(scenarios, f), "utf8")))
@@ -78,20 +105,7 @@ for (const name of names) {
       assert.equal(reader.statistics.messageCount, BigInt(messages.length));
       assert.equal(streamed, messages.length);
 
-      const topics = new Map();  // topic -> { channel, schema, payloads }
-      for (const channel of reader.channelsById.values()) {
-        const schema = reader.schemasById.get(channel.schemaId);
-        assert.equal(channel.messageEncoding, "json", channel.topic);
-        assert.equal(schema.encoding, "jsonschema", channel.topic);
-        topics.set(channel.topic, { channel, schema, payloads: [] });
-      }
-      const byId = new Map([...topics.values()].map((t) => [t.channel.id, t]));
-      const decoder = new TextDecoder();
-      for (const m of messages) byId.get(m.channelId).payloads.push(JSON.parse(decoder.decode(m.data)));
-      for (const count of reader.statistics.channelMessageCounts.entries()) {
-        assert.equal(BigInt(byId.get(count[0]).payloads.length), count[1]);
-      }
-
+      const topics = topicsOf(reader, messages);
       const expectSchema = { "/scene": "foxglove.SceneUpdate", "/stations": "foxglove.SceneUpdate",
         "/tf": "foxglove.FrameTransform", "/center/location": "foxglove.LocationFix",
         "/truth/location": "foxglove.LocationFix", "/skyfuse/round": "skyfuse.Round",
@@ -100,15 +114,6 @@ for (const name of names) {
         assert.ok(topics.has(topic), `${topic} recorded`);
         assert.equal(topics.get(topic).schema.name, schemaName);
       }
-      for (const [topic, { schema, payloads }] of topics) {
-        const own = ajv.compile(JSON.parse(decoder.decode(schema.data)));
-        const check = schema.name.startsWith("foxglove.") ? officialValidator(schema.name) : null;
-        for (const p of payloads) {
-          assert.ok(own(p), `${topic} against its recorded schema: ${ajv.errorsText(own.errors)}`);
-          if (check) assert.ok(check(p), `${topic} against @foxglove/schemas: ${ajv.errorsText(check.errors)}`);
-        }
-      }
-
       // One scene and one round message per step; one error entry per track; the modes of an
       // IMM run per row of modes.csv.
       const steps = csvRows(join(dir, "steps.csv"));
@@ -138,3 +143,69 @@ for (const name of names) {
     }
   });
 }
+
+// A run of many aircraft: its picture, scans and scores as picture_rounds.csv counts them.
+test("a run of many aircraft records every track, scan and score its CSV file holds", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "skyfuse-record-"));
+  try {
+    const file = join(dir, "run.mcap");
+    const steps = 40;
+    execFileSync(skyfuse, ["run", "--scenario", join(scenarios, "uam-city.yaml"), "--stations", "4",
+      "--steps", String(steps), "--domain", domain, "--out", dir, "--record", file],
+      { stdio: ["ignore", "ignore", "pipe"], timeout: 120_000 });
+    const { reader, messages, streamed } = await readRecording(file);
+    assert.equal(reader.statistics.messageCount, BigInt(messages.length));
+    assert.equal(streamed, messages.length);
+    const topics = topicsOf(reader, messages);
+    const expectSchema = { "/scene": "foxglove.SceneUpdate", "/stations": "foxglove.SceneUpdate",
+      "/tracks/geojson": "foxglove.GeoJSON", "/skyfuse/round": "skyfuse.Round",
+      "/skyfuse/picture": "skyfuse.Picture", "/skyfuse/summary": "skyfuse.RunSummary" };
+    for (const [topic, schemaName] of Object.entries(expectSchema)) {
+      assert.ok(topics.has(topic), `${topic} recorded`);
+      assert.equal(topics.get(topic).schema.name, schemaName);
+    }
+
+    // The first station's row of each step: its tracks, confirmed ones and digest.
+    const rows = csvRows(join(dir, "picture_rounds.csv"));
+    const firstStation = new Map();
+    for (const [step, station, digest, tracks, confirmed] of rows) {
+      if (station !== "0" && !firstStation.has(step)) firstStation.set(step, { digest, tracks: +tracks, confirmed: +confirmed });
+    }
+    assert.equal(firstStation.size, steps);
+    const scenes = topics.get("/scene").payloads;
+    const pictures = topics.get("/skyfuse/picture").payloads;
+    const geo = topics.get("/tracks/geojson").payloads;
+    assert.equal(scenes.length, steps);
+    assert.equal(pictures.length, steps);
+    assert.equal(topics.get("/skyfuse/round").payloads.length, steps);
+    let falseAlarms = 0;
+    pictures.forEach((p, k) => {
+      const row = firstStation.get(String(k));
+      assert.equal(p.step, k);
+      assert.equal(p.digest, row.digest, `step ${k}`);
+      assert.equal(p.confirmed, row.confirmed, `step ${k}`);
+      assert.equal(p.confirmed + p.tentative, row.tracks, `step ${k}`);
+      assert.ok(p.peers_agree && Number.isFinite(p.gospa) && p.gospa >= 0, JSON.stringify(p));
+      const tracks = scenes[k].entities.filter((e) => e.id.startsWith("track/"));
+      assert.equal(tracks.length, row.tracks, `step ${k}: a scene entity per track`);
+      for (const t of tracks) assert.equal(t.texts[0].text.replace(/[?]$/, ""), `T${t.id.slice(6)}`);
+      const scans = scenes[k].entities.filter((e) => e.id.startsWith("scan/"));
+      assert.equal(scans.length, 4);
+      assert.equal(scans.reduce((n, e) => n + e.cubes.length, 0), p.detections, `step ${k}`);
+      assert.equal(JSON.parse(geo[k].geojson).features.length, p.confirmed, `step ${k}`);
+      falseAlarms += p.false_alarms;
+    });
+    // uam-city over four radars: a dozen aircraft in view after 40 scans, all but the newest
+    // confirmed, with clutter in every scan.
+    const last = pictures.at(-1);
+    assert.ok(last.aircraft >= 10 && last.confirmed >= last.aircraft - 2, JSON.stringify(last));
+    assert.ok(falseAlarms > steps * 4, `${falseAlarms} false alarms`);
+    assert.equal(topics.get("/stations").payloads[0].entities.length, 4);
+    const summary = topics.get("/skyfuse/summary").payloads;
+    assert.equal(summary.length, 1);
+    assert.equal(summary[0].steps, steps);
+    assert.equal(summary[0].picture_digest_at_end, firstStation.get(String(steps - 1)).digest);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
