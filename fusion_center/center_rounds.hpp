@@ -58,11 +58,6 @@ class CenterRounds {
   virtual void report() const {}
 };
 
-/// How many sensor parts the center's shards are compiled in (fusion_center/CMakeLists.txt says
-/// the same; registry/sensor_parts.hpp): the EKF's center for every sensor kind together made
-/// files of 1.56 GB.
-inline constexpr std::size_t kCenterSensorParts = 2;
-
 /// The center's rounds for `plan`, whose filter part and motion model lie in shard `Shard` and
 /// whose stations' sensor in sensor part `Part`. Defined in typed_center_rounds.hpp, instantiated
 /// per shard and part by center_rounds_shard.cpp.

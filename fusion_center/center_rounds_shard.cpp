@@ -2,9 +2,6 @@
 // and sensor part, with SKYFUSE_SHARD and SKYFUSE_SENSOR_PART set.
 #include "typed_center_rounds.hpp"
 
-static_assert(SKYFUSE_SENSOR_PARTS == skyfuse::center::kCenterSensorParts,
-              "fusion_center/CMakeLists.txt and center_rounds.hpp disagree on the sensor parts");
-
 namespace skyfuse::center {
 
 template std::unique_ptr<CenterRounds>

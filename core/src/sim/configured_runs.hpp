@@ -15,10 +15,6 @@
 
 namespace skyfuse {
 
-/// How many sensor parts the Monte Carlo's shards are compiled in (core/CMakeLists.txt says the
-/// same): the IMM's steppers for every sensor kind together made a 1.62 GB file.
-inline constexpr std::size_t kMonteCarloSensorParts = 2;
-
 /// One run for each of `station_counts`, all fed from one simulation of the measurements of the
 /// largest count's stations, for a scenario whose filter part and motion model lie in shard
 /// `Shard` and the sensor of whose first max(station_counts) stations lies in sensor part `Part`.

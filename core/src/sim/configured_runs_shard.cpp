@@ -14,9 +14,6 @@
 #include "skyfuse/registry/sensor_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 
-static_assert(SKYFUSE_SENSOR_PARTS == skyfuse::kMonteCarloSensorParts,
-              "core/CMakeLists.txt and configured_runs.hpp disagree on the sensor parts");
-
 namespace skyfuse {
 namespace {
 
@@ -75,7 +72,7 @@ std::vector<RunTrace> simulate_configured_runs_in_shard(const Scenario& scenario
         scenario, most, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
           // The caller chose the part by with_sensor_part; the loader allows a filter only on
           // what it runs on.
-          if constexpr (!in_sensor_part<SensorOf, Part, kMonteCarloSensorParts>) {
+          if constexpr (!in_sensor_part<SensorOf, Part, kSensorParts>) {
             throw std::logic_error(
                 fmt::format("sensor part {} of the Monte Carlo's shard {} "
                             "holds no '{}' stations",

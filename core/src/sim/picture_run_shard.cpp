@@ -23,9 +23,6 @@
 #include "skyfuse/sim/picture_truth.hpp"
 #include "skyfuse/tracking/increment_rules.hpp"
 
-static_assert(SKYFUSE_SENSOR_PARTS == skyfuse::kPictureSensorParts,
-              "core/CMakeLists.txt and picture_shards.hpp disagree on the picture's sensor parts");
-
 namespace skyfuse {
 namespace {
 
@@ -281,7 +278,7 @@ std::optional<PictureRunResult> run_picture_in_shard(
               scenario.stations.front().sensor.kind,
               [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
                 using Sensor = SensorOf<kDim>;
-                if constexpr (in_sensor_part<SensorOf, Part, kPictureSensorParts> &&
+                if constexpr (in_sensor_part<SensorOf, Part, kSensorParts> &&
                               FixesPosition<Sensor> && filter_runs_on<Filter, Model, Sensor>()) {
                   result = PictureRun<PictureParts<Filter, Model, SensorOf>>(scenario, truth,
                                                                              stations, run)

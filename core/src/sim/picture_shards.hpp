@@ -13,10 +13,6 @@
 
 namespace skyfuse {
 
-/// How many sensor parts the picture's shards are compiled in (core/CMakeLists.txt says the same):
-/// the IMM's peers and center for each sensor kind together made a 1.66 GB file.
-inline constexpr std::size_t kPictureSensorParts = 2;
-
 /// run_picture for a scenario whose filter part and motion model lie in shard `Shard` and whose
 /// stations' sensor lies in sensor part `Part`; nothing if no picture runs that part on the
 /// scenario's model and sensor kind.

@@ -30,7 +30,7 @@
 #include "skyfuse/registry/configuration_groups.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 
-#ifndef SKYFUSE_FILTER_SHARDS
+#if !defined(SKYFUSE_FILTER_SHARDS) || !defined(SKYFUSE_SENSOR_PARTS)
 #error "SKYFUSE_FILTER_SHARDS is unset: add the sharded source with skyfuse_filter_shards()"
 #endif
 
@@ -38,6 +38,9 @@ namespace skyfuse {
 
 /// The number of shards; set by cmake/FilterShards.cmake.
 inline constexpr std::size_t kFilterShards = SKYFUSE_FILTER_SHARDS;
+/// The number of sensor parts of a source compiled by sensor (registry/sensor_parts.hpp); set by
+/// cmake/FilterShards.cmake (1 unless a small machine asks for more).
+inline constexpr std::size_t kSensorParts = SKYFUSE_SENSOR_PARTS;
 
 /// Calls f(std::type_identity<Filter>{}, std::type_identity<Model>{}) for the filter part that
 /// runs `filter` and its motion model, compiled for the groups of shard `Shard` only. The
