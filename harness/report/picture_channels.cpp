@@ -81,13 +81,19 @@ std::uint64_t PictureChannels::log_time_ns(int step) const {
   return epoch_ns_ + static_cast<std::uint64_t>(std::llround(step * dt_ns));
 }
 
-std::vector<ChannelMessage> PictureChannels::frame_messages(const PictureFrame& frame) {
+std::vector<ChannelMessage> PictureChannels::frame_messages(const PictureFrame& frame, bool scene) {
   const std::uint64_t ns = log_time_ns(frame.step);
   std::vector<ChannelMessage> out;
-  const auto emit = [&](Channel channel, const json& message) {
-    out.push_back({channel, ns, message.dump()});
-  };
+  if (scene) {
+    scene_messages(frame, ns, out);
+  } else {
+    follow(frame);
+  }
+  figure_messages(frame, ns, out);
+  return out;
+}
 
+void PictureChannels::follow(const PictureFrame& frame) {
   // The trails take a point every kTrailEvery steps; a track gone takes its trail with it.
   const bool trail_step = frame.step % kTrailEvery == 0;
   std::map<std::uint64_t, std::vector<Vector3>> trails;
@@ -101,9 +107,28 @@ std::vector<ChannelMessage> PictureChannels::frame_messages(const PictureFrame& 
     }
   }
   trails_ = std::move(trails);
-
-  json entities = json::array();
+  trails_unsent_ = trails_unsent_ || trail_step;
+  // Tracks the picture dropped and aircraft that left leave the next scene.
   std::set<std::string> shown;
+  for (const FrameTrack& t : frame.tracks) shown.insert(fmt::format("track/{}", t.id));
+  for (const TruthPoint& a : frame.aircraft) shown.insert(fmt::format("aircraft/{}", a.target));
+  for (const std::string& id : shown_) {
+    if (!shown.contains(id)) gone_.insert(id);
+  }
+  for (const std::string& id : shown) gone_.erase(id);
+  shown_ = std::move(shown);
+}
+
+void PictureChannels::scene_messages(const PictureFrame& frame, std::uint64_t ns,
+                                     std::vector<ChannelMessage>& out) {
+  const auto emit = [&](Channel channel, const json& message) {
+    out.push_back({channel, ns, message.dump()});
+  };
+
+  follow(frame);
+  const bool with_trails = trails_unsent_;
+  trails_unsent_ = false;
+  json entities = json::array();
   for (const FrameTrack& t : frame.tracks) {
     const Rgba c = t.confirmed ? kConfirmedColor : kTentativeColor;
     json e = entity(ns, fmt::format("track/{}", t.id));
@@ -112,16 +137,14 @@ std::vector<ChannelMessage> PictureChannels::frame_messages(const PictureFrame& 
     e["texts"].push_back(label(t.position + Vector3(0.0, 0.0, kTrackSize),
                                fmt::format("T{}{}", t.id, t.confirmed ? "" : "?"), c));
     const auto trail = trails_.find(t.id);
-    if (trail_step && trail != trails_.end() && trail->second.size() >= 2) {
+    if (with_trails && trail != trails_.end() && trail->second.size() >= 2) {
       e["lines"].push_back(line_strip(trail->second, c));
     }
-    shown.insert(e["id"].get<std::string>());
     entities.push_back(std::move(e));
   }
   for (const TruthPoint& a : frame.aircraft) {
     json e = entity(ns, fmt::format("aircraft/{}", a.target));
     e["spheres"].push_back(shape(a.position, Vector3::Constant(kAircraftSize), kAircraftColor));
-    shown.insert(e["id"].get<std::string>());
     entities.push_back(std::move(e));
   }
   for (const ScanPositions& scan : frame.scans) {
@@ -132,13 +155,11 @@ std::vector<ChannelMessage> PictureChannels::frame_messages(const PictureFrame& 
     }
     entities.push_back(std::move(e));
   }
-  // Tracks the picture dropped and aircraft that left since the last scene leave it.
   json deletions = json::array();
-  for (const std::string& id : shown_) {
-    if (!shown.contains(id))
-      deletions.push_back({{"timestamp", stamp(ns)}, {"type", 0}, {"id", id}});
+  for (const std::string& id : gone_) {
+    deletions.push_back({{"timestamp", stamp(ns)}, {"type", 0}, {"id", id}});
   }
-  shown_ = std::move(shown);
+  gone_.clear();
   emit(kScene, {{"deletions", std::move(deletions)}, {"entities", std::move(entities)}});
 
   if (!stations_sent_) {
@@ -164,7 +185,13 @@ std::vector<ChannelMessage> PictureChannels::frame_messages(const PictureFrame& 
   emit(
       kTracksGeoJson,
       {{"geojson", json{{"type", "FeatureCollection"}, {"features", std::move(features)}}.dump()}});
+}
 
+void PictureChannels::figure_messages(const PictureFrame& frame, std::uint64_t ns,
+                                      std::vector<ChannelMessage>& out) const {
+  const auto emit = [&](Channel channel, const json& message) {
+    out.push_back({channel, ns, message.dump()});
+  };
   std::size_t detections = 0;
   std::size_t false_alarms = 0;
   for (const ScanPositions& scan : frame.scans) {
@@ -212,7 +239,6 @@ std::vector<ChannelMessage> PictureChannels::frame_messages(const PictureFrame& 
                   {"false_alarms", false_alarms},
                   {"peers_agree", frame.peers_agree},
                   {"digest", fmt::format("{:016x}", frame.digest)}});
-  return out;
 }
 
 ChannelMessage PictureChannels::summary_message(std::string summary_json, int steps) const {

@@ -37,11 +37,11 @@ struct FrameNode {
 /// A round of a run of many aircraft, as the harness saw it.
 struct PictureFrame {
   int step = 0;
-  std::vector<FrameTrack> tracks;  ///< the first station's picture, ascending id
-  std::vector<TruthPoint> aircraft;
-  std::vector<ScanPositions> scans;
-  PictureStep score;             ///< the first station's confirmed tracks against the aircraft
-  std::vector<FrameNode> nodes;  ///< the center (0) first, then the stations ascending
+  std::vector<FrameTrack> tracks;    ///< the first station's picture, ascending id
+  std::vector<TruthPoint> aircraft;  ///< filled by add_scene (run/picture_frame.hpp)
+  std::vector<ScanPositions> scans;  ///< filled by add_scene
+  PictureStep score;                 ///< the first station's confirmed tracks against the aircraft
+  std::vector<FrameNode> nodes;      ///< the center (0) first, then the stations ascending
   bool peers_agree = true;
   std::uint64_t digest = 0;
   double latency_ms = 0.0;  ///< how long the round took to come in (picture_run.cpp says from when)
@@ -56,8 +56,14 @@ class PictureChannels {
 
   const std::vector<ChannelSpec>& specs() const { return specs_; }
   /// The messages of `frame`, in channel order; the trails take a point every kTrailEvery
-  /// steps and go out when they took one.
-  std::vector<ChannelMessage> frame_messages(const PictureFrame& frame);
+  /// steps and go out when they took one. Without `scene` (a live stream between frames) only
+  /// skyfuse's round and picture channels.
+  std::vector<ChannelMessage> frame_messages(const PictureFrame& frame, bool scene = true);
+  /// A round that is not sent (a live stream thinned to its display): the trails still take
+  /// its point, and the tracks it dropped leave the next scene sent.
+  void follow(const PictureFrame& frame);
+  /// Moves step 0's log time (a live stream learns it when the rounds begin).
+  void set_epoch_ns(std::uint64_t epoch_ns) { epoch_ns_ = epoch_ns; }
   /// The run's summary (summary.json's text) at the log time after the last step.
   ChannelMessage summary_message(std::string summary_json, int steps) const;
   std::uint64_t log_time_ns(int step) const;
@@ -66,12 +72,19 @@ class PictureChannels {
   static constexpr std::size_t kTrailPoints = 30;
 
  private:
+  void scene_messages(const PictureFrame& frame, std::uint64_t ns,
+                      std::vector<ChannelMessage>& out);
+  void figure_messages(const PictureFrame& frame, std::uint64_t ns,
+                       std::vector<ChannelMessage>& out) const;
+
   const PicturePlan& plan_;
   std::uint64_t epoch_ns_;
   std::vector<ChannelSpec> specs_;
   bool stations_sent_ = false;
   std::map<std::uint64_t, std::vector<Vector3>> trails_;  ///< confirmed tracks' trails
-  std::set<std::string> shown_;  ///< the tracks' and aircraft's entities in the last scene
+  bool trails_unsent_ = false;   ///< a trail took a point since the trails were last sent
+  std::set<std::string> shown_;  ///< the tracks' and aircraft's entities of the last round
+  std::set<std::string> gone_;   ///< entities gone since the last scene sent
 };
 
 }  // namespace skyfuse::harness

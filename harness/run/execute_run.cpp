@@ -13,9 +13,9 @@
 #include <optional>
 #include <thread>
 
-#include "report/live_feed.hpp"
 #include "report/output_files.hpp"
 #include "report/progress.hpp"
+#include "report/run_live_source.hpp"
 #include "report/run_recording.hpp"
 #include "run/child_processes.hpp"
 #include "run/kernel_counters.hpp"
@@ -251,7 +251,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
           std::filesystem::exists(site / "index.html")) {
         server.site_dir = site.string();
       }
-      live = std::make_unique<LiveFeed>(recorder, std::move(server), o.live_scene_hz);
+      live = std::make_unique<LiveFeed>(std::move(server), o.live_scene_hz, recorder);
       fmt::print("live: ws://{0}:{1} (Foxglove), http://{0}:{1}/ (page)\n", o.live->address,
                  live->port());
       std::fflush(stdout);

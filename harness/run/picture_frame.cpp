@@ -9,14 +9,19 @@
 
 namespace skyfuse::harness {
 
-PictureFrame picture_frame(const PicturePlan& plan, const std::vector<TargetTruth>& truth, int k,
-                           const std::vector<wire::PictureRound>& rounds,
+void add_scene(const PicturePlan& plan, const std::vector<TargetTruth>& truth, PictureFrame& frame,
+               bool scans) {
+  aircraft_at_step(plan.scenario, plan.stations, truth, frame.step, frame.aircraft);
+  if (scans) {
+    frame.scans = scan_positions_at(plan.scenario, truth, plan.stations, plan.mc_run, frame.step);
+  }
+}
+
+PictureFrame picture_frame(int k, const std::vector<wire::PictureRound>& rounds,
                            const std::vector<int>& nodes, const PictureStep& score) {
   PictureFrame frame;
   frame.step = k;
   frame.score = score;
-  aircraft_at_step(plan.scenario, plan.stations, truth, k, frame.aircraft);
-  frame.scans = scan_positions_at(plan.scenario, truth, plan.stations, plan.mc_run, k);
   const wire::PictureRound* first_peer = nullptr;
   for (const int node : nodes) {
     const auto came = std::find_if(rounds.begin(), rounds.end(), [&](const wire::PictureRound& r) {

@@ -13,10 +13,15 @@
 
 namespace skyfuse::harness {
 
-/// Round k: `rounds` the pictures that came (node order, the center first), `nodes` every node
-/// of the run ascending (the center, 0, first), `score` the first station's score of the round.
-PictureFrame picture_frame(const PicturePlan& plan, const std::vector<TargetTruth>& truth, int k,
-                           const std::vector<wire::PictureRound>& rounds,
+/// Round k without its scene: `rounds` the pictures that came (node order, the center first),
+/// `nodes` every node of the run ascending (the center, 0, first), `score` the first station's
+/// score of the round. Cheap enough for the harness's thread.
+PictureFrame picture_frame(int k, const std::vector<wire::PictureRound>& rounds,
                            const std::vector<int>& nodes, const PictureStep& score);
+
+/// Adds the aircraft present and, with `scans`, every station's scan of the round to `frame`:
+/// M scans simulated again, for a recording or a live stream's thread.
+void add_scene(const PicturePlan& plan, const std::vector<TargetTruth>& truth, PictureFrame& frame,
+               bool scans = true);
 
 }  // namespace skyfuse::harness

@@ -10,12 +10,14 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string_view>
 #include <vector>
 
 #include "report/output_files.hpp"
+#include "report/picture_live_source.hpp"
 #include "report/picture_recording.hpp"
 #include "report/picture_run_report.hpp"
 #include "report/progress.hpp"
@@ -58,7 +60,6 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
                     option));
   };
   if (!o.replay_path.empty()) refuse("--replay");
-  if (o.live) refuse("--live");
   if (o.external) refuse("--external");
   if (o.hosts > 0) refuse("--hosts");
   if (o.node.secure_dir) refuse("--secure");
@@ -94,6 +95,22 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
   const Placement placement(o, plan.scenario.exchange, ids.size());
   std::vector<int> nodes = ids;  // the center (0) first, then the stations ascending
   nodes.insert(nodes.begin(), kCenterNodeId);
+  // The live stream listens before the nodes start, so that a client can be there for the
+  // first round.
+  std::unique_ptr<PictureLiveFeed> live;
+  if (o.live) {
+    live::LiveServer::Options server;
+    server.address = o.live->address;
+    server.port = o.live->port;
+    if (const auto site = executable_dir() / "view"; std::filesystem::exists(site / "index.html")) {
+      server.site_dir = site.string();
+    }
+    live =
+        std::make_unique<PictureLiveFeed>(std::move(server), o.live_scene_hz, plan, truth.targets);
+    fmt::print("live: ws://{0}:{1} (Foxglove), http://{0}:{1}/ (page)\n", o.live->address,
+               live->port());
+    std::fflush(stdout);
+  }
   ChildProcesses children;
   PictureDriver driver(harness_node_config(o, placement, plan.stations), run_id, nodes, children);
   try {
@@ -151,23 +168,24 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     PictureRoundCheck check(plan, truth.targets, twin, summary);
     const bool realtime = o.node.realtime_deadline_ms > 0.0;
     const auto epoch = std::chrono::system_clock::now() + (realtime ? kRealtimeHeadStart : 0s);
+    const auto epoch_ns = static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(epoch.time_since_epoch()).count());
     std::optional<PictureRecording> recording;
-    if (!o.record_path.empty()) {
-      recording.emplace(
-          o.record_path, plan,
-          static_cast<std::uint64_t>(
-              std::chrono::duration_cast<std::chrono::nanoseconds>(epoch.time_since_epoch())
-                  .count()));
-    }
+    if (!o.record_path.empty()) recording.emplace(o.record_path, plan, epoch_ns);
+    if (live) live->set_epoch_ns(epoch_ns);
     // `latency`: lock-step, from the tick to the last picture; real time, from the round's
     // scheduled end to its hand-over.
     const auto take_round = [&](int k, const std::vector<wire::PictureRound>& rounds,
                                 std::chrono::duration<double, std::milli> latency) {
       const PictureStep* scored = check.add(k, rounds);
-      if (recording && scored != nullptr) {
-        PictureFrame frame = picture_frame(plan, truth.targets, k, rounds, nodes, *scored);
+      if ((recording || live) && scored != nullptr) {
+        PictureFrame frame = picture_frame(k, rounds, nodes, *scored);
         frame.latency_ms = latency.count();
-        recording->add(frame);
+        if (live) live->offer(frame);
+        if (recording) {
+          add_scene(plan, truth.targets, frame);
+          recording->add(frame);
+        }
       }
       progress.advance();
     };
@@ -230,6 +248,16 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     const std::string summary_json = picture_run_json(summary, run_id, twin);
     write_file_atomically(out / "summary.json", summary_json + "\n");
     if (recording) recording->finish(summary_json, plan.scenario.steps);
+    if (live) {
+      live->finish(summary_json);
+      const live::LiveServer::Stats stats = live->stats();
+      fmt::print("live: {} message(s) sent, {} client(s) connected at the end\n", stats.frames_sent,
+                 stats.clients);
+      if (live->rounds_dropped() > 0) {
+        spdlog::warn("live: {} round(s) not streamed: the stream fell more than {} rounds behind",
+                     live->rounds_dropped(), PictureLiveFeed::kMaxWaitingRounds);
+      }
+    }
     return summary;
   } catch (...) {
     children.terminate_all(std::chrono::seconds(2));

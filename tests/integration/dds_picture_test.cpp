@@ -278,7 +278,7 @@ TEST(DdsPicture, ARealTimeRunRecordsEveryRoundAndItsShareInTime) {
 TEST(DdsPicture, OptionsThatDoNotTakeManyAircraftYetAreRefusedByName) {
   const auto dir = test_dir();
   const std::vector<std::pair<std::vector<std::string>, std::string>> refused = {
-      {{"--live"}, "--live"},
+      {{"--external"}, "--external"},
       {{"--refusion-lag", "3"}, "--refusion-lag"},
       {{"--speed-kmh", "100"}, "--speed-kmh"},
       {{"--exchange", "tree"}, "--exchange tree"},

@@ -20,16 +20,19 @@ import * as foxglove from "@foxglove/schemas/jsonschema.js";
 import Ajv from "ajv";
 
 const skyfuse = process.env.SKYFUSE_BIN;
-assert.ok(skyfuse, "SKYFUSE_BIN names the build's skyfuse");
+const scenarios = process.env.SKYFUSE_SCENARIOS;
+assert.ok(skyfuse && scenarios, "SKYFUSE_BIN and SKYFUSE_SCENARIOS name the build's skyfuse and scenarios/");
 const domain = process.env.SKYFUSE_DOMAIN ?? "213";
 const steps = 1500;
 const ajv = new Ajv({ strict: false, allErrors: true });
 
 // Starts a run with --live on a free port; resolves with the process, its port and its exit.
 // `sceneHz` 0: a scene every round, as a recording has.
-// `record`: also write the run's recording there.
-function startLiveRun(dir, { runSteps = steps, sceneHz = 0, record = null } = {}) {
-  const run = spawn(skyfuse, ["run", "--stations", "4", "--steps", String(runSteps), "--domain", domain,
+// `record`: also write the run's recording there. `scenario`: a scenario file (the default one
+// if null).
+function startLiveRun(dir, { runSteps = steps, sceneHz = 0, record = null, scenario = null } = {}) {
+  const run = spawn(skyfuse, ["run", ...(scenario ? ["--scenario", scenario] : []),
+    "--stations", "4", "--steps", String(runSteps), "--domain", domain,
     "--out", join(dir, "out"), "--live", "127.0.0.1:0", "--live-scene-hz", String(sceneHz),
     ...(record ? ["--record", record] : [])],
     { stdio: ["ignore", "pipe", "pipe"] });
@@ -59,33 +62,39 @@ function connect(port) {
   return new WebSocket(`ws://127.0.0.1:${port}`, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]);
 }
 
+// A client subscribed to every channel the server advertises: each channel by id, and each
+// topic's payloads as they come, parsed, with their log time as __log_time.
+function subscribeToEverything(port) {
+  const client = new FoxgloveClient({ ws: connect(port) });
+  const channels = new Map();
+  const bySubscription = new Map();
+  const payloads = new Map();
+  client.on("advertise", (advertised) => {
+    for (const c of advertised) {
+      channels.set(c.id, c);
+      payloads.set(c.topic, []);
+      bySubscription.set(client.subscribe(c.id), c);
+    }
+  });
+  const decoder = new TextDecoder();
+  client.on("message", ({ subscriptionId, timestamp, data }) => {
+    const p = JSON.parse(decoder.decode(data));
+    p.__log_time = timestamp;
+    payloads.get(bySubscription.get(subscriptionId).topic).push(p);
+  });
+  return { client, channels, payloads };
+}
+
 test("a live run streams every channel to its last round, and ignores what it does not serve", async () => {
   const dir = mkdtempSync(join(tmpdir(), "skyfuse-live-"));
   try {
     const recording = join(dir, "run.mcap");
     const { port, exited } = startLiveRun(dir, { record: recording });
-    const client = new FoxgloveClient({ ws: connect(await port) });
-    const channels = new Map();   // id -> channel
-    const bySubscription = new Map();
-    const payloads = new Map();   // topic -> parsed payloads
+    const { client, channels, payloads } = subscribeToEverything(await port);
     const statuses = [];
     let serverInfo = null;
     client.on("serverInfo", (info) => { serverInfo = info; });
     client.on("status", (s) => statuses.push(s));
-    client.on("advertise", (advertised) => {
-      for (const c of advertised) {
-        channels.set(c.id, c);
-        payloads.set(c.topic, []);
-        bySubscription.set(client.subscribe(c.id), c);
-      }
-    });
-    const decoder = new TextDecoder();
-    client.on("message", ({ subscriptionId, timestamp, data }) => {
-      const c = bySubscription.get(subscriptionId);
-      const p = JSON.parse(decoder.decode(data));
-      p.__log_time = timestamp;
-      payloads.get(c.topic).push(p);
-    });
     // What a publishing client would send, and garbage: each answered with an error status.
     const rude = connect(await port);
     await new Promise((resolve) => rude.on("open", resolve));
@@ -223,6 +232,68 @@ test("a stream capped to a display thins the scenes and their trails, and ends o
       ["trail/center", "trail/station/1", "trail/station/2", "trail/station/3", "trail/station/4", "trail/truth"]);
     for (let i = 1; i < rounds.length; ++i) assert.ok(rounds[i].step > rounds[i - 1].step);
     assert.ok(rounds.length < runSteps, "figures are thinned too");
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+// A run of many aircraft: every round's picture streamed from the first one received to the
+// last, each message as the recording holds it.
+test("a live run of many aircraft streams the picture of every round, as its recording holds it", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "skyfuse-live-"));
+  try {
+    const recording = join(dir, "run.mcap");
+    const runSteps = 300;
+    const { port, exited } = startLiveRun(dir, { runSteps, record: recording,
+      scenario: join(scenarios, "uam-city.yaml") });
+    const { client, channels, payloads } = subscribeToEverything(await port);
+    const decoder = new TextDecoder();
+    const { code, output } = await exited;
+    assert.equal(code, 0, output);
+    client.close();
+
+    const names = Object.fromEntries([...channels.values()].map((c) => [c.topic, c.schemaName]));
+    assert.equal(names["/scene"], "foxglove.SceneUpdate");
+    assert.equal(names["/tracks/geojson"], "foxglove.GeoJSON");
+    assert.equal(names["/skyfuse/picture"], "skyfuse.Picture");
+    for (const c of channels.values()) {
+      if (!c.schemaName.startsWith("foxglove.")) continue;
+      const check = ajv.compile(foxglove[c.schemaName.replace("foxglove.", "")]);
+      for (const { __log_time, ...message } of payloads.get(c.topic)) {
+        assert.ok(check(message), `${c.topic}: ${ajv.errorsText(check.errors)}`);
+      }
+    }
+    const steps = payloads.get("/skyfuse/picture").map((p) => p.step);
+    assert.ok(steps.length > runSteps / 2, `only ${steps.length} rounds streamed`);
+    assert.equal(steps.at(-1), runSteps - 1);
+    for (let i = 1; i < steps.length; ++i) assert.equal(steps[i], steps[i - 1] + 1);
+    assert.equal(payloads.get("/scene").length, steps.length);
+    assert.equal(payloads.get("/skyfuse/round").length, steps.length);
+    assert.equal(payloads.get("/skyfuse/summary")[0].steps, runSteps);
+
+    // Every message as the recording holds it; the first scene streamed may also delete what
+    // left before the client came, which the recording deleted as it left.
+    const recorded = new Map();
+    const reader = await readRecording(recording);
+    for await (const m of reader.readMessages()) {
+      recorded.set(`${reader.channelsById.get(m.channelId).topic} ${m.logTime}`,
+        JSON.parse(decoder.decode(m.data)));
+    }
+    let compared = 0;
+    for (const [topic, list] of payloads) {
+      list.forEach(({ __log_time, ...message }, i) => {
+        const file = recorded.get(`${topic} ${__log_time}`);
+        if (topic === "/scene" && i === 0) {
+          assert.deepEqual(message.entities, file.entities);
+        } else {
+          assert.deepEqual(message, file, `${topic} at ${__log_time}`);
+        }
+        compared += 1;
+      });
+    }
+    assert.ok(compared > 5 * runSteps / 2, `${compared} messages compared`);
+    const { __log_time, ...last } = payloads.get("/skyfuse/picture").at(-1);
+    assert.ok(last.peers_agree && last.confirmed >= 10, JSON.stringify(last));
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }
