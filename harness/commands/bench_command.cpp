@@ -143,10 +143,11 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
       ->capture_default_str();
   cmd->add_flag("!--no-micro", o.micro, "Skip the micro-benchmarks");
 
-  cmd->add_flag("--scale", o.scale_requested,
-                "The scale benchmark instead: flat against tree exchange as M grows, lock-step "
-                "and real time (scale.json, scale.csv, scale.png in --out, default "
-                "results/scale; stations default 4 8 16 32 64, scenario ring256.yaml)");
+  CLI::Option* scale =
+      cmd->add_flag("--scale", o.scale_requested,
+                    "The scale benchmark instead: flat against tree exchange as M grows, lock-step "
+                    "and real time (scale.json, scale.csv, scale.png in --out, default "
+                    "results/scale; stations default 4 8 16 32 64, scenario ring256.yaml)");
   cmd->add_option("--exchange", o.scale.exchanges, "--scale: the exchanges to compare")
       ->check(CLI::IsMember({"flat", "tree"}))
       ->capture_default_str();
@@ -166,6 +167,12 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
       "--scale: how runs on simulated hosts (M above one host's limit) discover each other: "
       "each process announcing itself to its exchange partners only (peers), by multicast "
       "across the hosts' bridge, or through the harness's discovery server (server or auto)");
+  cmd->add_option("--aircraft", o.scale.aircraft,
+                  "--scale: numbers of aircraft, to measure a run of many aircraft instead (flat "
+                  "exchange; stations default 8 16, scenario uam-metro.yaml, real-time "
+                  "deadline 80 ms)")
+      ->check(options::whole_number_in(1, 100000))
+      ->needs(scale);
   cmd->add_flag("!--reliable", o.scale.best_effort,
                 "--scale: reliable increments, sums and measurements (default: best effort)");
   // The options the two benchmarks share go to the scale benchmark only when given, so that
@@ -177,6 +184,12 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
     if (cmd->count("--stations") > 0) o.scale.stations = o.stations;
     if (cmd->count("--rounds") > 0) o.scale.rounds = o.rounds;
     o.scale.domain = o.domain;
+    // A run of many aircraft: its own defaults, a 10 Hz scan's share of a round.
+    if (!o.scale.aircraft.empty()) {
+      if (cmd->count("--stations") == 0) o.scale.stations = {8, 16};
+      if (cmd->count("--exchange") == 0) o.scale.exchanges = {"flat"};
+      if (cmd->count("--realtime-deadline-ms") == 0) o.scale.realtime_deadline_ms = 80.0;
+    }
   });
 }
 

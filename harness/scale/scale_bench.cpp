@@ -13,6 +13,7 @@
 #include "run/execute_run.hpp"
 #include "run/round_samples.hpp"
 #include "run/simulated_hosts.hpp"
+#include "scale/picture_scale_bench.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
@@ -156,6 +157,7 @@ RunSummary measure(const ScaleBenchOptions& o, const Scenario& scenario,
 }  // namespace
 
 int run_scale_bench(const ScaleBenchOptions& o) {
+  if (!o.aircraft.empty()) return run_picture_scale_bench(o);
   const auto [scenario_path, scenario] =
       load_bench_scenario(o.scenario_path, "ring256.yaml", o.stations);
   // Refused before anything runs, as the station counts are.

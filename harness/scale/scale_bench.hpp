@@ -29,6 +29,8 @@ struct ScaleBenchOptions {
   /// server's Fast DDS 2.9 dropped endpoints for good (docs/performance.md#m--128-and-m--256).
   options::Discovery host_discovery = options::Discovery::kPeers;
   int domain = 0;
+  /// Numbers of aircraft: the picture's scale benchmark instead (picture_scale_bench.hpp).
+  std::vector<int> aircraft;
 };
 
 int run_scale_bench(const ScaleBenchOptions& options);

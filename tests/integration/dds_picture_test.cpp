@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -275,6 +276,38 @@ TEST(DdsPicture, ARealTimeRunRecordsEveryRoundAndItsShareInTime) {
 }
 
 // What a run of many aircraft does not take yet is refused before any process starts, by name.
+// skyfuse bench --scale --aircraft: a row per number of aircraft and station count, each with
+// its lock-step and real-time figures, the pictures identical.
+TEST(DdsPicture, TheScaleBenchMeasuresEachNumberOfAircraft) {
+  const auto dir = test_dir();
+  const Completed run = run_to_completion(
+      {bin("skyfuse"), "bench", "--scale", "--aircraft", "1", "12", "--stations", "3", "--rounds",
+       "30", "--realtime-steps", "20", "--domain", "97", "--out", (dir / "scale").string()},
+      dir / "bench.log", 240s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  std::ifstream file(dir / "scale" / "picture_scale.json");
+  const auto doc = nlohmann::json::parse(file);
+  EXPECT_EQ(doc["scenario"], "uam-metro");
+  ASSERT_EQ(doc["rows"].size(), 2U);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto& row = doc["rows"][i];
+    SCOPED_TRACE(row.dump());
+    EXPECT_EQ(row["aircraft"], i == 0 ? 1 : 12);
+    EXPECT_EQ(row["stations"], 3);
+    EXPECT_GT(row["lockstep"]["rounds_per_s"].get<double>(), 0.0);
+    // The kernel counts CPU in 10 ms ticks: 30 lock-step rounds may take less than one.
+    EXPECT_GE(row["lockstep"]["cpu_ms_per_station_round"].get<double>(), 0.0);
+    EXPECT_GT(row["realtime"]["cpu_ms_per_station_round"].get<double>(), 0.0);
+    EXPECT_TRUE(row["lockstep"]["peers_identical"].get<bool>());
+    EXPECT_TRUE(row["lockstep"]["equals_in_process"].get<bool>());
+    EXPECT_EQ(row["realtime"]["steps"], 20);
+    const double share = row["realtime"]["share_in_time"].get<double>();
+    EXPECT_GE(share, 0.0);
+    EXPECT_LE(share, 1.0);
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "scale" / "picture_scale.csv"));
+}
+
 TEST(DdsPicture, OptionsThatDoNotTakeManyAircraftYetAreRefusedByName) {
   const auto dir = test_dir();
   const std::vector<std::pair<std::vector<std::string>, std::string>> refused = {
