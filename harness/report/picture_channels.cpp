@@ -40,6 +40,8 @@ std::string picture_schema() {
                            {"missed_aircraft", typed("integer")},
                            {"false_tracks", typed("integer")},
                            {"tracked", typed("integer")},
+                           {"completeness", typed("number")},
+                           {"spuriousness", typed("number")},
                            {"spurious", typed("integer")},
                            {"detections", typed("integer")},
                            {"false_alarms", typed("integer")},
@@ -222,23 +224,31 @@ void PictureChannels::figure_messages(const PictureFrame& frame, std::uint64_t n
                  {"stations", plan_.stations},
                  {"nodes", std::move(nodes)},
                  {"refused", json::array()}});
-  emit(kPicture, {{"timestamp", stamp(ns)},
-                  {"step", frame.step},
-                  {"aircraft", frame.score.aircraft},
-                  {"confirmed", confirmed},
-                  {"tentative", frame.tracks.size() - confirmed},
-                  {"gospa", frame.score.gospa.distance},
-                  {"localisation", frame.score.gospa.localisation},
-                  {"missed", frame.score.gospa.missed},
-                  {"false", frame.score.gospa.false_tracks},
-                  {"missed_aircraft", frame.score.gospa.missed_targets},
-                  {"false_tracks", frame.score.gospa.false_estimates},
-                  {"tracked", frame.score.tracked},
-                  {"spurious", frame.score.spurious},
-                  {"detections", detections},
-                  {"false_alarms", false_alarms},
-                  {"peers_agree", frame.peers_agree},
-                  {"digest", fmt::format("{:016x}", frame.digest)}});
+  emit(kPicture,
+       {{"timestamp", stamp(ns)},
+        {"step", frame.step},
+        {"aircraft", frame.score.aircraft},
+        {"confirmed", confirmed},
+        {"tentative", frame.tracks.size() - confirmed},
+        {"gospa", frame.score.gospa.distance},
+        {"localisation", frame.score.gospa.localisation},
+        {"missed", frame.score.gospa.missed},
+        {"false", frame.score.gospa.false_tracks},
+        {"missed_aircraft", frame.score.gospa.missed_targets},
+        {"false_tracks", frame.score.gospa.false_estimates},
+        {"tracked", frame.score.tracked},
+        // SIAP's two figures of one round: aircraft with a track, tracks without one.
+        {"completeness", frame.score.aircraft == 0 ? 1.0
+                                                   : static_cast<double>(frame.score.tracked) /
+                                                         static_cast<double>(frame.score.aircraft)},
+        {"spuriousness", frame.score.tracks == 0 ? 0.0
+                                                 : static_cast<double>(frame.score.spurious) /
+                                                       static_cast<double>(frame.score.tracks)},
+        {"spurious", frame.score.spurious},
+        {"detections", detections},
+        {"false_alarms", false_alarms},
+        {"peers_agree", frame.peers_agree},
+        {"digest", fmt::format("{:016x}", frame.digest)}});
 }
 
 ChannelMessage PictureChannels::summary_message(std::string summary_json, int steps) const {

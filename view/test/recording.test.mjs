@@ -186,6 +186,8 @@ test("a run of many aircraft records every track, scan and score its CSV file ho
       assert.equal(p.confirmed, row.confirmed, `step ${k}`);
       assert.equal(p.confirmed + p.tentative, row.tracks, `step ${k}`);
       assert.ok(p.peers_agree && Number.isFinite(p.gospa) && p.gospa >= 0, JSON.stringify(p));
+      assert.ok(p.completeness >= 0 && p.completeness <= 1 && p.spuriousness >= 0 && p.spuriousness <= 1);
+      if (p.aircraft > 0) assert.equal(p.completeness, p.tracked / p.aircraft);
       const tracks = scenes[k].entities.filter((e) => e.id.startsWith("track/"));
       assert.equal(tracks.length, row.tracks, `step ${k}: a scene entity per track`);
       for (const t of tracks) assert.equal(t.texts[0].text.replace(/[?]$/, ""), `T${t.id.slice(6)}`);
