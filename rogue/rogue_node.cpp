@@ -20,6 +20,8 @@
 //   wrong_cluster a contribution from another cluster, a sum counting a station of another
 //                 cluster, a total from a member that does not aggregate
 //   overlap       a sum counting one station twice
+// Against a run of many aircraft (--picture) it sends forged picture scans instead
+// (forged_scan.hpp), of the kinds a scan can carry.
 // It prints how many samples of each kind it sent, one line per topic and kind.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -33,6 +35,7 @@
 
 #include "forged_increment.hpp"
 #include "forged_partial.hpp"
+#include "forged_scan.hpp"
 #include "secure_probe.hpp"
 #include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
@@ -147,6 +150,10 @@ int main(int argc, char** argv) {
                  "The run exchanges in a tree of this fanout: attack its partial sums instead of "
                  "increments")
       ->check(skyfuse::options::whole_number_at_least(2));
+  bool picture = false;
+  app.add_flag("--picture", picture,
+               "The run is of many aircraft: attack its picture scans instead (the victim a "
+               "radar)");
   std::string scenario_path;
   options::add_scenario_option(app, scenario_path);
   rogue::ProbeOptions probe;
@@ -200,7 +207,11 @@ int main(int argc, char** argv) {
         partials.emplace(partition, node.make_writer<wire::PartialSum>({partition}));
       }
     }
+    std::optional<transport::Writer<wire::PictureScan>> scans;
+    if (picture) scans.emplace(node.make_writer<wire::PictureScan>());
     auto all_matched = [&] {
+      // A run of many aircraft: every station and the center read the scans.
+      if (scans) return scans->matched() >= stations + 1;
       if (measurements.matched() < 1) return false;
       if (!layout) return increments.matched() >= stations;
       for (const auto& [partition, writer] : partials) {
@@ -213,6 +224,7 @@ int main(int argc, char** argv) {
     DropCounts sent_increments{};
     DropCounts sent_partials{};
     DropCounts sent_measurements{};
+    DropCounts sent_scans{};
     const auto give_up =
         std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
     std::set<std::uint32_t> left = steps;
@@ -239,6 +251,14 @@ int main(int argc, char** argv) {
                        *newest, measurements.matched());
           continue;
         }
+        if (scans) {
+          for (const rogue::ScanAttack& a : rogue::scan_attacks_at(run_id, *newest, victim)) {
+            scans->write(a.sample);
+            ++sent_scans[static_cast<std::size_t>(a.kind)];
+          }
+          wait_set.wait(std::chrono::milliseconds(20));
+          continue;
+        }
         if (layout) {
           for (rogue::PartialAttack& a :
                rogue::partial_attacks_at(run_id, *newest, *layout, state_dim)) {
@@ -261,10 +281,12 @@ int main(int argc, char** argv) {
     increments.wait_acknowledged(std::chrono::seconds(5));
     for (auto& [partition, writer] : partials) writer.wait_acknowledged(std::chrono::seconds(5));
     measurements.wait_acknowledged(std::chrono::seconds(5));
+    if (scans) scans->wait_acknowledged(std::chrono::seconds(5));
     for (std::size_t i = 0; i < kDropKinds; ++i) {
       const auto kind = to_string(static_cast<DropKind>(i));
       if (sent_increments[i] != 0) fmt::print("sent increment {} {}\n", kind, sent_increments[i]);
       if (sent_partials[i] != 0) fmt::print("sent partial sum {} {}\n", kind, sent_partials[i]);
+      if (sent_scans[i] != 0) fmt::print("sent picture scan {} {}\n", kind, sent_scans[i]);
       if (sent_measurements[i] != 0) {
         fmt::print("sent measurement {} {}\n", kind, sent_measurements[i]);
       }

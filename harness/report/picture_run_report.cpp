@@ -8,6 +8,17 @@
 #include "run/picture_round_check.hpp"
 
 namespace skyfuse::harness {
+namespace {
+
+DropCounts refused_by_kind(const PictureRunSummary& s) {
+  DropCounts sum{};
+  for (const auto& [node, counts] : s.dropped_by_node) {
+    for (std::size_t i = 0; i < kDropKinds; ++i) sum[i] += counts[i];
+  }
+  return sum;
+}
+
+}  // namespace
 
 void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
   fmt::print(out,
@@ -44,6 +55,15 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
           s.rounds_without_a_picture > 0
               ? fmt::format("; {} rounds without any station's picture", s.rounds_without_a_picture)
               : std::string()));
+  if (const DropCounts refused = refused_by_kind(s); refused != DropCounts{}) {
+    std::string kinds;
+    for (std::size_t i = 0; i < kDropKinds; ++i) {
+      if (refused[i] == 0) continue;
+      kinds += fmt::format("{}{} {}", kinds.empty() ? "" : ", ",
+                           to_string(static_cast<DropKind>(i)), refused[i]);
+    }
+    row("samples refused (every node)", kinds);
+  }
   row("tracks at the end", fmt::format("{} ({} confirmed)", s.tracks_at_end, s.confirmed_at_end));
   row("GOSPA, mean over rounds", fmt::format("{:.2f} (the in-process run, without faults: {:.2f})",
                                              s.gospa_mean, s.in_process_gospa_mean));
@@ -59,6 +79,18 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
 
 std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run_id,
                              const PictureRunResult& twin) {
+  // What each node refused, by kind (the center is "center"), and the kinds summed.
+  const auto by_kind = [](const DropCounts& counts) {
+    nlohmann::json kinds = nlohmann::json::object();
+    for (std::size_t i = 0; i < kDropKinds; ++i) {
+      kinds[std::string(to_string(static_cast<DropKind>(i)))] = counts[i];
+    }
+    return kinds;
+  };
+  nlohmann::json by_node = nlohmann::json::object();
+  for (const auto& [node, counts] : summary.dropped_by_node) {
+    by_node[node == 0 ? std::string("center") : std::to_string(node)] = by_kind(counts);
+  }
   const nlohmann::json json = {
       {"scenario", summary.scenario},
       {"stations", summary.stations},
@@ -76,6 +108,8 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
       {"faults", summary.faults},
       {"samples_lost", summary.lost},
       {"resyncs", summary.resyncs},
+      {"dropped_by_kind", by_kind(refused_by_kind(summary))},
+      {"dropped_by_node", std::move(by_node)},
       {"gospa_mean", summary.gospa_mean},
       {"equals_in_process", summary.equals_in_process},
       {"first_step_apart_from_in_process", summary.first_step_apart_from_in_process},

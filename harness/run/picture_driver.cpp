@@ -162,7 +162,7 @@ void PictureDriver::wait_until_ready(int id, std::chrono::milliseconds timeout) 
   }
 }
 
-std::map<int, std::pair<std::uint32_t, std::uint64_t>> PictureDriver::wait_finished(
+std::map<int, PictureDriver::Finished> PictureDriver::wait_finished(
     std::chrono::milliseconds timeout) {
   const auto start = Clock::now();
   while (finished_.size() < ids_.size() - down_.size() && Clock::now() - start < timeout) {
@@ -201,7 +201,12 @@ void PictureDriver::check() {
         (killed == killed_instance_.end() || killed->second != s.instance())) {
       ready_[s.station_id()] = s.instance();
     }
-    if (s.state() == wire::FINISHED) finished_[s.station_id()] = {s.resyncs(), s.lost()};
+    if (s.state() == wire::FINISHED) {
+      Finished& f = finished_[s.station_id()];
+      f.resyncs = s.resyncs();
+      f.lost = s.lost();
+      std::copy(s.dropped().begin(), s.dropped().end(), f.dropped.begin());
+    }
   }
 }
 

@@ -15,6 +15,7 @@
 
 #include "run/child_processes.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {
 
@@ -43,10 +44,14 @@ class PictureDriver {
   /// Until a restarted station has announced READY again.
   void wait_until_ready(int id, std::chrono::milliseconds timeout);
 
-  /// Waits up to `timeout` for every node's FINISHED status; what each reported: (rounds it
-  /// took another's picture, samples the simulated loss removed).
-  std::map<int, std::pair<std::uint32_t, std::uint64_t>> wait_finished(
-      std::chrono::milliseconds timeout);
+  /// What a node reported when it finished.
+  struct Finished {
+    std::uint32_t resyncs = 0;  ///< rounds it took another station's picture
+    std::uint64_t lost = 0;     ///< samples the simulated loss removed
+    DropCounts dropped{};       ///< samples it refused, by kind
+  };
+  /// Waits up to `timeout` for every node's FINISHED status; what each reported.
+  std::map<int, Finished> wait_finished(std::chrono::milliseconds timeout);
 
   /// Releases the nodes: they exit once they hear it.
   void release();
@@ -65,7 +70,7 @@ class PictureDriver {
   std::map<int, std::uint64_t> ready_;  // node -> the process instance that announced READY
   std::map<int, std::uint64_t> killed_instance_;
   std::set<int> down_;  // stations killed and not restarted: not waited for
-  std::map<int, std::pair<std::uint32_t, std::uint64_t>> finished_;
+  std::map<int, Finished> finished_;
 };
 
 }  // namespace skyfuse::harness

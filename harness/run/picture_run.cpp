@@ -234,9 +234,10 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     summary.realtime = o.node.realtime_deadline_ms > 0.0;
     summary.gospa_mean = check.gospa_mean();
     summary.in_process_gospa_mean = twin.score.gospa_mean;
-    for (const auto& [id, counts] : driver.wait_finished(std::chrono::seconds(5))) {
-      if (id != kCenterNodeId) summary.resyncs += counts.first;
-      summary.lost += counts.second;
+    for (const auto& [id, finished] : driver.wait_finished(std::chrono::seconds(5))) {
+      if (id != kCenterNodeId) summary.resyncs += finished.resyncs;
+      summary.lost += finished.lost;
+      summary.dropped_by_node[id] = finished.dropped;
     }
     driver.release();
     if (!children.wait_all(std::chrono::seconds(10))) {

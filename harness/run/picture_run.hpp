@@ -12,11 +12,13 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <map>
 #include <optional>
 #include <string>
 
 #include "run/run_options.hpp"
 #include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {
 
@@ -35,6 +37,8 @@ struct PictureRunSummary {
   bool realtime = false;      ///< on the wall clock: a late scan parts the pictures too
   std::uint64_t lost = 0;     ///< samples the simulated loss removed, every node
   std::uint32_t resyncs = 0;  ///< rounds a station took the lowest station's picture
+  /// Samples each node (0: the center) refused, by kind, as it reported when it finished.
+  std::map<int, DropCounts> dropped_by_node;
   /// GOSPA of the first station's confirmed tracks, mean over rounds, and the in-process run's.
   double gospa_mean = 0.0;
   double in_process_gospa_mean = 0.0;

@@ -276,6 +276,48 @@ TEST(DdsPicture, ARealTimeRunRecordsEveryRoundAndItsShareInTime) {
 }
 
 // What a run of many aircraft does not take yet is refused before any process starts, by name.
+// A rogue process in the run's domain sends every kind of malformed scan at steps 5, 10 and 15,
+// one of them a real station's id from its own writer: every station and the center refuse
+// each one and count it by kind, and the pictures are still bit-identical and the in-process
+// run's (the run's exit status says so too).
+TEST(DdsPicture, ARoguesScansAreRefusedByEveryNodeAndCountedByKind) {
+  constexpr int kStations = 4;
+  constexpr int kAttackSteps = 3;
+  const auto dir = test_dir();
+  Process attacked(
+      {bin("skyfuse"), "run", "--scenario", kCity, "--stations", std::to_string(kStations),
+       "--steps", "60", "--run-id", "8087", "--domain", "96", "--out", (dir / "out").string()},
+      dir / "attacked.log");
+  const Completed rogue = run_to_completion(
+      {bin("skyfuse-rogue"), "--domain", "96", "--run-id", "8087", "--stations",
+       std::to_string(kStations), "--victim", "1", "--picture", "--scenario", kCity},
+      dir / "rogue.log", 120s);
+  const std::optional<ExitStatus> status = attacked.wait(120s);
+  ASSERT_TRUE(status.has_value()) << attacked.output();
+  ASSERT_EQ(status->code, 0) << attacked.output();
+  ASSERT_EQ(rogue.status.code, 0) << rogue.output;
+  EXPECT_NE(rogue.output.find("sent picture scan non_finite 3"), std::string::npos) << rogue.output;
+
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_TRUE(summary["peers_identical"].get<bool>());
+  EXPECT_TRUE(summary["equals_in_process"].get<bool>());
+  EXPECT_TRUE(summary["center_equals_in_process"].get<bool>());
+  const int receivers = kStations + 1;  // every station and the center read the scans
+  const auto& by_kind = summary["dropped_by_kind"];
+  for (const char* kind :
+       {"wrong_run", "future_step", "unknown_station", "non_finite", "out_of_range"}) {
+    EXPECT_EQ(by_kind[kind].get<int>(), kAttackSteps * receivers) << kind;
+  }
+  // The impersonation is a duplicate while its step is open at the receiver, stale once it has
+  // closed it (a rogue that woke late): one of the two, per attack step and node.
+  ASSERT_EQ(summary["dropped_by_node"].size(), static_cast<std::size_t>(receivers));
+  for (const auto& [node, counts] : summary["dropped_by_node"].items()) {
+    EXPECT_EQ(counts["duplicate"].get<int>() + counts["stale_step"].get<int>(), 2 * kAttackSteps)
+        << node;
+    EXPECT_EQ(counts["nis_gate"].get<int>(), 0) << node;
+  }
+}
+
 // skyfuse bench --scale --aircraft: a row per number of aircraft and station count, each with
 // its lock-step and real-time figures, the pictures identical.
 TEST(DdsPicture, TheScaleBenchMeasuresEachNumberOfAircraft) {
