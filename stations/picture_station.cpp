@@ -131,7 +131,8 @@ class PictureStation {
     }
     parted_last_round_ = parted;
     const std::uint64_t predicted = picture_.digest();
-    const auto reports = exchange_.reports(picture_);
+    const auto reports = exchange_.reports(
+        picture_, [&](int station_id, DropKind why) { loop_.count_drop(why, station_id, k); });
     picture_.fuse(k, reports);
     const auto step = static_cast<std::uint32_t>(k);
     if (lowest && lowest->first == options_.id && exchange_.any_other_picture(predicted)) {

@@ -276,7 +276,8 @@ TEST(DdsPicture, ARealTimeRunRecordsEveryRoundAndItsShareInTime) {
 }
 
 // What a run of many aircraft does not take yet is refused before any process starts, by name.
-// A rogue process in the run's domain sends every kind of malformed scan at steps 5, 10 and 15,
+// A rogue process in the run's domain sends every kind of malformed scan at steps 200, 250 and
+// 280 (late enough that it has matched every reader of a run that takes a second),
 // one of them a real station's id from its own writer: every station and the center refuse
 // each one and count it by kind, and the pictures are still bit-identical and the in-process
 // run's (the run's exit status says so too).
@@ -286,12 +287,13 @@ TEST(DdsPicture, ARoguesScansAreRefusedByEveryNodeAndCountedByKind) {
   const auto dir = test_dir();
   Process attacked(
       {bin("skyfuse"), "run", "--scenario", kCity, "--stations", std::to_string(kStations),
-       "--steps", "60", "--run-id", "8087", "--domain", "96", "--out", (dir / "out").string()},
+       "--steps", "300", "--run-id", "8087", "--domain", "96", "--out", (dir / "out").string()},
       dir / "attacked.log");
-  const Completed rogue = run_to_completion(
-      {bin("skyfuse-rogue"), "--domain", "96", "--run-id", "8087", "--stations",
-       std::to_string(kStations), "--victim", "1", "--picture", "--scenario", kCity},
-      dir / "rogue.log", 120s);
+  const Completed rogue =
+      run_to_completion({bin("skyfuse-rogue"), "--domain", "96", "--run-id", "8087", "--stations",
+                         std::to_string(kStations), "--victim", "1", "--picture", "--scenario",
+                         kCity, "--at-steps", "200", "250", "280"},
+                        dir / "rogue.log", 120s);
   const std::optional<ExitStatus> status = attacked.wait(120s);
   ASSERT_TRUE(status.has_value()) << attacked.output();
   ASSERT_EQ(status->code, 0) << attacked.output();

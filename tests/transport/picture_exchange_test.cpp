@@ -39,9 +39,8 @@ struct StationNode {
   }
 };
 
-TEST(PictureExchange, ThreeStationsOverLoopbackDdsHoldTheInProcessPictureBitForBit) {
-  constexpr int kRounds = 20;
-  const World world(kRounds);
+// One participant per station of `world`, each with its exchange and reader of the topic.
+std::vector<StationNode> station_nodes(const World& world) {
   std::vector<StationNode> nodes;
   for (const auto& station : world.stations) {
     NodeConfig config;
@@ -52,13 +51,41 @@ TEST(PictureExchange, ThreeStationsOverLoopbackDdsHoldTheInProcessPictureBitForB
     auto in = std::make_unique<Reader<wire::PictureScan>>(node->make_reader<wire::PictureScan>());
     nodes.push_back({std::move(node), std::move(exchange), std::move(in), world.empty_picture()});
   }
-  ASSERT_TRUE(eventually(
+  return nodes;
+}
+
+bool all_matched(const std::vector<StationNode>& nodes) {
+  return eventually(
       [&] {
         return std::all_of(nodes.begin(), nodes.end(),
                            [](const StationNode& n) { return n.exchange->matched(*n.in); });
       },
-      20s))
-      << "the three participants did not match each other";
+      20s);
+}
+
+// Until every node holds every station's sample of the current step.
+bool all_complete(std::vector<StationNode>& nodes) {
+  return eventually(
+      [&] {
+        bool all = true;
+        for (StationNode& n : nodes) {
+          n.take();
+          all = all && n.exchange->complete();
+        }
+        return all;
+      },
+      20s);
+}
+
+const auto kNoRefusal = [](int station_id, DropKind why) {
+  ADD_FAILURE() << "station " << station_id << "'s sample refused: " << to_string(why);
+};
+
+TEST(PictureExchange, ThreeStationsOverLoopbackDdsHoldTheInProcessPictureBitForBit) {
+  constexpr int kRounds = 20;
+  const World world(kRounds);
+  std::vector<StationNode> nodes = station_nodes(world);
+  ASSERT_TRUE(all_matched(nodes)) << "the three participants did not match each other";
 
   World::Peer reference = world.empty_picture();
   AssignmentWork work;
@@ -75,20 +102,11 @@ TEST(PictureExchange, ThreeStationsOverLoopbackDdsHoldTheInProcessPictureBitForB
       n.exchange->publish(step, scan, n.picture.report(world.stations[s], scan, work),
                           n.picture.digest());
     }
-    ASSERT_TRUE(eventually(
-        [&] {
-          bool all = true;
-          for (StationNode& n : nodes) {
-            n.take();
-            all = all && n.exchange->complete();
-          }
-          return all;
-        },
-        20s))
+    ASSERT_TRUE(all_complete(nodes))
         << "round " << k << ": station 1 still misses " << nodes[0].exchange->missing().size();
     reference.fuse(k, own_reports);
     for (StationNode& n : nodes) {
-      const auto reports = n.exchange->reports(n.picture);
+      const auto reports = n.exchange->reports(n.picture, kNoRefusal);
       ASSERT_EQ(reports.size(), world.stations.size()) << "round " << k;
       n.picture.fuse(k, reports);
       n.exchange->advance();
@@ -109,6 +127,71 @@ TEST(PictureExchange, ThreeStationsOverLoopbackDdsHoldTheInProcessPictureBitForB
   }
   EXPECT_GE(reference.tracks().size(), 5U) << "every aircraft tracked";
   EXPECT_GT(associated, 100U) << "the rounds associated detections to tracks";
+}
+
+// A station that sends a scan made against the receivers' own picture (its digest) whose
+// association names a track that picture does not hold: no honest station makes one, so every
+// receiver leaves it out of the round and says so, and fuses the others'.
+TEST(PictureExchange, AScanNamingATrackThePictureDoesNotHoldIsLeftOutAndCounted) {
+  constexpr int kRounds = 6;
+  const World world(kRounds);
+  std::vector<StationNode> nodes = station_nodes(world);
+  // The third station publishes through a writer of its own, which forges its last scan.
+  Writer<wire::PictureScan> third = nodes[2].node->make_writer<wire::PictureScan>();
+  ASSERT_TRUE(all_matched(nodes));
+  ASSERT_TRUE(eventually([&] { return third.matched() >= 3; }, 20s));
+  AssignmentWork work;
+  for (int k = 0; k < kRounds; ++k) {
+    const auto step = static_cast<std::uint32_t>(k);
+    const bool forged = k + 1 == kRounds;
+    for (std::size_t s = 0; s < nodes.size(); ++s) {
+      StationNode& n = nodes[s];
+      n.picture.predict();
+      const Scan<3> scan = world.scan(s, k);
+      const auto report = n.picture.report(world.stations[s], scan, work);
+      if (s != 2) {
+        n.exchange->publish(step, scan, report, n.picture.digest());
+        continue;
+      }
+      wire::PictureScan sample =
+          to_wire<World::Sensor>(scan, report, kRunId, step, n.picture.digest());
+      if (forged) {
+        // A detection of the scan assigned to a track id past every one the picture holds.
+        ASSERT_FALSE(sample.associations().empty() && sample.unassociated().empty());
+        if (!sample.associations().empty()) {
+          sample.associations().back().track_id(~0ULL);
+        } else {
+          wire::Association a;
+          a.track_id(~0ULL);
+          a.detection(sample.unassociated().front());
+          sample.associations({a});
+          sample.unassociated().erase(sample.unassociated().begin());
+        }
+      }
+      third.write(sample);
+    }
+    ASSERT_TRUE(all_complete(nodes)) << "round " << k;
+    for (StationNode& n : nodes) {
+      std::vector<int> refused;
+      const auto reports = n.exchange->reports(n.picture, [&](int station_id, DropKind why) {
+        EXPECT_EQ(why, DropKind::kOutOfRange);
+        refused.push_back(station_id);
+      });
+      if (forged) {
+        EXPECT_EQ(refused, std::vector<int>{world.stations[2].id});
+        ASSERT_EQ(reports.size(), 2U);
+        EXPECT_NE(reports.back().station_id, world.stations[2].id);
+      } else {
+        EXPECT_TRUE(refused.empty()) << "round " << k;
+        ASSERT_EQ(reports.size(), 3U) << "round " << k;
+      }
+      n.picture.fuse(k, reports);
+      n.exchange->advance();
+    }
+  }
+  EXPECT_EQ(nodes[0].picture.digest(), nodes[1].picture.digest());
+  EXPECT_EQ(nodes[0].picture.digest(), nodes[2].picture.digest());
+  EXPECT_GT(nodes[0].picture.tracks().size(), 0U);
 }
 
 }  // namespace

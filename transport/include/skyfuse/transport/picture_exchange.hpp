@@ -93,7 +93,11 @@ class PictureExchange {
   ///    this picture by the station's own rule (PeerPicture::report), as every peer holding this
   ///    picture assigns them, so that a parted station's scan still counts; counted in
   ///    other_pictures().
-  std::vector<Report> reports(const Picture& picture) {
+  /// A sample made against this same picture whose association names a track the picture does
+  /// not hold was not made by an honest station: it is left out and on_refused(station id,
+  /// DropKind::kOutOfRange) called.
+  template <typename OnRefused>
+  std::vector<Report> reports(const Picture& picture, OnRefused&& on_refused) {
     std::vector<Report> out;
     const std::uint64_t digest = picture.digest();
     for (const int id : scans_.station_ids()) {  // ascending, as fusing wants them
@@ -111,7 +115,11 @@ class PictureExchange {
       }
       auto report = picture.report_of(*station, scan->detections, scan->associations,
                                       scan->unassociated, scan->dropped);
-      if (report) out.push_back(std::move(*report));
+      if (report) {
+        out.push_back(std::move(*report));
+      } else {
+        on_refused(id, DropKind::kOutOfRange);
+      }
     }
     return out;
   }
