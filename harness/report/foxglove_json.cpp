@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "skyfuse/traffic/geodesy.hpp"
+
 namespace skyfuse::harness::foxglove {
 
 // ---- JSON schemas ----------------------------------------------------------------------------
@@ -211,31 +213,17 @@ json ellipsoid(const Vector3& at, const Eigen::Matrix3d& covariance, Rgba c) {
   return shape(at, size, c, Eigen::Quaterniond(axes));
 }
 
-// ENU metres from the anchor to latitude, longitude and altitude on WGS-84, with the
-// ellipsoid's radii of curvature at the anchor: within millimetres over the few kilometres of a
-// scenario.
 json location_fix(std::uint64_t ns, const GeoAnchor& anchor, const Vector3& enu,
                   const Eigen::Matrix3d& covariance) {
-  constexpr double kA = 6378137.0;
-  constexpr double kE2 = 6.69437999014e-3;
-  const double phi = anchor.latitude_deg * M_PI / 180.0;
-  const double w = 1.0 - kE2 * std::sin(phi) * std::sin(phi);
-  const double prime_vertical = kA / std::sqrt(w);
-  const double meridian = kA * (1.0 - kE2) / (w * std::sqrt(w));
+  const Vector3 geodetic = from_local_enu(anchor, enu);  // WGS-84, traffic/geodesy.hpp
   json cov = json::array();
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) cov.push_back(covariance(r, c));
   }
-  return {
-      {"timestamp", stamp(ns)},
-      {"frame_id", kWorldFrame},
-      {"latitude", anchor.latitude_deg + enu.y() / (meridian + anchor.altitude_m) * 180.0 / M_PI},
-      {"longitude",
-       anchor.longitude_deg +
-           enu.x() / ((prime_vertical + anchor.altitude_m) * std::cos(phi)) * 180.0 / M_PI},
-      {"altitude", anchor.altitude_m + enu.z()},
-      {"position_covariance", std::move(cov)},
-      {"position_covariance_type", 3}};  // KNOWN
+  return {{"timestamp", stamp(ns)},       {"frame_id", kWorldFrame},
+          {"latitude", geodetic.x()},     {"longitude", geodetic.y()},
+          {"altitude", geodetic.z()},     {"position_covariance", std::move(cov)},
+          {"position_covariance_type", 3}};  // KNOWN
 }
 
 }  // namespace skyfuse::harness::foxglove

@@ -41,6 +41,9 @@ std::string round_schema();
 struct Rgba {
   double r, g, b, a;
 };
+/// What both kinds of run draw alike: the truth (an aircraft) and the stations.
+inline constexpr Rgba kTruthColor{0.15, 0.70, 0.25, 1.0};
+inline constexpr Rgba kStationColor{0.45, 0.45, 0.50, 1.0};
 
 json stamp(std::uint64_t ns);
 json xyz(const Vector3& v);
@@ -55,7 +58,7 @@ json label(const Vector3& at, const std::string& text, const Rgba& c);
 json line_strip(const std::vector<Vector3>& points, const Rgba& c);
 /// A sphere primitive scaled and turned into the 95 % ellipsoid of a position covariance.
 json ellipsoid(const Vector3& at, const Eigen::Matrix3d& covariance, Rgba c);
-/// A foxglove.LocationFix of ENU position `enu` (metres from `anchor`).
+/// A foxglove.LocationFix of ENU position `enu` (metres from `anchor`), on WGS-84.
 json location_fix(std::uint64_t ns, const GeoAnchor& anchor, const Vector3& enu,
                   const Eigen::Matrix3d& covariance);
 

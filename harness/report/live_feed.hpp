@@ -49,8 +49,6 @@ struct LiveWake {
 
 namespace live_rates {
 inline constexpr std::size_t kMaxWaitingRounds = 4096;
-/// The most scenes (and frames and map fixes) a second: a display's rate.
-inline constexpr double kDefaultSceneHz = 30.0;
 /// The most rounds of skyfuse's own channels a second while scenes are capped: every round
 /// of a real-time run (50 Hz), a sample of a lock-step run's thousands.
 inline constexpr double kFiguresHz = 60.0;
@@ -66,9 +64,9 @@ class LiveFeedOf {
  public:
   using Round = typename Source::Round;
   static constexpr std::size_t kMaxWaitingRounds = live_rates::kMaxWaitingRounds;
-  static constexpr double kDefaultSceneHz = live_rates::kDefaultSceneHz;
 
-  /// `scene_hz` 0: everything every round, nothing thinned. The Source is made of `args`.
+  /// `scene_hz`: the most scenes (frames, map fixes) a second (RunOptions::live_scene_hz); 0:
+  /// everything every round, nothing thinned. The Source is made of `args`.
   template <typename... Args>
   LiveFeedOf(live::LiveServer::Options options, double scene_hz, Args&&... args)
       : source_(std::forward<Args>(args)...), scene_hz_(scene_hz) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "report/foxglove_json.hpp"
+#include "skyfuse/traffic/geodesy.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -17,10 +18,8 @@ using namespace foxglove;  // NOLINT(google-build-using-namespace): this file's 
 
 constexpr Rgba kConfirmedColor{0.20, 0.45, 0.90, 1.0};
 constexpr Rgba kTentativeColor{0.95, 0.70, 0.10, 1.0};
-constexpr Rgba kAircraftColor{0.15, 0.70, 0.25, 1.0};
 constexpr Rgba kDetectionColor{0.35, 0.35, 0.40, 0.8};
 constexpr Rgba kFalseAlarmColor{0.85, 0.20, 0.20, 0.8};
-constexpr Rgba kStationColor{0.45, 0.45, 0.50, 1.0};
 // Sizes in metres: a city's picture spans kilometres.
 constexpr double kTrackSize = 40.0;
 constexpr double kAircraftSize = 20.0;
@@ -55,14 +54,13 @@ std::string geojson_schema() {
   return titled(object_of({{"geojson", typed("string")}}), "foxglove.GeoJSON").dump();
 }
 
-// A GeoJSON point of ENU position `enu`, by the LocationFix's conversion.
+// A GeoJSON point (longitude, latitude, height on WGS-84) of ENU position `enu`.
 json geojson_point(const GeoAnchor& anchor, const Vector3& enu, json properties) {
-  const json fix = location_fix(0, anchor, enu, Eigen::Matrix3d::Zero());
-  return {
-      {"type", "Feature"},
-      {"geometry",
-       {{"type", "Point"}, {"coordinates", {fix["longitude"], fix["latitude"], fix["altitude"]}}}},
-      {"properties", std::move(properties)}};
+  const Vector3 geodetic = from_local_enu(anchor, enu);
+  return {{"type", "Feature"},
+          {"geometry",
+           {{"type", "Point"}, {"coordinates", {geodetic.y(), geodetic.x(), geodetic.z()}}}},
+          {"properties", std::move(properties)}};
 }
 
 }  // namespace
@@ -146,7 +144,7 @@ void PictureChannels::scene_messages(const PictureFrame& frame, std::uint64_t ns
   }
   for (const TruthPoint& a : frame.aircraft) {
     json e = entity(ns, fmt::format("aircraft/{}", a.target));
-    e["spheres"].push_back(shape(a.position, Vector3::Constant(kAircraftSize), kAircraftColor));
+    e["spheres"].push_back(shape(a.position, Vector3::Constant(kAircraftSize), kTruthColor));
     entities.push_back(std::move(e));
   }
   for (const ScanPositions& scan : frame.scans) {

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
+#include "report/json_values.hpp"
 #include "run/picture_round_check.hpp"
 
 namespace skyfuse::harness {
@@ -119,9 +120,7 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
       {"rounds_center_tracks_differ", summary.rounds_center_tracks_differ},
       {"discovery_s", summary.discovery_s},
       {"rounds_per_s", summary.rounds_per_s},
-      {"datagrams_received_per_round", summary.datagrams_per_round
-                                           ? nlohmann::json(*summary.datagrams_per_round)
-                                           : nlohmann::json(nullptr)},
+      {"datagrams_received_per_round", number_or_null(summary.datagrams_per_round)},
       {"cpu_ms_per_station_round", summary.cpu_ms_per_station_round},
       {"tracks_at_end", summary.tracks_at_end},
       {"confirmed_at_end", summary.confirmed_at_end},

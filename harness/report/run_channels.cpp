@@ -14,10 +14,8 @@ namespace {
 
 using namespace foxglove;  // NOLINT(google-build-using-namespace): this file's vocabulary
 
-constexpr Rgba kTruthColor{0.15, 0.70, 0.25, 1.0};
 constexpr Rgba kCenterColor{1.00, 0.55, 0.00, 1.0};
 constexpr Rgba kPeerColor{0.20, 0.45, 0.90, 1.0};
-constexpr Rgba kStationColor{0.45, 0.45, 0.50, 1.0};
 
 // What was refused, by whom and why: kind by its summary.json name; the harness is node -1.
 json refused_entries(const std::vector<Refusal>& refused) {

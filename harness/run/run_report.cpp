@@ -8,6 +8,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "report/json_values.hpp"
 #include "report/output_files.hpp"
 #include "report/statistics.hpp"
 #include "skyfuse/models/state_position.hpp"
@@ -368,9 +369,7 @@ std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t r
     full["max_abs_diff_mode_probability_central_vs_p2p"] =
         summary.max_abs_diff_mode_probability_central_vs_p2p;
   }
-  full["kernel"] = {{"datagrams_received_per_round",
-                     summary.datagrams_per_round ? nlohmann::json(*summary.datagrams_per_round)
-                                                 : nlohmann::json(nullptr)},
+  full["kernel"] = {{"datagrams_received_per_round", number_or_null(summary.datagrams_per_round)},
                     {"cpu_ms_per_station_round", summary.cpu_ms_per_station_round},
                     {"node_peak_resident_mib", summary.node_peak_resident_mib}};
   if (!summary.end_detail.empty()) full["end_detail"] = summary.end_detail;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "report/json_values.hpp"
 #include "report/output_files.hpp"
 #include "run/bench_scenario.hpp"
 #include "run/execute_run.hpp"
@@ -26,10 +27,6 @@ struct PictureScaleRow {
   std::string realtime_error;  ///< the real-time run failed
 };
 
-nlohmann::json optional_number(const std::optional<double>& v) {
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
-
 double share_in_time(const PictureRunSummary& s) {
   return s.steps == 0 ? 0.0 : static_cast<double>(s.rounds_in_time) / s.steps;
 }
@@ -40,7 +37,7 @@ nlohmann::json to_json(const PictureScaleRow& r) {
   if (r.lockstep) {
     const PictureRunSummary& s = *r.lockstep;
     row["lockstep"] = {{"rounds_per_s", s.rounds_per_s},
-                       {"datagrams_received_per_round", optional_number(s.datagrams_per_round)},
+                       {"datagrams_received_per_round", number_or_null(s.datagrams_per_round)},
                        {"cpu_ms_per_station_round", s.cpu_ms_per_station_round},
                        {"discovery_s", s.discovery_s},
                        {"peers_identical", s.peers_identical},
@@ -55,7 +52,7 @@ nlohmann::json to_json(const PictureScaleRow& r) {
                        {"steps", t.steps},
                        {"share_in_time", share_in_time(t)},
                        {"rounds_peers_apart", t.rounds_peers_apart},
-                       {"datagrams_received_per_round", optional_number(t.datagrams_per_round)},
+                       {"datagrams_received_per_round", number_or_null(t.datagrams_per_round)},
                        {"cpu_ms_per_station_round", t.cpu_ms_per_station_round}};
   }
   return row;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "report/json_values.hpp"
 #include "report/output_files.hpp"
 #include "run/bench_scenario.hpp"
 #include "run/execute_run.hpp"
@@ -30,10 +31,6 @@ struct ScaleRow {
   std::string realtime_error;  ///< the real-time run failed: the lock-step figures stand
 };
 
-nlohmann::json optional_number(const std::optional<double>& v) {
-  return v ? nlohmann::json(*v) : nlohmann::json(nullptr);
-}
-
 nlohmann::json to_json(const ScaleRow& r, int fanout) {
   nlohmann::json row = {{"exchange", r.exchange},
                         {"stations", r.stations},
@@ -47,7 +44,7 @@ nlohmann::json to_json(const ScaleRow& r, int fanout) {
   row["lockstep"] = {{"rounds_per_s", s.rounds_per_s},
                      {"round_latency_ms_p50", s.round_latency_us_p50 / 1e3},
                      {"round_latency_ms_p99", s.round_latency_us_p99 / 1e3},
-                     {"datagrams_received_per_round", optional_number(s.datagrams_per_round)},
+                     {"datagrams_received_per_round", number_or_null(s.datagrams_per_round)},
                      {"data_samples_per_round", samples_per_round(r.exchange, r.stations, fanout)},
                      {"cpu_ms_per_station_round", s.cpu_ms_per_station_round},
                      {"node_peak_resident_mib", s.node_peak_resident_mib},
@@ -61,7 +58,7 @@ nlohmann::json to_json(const ScaleRow& r, int fanout) {
                        {"rounds_all_inputs_in_time", t.rounds_all_inputs_in_time},
                        {"track_age_ms_p50", t.track_age_ms_p50},
                        {"track_age_ms_p99", t.track_age_ms_p99},
-                       {"datagrams_received_per_round", optional_number(t.datagrams_per_round)},
+                       {"datagrams_received_per_round", number_or_null(t.datagrams_per_round)},
                        {"cpu_ms_per_station_round", t.cpu_ms_per_station_round},
                        {"discovery_s", t.discovery_s}};
   }
