@@ -9,6 +9,7 @@ import { McapIndexedReader } from "@mcap/core";
 import uPlot from "uplot";
 import "uplot/dist/uPlot.min.css";
 import "./page.css";
+import { legendShowsLatest, showLatestInLegend } from "./plots.js";
 import { drawDetections, drawPicturePlots, drawTrackLabel, emptyPicture, onPicture, onPictureDeletion,
   onPictureEntity } from "./picture.js";
 
@@ -270,23 +271,18 @@ function drawErrors() {
     plotted = key;
     plot = new uPlot({
       width: 600, height: 300, scales: { x: { time: false }, y: { distr: 3 } },
+      // Away from the cursor the legend shows the latest round's errors, not dashes.
+      hooks: { ready: [legendShowsLatest] },
       axes: [{ label: "step" }, { label: "position error (m)" }],
       series: [{ label: "step" }, ...nodes.map((n) => ({
         label: nodeName(n), stroke: n === 0 ? COLORS.center : COLORS.peer, width: n === 0 ? 2 : 1,
         dash: n === 0 ? [8, 6] : undefined,
       }))],
     }, data, document.getElementById("errors"));
-    // Away from the cursor the legend shows the latest round's errors, not dashes.
-    plot.over.addEventListener("mouseleave", () => showLatestInLegend(plot));
   } else {
     plot.setData(data);
   }
   showLatestInLegend(plot);
-}
-
-function showLatestInLegend(u) {
-  const last = u.data[0].length - 1;
-  if (u.cursor.idx == null && last >= 0) u.setLegend({ idx: last });
 }
 
 // Row labels take the strip's left margin; with many stations only every few rows is named,

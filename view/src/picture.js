@@ -3,8 +3,9 @@
 // a GOSPA plot and the count of tracks against aircraft. main.js hands this module the scene's
 // entities it recognises and the /skyfuse/picture messages.
 import uPlot from "uplot";
+import { legendShowsLatest, showLatestInLegend } from "./plots.js";
 
-export const PICTURE_COLORS = { confirmed: "#3373e6", tentative: "#f2b31a", aircraft: "#26b340",
+const PICTURE_COLORS = { confirmed: "#3373e6", tentative: "#f2b31a", aircraft: "#26b340",
   detection: "#59596680", falseAlarm: "#d93333a0" };
 
 export function emptyPicture() {
@@ -73,10 +74,12 @@ const plots = { gospa: null, counts: null };
 
 function plotInto(name, element, options, data) {
   if (plots[name] === null) {
-    plots[name] = new uPlot({ width: 600, height: 220, scales: { x: { time: false } }, ...options }, data, element);
+    plots[name] = new uPlot({ width: 600, height: 220, scales: { x: { time: false } },
+      hooks: { ready: [legendShowsLatest] }, ...options }, data, element);
   } else {
     plots[name].setData(data);
   }
+  showLatestInLegend(plots[name]);
 }
 
 // The GOSPA of the first station's confirmed tracks, and the tracks against the aircraft present.
@@ -85,6 +88,8 @@ export function drawPicturePlots(view) {
   if (p.steps.length === 0) return;
   document.getElementById("picture-section").hidden = false;
   document.getElementById("errors-section").hidden = true;  // a run of one aircraft's
+  document.getElementById("run-legend").hidden = true;
+  document.getElementById("picture-legend").hidden = false;
   plotInto("gospa", document.getElementById("gospa"), {
     axes: [{ label: "step" }, { label: "GOSPA (m)" }],
     series: [{ label: "step" }, { label: "GOSPA", stroke: "#7b1fa2", width: 1.5 }],
@@ -101,11 +106,4 @@ export function drawPicturePlots(view) {
     `step ${last.step}: ${last.confirmed} confirmed and ${last.tentative} tentative tracks, ` +
     `${last.aircraft} aircraft; GOSPA ${last.gospa.toFixed(1)} m; ${last.detections} detections ` +
     `(${last.false_alarms} false alarms); peers ${last.peers_agree ? "agree" : "apart"} (digest ${last.digest})`;
-}
-
-export function resetPicturePlots() {
-  plots.gospa?.destroy();
-  plots.counts?.destroy();
-  plots.gospa = null;
-  plots.counts = null;
 }

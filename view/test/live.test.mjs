@@ -58,6 +58,18 @@ async function readRecording(path) {
   } });
 }
 
+// Every message of a recording, parsed, by "topic log-time".
+async function recordedPayloads(path) {
+  const reader = await readRecording(path);
+  const decoder = new TextDecoder();
+  const recorded = new Map();
+  for await (const m of reader.readMessages()) {
+    recorded.set(`${reader.channelsById.get(m.channelId).topic} ${m.logTime}`,
+      JSON.parse(decoder.decode(m.data)));
+  }
+  return recorded;
+}
+
 function connect(port) {
   return new WebSocket(`ws://127.0.0.1:${port}`, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]);
 }
@@ -144,13 +156,7 @@ test("a live run streams every channel to its last round, and ignores what it do
 
     // The stream and the recording of the run are one: every message streamed is in the
     // recording at the same log time on the same channel, with the same payload.
-    const recorded = new Map();  // topic + log time -> payload
-    const reader = await readRecording(recording);
-    const decoderOfFile = new TextDecoder();
-    for await (const m of reader.readMessages()) {
-      recorded.set(`${reader.channelsById.get(m.channelId).topic} ${m.logTime}`,
-        JSON.parse(decoderOfFile.decode(m.data)));
-    }
+    const recorded = await recordedPayloads(recording);
     let compared = 0;
     for (const [topic, list] of payloads) {
       for (const { __log_time, ...message } of list) {
@@ -247,7 +253,6 @@ test("a live run of many aircraft streams the picture of every round, as its rec
     const { port, exited } = startLiveRun(dir, { runSteps, record: recording,
       scenario: join(scenarios, "uam-city.yaml") });
     const { client, channels, payloads } = subscribeToEverything(await port);
-    const decoder = new TextDecoder();
     const { code, output } = await exited;
     assert.equal(code, 0, output);
     client.close();
@@ -273,12 +278,7 @@ test("a live run of many aircraft streams the picture of every round, as its rec
 
     // Every message as the recording holds it; the first scene streamed may also delete what
     // left before the client came, which the recording deleted as it left.
-    const recorded = new Map();
-    const reader = await readRecording(recording);
-    for await (const m of reader.readMessages()) {
-      recorded.set(`${reader.channelsById.get(m.channelId).topic} ${m.logTime}`,
-        JSON.parse(decoder.decode(m.data)));
-    }
+    const recorded = await recordedPayloads(recording);
     let compared = 0;
     for (const [topic, list] of payloads) {
       list.forEach(({ __log_time, ...message }, i) => {

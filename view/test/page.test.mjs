@@ -43,6 +43,17 @@ function opaqueColours(page, selector) {
   }, selector);
 }
 
+// Records a run (`runArgs` after `skyfuse run`) into `file`, next to it its results, and serves
+// the recording with `skyfuse view`: the server process and the page's address.
+async function recordAndServe(file, runArgs) {
+  const recorded = spawn(skyfuse, ["run", ...runArgs, "--domain", domain, "--out", `${file}.out`,
+    "--record", file], { stdio: "ignore" });
+  assert.equal(await new Promise((resolve) => recorded.on("exit", resolve)), 0);
+  const server = spawn(skyfuse, ["view", file, "--port", "0"], { stdio: ["ignore", "pipe", "pipe"] });
+  const [url] = await untilLine(server, /http:\/\/127\.0\.0\.1:\d+\/\?recording=run\.mcap&name=run\.mcap/);
+  return { server, url };
+}
+
 const launchOptions = {
   executablePath: browserPath,
   args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -56,11 +67,8 @@ test("skyfuse view shows a recording, and its slider moves through the rounds", 
   let server = null;
   try {
     const file = join(dir, "run.mcap");
-    const recorded = spawn(skyfuse, ["run", "--stations", "4", "--steps", "200", "--domain", domain,
-      "--out", join(dir, "out"), "--record", file], { stdio: "ignore" });
-    assert.equal(await new Promise((resolve) => recorded.on("exit", resolve)), 0);
-    server = spawn(skyfuse, ["view", file, "--port", "0"], { stdio: ["ignore", "pipe", "pipe"] });
-    const [url] = await untilLine(server, /http:\/\/127\.0\.0\.1:\d+\/\?recording=run\.mcap&name=run\.mcap/);
+    let url;
+    ({ server, url } = await recordAndServe(file, ["--stations", "4", "--steps", "200"]));
     const page = await browser.newPage({ viewport: { width: 1400, height: 800 } });
     const errors = [];
     page.on("pageerror", (e) => errors.push(e.message));
@@ -97,13 +105,10 @@ test("skyfuse view shows a run of many aircraft: every track labelled, the scans
   const browser = await chromium.launch(launchOptions);
   let server = null;
   try {
-    const file = join(dir, "run.mcap");
     const rounds = 120;
-    const recorded = spawn(skyfuse, ["run", "--scenario", join(scenarios, "uam-city.yaml"), "--steps", String(rounds),
-      "--domain", domain, "--out", join(dir, "out"), "--record", file], { stdio: "ignore" });
-    assert.equal(await new Promise((resolve) => recorded.on("exit", resolve)), 0);
-    server = spawn(skyfuse, ["view", file, "--port", "0"], { stdio: ["ignore", "pipe", "pipe"] });
-    const [url] = await untilLine(server, /http:\/\/127\.0\.0\.1:\d+\/\?recording=run\.mcap&name=run\.mcap/);
+    let url;
+    ({ server, url } = await recordAndServe(join(dir, "run.mcap"),
+      ["--scenario", join(scenarios, "uam-city.yaml"), "--steps", String(rounds)]));
     const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
     const errors = [];
     page.on("pageerror", (e) => errors.push(e.message));
