@@ -18,6 +18,7 @@
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/picture_nodes.hpp"
 #include "skyfuse/transport/picture_scans.hpp"
+#include "skyfuse/transport/picture_track_writer.hpp"
 
 namespace skyfuse::center {
 namespace {
@@ -42,6 +43,7 @@ class PictureCenter {
         scans_in_(ids_, options.run_id,
                   plan_.scenario.traffic->tracker.association.max_detections_per_scan),
         rounds_(node_.make_writer<wire::PictureRound>()),
+        tracks_(node_),
         picture_(CenterStackedTracks<Model, Sensor>(make_motion_model<Model>(plan_.scenario),
                                                     plan_.scenario.filter.initial_covariance_diag),
                  known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run),
@@ -94,6 +96,8 @@ class PictureCenter {
     rounds_.write(transport::picture_round_to_wire(
         picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
         static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size())));
+    tracks_.publish(picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
+                    wire::CENTRAL);
     scans_in_.advance();
     return std::nullopt;
   }
@@ -115,6 +119,7 @@ class PictureCenter {
   transport::NodeLoop<wire::PictureScan> loop_;
   transport::PictureScans<Sensor> scans_in_;
   transport::Writer<wire::PictureRound> rounds_;
+  transport::PictureTrackWriter tracks_;
   Picture picture_;
   std::vector<Scan<M>> scans_;
 };

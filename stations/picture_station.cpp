@@ -21,6 +21,7 @@
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/picture_exchange.hpp"
 #include "skyfuse/transport/picture_nodes.hpp"
+#include "skyfuse/transport/picture_track_writer.hpp"
 
 namespace skyfuse::station {
 namespace {
@@ -51,6 +52,7 @@ class PictureStation {
         exchange_(node_, known_, options.node.run_id,
                   plan_.scenario.traffic->tracker.association.max_detections_per_scan),
         rounds_(node_.make_writer<wire::PictureRound>()),
+        tracks_(node_),
         states_out_(node_.make_writer<wire::PictureState>()),
         states_in_(node_.make_reader<wire::PictureState>()),
         picture_(Tracks(make_motion_model<Model>(plan_.scenario),
@@ -142,6 +144,7 @@ class PictureStation {
     rounds_.write(transport::picture_round_to_wire(picture_, options_.node.run_id, step,
                                                    options_.id,
                                                    static_cast<std::uint32_t>(reports.size())));
+    tracks_.publish(picture_, options_.node.run_id, step, options_.id, wire::PEER);
     exchange_.advance();
     return std::nullopt;
   }
@@ -221,6 +224,7 @@ class PictureStation {
   transport::NodeLoop<wire::PictureScan> loop_;
   Exchange exchange_;
   transport::Writer<wire::PictureRound> rounds_;
+  transport::PictureTrackWriter tracks_;
   transport::Writer<wire::PictureState> states_out_;
   transport::Reader<wire::PictureState> states_in_;
   Picture picture_;

@@ -39,9 +39,9 @@ std::vector<int> with_center(std::vector<int> ids) {
 }
 
 // What is wrong with a track whatever its step and source's place in the run: another run, a
-// mode that does not match its source, numbers that are not finite, mode probabilities that are
-// not the run's. The harness records what the nodes fused, so it refuses what they refuse;
-// lock-step and real time alike.
+// mode that does not match its source, a track other than the one aircraft's, numbers that are
+// not finite, mode probabilities that are not the run's. The harness records what the nodes fused,
+// so it refuses what they refuse; lock-step and real time alike.
 std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
                                               const std::optional<DynamicGaussianState>& estimate,
                                               std::uint64_t run_id, std::size_t modes) {
@@ -49,6 +49,8 @@ std::optional<DropKind> track_content_refusal(const wire::TrackEstimate& t,
   if ((t.mode() == wire::CENTRAL) != (t.source_id() == kCenterNodeId)) {
     return DropKind::kUnknownStation;
   }
+  // A run of one aircraft has the one track 0, always confirmed.
+  if (t.track_id() != 0 || !t.confirmed()) return DropKind::kOutOfRange;
   if (!estimate) return DropKind::kOutOfRange;  // not the run's state dimension
   if (!estimate->mean.allFinite() || !estimate->covariance.allFinite()) {
     return DropKind::kNonFinite;

@@ -5,13 +5,17 @@
 // from the writers' durable history, before that source writes its next one.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cinttypes>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "integration/run_fixture.hpp"
+#include "skyfuse/multitarget/picture_digest.hpp"
 
 namespace skyfuse::test {
 namespace {
@@ -22,16 +26,22 @@ constexpr int kDomain = 201;
 constexpr int kStations = 4;
 constexpr int kSources = kStations + 1;  // and the center
 constexpr int kSteps = 20;
+constexpr int kPictureDomain = 202;
 
-// A line of the reader's CSV: step,source,settled,written_ns,matched_ns,received_ns,x0,x1,...
+// A line of the reader's CSV:
+//   step,source,track,status,settled,written_ns,matched_ns,received_ns,n,x0..,p0_0,p0_1,..
+// status "deleted": a disposed track, with only source, track and the times.
 struct ReceivedTrack {
-  int step = 0;
+  int step = -1;
   int source = 0;
+  std::uint64_t track = 0;
+  std::string status;
   bool settled = false;
   long long written_ns = 0;
   long long matched_ns = 0;  // when the reader matched the writer
   long long received_ns = 0;
   std::vector<double> x;
+  std::vector<double> covariance;  // the upper triangle, row by row
 };
 
 struct ReaderOutput {
@@ -52,9 +62,12 @@ ReaderOutput read_reader_output(const std::filesystem::path& csv) {
     std::string f;
     ReceivedTrack t;
     std::getline(fields, f, ',');
-    t.step = std::stoi(f);
+    if (!f.empty()) t.step = std::stoi(f);
     std::getline(fields, f, ',');
     t.source = std::stoi(f);
+    std::getline(fields, f, ',');
+    t.track = std::stoull(f);
+    std::getline(fields, t.status, ',');
     std::getline(fields, f, ',');
     t.settled = f == "1";
     std::getline(fields, f, ',');
@@ -63,7 +76,12 @@ ReaderOutput read_reader_output(const std::filesystem::path& csv) {
     t.matched_ns = std::stoll(f);
     std::getline(fields, f, ',');
     t.received_ns = std::stoll(f);
-    while (std::getline(fields, f, ',')) t.x.push_back(std::strtod(f.c_str(), nullptr));
+    std::getline(fields, f, ',');
+    const std::size_t n = std::stoul(f);
+    while (std::getline(fields, f, ',')) {
+      (t.x.size() < n ? t.x : t.covariance).push_back(std::strtod(f.c_str(), nullptr));
+    }
+    EXPECT_EQ(t.covariance.size(), n * (n + 1) / 2) << line;
     out.tracks.push_back(std::move(t));
   }
   return out;
@@ -148,6 +166,8 @@ TEST(DdsInterop, ACycloneDdsReaderGetsEveryTrackAndALateJoinerEachSourcesLatestA
     std::map<std::pair<int, int>, int> seen;
     for (const ReceivedTrack& t : every.tracks) {
       EXPECT_FALSE(t.settled);
+      EXPECT_EQ(t.track, 0u) << file;  // one aircraft: its track 0, confirmed
+      EXPECT_EQ(t.status, "confirmed") << file;
       EXPECT_EQ(difference_from_csv(t, csv), std::nullopt) << file;
       ++seen[{t.step, t.source}];
     }
@@ -185,6 +205,172 @@ TEST(DdsInterop, ACycloneDdsReaderGetsEveryTrackAndALateJoinerEachSourcesLatestA
         << "source " << source << ": its latest track came only after it wrote the next one";
     EXPECT_GT(newest_history->step, 0) << "source " << source << ": not joined mid-run";
   }
+}
+
+// Three aircraft over four radars with clutter; the second leaves after 5 s, so its tracks are
+// dropped after 5 misses and their instances disposed. Scans every 0.5 s on the wall clock, so
+// that the reader, which matches each writer as it appears, has matched them all before the
+// first round (a writer keeps only each track's latest sample for a reader that comes late).
+constexpr const char* kPictureScenario = R"(name: interop-picture
+seed: 20261127
+time_step_s: 0.5
+steps: 30
+traffic:
+  targets:
+    - {initial_position_m: [-2000.0, -1500.0, 300.0], heading_deg: 30.0, speeds_kmh: [120]}
+    - {initial_position_m: [1500.0, 0.0, 200.0], heading_deg: 180.0, speeds_kmh: [90],
+       leaves_s: 5.0}
+    - {initial_position_m: [0.0, 2500.0, 400.0], heading_deg: 270.0, speeds_kmh: [150],
+       appears_s: 2.5}
+detection:
+  probability: 0.9
+  max_range_m: 12000.0
+  min_elevation_deg: 0.0
+  clutter_per_scan: 2.0
+tracker:
+  confirm: [2, 3]
+  delete_after_misses: 5
+  initiation: {min_stations: 2, velocity_std_mps: 60.0}
+metrics:
+  gospa_cutoff_m: 50.0
+stations:
+  - id: 1
+    position_m: [-4500.0, -4500.0, 60.0]
+    sensor: &radar {kind: range_azimuth_elevation, noise_std: [5.0, 0.0026, 0.0026]}
+  - {id: 2, position_m: [4500.0, -4500.0, 80.0], sensor: *radar}
+  - {id: 3, position_m: [4500.0, 4500.0, 70.0], sensor: *radar}
+  - {id: 4, position_m: [-4500.0, 4500.0, 90.0], sensor: *radar}
+measurement_noise:
+  scale: none
+filter:
+  kind: ekf
+  motion_model:
+    kind: constant_velocity_3d
+    process_noise_std: {position_m: 0.5, velocity_mps: 2.0}
+  initial_covariance_diag: 100.0
+)";
+
+// A node's row of picture_rounds.csv.
+struct PictureRow {
+  std::uint64_t digest = 0;
+  std::size_t tracks = 0;
+  std::size_t confirmed = 0;
+};
+
+std::map<std::pair<int, int>, PictureRow> read_picture_rounds(const std::filesystem::path& csv) {
+  std::map<std::pair<int, int>, PictureRow> rows;  // (step, node)
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("step,station,picture_digest,tracks,confirmed,", 0), 0u) << line;
+  while (std::getline(in, line)) {
+    int step = 0;
+    int node = 0;
+    PictureRow row;
+    EXPECT_EQ(std::sscanf(line.c_str(), "%d,%d,%" SCNx64 ",%zu,%zu", &step, &node, &row.digest,
+                          &row.tracks, &row.confirmed),
+              5)
+        << line;
+    rows[{step, node}] = row;
+  }
+  return rows;
+}
+
+// The digest of the tracks a reader received for one node and round, computed as the node
+// computes its own (PictureDigest): ascending track id, the covariance made whole from its
+// upper triangle (the pictures' covariances are symmetric bit for bit).
+std::uint64_t digest_of(std::vector<const ReceivedTrack*> tracks) {
+  std::sort(tracks.begin(), tracks.end(),
+            [](const ReceivedTrack* a, const ReceivedTrack* b) { return a->track < b->track; });
+  PictureDigest digest(tracks.size());
+  for (const ReceivedTrack* t : tracks) {
+    const auto n = static_cast<Eigen::Index>(t->x.size());
+    const Eigen::VectorXd mean = Eigen::Map<const Eigen::VectorXd>(t->x.data(), n);
+    Eigen::MatrixXd covariance(n, n);
+    std::size_t k = 0;
+    for (Eigen::Index r = 0; r < n; ++r) {
+      for (Eigen::Index c = r; c < n; ++c) covariance(r, c) = covariance(c, r) = t->covariance[k++];
+    }
+    digest.add(t->track,
+               t->status == "confirmed" ? TrackStatus::kConfirmed : TrackStatus::kTentative, mean,
+               covariance);
+  }
+  return digest.value();
+}
+
+TEST(DdsInterop, ACycloneDdsReaderHoldsEveryNodesPictureAndSeesEachDroppedTrackDisposed) {
+  const std::string reader = bin("skyfuse-cyclone-tracks");
+  if (!std::filesystem::exists(reader)) {
+    GTEST_SKIP() << "Cyclone DDS was not found when the build was configured";
+  }
+  const auto dir = test_dir();
+  std::ofstream(dir / "picture.yaml") << kPictureScenario;
+  const std::string domain = std::to_string(kPictureDomain);
+  Process cyclone(
+      {reader, "--domain", domain, "--out", (dir / "every.csv").string(), "--timeout-s", "150"},
+      dir / "every.log");
+  const Completed run = run_to_completion(
+      {bin("skyfuse"), "run", "--scenario", (dir / "picture.yaml").string(), "--domain", domain,
+       "--realtime-deadline-ms", "200", "--out", (dir / "run").string()},
+      dir / "run.log", 120s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  const auto cyclone_status = cyclone.wait(60s);
+  ASSERT_TRUE(cyclone_status && cyclone_status->code == 0) << cyclone.output();
+
+  const auto rounds = read_picture_rounds(dir / "run" / "picture_rounds.csv");
+  ASSERT_EQ(rounds.size(), 30u * 5u);  // 30 rounds, 4 stations and the center
+  const ReaderOutput received = read_reader_output(dir / "every.csv");
+  std::map<std::pair<int, int>, std::vector<const ReceivedTrack*>> tracks;  // (step, node)
+  std::set<std::pair<int, std::uint64_t>> deleted;                          // (node, track)
+  for (const ReceivedTrack& t : received.tracks) {
+    if (t.status == "deleted") {
+      EXPECT_TRUE(deleted.insert({t.source, t.track}).second) << "track disposed twice";
+    } else {
+      tracks[{t.step, t.source}].push_back(&t);
+    }
+  }
+
+  // A node writes its tracks while a reader is matched: from the first round after it matched
+  // this one, which on the wall clock at 0.5 s a round is the first round or the next.
+  std::map<int, int> first_round;  // node -> the first round the reader got from it
+  for (const auto& [key, got] : tracks) {
+    if (!first_round.contains(key.second)) first_round[key.second] = key.first;
+  }
+  ASSERT_EQ(first_round.size(), 5u) << "a node's tracks never reached the reader";
+  for (const auto& [node, step] : first_round) EXPECT_LE(step, 1) << "node " << node;
+
+  // From then on every node's picture of every round, whole and bit for bit: its digest is
+  // the node's.
+  for (const auto& [key, row] : rounds) {
+    const auto& [step, node] = key;
+    if (step < first_round[node]) continue;
+    const auto& got = tracks[key];
+    EXPECT_EQ(got.size(), row.tracks) << "step " << step << " node " << node;
+    EXPECT_EQ(std::count_if(got.begin(), got.end(),
+                            [](const ReceivedTrack* t) { return t->status == "confirmed"; }),
+              static_cast<long>(row.confirmed))
+        << "step " << step << " node " << node;
+    EXPECT_EQ(digest_of(got), row.digest) << "step " << step << " node " << node;
+  }
+  for (const auto& [key, got] : tracks) {
+    EXPECT_TRUE(rounds.contains(key)) << "tracks of a round the run did not have";
+  }
+
+  // A track in a node's picture that the next round's does not hold was disposed; none other.
+  std::set<std::pair<int, std::uint64_t>> dropped;
+  for (const auto& [key, row] : rounds) {
+    const auto& [step, node] = key;
+    if (step < first_round[node]) continue;
+    const auto next = tracks.find({step + 1, node});
+    if (next == tracks.end()) continue;
+    for (const ReceivedTrack* t : tracks[key]) {
+      const bool kept = std::any_of(next->second.begin(), next->second.end(),
+                                    [&](const ReceivedTrack* u) { return u->track == t->track; });
+      if (!kept) dropped.insert({node, t->track});
+    }
+  }
+  EXPECT_FALSE(dropped.empty()) << "the aircraft that left was never dropped: nothing tested";
+  EXPECT_EQ(deleted, dropped);
 }
 
 }  // namespace

@@ -68,8 +68,14 @@ bool is_status_topic(const std::string& topic) {
 bool is_track_topic(const std::string& topic) {
   return topic == "skyfuse_track" || topic == "skyfuse_picture_round";
 }
+// A picture's tracks on skyfuse_track: up to kMaxPictureTracks instances a writer, the last
+// sample of each. At 64 a track (the single track's depth) a node of a 1 000-aircraft picture
+// would keep 64 000 samples of up to 2.3 KB for late joiners.
+bool is_picture_track_profile(const std::string& profile) {
+  return profile == kPictureTrackProfile;
+}
 bool is_keyed_topic(const std::string& topic) {
-  return is_status_topic(topic) || is_track_topic(topic);
+  return is_status_topic(topic) || is_track_topic(topic) || is_picture_track_profile(topic);
 }
 // A source's instances: its live and its settled tracks, or its status. The center is source 0.
 constexpr int kMaxInstances = 2 * (kMaxStations + 1);
@@ -239,19 +245,25 @@ void QosProfiles::announce_to_peers_only(dds::DomainParticipantQos& qos) const {
 }
 
 dds::DataWriterQos QosProfiles::writer(const dds::Publisher& publisher,
-                                       const std::string& topic) const {
+                                       const std::string& profile) const {
   dds::DataWriterQos qos = dds::DATAWRITER_QOS_DEFAULT;
-  if (publisher.get_datawriter_qos_from_profile(topic + "_writer", qos) ==
+  if (publisher.get_datawriter_qos_from_profile(profile + "_writer", qos) ==
       ReturnCode_t::RETCODE_OK) {
     return qos;
   }
-  apply_common(qos, topic, best_effort_data_);
-  if (is_status_topic(topic)) {
+  apply_common(qos, profile, best_effort_data_);
+  if (is_status_topic(profile)) {
     qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
     qos.history().depth = 1;
-  } else if (is_track_topic(topic)) {
+  } else if (is_track_topic(profile)) {
     qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
     qos.history().depth = kSamplesPerInstance;
+  } else if (is_picture_track_profile(profile)) {
+    qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+    qos.history().depth = 1;
+    qos.resource_limits().max_instances = kMaxPictureTracks;
+    qos.resource_limits().max_samples_per_instance = 1;
+    qos.resource_limits().max_samples = kMaxPictureTracks;
   }
   qos.reliability().max_blocking_time = kMaxBlockingTime;
   qos.reliable_writer_qos().times.heartbeatPeriod = kHeartbeatPeriod;

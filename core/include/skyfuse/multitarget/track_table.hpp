@@ -16,9 +16,9 @@
 #include <utility>
 #include <vector>
 
-#include "skyfuse/core/bit_digest.hpp"
 #include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/multitarget/initiation.hpp"
+#include "skyfuse/multitarget/picture_digest.hpp"
 #include "skyfuse/multitarget/scan_assignment.hpp"
 #include "skyfuse/multitarget/track.hpp"
 #include "skyfuse/multitarget/track_management.hpp"
@@ -100,13 +100,9 @@ class TrackTable {
   /// bit): equal at two nodes that hold the same picture, and different, but for a chance of
   /// 2^-64, where they do not. A station publishes its predicted picture's with its scan.
   std::uint64_t digest() const {
-    BitDigest digest;
-    digest.add(static_cast<std::uint64_t>(tracks_.size()));
+    PictureDigest digest(tracks_.size());
     for (std::size_t i = 0; i < tracks_.size(); ++i) {
-      digest.add(tracks_[i].id);
-      digest.add(static_cast<std::uint64_t>(tracks_[i].status));
-      digest.add(estimates_[i].mean);
-      digest.add(estimates_[i].covariance);
+      digest.add(tracks_[i].id, tracks_[i].status, estimates_[i].mean, estimates_[i].covariance);
     }
     return digest.value();
   }

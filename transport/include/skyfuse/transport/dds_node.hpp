@@ -73,6 +73,15 @@ class Writer {
       throw DdsError(std::string("write failed on topic ") + TopicTraits<T>::kName);
     }
   }
+  /// Ends the instance of `sample`'s key (a keyed topic): readers see it disposed, since Fast
+  /// DDS disposes an instance its writer unregisters (autodispose_unregistered_instances), and
+  /// the writer may reuse its place. Throws DdsError if Fast DDS refuses.
+  void unregister(const T& sample) {
+    if (writer_->unregister_instance(const_cast<T*>(&sample), dds::HANDLE_NIL) !=
+        ReturnCode_t::RETCODE_OK) {
+      throw DdsError(std::string("unregister failed on topic ") + TopicTraits<T>::kName);
+    }
+  }
   /// Waits until every matched reader acknowledged every sample: call before exiting, or the
   /// last samples may die with the participant.
   bool wait_acknowledged(std::chrono::microseconds timeout) {
@@ -154,12 +163,14 @@ class DdsNode {
   /// A writer of T's topic. With `partitions` (DDS partition names), its own publisher in them:
   /// it matches only readers in one of them, and the others never receive its samples (the
   /// tree exchange's clusters). Without, the node's publisher, in the default partition.
+  /// `profile` names its QoS (QosProfiles::writer): the topic's own unless the writer keeps
+  /// its samples otherwise (a picture's tracks: kPictureTrackProfile).
   template <typename T>
-  Writer<T> make_writer(const std::vector<std::string>& partitions = {}) {
+  Writer<T> make_writer(const std::vector<std::string>& partitions = {},
+                        const std::string& profile = TopicTraits<T>::kName) {
     dds::Topic* topic = topic_for<T>();
     dds::Publisher* publisher = partitions.empty() ? publisher_ : publisher_in(partitions);
-    dds::DataWriter* writer =
-        publisher->create_datawriter(topic, qos_.writer(*publisher, TopicTraits<T>::kName));
+    dds::DataWriter* writer = publisher->create_datawriter(topic, qos_.writer(*publisher, profile));
     if (writer == nullptr)
       throw DdsError(std::string("cannot create writer for ") + topic->get_name());
     return Writer<T>(writer);

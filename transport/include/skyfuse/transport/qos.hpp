@@ -55,6 +55,13 @@ inline constexpr const char* kMulticastGroup = "239.255.0.1";
 /// that a process receives only the topics it reads.
 std::optional<int> multicast_port(std::string_view topic, int domain_id);
 
+/// The QoS profile of a writer of a picture's tracks on `skyfuse_track`: a track an instance,
+/// the latest sample of each kept for a reader that joins late.
+inline constexpr const char* kPictureTrackProfile = "skyfuse_picture_track";
+/// The most tracks such a writer holds at once (a picture's tracks; a dropped track's place is
+/// freed when its writer unregisters it).
+inline constexpr int kMaxPictureTracks = 16384;
+
 class QosProfiles {
  public:
   /// Loads `xml_file` if given; a file that does not load is an error, not a silent default.
@@ -71,8 +78,10 @@ class QosProfiles {
   bool multicast() const { return !user_participant_ && !network_.discovery_server; }
 
   eprosima::fastdds::dds::DomainParticipantQos participant(const std::string& name) const;
+  /// A writer's QoS by its profile: the topic's name, or kPictureTrackProfile. An XML profile
+  /// named `<profile>_writer` replaces the built-in one.
   eprosima::fastdds::dds::DataWriterQos writer(const eprosima::fastdds::dds::Publisher& publisher,
-                                               const std::string& topic) const;
+                                               const std::string& profile) const;
   eprosima::fastdds::dds::DataReaderQos reader(const eprosima::fastdds::dds::Subscriber& subscriber,
                                                const std::string& topic) const;
 

@@ -150,6 +150,8 @@ wire::TrackEstimate to_wire(const GaussianState<N>& estimate, std::uint64_t run_
   sample.run_id(run_id);
   sample.step(step);
   sample.source_id(source_id);
+  sample.track_id(0);  // the one aircraft's track
+  sample.confirmed(true);
   sample.mode(mode);
   sample.x(pack_vector<N>(estimate.mean));
   sample.covariance(pack_upper<N>(estimate.covariance));
