@@ -89,6 +89,39 @@ bool disturbed(const StationRounds& rounds, int step, int stations) {
                      [&](const auto& row) { return row.second.scans_fused < stations; });
 }
 
+// Checks every node's row of the run in `out` against an in-process run of `scenario_file`
+// with `stations` stations and `steps` steps: the stations' pictures are its peers' and the
+// center's its center's, bit for bit, in every round. Returns the most confirmed tracks a node
+// held.
+std::size_t expect_every_node_is_in_process(const std::filesystem::path& out,
+                                            const std::filesystem::path& scenario_file,
+                                            int stations, int steps) {
+  const PicturePlan plan =
+      make_picture_plan(load_scenario_file(scenario_file), stations_and_steps(stations, steps));
+  const PictureRunResult twin =
+      run_picture(plan.scenario, build_traffic_truth(plan.scenario).targets, stations, 0);
+  EXPECT_EQ(twin.peer_digests.size(), static_cast<std::size_t>(steps));
+  EXPECT_EQ(twin.center_digests.size(), static_cast<std::size_t>(steps));
+  const StationRounds rounds = node_rounds(out / "picture_rounds.csv");
+  EXPECT_EQ(rounds.size(), static_cast<std::size_t>(steps));
+  std::size_t confirmed_seen = 0;
+  for (const auto& [step, nodes] : rounds) {
+    if (step >= steps) {
+      ADD_FAILURE() << "a round past the run: " << step;
+      continue;
+    }
+    EXPECT_EQ(nodes.size(), static_cast<std::size_t>(stations + 1))
+        << "step " << step;  // the stations and the center
+    for (const auto& [node, row] : nodes) {
+      const auto& expected = node == 0 ? twin.center_digests : twin.peer_digests;
+      EXPECT_EQ(row.digest, fmt::format("{:016x}", expected[static_cast<std::size_t>(step)]))
+          << (node == 0 ? "the center" : "station " + std::to_string(node)) << ", step " << step;
+      confirmed_seen = std::max(confirmed_seen, row.confirmed);
+    }
+  }
+  return confirmed_seen;
+}
+
 TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
   constexpr int kStations = 4;
   constexpr int kSteps = 120;
@@ -98,28 +131,8 @@ TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
        "--steps", std::to_string(kSteps), "--domain", "98", "--out", (dir / "out").string()},
       dir / "out.log", 180s);
   ASSERT_EQ(run.status.code, 0) << run.output;
-
-  const PicturePlan plan =
-      make_picture_plan(load_scenario_file(kCity), stations_and_steps(kStations, kSteps));
-  const PictureRunResult twin =
-      run_picture(plan.scenario, build_traffic_truth(plan.scenario).targets, kStations, 0);
-  ASSERT_EQ(twin.peer_digests.size(), static_cast<std::size_t>(kSteps));
-  ASSERT_EQ(twin.center_digests.size(), static_cast<std::size_t>(kSteps));
-
-  const StationRounds rounds = node_rounds(dir / "out" / "picture_rounds.csv");
-  ASSERT_EQ(rounds.size(), static_cast<std::size_t>(kSteps));
-  std::size_t confirmed_seen = 0;
-  for (const auto& [step, nodes] : rounds) {
-    ASSERT_LT(step, kSteps);
-    EXPECT_EQ(nodes.size(), static_cast<std::size_t>(kStations + 1))
-        << "step " << step;  // the stations and the center
-    for (const auto& [node, row] : nodes) {
-      const auto& expected = node == 0 ? twin.center_digests : twin.peer_digests;
-      EXPECT_EQ(row.digest, fmt::format("{:016x}", expected[static_cast<std::size_t>(step)]))
-          << (node == 0 ? "the center" : "station " + std::to_string(node)) << ", step " << step;
-      confirmed_seen = std::max(confirmed_seen, row.confirmed);
-    }
-  }
+  const std::size_t confirmed_seen =
+      expect_every_node_is_in_process(dir / "out", kCity, kStations, kSteps);
   EXPECT_GE(confirmed_seen, 10U) << "the stations confirmed tracks of the city's aircraft";
 
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
@@ -129,8 +142,81 @@ TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
   // Central and peer-to-peer: the same tracks, states within 1e-9.
   EXPECT_EQ(summary.at("rounds_center_tracks_differ").get<int>(), 0);
   EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
+  // The last round's picture, which the rows above held to the in-process run's.
   EXPECT_EQ(summary.at("picture_digest_at_end").get<std::string>(),
-            fmt::format("{:016x}", twin.peer_digests.back()));
+            node_rounds(dir / "out" / "picture_rounds.csv").at(kSteps - 1).at(1).digest);
+}
+
+// The other filter parts a picture runs over DDS: uam-city with its filter changed, each run
+// checked against this test's own in-process run, every node in every round, and the center
+// against the peers.
+struct FilterVariant {
+  const char* name;
+  const char* from;  // uam-city's line
+  const char* to;
+  int domain;
+};
+
+class DdsPictureFilter : public ::testing::TestWithParam<FilterVariant> {};
+
+TEST_P(DdsPictureFilter, EveryNodeHoldsItsInProcessPictureBitForBit) {
+  constexpr int kStations = 4;
+  constexpr int kSteps = 60;
+  const FilterVariant& variant = GetParam();
+  const auto dir = test_dir();
+  std::string text = read_file(kCity);
+  const auto at = text.find(variant.from);
+  ASSERT_NE(at, std::string::npos) << variant.from;
+  text.replace(at, std::string_view(variant.from).size(), variant.to);
+  const auto scenario_path = dir / "city.yaml";
+  std::ofstream(scenario_path) << text;
+
+  const Completed run =
+      run_to_completion({bin("skyfuse"), "run", "--scenario", scenario_path.string(), "--stations",
+                         std::to_string(kStations), "--steps", std::to_string(kSteps), "--domain",
+                         std::to_string(variant.domain), "--out", (dir / "out").string()},
+                        dir / "out.log", 180s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  const std::size_t confirmed_seen =
+      expect_every_node_is_in_process(dir / "out", scenario_path, kStations, kSteps);
+  EXPECT_GE(confirmed_seen, 10U) << "the stations confirmed tracks of the city's aircraft";
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_EQ(summary.at("rounds_center_tracks_differ").get<int>(), 0);
+  EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Parts, DdsPictureFilter,
+    ::testing::Values(
+        FilterVariant{"UkfOnConstantVelocity", "filter:\n  kind: ekf", "filter:\n  kind: ukf", 212},
+        FilterVariant{"EkfOnConstantAcceleration",
+                      "kind: constant_velocity_3d\n    process_noise_std: {position_m: 0.5, "
+                      "velocity_mps: 2.0}",
+                      "kind: constant_acceleration_3d\n    process_noise_std: {position_m: 0.5, "
+                      "velocity_mps: 1.0, acceleration_mps2: 1.0}",
+                      213}),
+    [](const ::testing::TestParamInfo<FilterVariant>& param) { return param.param.name; });
+
+// An IMM picture is refused before any process starts, saying why.
+TEST(DdsPicture, AnImmPictureIsRefusedBeforeAnyProcessStarts) {
+  const auto dir = test_dir();
+  std::string text = read_file(kCity);
+  const std::string from = text.substr(text.find("filter:\n  kind: ekf"));
+  const std::string imm =
+      "filter:\n  kind: imm\n  imm:\n    constant_velocity: {position_m: 0.5, velocity_mps: 2.0}\n"
+      "    coordinated_turn: {position_m: 0.5, velocity_mps: 2.0, turn_rate_radps: 0.01}\n"
+      "    stay_probability: 0.95\n    initial_turn_rate_variance: 1.0e-3\n  motion_model:\n"
+      "    kind: constant_acceleration_3d\n    process_noise_std: {position_m: 0.5, "
+      "velocity_mps: 1.0, acceleration_mps2: 1.0}\n  initial_covariance_diag: 100.0\n";
+  text.replace(text.find(from), from.size(), imm);
+  std::ofstream(dir / "imm.yaml") << text;
+  const Completed run =
+      run_to_completion({bin("skyfuse"), "run", "--scenario", (dir / "imm.yaml").string(),
+                         "--steps", "5", "--domain", "214", "--out", (dir / "out").string()},
+                        dir / "out.log", 60s);
+  EXPECT_NE(run.status.code, 0);
+  EXPECT_NE(run.output.find("does not run the 'imm' filter yet"), std::string::npos) << run.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "picture_rounds.csv"));
 }
 
 // recorded-airport.yaml on a file of 60 aircraft in OpenSky's format, given by --traffic-file:

@@ -11,6 +11,7 @@
 #include "sim/picture_shards.hpp"
 #include "skyfuse/multitarget/central_picture.hpp"
 #include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/picture_parts.hpp"
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
@@ -25,33 +26,6 @@
 
 namespace skyfuse {
 namespace {
-
-// The peers' and the center's track filters of filter part `Filter` on `Model`, with stations
-// of `SensorOf`: a part with an increment rule by that rule (the EKF's center stacks, another
-// part's fuses its own increments), the IMM by its network form.
-template <typename Filter, typename Model, template <int> class SensorOf>
-struct PictureParts {
-  using Rule = typename Filter::IncrementRule;
-  using Sensor = SensorOf<Model::kDim>;
-  using Peer = PeerModelTracks<Model, Rule>;
-  using Center =
-      std::conditional_t<std::is_same_v<Filter, EkfFilterPart>, CenterStackedTracks<Model, Sensor>,
-                         CenterIncrementTracks<Model, Sensor, Rule>>;
-  static Peer peer(const Scenario& s) {
-    return Peer(make_motion_model<Model>(s), s.filter.initial_covariance_diag);
-  }
-  static Center center(const Scenario& s) {
-    return Center(make_motion_model<Model>(s), s.filter.initial_covariance_diag);
-  }
-};
-template <typename Set, typename Model, template <int> class SensorOf>
-struct PictureParts<ImmFilterPart<Set>, Model, SensorOf> {
-  using Sensor = SensorOf<KinematicState::kDim>;
-  using Peer = PeerImmTracks<Set>;
-  using Center = CenterImmTracks<Set, Sensor>;
-  static Peer peer(const Scenario& s) { return Peer(s); }
-  static Center center(const Scenario& s) { return Center(s); }
-};
 
 template <typename State>
 bool same_bits(const State& a, const State& b) {
@@ -265,27 +239,9 @@ std::optional<PictureRunResult> run_picture_in_shard(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
     std::uint64_t run, const std::function<void(const PictureStep&)>& on_step) {
   std::optional<PictureRunResult> result;
-  visit_group_in_shard<Shard>(
-      scenario.filter,
-      [&]<typename Filter, typename Model>(std::type_identity<Filter>, std::type_identity<Model>) {
-        constexpr bool kIncrements = requires {
-          typename Filter::IncrementRule;
-        };
-        constexpr bool kImm = !Filter::kModeNames.empty();
-        if constexpr (kIncrements || kImm) {
-          constexpr int kDim = kImm ? KinematicState::kDim : Model::kDim;
-          visit_sensor_kind<Sensors, kDim>(
-              scenario.stations.front().sensor.kind,
-              [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-                using Sensor = SensorOf<kDim>;
-                if constexpr (in_sensor_part<SensorOf, Part, kSensorParts> &&
-                              FixesPosition<Sensor> && filter_runs_on<Filter, Model, Sensor>()) {
-                  result = PictureRun<PictureParts<Filter, Model, SensorOf>>(scenario, truth,
-                                                                             stations, run)
-                               .run(on_step);
-                }
-              });
-        }
+  visit_picture_parts_in_shard<Shard, Part, kSensorParts>(
+      scenario, [&]<typename Parts>(std::type_identity<Parts>) {
+        result = PictureRun<Parts>(scenario, truth, stations, run).run(on_step);
       });
   return result;
 }

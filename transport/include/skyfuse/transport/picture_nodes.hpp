@@ -1,53 +1,39 @@
 #pragma once
 /// \file
-/// What the station and center processes of a run with many aircraft share: the filter they run
-/// over DDS so far and the sensor type the run's stations have. The in-process run (`skyfuse
-/// sweep`) runs every registered filter part; over DDS it is the EKF on constant velocity until
-/// the others are compiled for the processes too.
+/// Which filter parts the station and center processes of a run with many aircraft run: every
+/// part a picture runs in-process (multitarget/picture_parts.hpp) but the IMM, whose tracks hold
+/// a state per mode that the picture a parted peer takes (wire::PictureState) does not carry yet.
 
 #include <fmt/format.h>
 
 #include <stdexcept>
+#include <type_traits>
 
-#include "skyfuse/filters/parts/ekf_part.hpp"
-#include "skyfuse/models/constant_velocity.hpp"
-#include "skyfuse/multitarget/fixes_position.hpp"
-#include "skyfuse/registry/registry.hpp"
-#include "skyfuse/sim/picture_plan.hpp"
-#include "skyfuse/tracking/ekf_increment_rule.hpp"
+#include "skyfuse/registry/dispatch.hpp"
+#include "skyfuse/scenario/scenario.hpp"
 
 namespace skyfuse::transport {
 
-using PictureModel = ConstantVelocity3D;
+/// Whether the processes run a picture with `filter`'s part: one whose tracks are a single
+/// Gaussian.
+inline bool picture_filter_over_dds(const FilterConfig& filter) {
+  bool single_model = false;
+  visit_filter(filter, [&]<typename Filter>(std::type_identity<Filter>) {
+    single_model = Filter::kModeNames.empty();
+  });
+  return single_model;
+}
 
-/// Calls f(std::type_identity<Sensor>{}) with the sensor type of `plan`'s stations (every one
-/// of one kind, one detection of which fixes a position: the loader checked), after refusing a
-/// filter the processes do not run yet. Returns what f returns.
-template <typename F>
-int with_picture_sensor(const PicturePlan& plan, F&& f) {
-  const FilterConfig& filter = plan.scenario.filter;
-  if (filter.kind != EkfFilterPart::kKind || filter.motion_model.kind != PictureModel::kKind) {
+/// Throws std::invalid_argument, saying why, if the processes do not run `scenario`'s filter
+/// part in a picture yet.
+inline void refuse_unless_picture_over_dds(const Scenario& scenario) {
+  if (!picture_filter_over_dds(scenario.filter)) {
     throw std::invalid_argument(fmt::format(
-        "scenario '{}': over DDS a run of many aircraft runs the EKF on constant velocity so "
-        "far, not '{}' on '{}' (`skyfuse sweep` runs it in-process)",
-        plan.scenario.name, filter.kind, filter.motion_model.kind));
+        "scenario '{}': over DDS a run of many aircraft does not run the '{}' filter yet: a "
+        "peer that parted takes another's picture, and the picture sent carries one Gaussian a "
+        "track, not a state per mode (`skyfuse sweep` runs it in-process)",
+        scenario.name, scenario.filter.kind));
   }
-  int code = 1;
-  const bool known = visit_sensor_kind<Sensors, PictureModel::kDim>(
-      plan.scenario.stations.front().sensor.kind,
-      [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-        using Sensor = SensorOf<PictureModel::kDim>;
-        if constexpr (FixesPosition<Sensor>) {
-          code = f(std::type_identity<Sensor>{});
-        } else {
-          throw std::invalid_argument(
-              fmt::format("sensor '{}': a run of many aircraft takes sensors one detection of "
-                          "which fixes a position",
-                          Sensor::kKind));
-        }
-      });
-  if (!known) throw std::logic_error("a picture node: unknown sensor kind");
-  return code;
 }
 
 }  // namespace skyfuse::transport

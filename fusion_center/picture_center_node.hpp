@@ -1,0 +1,144 @@
+#pragma once
+// The center process of a run with many aircraft (picture_center.hpp) for one filter part on
+// one motion model and the stations' sensor (multitarget/picture_parts.hpp), compiled by shard
+// of the configuration groups (registry/filter_shards.hpp, picture_center_shard.cpp).
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include <stdexcept>
+#include <vector>
+
+#include "center_process.hpp"
+#include "skyfuse/multitarget/central_picture.hpp"
+#include "skyfuse/multitarget/picture_parts.hpp"
+#include "skyfuse/scenario/traffic_config.hpp"
+#include "skyfuse/sim/picture_plan.hpp"
+#include "skyfuse/sim/picture_stations.hpp"
+#include "skyfuse/transport/node_loop.hpp"
+#include "skyfuse/transport/node_presence.hpp"
+#include "skyfuse/transport/node_setup.hpp"
+#include "skyfuse/transport/picture_scans.hpp"
+#include "skyfuse/transport/picture_track_writer.hpp"
+
+namespace skyfuse::center {
+
+using transport::RunEnd;
+
+template <typename Parts>
+class PictureCenter {
+ public:
+  using Sensor = typename Parts::Sensor;
+  static constexpr int M = Sensor::kMeasDim;
+  using Picture = CentralPicture<typename Parts::Center, Sensor>;
+
+  // The endpoints are made in a fixed order: the loop's tick and input readers first.
+  PictureCenter(const options::NodeOptions& options, PicturePlan plan)
+      : options_(options),
+        plan_(std::move(plan)),
+        ids_(ids_of(plan_)),
+        node_(transport::node_config(options, "skyfuse-center")),
+        loop_(node_, options, kCenterSourceId, "a fusion center", "picture scan",
+              plan_.scenario.time_step_s),
+        scans_in_(ids_, options.run_id,
+                  plan_.scenario.traffic->tracker.association.max_detections_per_scan),
+        rounds_(node_.make_writer<wire::PictureRound>()),
+        tracks_(node_),
+        picture_(Parts::center(plan_.scenario),
+                 known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run),
+                 plan_.scenario.traffic->tracker) {}
+
+  int run() {
+    const int m = plan_.stations;
+    auto& inputs = loop_.inputs();
+    auto& ticks = loop_.ticks();
+    if (const RunEnd end = loop_.join(
+            [&] { return inputs.matched() >= m && ticks.matched() >= 1 && rounds_.matched() >= 1; },
+            [&] {
+              return fmt::format(
+                  "picture scan writers {}/{}, tick writer {}/1, picture readers {}/1",
+                  inputs.matched(), m, ticks.matched(), rounds_.matched());
+            })) {
+      return *end;
+    }
+    spdlog::info("joined run {} with {} stations", options_.run_id, m);
+    return loop_.run(*this, 0, static_cast<std::uint64_t>(plan_.scenario.steps), rounds_);
+  }
+
+  // What the round loop asks of the center (transport::NodeProcess).
+
+  RunEnd open_round(std::uint64_t /*k*/) { return std::nullopt; }  // it scans nothing
+
+  std::optional<DropKind> receive(const wire::PictureScan& sample,
+                                  const transport::WriterId& writer) {
+    return scans_in_.receive(sample, writer);
+  }
+
+  bool round_complete() { return scans_in_.complete(); }
+
+  // Every scan that arrived, assigned jointly to the predicted picture; the picture published.
+  RunEnd close_round(std::uint64_t k) {
+    if (!scans_in_.complete()) {
+      spdlog::warn("step {}: updating without station(s) {}", k,
+                   fmt::join(scans_in_.missing(), ", "));
+    }
+    // A station whose scan did not arrive scanned nothing, as far as the center knows.
+    scans_.resize(ids_.size());
+    for (std::size_t i = 0; i < ids_.size(); ++i) {
+      scans_[i].station_id = ids_[i];
+      scans_[i].noise = picture_.stations()[i].noise;
+      scans_[i].detections.clear();
+      if (const auto* scan = scans_in_.scan_of(ids_[i])) scans_[i].detections = scan->detections;
+    }
+    picture_.predict();
+    picture_.update(k, scans_);
+    rounds_.write(transport::picture_round_to_wire(
+        picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
+        static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size())));
+    tracks_.publish(picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
+                    wire::CENTRAL);
+    scans_in_.advance();
+    return std::nullopt;
+  }
+
+  RunEnd settle(std::uint64_t /*steps*/) { return std::nullopt; }
+  transport::ProcessCounts counts() const { return {}; }
+
+ private:
+  static std::vector<int> ids_of(const PicturePlan& plan) {
+    std::vector<int> ids;
+    for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
+    return ids;
+  }
+
+  const options::NodeOptions& options_;
+  PicturePlan plan_;
+  std::vector<int> ids_;  // the participants in scenario order, as the stations' known list
+  transport::DdsNode node_;
+  transport::NodeLoop<wire::PictureScan> loop_;
+  transport::PictureScans<Sensor> scans_in_;
+  transport::Writer<wire::PictureRound> rounds_;
+  transport::PictureTrackWriter tracks_;
+  Picture picture_;
+  std::vector<Scan<M>> scans_;
+};
+
+/// Runs the center of `plan`, whose filter part and motion model lie in shard `Shard`.
+template <std::size_t Shard>
+int run_picture_center_in_shard(const options::NodeOptions& options, PicturePlan plan) {
+  int code = 1;
+  const bool ran = visit_picture_parts_in_shard<Shard, 0, 1>(
+      plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
+        // The caller refused the parts whose tracks are not one Gaussian (picture_nodes.hpp).
+        if constexpr (kGaussianTracks<Parts>) {
+          code = transport::make_lifelong<PictureCenter<Parts>>(options, std::move(plan)).run();
+        } else {
+          throw std::logic_error("a picture center: a filter part the processes do not run");
+        }
+      });
+  if (!ran) throw std::logic_error("a picture center: no picture runs this filter and sensor");
+  return code;
+}
+
+}  // namespace skyfuse::center

@@ -1,0 +1,255 @@
+#pragma once
+// The station process of a run with many aircraft (picture_station.hpp) for one filter part on
+// one motion model and the stations' sensor (multitarget/picture_parts.hpp), compiled by shard
+// of the configuration groups (registry/filter_shards.hpp, picture_station_shard.cpp).
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/picture_parts.hpp"
+#include "skyfuse/scenario/traffic_config.hpp"
+#include "skyfuse/sim/picture_plan.hpp"
+#include "skyfuse/sim/picture_stations.hpp"
+#include "skyfuse/transport/node_loop.hpp"
+#include "skyfuse/transport/node_presence.hpp"
+#include "skyfuse/transport/node_setup.hpp"
+#include "skyfuse/transport/picture_exchange.hpp"
+#include "skyfuse/transport/picture_nodes.hpp"
+#include "skyfuse/transport/picture_track_writer.hpp"
+#include "station_process.hpp"
+
+namespace skyfuse::station {
+
+using transport::RunEnd;
+
+template <typename Parts>
+class PictureStation {
+ public:
+  using Tracks = typename Parts::Peer;
+  using Sensor = typename Parts::Sensor;
+  static constexpr int M = Sensor::kMeasDim;
+  using Picture = PeerPicture<Tracks, Sensor>;
+  using Exchange = transport::PictureExchange<Tracks, Sensor>;
+
+  // The endpoints are made in a fixed order: the loop's tick and input readers first.
+  PictureStation(const StationOptions& options, PicturePlan plan, std::vector<TargetTruth> truth)
+      : options_(options),
+        plan_(std::move(plan)),
+        truth_(std::move(truth)),
+        known_(known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run)),
+        me_(index_of(plan_, options.id)),
+        detection_(plan_.participants()[me_].detection.value_or(plan_.scenario.traffic->detection)),
+        node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", options.id))),
+        loop_(node_, options.node, options.id, fmt::format("station {}", options.id),
+              "picture scan", plan_.scenario.time_step_s),
+        exchange_(node_, known_, options.node.run_id,
+                  plan_.scenario.traffic->tracker.association.max_detections_per_scan),
+        rounds_(node_.make_writer<wire::PictureRound>()),
+        tracks_(node_),
+        states_out_(node_.make_writer<wire::PictureState>()),
+        states_in_(node_.make_reader<wire::PictureState>()),
+        picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.traffic->tracker) {
+    // Its own scan never crosses the simulated link: the exchange keeps it as it goes out.
+    exchange_.keep_own();
+    loop_.skip_own(options.id, exchange_.own_writer());
+  }
+
+  int run() {
+    auto& inputs = loop_.inputs();
+    auto& ticks = loop_.ticks();
+    if (const RunEnd end = loop_.join(
+            [&] {
+              const int m = plan_.stations;
+              return exchange_.matched(inputs) && ticks.matched() >= 1 && rounds_.matched() >= 1 &&
+                     states_out_.matched() >= m && states_in_.matched() >= m;
+            },
+            [&] {
+              return fmt::format(
+                  "{}, tick writer {}/1, picture readers {}/1 (harness), picture state readers "
+                  "{}/{}, writers {}/{}",
+                  exchange_.describe_matched(inputs), ticks.matched(), rounds_.matched(),
+                  states_out_.matched(), plan_.stations, states_in_.matched(), plan_.stations);
+            })) {
+      return *end;
+    }
+    spdlog::info("joined run {} with {} stations; waiting for ticks", options_.node.run_id,
+                 plan_.stations);
+    // A station that rejoins starts with an empty picture: its first scan is made against that,
+    // the lowest station sends its picture on seeing it, and the next round this one takes it.
+    const std::uint64_t first = options_.rejoin_step.value_or(0);
+    exchange_.start_at(first);
+    return loop_.run(*this, first, static_cast<std::uint64_t>(plan_.scenario.steps), rounds_);
+  }
+
+  // What the round loop asks of a station (transport::NodeProcess).
+
+  // Predicts the picture, scans, assigns the scan to the predicted tracks and publishes it.
+  RunEnd open_round(std::uint64_t k) {
+    picture_.predict();
+    const StationConfig& station = plan_.participants()[me_];
+    const Scan<M> scan = simulate_scan(station.id, make_sensor<TruthSensorOf<Sensor>>(station),
+                                       station.position_m, known_[me_].noise, detection_, truth_,
+                                       static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
+    exchange_.publish(static_cast<std::uint32_t>(k), scan,
+                      picture_.report(known_[me_], scan, work_), picture_.digest());
+    return std::nullopt;
+  }
+
+  std::optional<DropKind> receive(const wire::PictureScan& sample,
+                                  const transport::WriterId& writer) {
+    return exchange_.receive(sample, writer);
+  }
+
+  bool round_complete() { return exchange_.complete(); }
+
+  // Fuses every station's report that arrived and was made against this picture, rebuilt
+  // against it, and publishes the picture. The rule that brings parted peers together again:
+  // every peer fuses onto the predicted picture of the round's lowest-id station. One whose
+  // picture is another takes that station's whole picture of the round before (which the
+  // station sends once it sees a scan made against another picture), predicts it as every peer
+  // did, and fuses the round with the others.
+  RunEnd close_round(std::uint64_t k) {
+    if (!exchange_.complete()) {
+      spdlog::info("step {}: fusing without station(s) {}", k,
+                   fmt::join(exchange_.missing(), ", "));
+    }
+    take_states();
+    const auto lowest = exchange_.lowest();
+    const bool parted = lowest && lowest->second != picture_.digest();
+    if (parted) {
+      // Parted last round too, the lowest station saw it then and sent its picture of that
+      // round: wait for it (a datagram of it lost waits for its repair) rather than stay apart.
+      if (parted_last_round_ && !realtime()) wait_for_state_of(lowest->first, k - 1);
+      take_picture_of(*lowest, k);
+    }
+    parted_last_round_ = parted;
+    const std::uint64_t predicted = picture_.digest();
+    const auto reports = exchange_.reports(
+        picture_, [&](int station_id, DropKind why) { loop_.count_drop(why, station_id, k); });
+    picture_.fuse(k, reports);
+    const auto step = static_cast<std::uint32_t>(k);
+    if (lowest && lowest->first == options_.id && exchange_.any_other_picture(predicted)) {
+      states_out_.write(
+          transport::picture_state_to_wire(picture_, options_.node.run_id, step, options_.id));
+    }
+    rounds_.write(transport::picture_round_to_wire(picture_, options_.node.run_id, step,
+                                                   options_.id,
+                                                   static_cast<std::uint32_t>(reports.size())));
+    tracks_.publish(picture_, options_.node.run_id, step, options_.id, wire::PEER);
+    exchange_.advance();
+    return std::nullopt;
+  }
+
+  RunEnd settle(std::uint64_t /*steps*/) { return std::nullopt; }
+  transport::ProcessCounts counts() const { return {resyncs_, 0}; }
+
+ private:
+  // The latest whole picture a peer sent, kept until a newer one comes.
+  struct PeerState {
+    std::uint64_t step = 0;
+    int station_id = 0;
+    std::vector<typename Picture::TrackType> tracks;
+  };
+
+  void take_states() {
+    wire::PictureState sample;
+    while (states_in_.take(sample)) {
+      if (sample.run_id() != options_.node.run_id || sample.station_id() == options_.id) continue;
+      auto tracks = transport::picture_state_from_wire<Tracks::kDim>(sample);
+      if (!tracks) {
+        spdlog::warn("step {}: a picture from station {} that is wrong; refused", sample.step(),
+                     sample.station_id());
+        continue;
+      }
+      latest_ = PeerState{sample.step(), static_cast<int>(sample.station_id()), std::move(*tracks)};
+    }
+  }
+
+  bool realtime() const { return options_.node.realtime_deadline_ms > 0.0; }
+
+  // Lock-step: takes pictures that come until station `station`'s of round `step` is in, or
+  // the round's deadline passes.
+  void wait_for_state_of(int station, std::uint64_t step) {
+    const auto give_up = std::chrono::steady_clock::now() + options_.node.round_deadline();
+    const auto have = [&] {
+      return latest_ && latest_->station_id == station && latest_->step == step;
+    };
+    while (!have() && std::chrono::steady_clock::now() < give_up) {
+      std::this_thread::sleep_for(std::chrono::microseconds(500));
+      take_states();
+    }
+  }
+
+  // Takes the picture `lowest` (station, digest of its predicted picture) made its scan of
+  // round k against: its picture of round k - 1, predicted. Nothing if that has not come (the
+  // next round tries again) or does not predict to the digest.
+  void take_picture_of(const std::pair<int, std::uint64_t>& lowest, std::uint64_t k) {
+    if (!latest_ || latest_->station_id != lowest.first || latest_->step + 1 != k) return;
+    Picture candidate = picture_;
+    candidate.restore(latest_->tracks);
+    candidate.predict();
+    if (candidate.digest() != lowest.second) {
+      spdlog::warn("step {}: station {}'s picture does not predict to its scan's", k, lowest.first);
+      return;
+    }
+    picture_ = std::move(candidate);
+    ++resyncs_;
+    spdlog::info("step {}: took station {}'s picture", k, lowest.first);
+  }
+
+  static std::size_t index_of(const PicturePlan& plan, int id) {
+    const auto participants = plan.participants();
+    for (std::size_t i = 0; i < participants.size(); ++i) {
+      if (participants[i].id == id) return i;
+    }
+    throw std::logic_error("picture station: not a participant");
+  }
+
+  const StationOptions& options_;
+  PicturePlan plan_;
+  std::vector<TargetTruth> truth_;
+  std::vector<KnownStation<Sensor>> known_;
+  std::size_t me_;
+  DetectionConfig detection_;
+  transport::DdsNode node_;
+  transport::NodeLoop<wire::PictureScan> loop_;
+  Exchange exchange_;
+  transport::Writer<wire::PictureRound> rounds_;
+  transport::PictureTrackWriter tracks_;
+  transport::Writer<wire::PictureState> states_out_;
+  transport::Reader<wire::PictureState> states_in_;
+  Picture picture_;
+  AssignmentWork work_;
+  std::optional<PeerState> latest_;
+  bool parted_last_round_ = false;  // this picture was not the lowest station's last round
+  std::uint32_t resyncs_ = 0;       // rounds in which this station took another's picture
+};
+
+/// Runs the station of `plan` whose filter part and motion model lie in shard `Shard`.
+template <std::size_t Shard>
+int run_picture_station_in_shard(const StationOptions& options, PicturePlan plan,
+                                 std::vector<TargetTruth> truth) {
+  int code = 1;
+  const bool ran = visit_picture_parts_in_shard<Shard, 0, 1>(
+      plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
+        // The caller refused the parts whose tracks are not one Gaussian (picture_nodes.hpp).
+        if constexpr (kGaussianTracks<Parts>) {
+          code = transport::make_lifelong<PictureStation<Parts>>(options, std::move(plan),
+                                                                 std::move(truth))
+                     .run();
+        } else {
+          throw std::logic_error("a picture station: a filter part the processes do not run");
+        }
+      });
+  if (!ran) throw std::logic_error("a picture station: no picture runs this filter and sensor");
+  return code;
+}
+
+}  // namespace skyfuse::station
