@@ -130,12 +130,7 @@ int run_picture_center_in_shard(const options::NodeOptions& options, PicturePlan
   int code = 1;
   const bool ran = visit_picture_parts_in_shard<Shard, 0, 1>(
       plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
-        // The caller refused the parts whose tracks are not one Gaussian (picture_nodes.hpp).
-        if constexpr (kGaussianTracks<Parts>) {
-          code = transport::make_lifelong<PictureCenter<Parts>>(options, std::move(plan)).run();
-        } else {
-          throw std::logic_error("a picture center: a filter part the processes do not run");
-        }
+        code = transport::make_lifelong<PictureCenter<Parts>>(options, std::move(plan)).run();
       });
   if (!ran) throw std::logic_error("a picture center: no picture runs this filter and sensor");
   return code;

@@ -10,7 +10,6 @@
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
-#include "skyfuse/transport/picture_nodes.hpp"
 
 namespace skyfuse::station {
 
@@ -37,7 +36,6 @@ int run_picture_station(const StationOptions& options, Scenario scenario) {
   }
   std::vector<TargetTruth> truth =
       build_traffic_truth(plan.scenario, options.node.traffic_file).targets;
-  transport::refuse_unless_picture_over_dds(plan.scenario);
   return with_filter_shard(plan.scenario.filter, [&](auto shard) {
     return run_picture_station_in_shard<decltype(shard)::value>(options, std::move(plan),
                                                                 std::move(truth));

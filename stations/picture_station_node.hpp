@@ -21,7 +21,6 @@
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/picture_exchange.hpp"
-#include "skyfuse/transport/picture_nodes.hpp"
 #include "skyfuse/transport/picture_track_writer.hpp"
 #include "station_process.hpp"
 
@@ -55,7 +54,8 @@ class PictureStation {
         tracks_(node_),
         states_out_(node_.make_writer<wire::PictureState>()),
         states_in_(node_.make_reader<wire::PictureState>()),
-        picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.traffic->tracker) {
+        picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.traffic->tracker),
+        filters_(Parts::peer(plan_.scenario)) {
     // Its own scan never crosses the simulated link: the exchange keeps it as it goes out.
     exchange_.keep_own();
     loop_.skip_own(options.id, exchange_.own_writer());
@@ -162,7 +162,7 @@ class PictureStation {
     wire::PictureState sample;
     while (states_in_.take(sample)) {
       if (sample.run_id() != options_.node.run_id || sample.station_id() == options_.id) continue;
-      auto tracks = transport::picture_state_from_wire<Tracks::kDim>(sample);
+      auto tracks = transport::picture_state_from_wire(sample, filters_);
       if (!tracks) {
         spdlog::warn("step {}: a picture from station {} that is wrong; refused", sample.step(),
                      sample.station_id());
@@ -226,6 +226,7 @@ class PictureStation {
   transport::Writer<wire::PictureState> states_out_;
   transport::Reader<wire::PictureState> states_in_;
   Picture picture_;
+  Tracks filters_;  // starts the tracks of a picture taken from another station
   AssignmentWork work_;
   std::optional<PeerState> latest_;
   bool parted_last_round_ = false;  // this picture was not the lowest station's last round
@@ -239,14 +240,9 @@ int run_picture_station_in_shard(const StationOptions& options, PicturePlan plan
   int code = 1;
   const bool ran = visit_picture_parts_in_shard<Shard, 0, 1>(
       plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
-        // The caller refused the parts whose tracks are not one Gaussian (picture_nodes.hpp).
-        if constexpr (kGaussianTracks<Parts>) {
-          code = transport::make_lifelong<PictureStation<Parts>>(options, std::move(plan),
-                                                                 std::move(truth))
-                     .run();
-        } else {
-          throw std::logic_error("a picture station: a filter part the processes do not run");
-        }
+        code = transport::make_lifelong<PictureStation<Parts>>(options, std::move(plan),
+                                                               std::move(truth))
+                   .run();
       });
   if (!ran) throw std::logic_error("a picture station: no picture runs this filter and sensor");
   return code;

@@ -36,7 +36,6 @@
 #include "skyfuse/sim/picture_run.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 #include "skyfuse/transport/dds_node.hpp"
-#include "skyfuse/transport/picture_nodes.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
@@ -72,7 +71,6 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
 PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scenario) {
   refuse_what_a_picture_run_lacks(o);
   const PicturePlan plan = make_picture_plan(scenario, o.node.overrides);
-  transport::refuse_unless_picture_over_dds(plan.scenario);
   std::vector<int> ids;
   for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
   std::sort(ids.begin(), ids.end());

@@ -147,12 +147,36 @@ TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
             node_rounds(dir / "out" / "picture_rounds.csv").at(kSteps - 1).at(1).digest);
 }
 
+// uam-city's filter, and an IMM of constant velocity and coordinated turns for it.
+constexpr const char* kCityFilter =
+    "filter:\n  kind: ekf\n  motion_model:\n    kind: constant_velocity_3d\n"
+    "    process_noise_std: {position_m: 0.5, velocity_mps: 2.0}";
+constexpr const char* kCityImmFilter =
+    "filter:\n  kind: imm\n  imm:\n    constant_velocity: {position_m: 0.5, velocity_mps: 2.0}\n"
+    "    coordinated_turn: {position_m: 0.5, velocity_mps: 2.0, turn_rate_radps: 0.01}\n"
+    "    stay_probability: 0.95\n    initial_turn_rate_variance: 1.0e-3\n  motion_model:\n"
+    "    kind: constant_acceleration_3d\n    process_noise_std: {position_m: 0.5, velocity_mps: "
+    "1.0, acceleration_mps2: 1.0}";
+
+// uam-city with `from` replaced by `to`, written to `dir`; uam-city itself if `from` is null.
+std::filesystem::path city_with(const std::filesystem::path& dir, const char* from,
+                                const char* to) {
+  if (from == nullptr) return kCity;
+  std::string text = read_file(kCity);
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, std::string_view(from).size(), to);
+  const auto path = dir / "city.yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
 // The other filter parts a picture runs over DDS: uam-city with its filter changed, each run
 // checked against this test's own in-process run, every node in every round, and the center
 // against the peers.
 struct FilterVariant {
   const char* name;
-  const char* from;  // uam-city's line
+  const char* from;  // uam-city's text, null for uam-city as it is
   const char* to;
   int domain;
 };
@@ -164,12 +188,7 @@ TEST_P(DdsPictureFilter, EveryNodeHoldsItsInProcessPictureBitForBit) {
   constexpr int kSteps = 60;
   const FilterVariant& variant = GetParam();
   const auto dir = test_dir();
-  std::string text = read_file(kCity);
-  const auto at = text.find(variant.from);
-  ASSERT_NE(at, std::string::npos) << variant.from;
-  text.replace(at, std::string_view(variant.from).size(), variant.to);
-  const auto scenario_path = dir / "city.yaml";
-  std::ofstream(scenario_path) << text;
+  const auto scenario_path = city_with(dir, variant.from, variant.to);
 
   const Completed run =
       run_to_completion({bin("skyfuse"), "run", "--scenario", scenario_path.string(), "--stations",
@@ -194,30 +213,9 @@ INSTANTIATE_TEST_SUITE_P(
                       "velocity_mps: 2.0}",
                       "kind: constant_acceleration_3d\n    process_noise_std: {position_m: 0.5, "
                       "velocity_mps: 1.0, acceleration_mps2: 1.0}",
-                      213}),
+                      213},
+        FilterVariant{"ImmOfCvAndCt", kCityFilter, kCityImmFilter, 214}),
     [](const ::testing::TestParamInfo<FilterVariant>& param) { return param.param.name; });
-
-// An IMM picture is refused before any process starts, saying why.
-TEST(DdsPicture, AnImmPictureIsRefusedBeforeAnyProcessStarts) {
-  const auto dir = test_dir();
-  std::string text = read_file(kCity);
-  const std::string from = text.substr(text.find("filter:\n  kind: ekf"));
-  const std::string imm =
-      "filter:\n  kind: imm\n  imm:\n    constant_velocity: {position_m: 0.5, velocity_mps: 2.0}\n"
-      "    coordinated_turn: {position_m: 0.5, velocity_mps: 2.0, turn_rate_radps: 0.01}\n"
-      "    stay_probability: 0.95\n    initial_turn_rate_variance: 1.0e-3\n  motion_model:\n"
-      "    kind: constant_acceleration_3d\n    process_noise_std: {position_m: 0.5, "
-      "velocity_mps: 1.0, acceleration_mps2: 1.0}\n  initial_covariance_diag: 100.0\n";
-  text.replace(text.find(from), from.size(), imm);
-  std::ofstream(dir / "imm.yaml") << text;
-  const Completed run =
-      run_to_completion({bin("skyfuse"), "run", "--scenario", (dir / "imm.yaml").string(),
-                         "--steps", "5", "--domain", "214", "--out", (dir / "out").string()},
-                        dir / "out.log", 60s);
-  EXPECT_NE(run.status.code, 0);
-  EXPECT_NE(run.output.find("does not run the 'imm' filter yet"), std::string::npos) << run.output;
-  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "picture_rounds.csv"));
-}
 
 // recorded-airport.yaml on a file of 60 aircraft in OpenSky's format, given by --traffic-file:
 // the stations read it by its absolute path (they run on the scenario's copy in the results
@@ -244,20 +242,25 @@ TEST(DdsPicture, RecordedTrafficOfSixtyAircraftRunsToTheEndBitForBit) {
 // 20 % of the scans lost on every link in rounds 40-59: stations that missed different scans
 // hold different pictures; a station whose picture is not the round's lowest station's takes
 // that one's, and every station holds the same picture again within two rounds of the loss.
-// Before the loss the run is the in-process one.
-TEST(DdsPicture, PeersThatMissedDifferentScansAgreeAgainWithinTwoRoundsOfTheLoss) {
+// Before the loss the run is the in-process one. The EKF's picture, and the IMM's, whose
+// picture taken carries every mode.
+class DdsPictureLoss : public ::testing::TestWithParam<FilterVariant> {};
+
+TEST_P(DdsPictureLoss, PeersThatMissedDifferentScansAgreeAgainWithinTwoRoundsOfTheLoss) {
   constexpr int kStations = 4;
   constexpr int kSteps = 100;
   constexpr int kLossFrom = 40;
   constexpr int kLossTo = 60;
   const auto dir = test_dir();
+  const auto scenario = city_with(dir, GetParam().from, GetParam().to);
   const Completed run = run_to_completion(
-      {bin("skyfuse"), "run", "--scenario", kCity, "--stations", std::to_string(kStations),
-       "--steps", std::to_string(kSteps), "--loss", "0.2", "--loss-steps",
-       fmt::format("{}:{}", kLossFrom, kLossTo),
+      {bin("skyfuse"), "run", "--scenario", scenario.string(), "--stations",
+       std::to_string(kStations), "--steps", std::to_string(kSteps), "--loss", "0.2",
+       "--loss-steps", fmt::format("{}:{}", kLossFrom, kLossTo),
        // A lost scan closes its round at the deadline; 250 ms, as the other loss tests, so that
        // a starved machine does not lose more than the simulated loss.
-       "--round-deadline-ms", "250", "--domain", "93", "--out", (dir / "out").string()},
+       "--round-deadline-ms", "250", "--domain", std::to_string(GetParam().domain), "--out",
+       (dir / "out").string()},
       dir / "out.log", 180s);
   ASSERT_EQ(run.status.code, 0) << run.output;
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
@@ -291,7 +294,7 @@ TEST(DdsPicture, PeersThatMissedDifferentScansAgreeAgainWithinTwoRoundsOfTheLoss
   ASSERT_LT(last_disturbed, kSteps - 15) << "scans went on missing to the end\n" << run.output;
   EXPECT_LE(agreed_for_good_from(rounds), last_disturbed + 3) << run.output;
   const PicturePlan plan =
-      make_picture_plan(load_scenario_file(kCity), stations_and_steps(kStations, kSteps));
+      make_picture_plan(load_scenario_file(scenario), stations_and_steps(kStations, kSteps));
   const PictureRunResult twin =
       run_picture(plan.scenario, build_traffic_truth(plan.scenario).targets, kStations, 0);
   for (int k = 0; k < first_disturbed; ++k) {
@@ -301,6 +304,13 @@ TEST(DdsPicture, PeersThatMissedDifferentScansAgreeAgainWithinTwoRoundsOfTheLoss
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Parts, DdsPictureLoss,
+                         ::testing::Values(FilterVariant{"Ekf", nullptr, nullptr, 93},
+                                           FilterVariant{"Imm", kCityFilter, kCityImmFilter, 215}),
+                         [](const ::testing::TestParamInfo<FilterVariant>& param) {
+                           return param.param.name;
+                         });
 
 // Station 2 killed before round 40 and started again before round 50: the others keep one
 // picture meanwhile; the restarted station starts with an empty one, its first scan shows it,

@@ -209,7 +209,7 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   ASSERT_TRUE(type.serialize(const_cast<wire::PictureState*>(&sent), &payload));
   wire::PictureState back;
   ASSERT_TRUE(type.deserialize(&payload, &back));
-  auto tracks = picture_state_from_wire<test::PictureWorld::Model::kDim>(back);
+  auto tracks = picture_state_from_wire(back, test::PictureWorld::track_filters());
   ASSERT_TRUE(tracks.has_value());
 
   Peer taker = world.empty_picture();
@@ -227,7 +227,7 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   const auto refused = [&](const std::function<void(wire::PictureState&)>& forge) {
     wire::PictureState wrong = back;
     forge(wrong);
-    return !picture_state_from_wire<test::PictureWorld::Model::kDim>(wrong).has_value();
+    return !picture_state_from_wire(wrong, test::PictureWorld::track_filters()).has_value();
   };
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[1].track_id(w.tracks()[0].track_id()); }));
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].x().pop_back(); }));
@@ -235,6 +235,9 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   EXPECT_TRUE(
       refused([](auto& w) { w.tracks()[0].x()[0] = std::numeric_limits<double>::quiet_NaN(); }));
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].history_rounds(33); }));
+  // An IMM's modes on a single-model track.
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].mode_probabilities({1.0}); }));
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].modes().resize(1); }));
 }
 
 TEST(PictureWire, AReportNamingATrackThePictureLacksIsNotRebuilt) {

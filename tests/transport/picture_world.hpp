@@ -42,11 +42,13 @@ struct PictureWorld {
     detection.clutter_per_scan = 2.0;
   }
 
-  // An empty picture of the world's filter, at every peer the same.
-  Peer empty_picture() const {
-    return Peer(Tracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0)), stations,
-                TrackerConfig{});
+  // The world's track filter.
+  static Tracks track_filters() {
+    return Tracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0));
   }
+
+  // An empty picture of the world's filter, at every peer the same.
+  Peer empty_picture() const { return Peer(track_filters(), stations, TrackerConfig{}); }
 
   // Station `s`'s scan of round k (seeded: the same at every call).
   Scan<3> scan(std::size_t s, int k) const {

@@ -46,16 +46,11 @@ struct PictureParts<ImmFilterPart<Set>, Model, SensorOf> {
   static Center center(const Scenario& s) { return Center(s); }
 };
 
-/// Whether a picture's track filter is a single Gaussian (every part but the IMM, whose tracks
-/// hold a state per mode).
-template <typename Parts>
-inline constexpr bool kGaussianTracks =
-    std::is_same_v<typename Parts::Peer::State, GaussianState<Parts::Peer::kDim>>;
-
 /// Calls f(std::type_identity<PictureParts<...>>{}) for `scenario`'s filter part on its motion
 /// model and its stations' sensor, if that group lies in shard `Shard` and the sensor in sensor
-/// part `Part` of `Parts` (a node process: 0 of 1, every sensor), and a picture runs them: a part with an increment rule or the IMM,
-/// a sensor one detection of which fixes a position. Returns whether it called f.
+/// part `Part` of `Parts` (a node process: 0 of 1, every sensor), and a picture runs them: a part
+/// with an increment rule or the IMM, a sensor one detection of which fixes a position. Returns
+/// whether it called f.
 template <std::size_t Shard, std::size_t Part, std::size_t Parts, typename F>
 bool visit_picture_parts_in_shard(const Scenario& scenario, F&& f) {
   bool called = false;

@@ -90,6 +90,12 @@ class PeerImm {
   /// Mixing and every mode's time update.
   void predict() { imm_.predict(); }
 
+  /// Takes `states` and `probabilities` as its own: a peer taking another's whole picture after
+  /// they parted (multitarget pictures over DDS). `probabilities` must sum to 1.
+  void restore(const typename Filter::ModeStates& states, const Vector<kModes>& probabilities) {
+    imm_.restore(states, probabilities);
+  }
+
   /// This station's contribution for `observation` against the current (common) mode priors,
   /// screened as the round rule says (the file comment): screened out, its increments and terms
   /// are zero.

@@ -54,6 +54,10 @@ class PictureTrackWriter {
           to_wire<N>(table.estimates()[t], run_id, step, source_id, mode, tracks[t].updated_by);
       sample.track_id(tracks[t].id);
       sample.confirmed(tracks[t].status == TrackStatus::kConfirmed);
+      if constexpr (requires { tracks[t].filter.filter().mode_probabilities(); }) {
+        const auto& p = tracks[t].filter.filter().mode_probabilities();  // an IMM's
+        sample.mode_probabilities(std::vector<double>(p.data(), p.data() + p.size()));
+      }
       writer_.write(sample);
     }
     written_ = std::move(now);

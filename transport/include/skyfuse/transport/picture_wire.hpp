@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
+#include "skyfuse/validation/sample_checks.hpp"
 #include "skyfuse/wire/skyfuse_picture.h"
 
 namespace skyfuse::transport {
@@ -153,9 +155,56 @@ wire::PictureRound picture_round_to_wire(const Table& table, std::uint64_t run_i
   return sample;
 }
 
+namespace detail {
+
+// Whether a track filter is an IMM peer's (a state per mode) rather than one Gaussian.
+template <typename State>
+concept ImmTrackState = requires(const State& s) {
+  s.filter().mode_probabilities();
+};
+
+// An IMM track's filter from its modes on the wire: started as `filters` starts any track, then
+// given the sent mode states and probabilities; nothing if their number, dimensions or values
+// are wrong.
+template <typename Tracks>
+std::optional<typename Tracks::State> imm_state_from_wire(const wire::PictureStateTrack& t,
+                                                          const Tracks& filters) {
+  using State = typename Tracks::State;
+  constexpr int kModes = State::kModes;
+  if (t.modes().size() != static_cast<std::size_t>(kModes) ||
+      t.mode_probabilities().size() != static_cast<std::size_t>(kModes)) {
+    return std::nullopt;
+  }
+  const Vector<kModes> probabilities =
+      Eigen::Map<const Vector<kModes>>(t.mode_probabilities().data());
+  if (check_mode_probabilities(probabilities)) return std::nullopt;
+  State state = filters.start(GaussianState<Tracks::kDim>{Vector<Tracks::kDim>::Zero(),
+                                                          Covariance<Tracks::kDim>::Identity()});
+  typename State::Filter::ModeStates modes;
+  bool whole = true;
+  State::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+    auto& mode = std::get<I>(modes);
+    constexpr int D = std::decay_t<decltype(mode.mean)>::RowsAtCompileTime;
+    const auto mean = unpack_vector<D>(t.modes()[I].x());
+    const auto covariance = unpack_upper<D>(t.modes()[I].covariance());
+    if (!mean || !covariance || !mean->allFinite() || !covariance->allFinite()) {
+      whole = false;
+      return;
+    }
+    mode.mean = *mean;
+    mode.covariance = *covariance;
+  });
+  if (!whole) return std::nullopt;
+  state.restore(modes, probabilities);
+  return state;
+}
+
+}  // namespace detail
+
 /// Station `station_id`'s whole picture after round `step`, for a peer that must take it: every
-/// track's id, status, history, filter state and last updaters. `Table` is a TrackTable whose
-/// tracks' filters are Gaussian states (a single-model part).
+/// track's id, status, history, filter state and last updaters. `Table` is a TrackTable: a
+/// single-model track's filter is its Gaussian (x, covariance), an IMM track's its mode
+/// probabilities and every mode's state.
 template <typename Table>
 wire::PictureState picture_state_to_wire(const Table& table, std::uint64_t run_id,
                                          std::uint32_t step, int station_id) {
@@ -175,39 +224,63 @@ wire::PictureState picture_state_to_wire(const Table& table, std::uint64_t run_i
     t.history_hits(words.hits);
     t.history_rounds(words.rounds);
     t.history_misses(words.consecutive_misses);
-    t.x(pack_vector<N>(track.filter.mean));
-    t.covariance(pack_upper<N>(track.filter.covariance));
+    using State = std::decay_t<decltype(track.filter)>;
+    if constexpr (detail::ImmTrackState<State>) {
+      const auto& imm = track.filter.filter();
+      const auto& p = imm.mode_probabilities();
+      t.mode_probabilities(std::vector<double>(p.data(), p.data() + p.size()));
+      State::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+        const auto& mode = imm.template mode_state<I>();
+        constexpr int D = std::decay_t<decltype(mode.mean)>::RowsAtCompileTime;
+        wire::PictureModeState m;
+        m.x(pack_vector<D>(mode.mean));
+        m.covariance(pack_upper<D>(mode.covariance));
+        t.modes().push_back(std::move(m));
+      });
+    } else {
+      t.x(pack_vector<N>(track.filter.mean));
+      t.covariance(pack_upper<N>(track.filter.covariance));
+    }
     t.updated_by(track.updated_by);
     out.push_back(std::move(t));
   }
   return sample;
 }
 
-/// The tracks of a PictureState with Gaussian states of N entries, or nothing if anything in
-/// it is wrong: a dimension, a value that is not finite, track ids not strictly ascending, a
-/// history no track has.
-template <int N>
-std::optional<std::vector<Track<GaussianState<N>>>> picture_state_from_wire(
-    const wire::PictureState& sample) {
-  std::vector<Track<GaussianState<N>>> tracks;
+/// The tracks of a PictureState for a table of `filters`' tracks (a single model's Gaussian of
+/// Tracks::kDim entries, or an IMM's modes), or nothing if anything in it is wrong: a dimension,
+/// a number of modes, a value that is not finite, mode probabilities that are not, track ids
+/// not strictly ascending, a history no track has.
+template <typename Tracks>
+std::optional<std::vector<Track<typename Tracks::State>>> picture_state_from_wire(
+    const wire::PictureState& sample, const Tracks& filters) {
+  using State = typename Tracks::State;
+  constexpr int N = Tracks::kDim;
+  std::vector<Track<State>> tracks;
   tracks.reserve(sample.tracks().size());
   for (const wire::PictureStateTrack& t : sample.tracks()) {
     if (!tracks.empty() && t.track_id() <= tracks.back().id) return std::nullopt;
-    const auto mean = unpack_vector<N>(t.x());
-    const auto covariance = unpack_upper<N>(t.covariance());
     const auto history =
         TrackHistory::from_words({t.history_hits(), t.history_rounds(), t.history_misses()});
-    if (!mean || !covariance || !history) return std::nullopt;
-    Track<GaussianState<N>> track;
-    track.id = t.track_id();
-    track.status = t.confirmed() ? TrackStatus::kConfirmed : TrackStatus::kTentative;
-    track.history = *history;
-    track.filter.mean = *mean;
-    track.filter.covariance = *covariance;
-    if (!track.filter.mean.allFinite() || !track.filter.covariance.allFinite()) {
-      return std::nullopt;
+    if (!history) return std::nullopt;
+    std::optional<State> filter;
+    if constexpr (detail::ImmTrackState<State>) {
+      if (!t.x().empty() || !t.covariance().empty()) return std::nullopt;
+      filter = detail::imm_state_from_wire(t, filters);
+    } else {
+      if (!t.modes().empty() || !t.mode_probabilities().empty()) return std::nullopt;
+      const auto mean = unpack_vector<N>(t.x());
+      const auto covariance = unpack_upper<N>(t.covariance());
+      if (mean && covariance && mean->allFinite() && covariance->allFinite()) {
+        filter = State{*mean, *covariance};
+      }
     }
-    track.updated_by.assign(t.updated_by().begin(), t.updated_by().end());
+    if (!filter) return std::nullopt;
+    Track<State> track{t.track_id(),
+                       t.confirmed() ? TrackStatus::kConfirmed : TrackStatus::kTentative,
+                       *history,
+                       std::move(*filter),
+                       {t.updated_by().begin(), t.updated_by().end()}};
     tracks.push_back(std::move(track));
   }
   return tracks;
