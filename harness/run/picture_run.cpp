@@ -61,7 +61,6 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
   };
   if (!o.replay_path.empty()) refuse("--replay");
   if (o.external) refuse("--external");
-  if (o.hosts > 0) refuse("--hosts");
   if (o.node.secure_dir) refuse("--secure");
   if (o.node.refusion_lag != 0) refuse("--refusion-lag");
 }
@@ -114,10 +113,15 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
   ChildProcesses children;
   PictureDriver driver(harness_node_config(o, placement, plan.stations), run_id, nodes, children);
   try {
-    // Process 0 is the center, process 1 + j the j-th station: each with the run's options.
+    // One process per network namespace (a simulated host; -1: the harness's own), for the
+    // kernel's UDP counters.
+    std::map<int, pid_t> namespace_members{{-1, getpid()}};
+    // Process 0 is the center, process 1 + j the j-th station: each with the run's options, on
+    // its host.
     const auto spawn = [&](std::size_t process, std::vector<std::string> argv, int id) {
       options::NodeOptions child = o.node;
-      child.network = placement.of(process).first;
+      const auto [network, netns] = placement.of(process);
+      child.network = network;
       child.scenario_path = scenario_file.string();
       if (recorded) child.traffic_file = std::filesystem::absolute(*recorded).string();
       child.run_id = run_id;
@@ -129,7 +133,7 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
       child.log_level = o.verbose ? "info" : "warn";
       const std::vector<std::string> common = options::to_arguments(child);
       argv.insert(argv.end(), common.begin(), common.end());
-      children.spawn(node_name(id), argv);
+      namespace_members.try_emplace(netns, children.spawn(node_name(id), argv, netns));
     };
     const auto spawn_station = [&](int id, std::optional<int> rejoin_step) {
       const auto participants = plan.participants();
@@ -149,11 +153,13 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     for (const int id : ids) spawn_station(id, std::nullopt);
     const auto discovery_start = Clock::now();
     driver.wait_until_joined(std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
-    // The kernel's counts over every process of the run (one host: the harness's namespace).
+    // The kernel's counts over every process of the run, and every namespace's datagrams.
     const auto kernel_snapshot = [&] {
       std::vector<pid_t> processes = children.pids();
       processes.push_back(getpid());
-      return take_snapshot(processes, {getpid()});
+      std::vector<pid_t> one_per_namespace;
+      for (const auto& [netns, pid] : namespace_members) one_per_namespace.push_back(pid);
+      return take_snapshot(processes, one_per_namespace);
     };
     const KernelSnapshot before_rounds = kernel_snapshot();
 

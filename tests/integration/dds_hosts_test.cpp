@@ -42,6 +42,18 @@ std::optional<std::string> why_no_hosts() {
   return std::nullopt;
 }
 
+// Nothing of the run whose output is `output` is left behind: no namespace, no bridge. Only
+// this run's are looked for, as another test's run may be up meanwhile.
+void expect_hosts_removed(const std::string& output) {
+  std::smatch bridge;
+  EXPECT_TRUE(std::regex_search(output, bridge, std::regex("on bridge sfbr([0-9]+)"))) << output;
+  if (!bridge.empty()) {
+    const std::string tag = bridge[1];
+    EXPECT_THAT(output_of("ip netns list"), Not(HasSubstr("skyfuse-" + tag + "-h")));
+    EXPECT_THAT(output_of("ip -o link show type bridge"), Not(HasSubstr("sfbr" + tag + ":")));
+  }
+}
+
 // Runs `skyfuse run` with `extra` and checks every track against the in-process twin; returns
 // summary.json.
 nlohmann::json expect_equal_to_twin(int stations, int domain,
@@ -59,16 +71,7 @@ nlohmann::json expect_equal_to_twin(int stations, int domain,
   if (run.status.code != 0) return {};
 
   if (std::find(extra.begin(), extra.end(), "--hosts") != extra.end()) {
-    // Nothing of the run is left behind: no namespace, no bridge. Only this run's are looked
-    // for, as another test's run may be up meanwhile.
-    std::smatch bridge;
-    EXPECT_TRUE(std::regex_search(run.output, bridge, std::regex("on bridge sfbr([0-9]+)")))
-        << run.output;
-    if (!bridge.empty()) {
-      const std::string tag = bridge[1];
-      EXPECT_THAT(output_of("ip netns list"), Not(HasSubstr("skyfuse-" + tag + "-h")));
-      EXPECT_THAT(output_of("ip -o link show type bridge"), Not(HasSubstr("sfbr" + tag + ":")));
-    }
+    expect_hosts_removed(run.output);
   }
   return expect_default_run_equals_twin(dir / "out", stations, kSteps);
 }
@@ -100,6 +103,26 @@ TEST(DdsHosts, FourStationsOnThreeHostsDiscoveringTheirPeersEqualTheInProcessRun
   for (const auto& [node, known] : known_by_node.items()) {
     EXPECT_EQ(known.get<int>(), 5) << node;  // the harness, the center and the other stations
   }
+}
+
+// Many aircraft on three hosts: every station's picture the in-process run's in every round,
+// the center's too (the harness checks each round against its twin and says so in the summary).
+TEST(DdsHosts, ManyAircraftOnThreeHostsHoldTheInProcessPictureInEveryRound) {
+  if (const auto why = why_no_hosts()) GTEST_SKIP() << *why;
+  const auto dir = test_dir();
+  const Completed run = run_to_completion(
+      {bin("skyfuse"), "run", "--scenario", bin("scenarios/uam-city.yaml"), "--stations", "4",
+       "--steps", "60", "--hosts", "3", "--domain", "220", "--out", (dir / "out").string()},
+      dir / "run.log", 120s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  expect_hosts_removed(run.output);
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_TRUE(summary.at("peers_identical").get<bool>());
+  EXPECT_TRUE(summary.at("equals_in_process").get<bool>());
+  EXPECT_TRUE(summary.at("center_equals_in_process").get<bool>());
+  EXPECT_EQ(summary.at("steps").get<int>(), 60);
+  // The datagrams of every host were counted, not only the harness's.
+  EXPECT_GT(summary.at("datagrams_received_per_round").get<double>(), 0.0);
 }
 
 // The harness serves discovery only to the hosts it makes; peer lists are its to write.
