@@ -462,26 +462,9 @@ transport::NodeConfig harness_node_config(const RunOptions& o, const Placement& 
 }
 
 RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
-  // A secure start on Fast DDS 2.9 sometimes stalls (secure_start.hpp): spend
-  // --discovery-timeout in attempts, each starting every process again. Processes started
-  // elsewhere cannot be started again from here.
-  if (!o.node.secure_dir || o.external) return run_once(o, plan);
-  RunOptions attempt = o;
-  const double total_s = discovery_timeout_s(o, plan.stations);
-  const double attempt_s = std::min(total_s, kSecureAttemptS);
-  attempt.discovery_timeout_s = attempt_s;
-  const int attempts = std::max(1, static_cast<int>(total_s / attempt_s));
-  for (int i = 1;; ++i) {
-    try {
-      return run_once(attempt, plan);
-    } catch (const RunAborted& e) {
-      if (i >= attempts || transport::shutdown_requested() || !is_stalled_start(e)) throw;
-      spdlog::warn(
-          "secure discovery did not complete ({}); starting every process again "
-          "(attempt {} of {})",
-          e.what(), i + 1, attempts);
-    }
-  }
+  // A secure start on Fast DDS 2.9 sometimes stalls (secure_start.hpp).
+  return with_secure_restarts(o, discovery_timeout_s(o, plan.stations),
+                              [&](const RunOptions& attempt) { return run_once(attempt, plan); });
 }
 
 RunPlan load_run_plan(const RunOptions& o) {

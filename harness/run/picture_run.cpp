@@ -29,6 +29,7 @@
 #include "run/picture_frame.hpp"
 #include "run/picture_round_check.hpp"
 #include "run/placement.hpp"
+#include "run/secure_start.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
@@ -36,6 +37,7 @@
 #include "skyfuse/sim/picture_run.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/security_folder.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
@@ -61,19 +63,19 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
   };
   if (!o.replay_path.empty()) refuse("--replay");
   if (o.external) refuse("--external");
-  if (o.node.secure_dir) refuse("--secure");
   if (o.node.refusion_lag != 0) refuse("--refusion-lag");
 }
 
-}  // namespace
-
-PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scenario) {
-  refuse_what_a_picture_run_lacks(o);
+// One start of every process of the run.
+PictureRunSummary run_picture_once(const RunOptions& o, const Scenario& scenario) {
   const PicturePlan plan = make_picture_plan(scenario, o.node.overrides);
   std::vector<int> ids;
   for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
   std::sort(ids.begin(), ids.end());
   check_station_events(o, ids, plan.scenario.steps);
+  if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
+    transport::SecurityFolder{*o.node.secure_dir}.check(transport::run_identities(ids));
+  }
 
   // The in-process twin first: what every peer's picture must equal, round by round.
   const TrafficTruth truth = build_traffic_truth(plan.scenario, o.node.traffic_file);
@@ -122,6 +124,9 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
       options::NodeOptions child = o.node;
       const auto [network, netns] = placement.of(process);
       child.network = network;
+      if (child.secure_dir) {
+        child.secure_dir = std::filesystem::absolute(*child.secure_dir).string();
+      }
       child.scenario_path = scenario_file.string();
       if (recorded) child.traffic_file = std::filesystem::absolute(*recorded).string();
       child.run_id = run_id;
@@ -181,8 +186,27 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     if (live) live->set_epoch_ns(epoch_ns);
     // `latency`: lock-step, from the tick to the last picture; real time, from the round's
     // scheduled end to its hand-over.
+    // Without loss or a station down, round 0 of a lock-step run fuses every scan at every
+    // node in a connected network; if it does not, some pair of processes never matched (seen
+    // with secure discovery) and every round would wait for its deadline: say so at once.
+    const bool check_connection = !realtime && !o.node.loss.enabled() &&
+                                  std::none_of(o.kills.begin(), o.kills.end(),
+                                               [](const StationEvent& e) { return e.step == 0; });
     const auto take_round = [&](int k, const std::vector<wire::PictureRound>& rounds,
                                 std::chrono::duration<double, std::milli> latency) {
+      if (k == 0 && check_connection) {
+        std::vector<std::string> short_of;
+        for (const wire::PictureRound& r : rounds) {
+          if (r.scans_fused() < static_cast<std::uint32_t>(plan.stations)) {
+            short_of.push_back(fmt::format("{}: {} of {} scans", node_name(r.source_id()),
+                                           r.scans_fused(), plan.stations));
+          }
+        }
+        if (!short_of.empty()) {
+          throw RunAborted(fmt::format("round 0 incomplete, the network is not fully connected: {}",
+                                       fmt::join(short_of, ", ")));
+        }
+      }
       const PictureStep* scored = check.add(k, rounds);
       if ((recording || live) && scored != nullptr) {
         PictureFrame frame = picture_frame(k, rounds, nodes, *scored);
@@ -270,6 +294,17 @@ PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scena
     children.terminate_all(std::chrono::seconds(2));
     throw;
   }
+}
+
+}  // namespace
+
+PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scenario) {
+  refuse_what_a_picture_run_lacks(o);
+  // A secure start on Fast DDS 2.9 sometimes stalls (secure_start.hpp).
+  const int stations = make_picture_plan(scenario, o.node.overrides).stations;
+  return with_secure_restarts(o, discovery_timeout_s(o, stations), [&](const RunOptions& attempt) {
+    return run_picture_once(attempt, scenario);
+  });
 }
 
 }  // namespace skyfuse::harness

@@ -9,6 +9,10 @@
 //   harness    tick                                   track, measurement, status
 //   observer   -                                      tick, track, status
 //
+// and in a run of many aircraft a station publishes its picture scan, picture and whole picture
+// and subscribes to the others' scans and whole pictures; the center subscribes to the scans
+// and publishes its picture; the harness and an observer subscribe to the pictures.
+//
 // and in partition skyfuse-refusal-reports (transport/refusal_reports.hpp) a station and the
 // center publish status, the harness subscribes to it.
 //

@@ -70,7 +70,10 @@ std::vector<std::string> skyfuse_topics() {
           TopicTraits<wire::InformationIncrement>::kName,
           TopicTraits<wire::PartialSum>::kName,
           TopicTraits<wire::TrackEstimate>::kName,
-          TopicTraits<wire::StationStatus>::kName};
+          TopicTraits<wire::StationStatus>::kName,
+          TopicTraits<wire::PictureScan>::kName,
+          TopicTraits<wire::PictureRound>::kName,
+          TopicTraits<wire::PictureState>::kName};
 }
 
 std::string governance_xml(const std::vector<std::string>& topics) {
