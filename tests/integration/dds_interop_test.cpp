@@ -298,7 +298,7 @@ std::uint64_t digest_of(std::vector<const ReceivedTrack*> tracks) {
   return digest.value();
 }
 
-TEST(DdsInterop, ACycloneDdsReaderHoldsEveryNodesPictureAndSeesEachDroppedTrackDisposed) {
+TEST(DdsInterop, ACycloneDdsReaderHoldsEveryNodesPictureAndALateOneTheLatestAtOnce) {
   const std::string reader = bin("skyfuse-cyclone-tracks");
   if (!std::filesystem::exists(reader)) {
     GTEST_SKIP() << "Cyclone DDS was not found when the build was configured";
@@ -309,11 +309,19 @@ TEST(DdsInterop, ACycloneDdsReaderHoldsEveryNodesPictureAndSeesEachDroppedTrackD
   Process cyclone(
       {reader, "--domain", domain, "--out", (dir / "every.csv").string(), "--timeout-s", "150"},
       dir / "every.log");
-  const Completed run = run_to_completion(
-      {bin("skyfuse"), "run", "--scenario", (dir / "picture.yaml").string(), "--domain", domain,
-       "--realtime-deadline-ms", "200", "--out", (dir / "run").string()},
-      dir / "run.log", 120s);
-  ASSERT_EQ(run.status.code, 0) << run.output;
+  Process run({bin("skyfuse"), "run", "--scenario", (dir / "picture.yaml").string(), "--domain",
+               domain, "--realtime-deadline-ms", "200", "--out", (dir / "run").string()},
+              dir / "run.log");
+  // A viewer that joins mid-run, while the first reader reads: a third of the run's tracks in.
+  ASSERT_TRUE(eventually([&] { return lines_in(dir / "every.csv") > 120; }, 60s))
+      << run.output() << cyclone.output();
+  Process late({reader, "--domain", domain, "--latest", std::to_string(kSources), "--out",
+                (dir / "late.csv").string(), "--timeout-s", "60"},
+               dir / "late.log");
+  const auto run_status = run.wait(120s);
+  ASSERT_TRUE(run_status && run_status->code == 0) << run.output();
+  const auto late_status = late.wait(60s);
+  ASSERT_TRUE(late_status && late_status->code == 0) << late.output();
   const auto cyclone_status = cyclone.wait(60s);
   ASSERT_TRUE(cyclone_status && cyclone_status->code == 0) << cyclone.output();
 
@@ -371,6 +379,30 @@ TEST(DdsInterop, ACycloneDdsReaderHoldsEveryNodesPictureAndSeesEachDroppedTrackD
   }
   EXPECT_FALSE(dropped.empty()) << "the aircraft that left was never dropped: nothing tested";
   EXPECT_EQ(deleted, dropped);
+
+  // The viewer that joined: from each node's writer history, the node's whole picture of the
+  // round before it matched (its digest the node's), then the next round's tracks live.
+  const ReaderOutput joined = read_reader_output(dir / "late.csv");
+  for (int node = 0; node < kSources; ++node) {
+    std::map<int, std::vector<const ReceivedTrack*>> history;  // step -> tracks
+    int first_live = -1;
+    for (const ReceivedTrack& t : joined.tracks) {
+      if (t.source != node || t.status == "deleted") continue;
+      if (t.written_ns < t.matched_ns) {
+        history[t.step].push_back(&t);
+      } else if (first_live < 0 || t.step < first_live) {
+        first_live = t.step;
+      }
+    }
+    ASSERT_EQ(history.size(), 1u) << "node " << node << ": the history held one round's tracks";
+    const auto& [step, got] = *history.begin();
+    EXPECT_GT(step, 0) << "node " << node << ": not joined mid-run";
+    const auto row = rounds.find({step, node});
+    ASSERT_NE(row, rounds.end());
+    EXPECT_EQ(got.size(), row->second.tracks) << "node " << node << ", round " << step;
+    EXPECT_EQ(digest_of(got), row->second.digest) << "node " << node << ", round " << step;
+    EXPECT_EQ(first_live, step + 1) << "node " << node << ": the history was not its latest";
+  }
 }
 
 }  // namespace
