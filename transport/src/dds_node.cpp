@@ -5,6 +5,8 @@
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
+#include "skyfuse/transport/port_probe.hpp"
+
 namespace skyfuse::transport {
 
 bool ReaderWaitSet::wait(std::chrono::microseconds timeout) {
@@ -18,6 +20,11 @@ DdsNode::DdsNode(const NodeConfig& config)
   if (config.domain_id < 0 || config.domain_id > kMaxDomainId) {
     throw DdsError(
         fmt::format("--domain: must be in [0, {}], got {}", kMaxDomainId, config.domain_id));
+  }
+  // Fast DDS opens a multicast port another socket holds without a word, and its samples are
+  // then lost (port_probe.hpp): say so before anything is created.
+  if (qos_.multicast()) {
+    if (const auto taken = taken_multicast_port(config.domain_id)) throw DdsError(*taken);
   }
   auto* factory = dds::DomainParticipantFactory::get_instance();
   dds::DomainParticipantQos participant_qos = qos_.participant(config.name);
