@@ -54,8 +54,7 @@ class PictureStation {
         tracks_(node_),
         states_out_(node_.make_writer<wire::PictureState>()),
         states_in_(node_.make_reader<wire::PictureState>()),
-        picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.traffic->tracker),
-        filters_(Parts::peer(plan_.scenario)) {
+        picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.traffic->tracker) {
     // Its own scan never crosses the simulated link: the exchange keeps it as it goes out.
     exchange_.keep_own();
     loop_.skip_own(options.id, exchange_.own_writer());
@@ -162,7 +161,7 @@ class PictureStation {
     wire::PictureState sample;
     while (states_in_.take(sample)) {
       if (sample.run_id() != options_.node.run_id || sample.station_id() == options_.id) continue;
-      auto tracks = transport::picture_state_from_wire(sample, filters_);
+      auto tracks = transport::picture_state_from_wire(sample, picture_.filters());
       if (!tracks) {
         spdlog::warn("step {}: a picture from station {} that is wrong; refused", sample.step(),
                      sample.station_id());
@@ -226,7 +225,6 @@ class PictureStation {
   transport::Writer<wire::PictureState> states_out_;
   transport::Reader<wire::PictureState> states_in_;
   Picture picture_;
-  Tracks filters_;  // starts the tracks of a picture taken from another station
   AssignmentWork work_;
   std::optional<PeerState> latest_;
   bool parted_last_round_ = false;  // this picture was not the lowest station's last round

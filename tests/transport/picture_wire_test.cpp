@@ -14,7 +14,10 @@
 #include "skyfuse/models/constant_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/multitarget/track_filters.hpp"
+#include "skyfuse/multitarget/track_table.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
+#include "skyfuse/tracking/imm_modes.hpp"
 #include "skyfuse/wire/skyfuse_picturePubSubTypes.h"
 #include "transport/picture_world.hpp"
 
@@ -238,6 +241,71 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   // An IMM's modes on a single-model track.
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].mode_probabilities({1.0}); }));
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].modes().resize(1); }));
+}
+
+// The same for an IMM's picture: each track's mode probabilities and every mode's state come
+// back bit for bit, so the taker predicts to the sender's picture; a mode missing, a mode
+// wrong, probabilities that are not, or a single model's state on an IMM track are refused.
+TEST(PictureWire, AnImmPictureArrivesWithEveryModeBitForBit) {
+  using Tracks = PeerImmTracks<DefaultImmModes>;
+  using Table = TrackTable<Tracks, RangeAzimuthElevation<KinematicState::kDim>>;
+  constexpr int N = KinematicState::kDim;
+  const Scenario scenario =
+      load_scenario_file(std::string(SKYFUSE_BIN_DIR) + "/scenarios/paper000-imm.yaml");
+  Table sender(Tracks(scenario), {}, TrackerConfig{});
+  for (const TrackId id : {TrackId{3}, TrackId{7}, TrackId{12}}) {
+    GaussianState<N> start;
+    start.mean = Vector<N>::LinSpaced(-1.0, static_cast<double>(id));
+    start.mean(KinematicState::kTurnRate) = 0.01 * static_cast<double>(id);
+    start.covariance = Covariance<N>::Identity() * (1.0 + static_cast<double>(id));
+    sender.add_known_track(id, start);
+  }
+  for (int k = 0; k < 5; ++k) sender.predict();
+
+  wire::PictureStatePubSubType type;
+  const wire::PictureState sent = picture_state_to_wire(sender, 1, 4, 2);
+  ASSERT_EQ(sent.tracks().front().modes().size(), 3U);
+  EXPECT_TRUE(sent.tracks().front().x().empty());
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(
+      type.getSerializedSizeProvider(const_cast<wire::PictureState*>(&sent))());
+  ASSERT_TRUE(type.serialize(const_cast<wire::PictureState*>(&sent), &payload));
+  wire::PictureState back;
+  ASSERT_TRUE(type.deserialize(&payload, &back));
+  auto tracks = picture_state_from_wire(back, sender.filters());
+  ASSERT_TRUE(tracks.has_value());
+
+  Table taker(Tracks(scenario), {}, TrackerConfig{});
+  taker.restore(std::move(*tracks));
+  ASSERT_EQ(taker.tracks().size(), sender.tracks().size());
+  for (std::size_t t = 0; t < sender.tracks().size(); ++t) {
+    const auto& mine = taker.tracks()[t].filter.filter();
+    const auto& theirs = sender.tracks()[t].filter.filter();
+    EXPECT_EQ(mine.mode_probabilities(), theirs.mode_probabilities());
+    Tracks::State::for_each_mode([&]<int I>(std::integral_constant<int, I>) {
+      EXPECT_EQ(mine.template mode_state<I>().mean, theirs.template mode_state<I>().mean);
+      EXPECT_EQ(mine.template mode_state<I>().covariance,
+                theirs.template mode_state<I>().covariance);
+    });
+  }
+  EXPECT_EQ(taker.digest(), sender.digest());
+  taker.predict();
+  sender.predict();
+  EXPECT_EQ(taker.digest(), sender.digest()) << "and predicts to the same picture";
+
+  const auto refused = [&](const std::function<void(wire::PictureState&)>& forge) {
+    wire::PictureState wrong = back;
+    forge(wrong);
+    return !picture_state_from_wire(wrong, sender.filters()).has_value();
+  };
+  EXPECT_FALSE(refused([](auto&) {})) << "the sample itself is taken";
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].modes().pop_back(); }));
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].mode_probabilities().pop_back(); }));
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].mode_probabilities()[0] += 0.1; }));
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].modes()[1].x().pop_back(); }));
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].modes()[2].covariance().pop_back(); }));
+  EXPECT_TRUE(refused(
+      [](auto& w) { w.tracks()[1].modes()[0].x()[0] = std::numeric_limits<double>::quiet_NaN(); }));
+  EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].x().push_back(1.0); }));
 }
 
 TEST(PictureWire, AReportNamingATrackThePictureLacksIsNotRebuilt) {
