@@ -92,12 +92,13 @@ class PictureStation {
   // Predicts the picture, scans, assigns the scan to the predicted tracks and publishes it.
   RunEnd open_round(std::uint64_t k) {
     picture_.predict();
+    predicted_digest_ = picture_.digest();
     const StationConfig& station = plan_.participants()[me_];
     const Scan<M> scan = simulate_scan(station.id, make_sensor<TruthSensorOf<Sensor>>(station),
                                        station.position_m, known_[me_].noise, detection_, truth_,
                                        static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
     exchange_.publish(static_cast<std::uint32_t>(k), scan,
-                      picture_.report(known_[me_], scan, work_), picture_.digest());
+                      picture_.report(known_[me_], scan, work_), predicted_digest_);
     return std::nullopt;
   }
 
@@ -121,7 +122,7 @@ class PictureStation {
     }
     take_states();
     const auto lowest = exchange_.lowest();
-    const bool parted = lowest && lowest->second != picture_.digest();
+    const bool parted = lowest && lowest->second != predicted_digest_;
     if (parted) {
       // Parted last round too, the lowest station saw it then and sent its picture of that
       // round: wait for it (a datagram of it lost waits for its repair) rather than stay apart.
@@ -129,9 +130,10 @@ class PictureStation {
       take_picture_of(*lowest, k);
     }
     parted_last_round_ = parted;
-    const std::uint64_t predicted = picture_.digest();
-    const auto reports = exchange_.reports(
-        picture_, [&](int station_id, DropKind why) { loop_.count_drop(why, station_id, k); });
+    const std::uint64_t predicted = predicted_digest_;
+    const auto reports = exchange_.reports(picture_, predicted, [&](int station_id, DropKind why) {
+      loop_.count_drop(why, station_id, k);
+    });
     picture_.fuse(k, reports);
     const auto step = static_cast<std::uint32_t>(k);
     if (lowest && lowest->first == options_.id && exchange_.any_other_picture(predicted)) {
@@ -199,6 +201,7 @@ class PictureStation {
       return;
     }
     picture_ = std::move(candidate);
+    predicted_digest_ = lowest.second;
     ++resyncs_;
     spdlog::info("step {}: took station {}'s picture", k, lowest.first);
   }
@@ -225,6 +228,9 @@ class PictureStation {
   transport::Writer<wire::PictureState> states_out_;
   transport::Reader<wire::PictureState> states_in_;
   Picture picture_;
+  // picture_'s digest as predicted for the round (or taken): it is published with the scan and
+  // compared with the others', and computed once a round rather than at each use.
+  std::uint64_t predicted_digest_ = 0;
   AssignmentWork work_;
   std::optional<PeerState> latest_;
   bool parted_last_round_ = false;  // this picture was not the lowest station's last round

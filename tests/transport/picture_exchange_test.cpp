@@ -106,7 +106,7 @@ TEST(PictureExchange, ThreeStationsOverLoopbackDdsHoldTheInProcessPictureBitForB
         << "round " << k << ": station 1 still misses " << nodes[0].exchange->missing().size();
     reference.fuse(k, own_reports);
     for (StationNode& n : nodes) {
-      const auto reports = n.exchange->reports(n.picture, kNoRefusal);
+      const auto reports = n.exchange->reports(n.picture, n.picture.digest(), kNoRefusal);
       ASSERT_EQ(reports.size(), world.stations.size()) << "round " << k;
       n.picture.fuse(k, reports);
       n.exchange->advance();
@@ -173,10 +173,11 @@ TEST(PictureExchange, AScanNamingATrackThePictureDoesNotHoldIsLeftOutAndCounted)
     ASSERT_TRUE(all_complete(nodes)) << "round " << k;
     for (StationNode& n : nodes) {
       std::vector<int> refused;
-      const auto reports = n.exchange->reports(n.picture, [&](int station_id, DropKind why) {
-        EXPECT_EQ(why, DropKind::kOutOfRange);
-        refused.push_back(station_id);
-      });
+      const auto reports =
+          n.exchange->reports(n.picture, n.picture.digest(), [&](int station_id, DropKind why) {
+            EXPECT_EQ(why, DropKind::kOutOfRange);
+            refused.push_back(station_id);
+          });
       if (forged) {
         EXPECT_EQ(refused, std::vector<int>{world.stations[2].id});
         ASSERT_EQ(reports.size(), 2U);

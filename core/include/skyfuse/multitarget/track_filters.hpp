@@ -165,6 +165,13 @@ class ImmTracks {
   Vector<kDim> initial_variance_ = Vector<kDim>::Zero();
 };
 
+/// Whether a track's filter state is an IMM's (a state per mode and the mode probabilities,
+/// PeerImmTracks' and CenterImmTracks') rather than one Gaussian.
+template <typename State>
+concept ImmTrackState = requires(const State& s) {
+  s.filter().mode_probabilities();
+};
+
 /// The peers' side of the IMM: per mode, each station's increment and likelihood terms
 /// against the mode's prior; the modes and probabilities fused as the single-target peers do.
 template <typename Set>

@@ -85,8 +85,9 @@ class PictureExchange {
   /// The stations whose sample of the current step is still missing.
   std::vector<int> missing() const { return scans_.missing(); }
 
-  /// The current step's reports against `picture` (the predicted picture of this step),
-  /// ascending station id, one per station whose sample arrived:
+  /// The current step's reports against `picture` (the predicted picture of this step, whose
+  /// digest is `picture_digest`: the caller has it already), ascending station id, one per
+  /// station whose sample arrived:
   ///  - made against this same picture (its digest): rebuilt from the station's own
   ///    associations;
   ///  - made against another picture (the station had parted): its detections assigned here to
@@ -97,9 +98,10 @@ class PictureExchange {
   /// not hold was not made by an honest station: it is left out and on_refused(station id,
   /// DropKind::kOutOfRange) called.
   template <typename OnRefused>
-  std::vector<Report> reports(const Picture& picture, OnRefused&& on_refused) {
+  std::vector<Report> reports(const Picture& picture, std::uint64_t picture_digest,
+                              OnRefused&& on_refused) {
     std::vector<Report> out;
-    const std::uint64_t digest = picture.digest();
+    const std::uint64_t digest = picture_digest;
     for (const int id : scans_.station_ids()) {  // ascending, as fusing wants them
       const ReceivedScan<M>* scan = scans_.scan_of(id);
       if (scan == nullptr) continue;

@@ -13,9 +13,11 @@
 /// that the next reader is not handed stale ones from the writer's history.
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "skyfuse/multitarget/track.hpp"
+#include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 
@@ -34,9 +36,9 @@ class PictureTrackWriter {
                wire::TrackSource mode) {
     constexpr int N = Table::kDim;
     const auto tracks = table.tracks();
-    std::vector<TrackId> now;
+    std::vector<TrackId>& now = writing_;
+    now.clear();
     if (writer_.matched() > 0) {
-      now.reserve(tracks.size());
       for (std::size_t t = 0; t < tracks.size(); ++t) now.push_back(tracks[t].id);
     }
     // Both lists ascend (a table keeps its tracks by id): the dropped ones in one pass.
@@ -54,18 +56,19 @@ class PictureTrackWriter {
           to_wire<N>(table.estimates()[t], run_id, step, source_id, mode, tracks[t].updated_by);
       sample.track_id(tracks[t].id);
       sample.confirmed(tracks[t].status == TrackStatus::kConfirmed);
-      if constexpr (requires { tracks[t].filter.filter().mode_probabilities(); }) {
-        const auto& p = tracks[t].filter.filter().mode_probabilities();  // an IMM's
+      if constexpr (ImmTrackState<typename Table::State>) {
+        const auto& p = tracks[t].filter.filter().mode_probabilities();
         sample.mode_probabilities(std::vector<double>(p.data(), p.data() + p.size()));
       }
       writer_.write(sample);
     }
-    written_ = std::move(now);
+    std::swap(written_, writing_);
   }
 
  private:
   Writer<wire::TrackEstimate> writer_;
   std::vector<TrackId> written_;  // ascending: the tracks of the last round written
+  std::vector<TrackId> writing_;  // this round's, kept to reuse its storage
 };
 
 }  // namespace skyfuse::transport

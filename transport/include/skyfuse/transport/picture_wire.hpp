@@ -18,6 +18,7 @@
 
 #include "skyfuse/multitarget/peer_picture.hpp"
 #include "skyfuse/multitarget/scan.hpp"
+#include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
@@ -157,12 +158,6 @@ wire::PictureRound picture_round_to_wire(const Table& table, std::uint64_t run_i
 
 namespace detail {
 
-// Whether a track filter is an IMM peer's (a state per mode) rather than one Gaussian.
-template <typename State>
-concept ImmTrackState = requires(const State& s) {
-  s.filter().mode_probabilities();
-};
-
 // An IMM track's filter from its modes on the wire: started as `filters` starts any track, then
 // given the sent mode states and probabilities; nothing if their number, dimensions or values
 // are wrong.
@@ -225,7 +220,7 @@ wire::PictureState picture_state_to_wire(const Table& table, std::uint64_t run_i
     t.history_rounds(words.rounds);
     t.history_misses(words.consecutive_misses);
     using State = std::decay_t<decltype(track.filter)>;
-    if constexpr (detail::ImmTrackState<State>) {
+    if constexpr (ImmTrackState<State>) {
       const auto& imm = track.filter.filter();
       const auto& p = imm.mode_probabilities();
       t.mode_probabilities(std::vector<double>(p.data(), p.data() + p.size()));
@@ -264,7 +259,7 @@ std::optional<std::vector<Track<typename Tracks::State>>> picture_state_from_wir
         TrackHistory::from_words({t.history_hits(), t.history_rounds(), t.history_misses()});
     if (!history) return std::nullopt;
     std::optional<State> filter;
-    if constexpr (detail::ImmTrackState<State>) {
+    if constexpr (ImmTrackState<State>) {
       if (!t.x().empty() || !t.covariance().empty()) return std::nullopt;
       filter = detail::imm_state_from_wire(t, filters);
     } else {
