@@ -8,6 +8,7 @@
 
 #include "skyfuse/transport/dds_node.hpp"
 #include "support/process.hpp"
+#include "transport/node_config_of.hpp"
 
 namespace skyfuse::transport {
 namespace {
@@ -15,14 +16,7 @@ namespace {
 using namespace std::chrono_literals;
 using test::eventually;
 
-// Each test has its own domain: ctest runs them as separate processes side by side, and in a
-// shared domain one test's readers match the other's writers (CI saw exactly that).
-NodeConfig config_of(const char* name, int domain_id) {
-  NodeConfig config;
-  config.domain_id = domain_id;
-  config.name = name;
-  return config;
-}
+using test::config_of;
 
 wire::PartialSum sum_for(std::uint32_t cluster) {
   wire::PartialSum sample;

@@ -4,17 +4,12 @@
 #include <gtest/gtest.h>
 
 #include "skyfuse/transport/dds_node.hpp"
+#include "transport/node_config_of.hpp"
 
 namespace skyfuse::transport {
 namespace {
 
-// Each test has its own domain: ctest runs them as separate processes side by side.
-NodeConfig config_of(const char* name, int domain_id) {
-  NodeConfig config;
-  config.domain_id = domain_id;
-  config.name = name;
-  return config;
-}
+using test::config_of;
 
 wire::TrackEstimate track(std::uint64_t id) {
   wire::TrackEstimate sample;
