@@ -6,7 +6,7 @@
 /// that updated it last, and a track the picture dropped is unregistered, which readers see as
 /// its instance disposed. The run itself reads the whole picture from wire::PictureRound.
 ///
-/// Only while a reader is matched: a write costs the node about 1 us a track even with no
+/// Only while a reader is matched: a write costs the node about 2.5 us a track even with no
 /// reader (N = 1 000, M = 8: 2.3-2.6 -> 3.2-3.5 ms of CPU a station-round, docs/multitarget.md),
 /// which a run nobody watches this way should not pay. A reader that joins gets every track
 /// at the next round; when the last reader leaves, every track written is unregistered, so
