@@ -129,6 +129,10 @@ std::string location_fix_schema() {
       .dump();
 }
 
+std::string run_summary_schema() {
+  return titled(typed("object"), "skyfuse.RunSummary").dump();
+}
+
 std::string round_schema() {
   const json node = object_of({{"node", typed("integer")},
                                {"delivered", typed("boolean")},

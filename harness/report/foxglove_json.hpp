@@ -35,6 +35,8 @@ std::string frame_transform_schema();
 std::string location_fix_schema();
 /// skyfuse.Round: who delivered and who is missing in a round (the page's strip and slider).
 std::string round_schema();
+/// skyfuse.RunSummary: a run's summary.json as it is, one object at the end of the recording.
+std::string run_summary_schema();
 
 // ---- messages --------------------------------------------------------------------------------
 

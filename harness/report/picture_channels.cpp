@@ -72,8 +72,7 @@ PictureChannels::PictureChannels(const PicturePlan& plan, std::uint64_t epoch_ns
             {"/tracks/geojson", "foxglove.GeoJSON", geojson_schema()},
             {"/skyfuse/round", "skyfuse.Round", round_schema()},
             {"/skyfuse/picture", "skyfuse.Picture", picture_schema()},
-            {"/skyfuse/summary", "skyfuse.RunSummary",
-             titled(typed("object"), "skyfuse.RunSummary").dump()}};
+            {"/skyfuse/summary", "skyfuse.RunSummary", run_summary_schema()}};
 }
 
 std::uint64_t PictureChannels::log_time_ns(int step) const {

@@ -71,8 +71,7 @@ RunChannels::RunChannels(const RunRecorder& recorder, std::uint64_t epoch_ns)
             {"/truth/location", "foxglove.LocationFix", location_fix_schema()},
             {"/skyfuse/round", "skyfuse.Round", round_schema()},
             {"/skyfuse/track_error", "skyfuse.TrackError", track_error_schema()},
-            {"/skyfuse/summary", "skyfuse.RunSummary",
-             titled(typed("object"), "skyfuse.RunSummary").dump()}};
+            {"/skyfuse/summary", "skyfuse.RunSummary", run_summary_schema()}};
   if (!recorder.mode_names().empty()) {
     specs_.push_back({"/skyfuse/modes", "skyfuse.ModeProbabilities", modes_schema()});
   }
