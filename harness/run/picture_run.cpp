@@ -67,8 +67,7 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
 }
 
 // One start of every process of the run.
-PictureRunSummary run_picture_once(const RunOptions& o, const Scenario& scenario) {
-  const PicturePlan plan = make_picture_plan(scenario, o.node.overrides);
+PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan) {
   std::vector<int> ids;
   for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
   std::sort(ids.begin(), ids.end());
@@ -301,10 +300,10 @@ PictureRunSummary run_picture_once(const RunOptions& o, const Scenario& scenario
 PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scenario) {
   refuse_what_a_picture_run_lacks(o);
   // A secure start on Fast DDS 2.9 sometimes stalls (secure_start.hpp).
-  const int stations = make_picture_plan(scenario, o.node.overrides).stations;
-  return with_secure_restarts(o, discovery_timeout_s(o, stations), [&](const RunOptions& attempt) {
-    return run_picture_once(attempt, scenario);
-  });
+  const PicturePlan plan = make_picture_plan(scenario, o.node.overrides);
+  return with_secure_restarts(
+      o, discovery_timeout_s(o, plan.stations),
+      [&](const RunOptions& attempt) { return run_picture_once(attempt, plan); });
 }
 
 }  // namespace skyfuse::harness
