@@ -118,10 +118,6 @@ std::optional<std::string> missing_from(const RoundRecord& r, std::size_t statio
   return fmt::format("{}", fmt::join(short_of, ", "));
 }
 
-// With best-effort samples, the first rounds that may all be incomplete (a lost sample each)
-// before the run is stopped as not fully connected.
-constexpr int kBestEffortConnectionRounds = 5;
-
 // The lock-step rounds: kills and restarts before their step's round, each round recorded
 // (and streamed) as it closes.
 template <typename SpawnStation>
@@ -133,7 +129,7 @@ void run_lockstep_rounds(const RunOptions& o, const RunPlan& plan, LockstepDrive
       std::chrono::milliseconds(std::llround(2.0 * o.node.round_deadline_ms + 250.0));
   const std::size_t stations = plan.participant_ids().size();
   // How many of the first rounds may all be incomplete before the network counts as broken.
-  const int connection_rounds = o.node.best_effort ? kBestEffortConnectionRounds : 1;
+  const int connection_rounds = connection_rounds_of(o);
   bool checking_connection = true;
   for (int k = 0; k < plan.scenario.steps; ++k) {
     const auto step = static_cast<std::uint64_t>(k);

@@ -14,6 +14,14 @@
 
 namespace skyfuse::harness {
 
+/// How many first rounds of a lock-step run without loss may all be incomplete before it is
+/// stopped as not fully connected: one with reliable samples; with best-effort ones, whose
+/// first round may lose a sample while the sockets fill, a few.
+inline int connection_rounds_of(const RunOptions& o) {
+  constexpr int kBestEffortConnectionRounds = 5;
+  return o.node.best_effort ? kBestEffortConnectionRounds : 1;
+}
+
 /// Seconds to wait until every process has joined: the option if given, else
 /// default_discovery_timeout_s(stations).
 double discovery_timeout_s(const RunOptions& options, int stations);

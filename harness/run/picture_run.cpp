@@ -185,15 +185,17 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
     if (live) live->set_epoch_ns(epoch_ns);
     // `latency`: lock-step, from the tick to the last picture; real time, from the round's
     // scheduled end to its hand-over.
-    // Without loss or a station down, round 0 of a lock-step run fuses every scan at every
-    // node in a connected network; if it does not, some pair of processes never matched (seen
-    // with secure discovery) and every round would wait for its deadline: say so at once.
-    const bool check_connection = !realtime && !o.node.loss.enabled() &&
-                                  std::none_of(o.kills.begin(), o.kills.end(),
-                                               [](const StationEvent& e) { return e.step == 0; });
+    // Without loss or a station down, the first round of a lock-step run fuses every scan at
+    // every node in a connected network; if none of the first connection_rounds_of(o) does,
+    // some pair of processes never matched (seen with secure discovery) and every round would
+    // wait for its deadline: say so at once.
+    const int connection_rounds = connection_rounds_of(o);
+    bool checking_connection = !realtime && !o.node.loss.enabled() &&
+                               std::none_of(o.kills.begin(), o.kills.end(),
+                                            [](const StationEvent& e) { return e.step == 0; });
     const auto take_round = [&](int k, const std::vector<wire::PictureRound>& rounds,
                                 std::chrono::duration<double, std::milli> latency) {
-      if (k == 0 && check_connection) {
+      if (checking_connection) {
         std::vector<std::string> short_of;
         for (const wire::PictureRound& r : rounds) {
           if (r.scans_fused() < static_cast<std::uint32_t>(plan.stations)) {
@@ -201,8 +203,13 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
                                            r.scans_fused(), plan.stations));
           }
         }
-        if (!short_of.empty()) {
-          throw RunAborted(fmt::format("round 0 incomplete, the network is not fully connected: {}",
+        if (short_of.empty()) {
+          checking_connection = false;
+        } else if (k + 1 >= connection_rounds) {
+          throw RunAborted(fmt::format("{}, the network is not fully connected: {}",
+                                       connection_rounds == 1
+                                           ? std::string("round 0 incomplete")
+                                           : fmt::format("rounds 0-{} all incomplete", k),
                                        fmt::join(short_of, ", ")));
         }
       }
