@@ -14,15 +14,17 @@
 //
 // The increments, which have no wire type, are encoded by hand as Fast CDR encodes a sample (the
 // serializer of the generated wire types), so both byte counts are those a DDS sample would
-// carry. Timed: one peer's round of receiving
-// every station's sample (its own included): decoding them (for the detections, computing every
-// increment) and fusing. Numbers printed, never asserted.
+// carry. The same two ways for the tree's cluster sample (BM_ClusterSample, below). Timed: one
+// peer's round of receiving every station's sample (its own included): decoding them (for the
+// detections, computing every increment) and fusing. Numbers printed, never asserted.
 
 #include <benchmark/benchmark.h>
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>
 
 #include <algorithm>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "multitarget_setup.hpp"
@@ -187,6 +189,86 @@ void BM_PictureRound(benchmark::State& state) {
       static_cast<double>(updates) / static_cast<double>(stations);
   state.counters["tracks"] = static_cast<double>(tracks);
 }
+
+// The tree's sample from a cluster's aggregator, two ways, for the first `fanout` stations of a
+// round: its members' increments summed per track id in ascending station id (id, dQ's upper
+// triangle, dy) with their unassociated detections forwarded (station, index, value); or its
+// members' scans relayed unchanged (wire::PictureBundle, what the tree sends). Timed: the
+// aggregator's forming and encoding of the sample. bytes_per_cluster is what each receiver of
+// the cluster's sample gets.
+struct ClusterSumEncoding {
+  static void encode(Cdr& cdr, const Round& round, std::size_t fanout) {
+    std::map<TrackId, std::pair<Covariance<kDim>, Vector<kDim>>> sums;
+    std::uint32_t unassociated = 0;
+    for (std::size_t s = 0; s < fanout; ++s) {
+      for (const auto& update : round.reports[s].updates) {
+        auto [it, fresh] = sums.try_emplace(update.track, update.contribution.delta_information,
+                                            update.contribution.delta_vector);
+        if (!fresh) {
+          it->second.first += update.contribution.delta_information;
+          it->second.second += update.contribution.delta_vector;
+        }
+      }
+      unassociated += static_cast<std::uint32_t>(round.reports[s].unassociated.size());
+    }
+    cdr << static_cast<std::uint32_t>(sums.size());
+    double upper[kUpperTriangle];
+    for (const auto& [track, sum] : sums) {
+      int n = 0;
+      for (int r = 0; r < kDim; ++r) {
+        for (int c = r; c < kDim; ++c) upper[n++] = sum.first(r, c);
+      }
+      cdr << track;
+      cdr.serializeSequence(upper, kUpperTriangle);
+      cdr.serializeSequence(sum.second.data(), kDim);
+    }
+    cdr << unassociated;
+    for (std::size_t s = 0; s < fanout; ++s) {
+      for (const auto& d : round.reports[s].unassociated) {
+        cdr << round.reports[s].station_id << d.detection;
+        cdr.serializeSequence(d.z.data(), kMeasDim);
+      }
+    }
+  }
+};
+struct ClusterBundleEncoding {
+  static void encode(Cdr& cdr, const Round& round, std::size_t fanout) {
+    wire::PictureBundle bundle;
+    bundle.kind(wire::CLUSTER_SCANS);
+    bundle.station_id(round.reports[0].station_id);
+    for (std::size_t s = 0; s < fanout; ++s) {
+      bundle.scans().push_back(
+          transport::to_wire<TrackSensor>(round.scans[s], round.reports[s], 1, kWarmUpSteps, 0));
+    }
+    bundle.serialize(cdr);
+  }
+};
+
+template <typename Encoding>
+void BM_ClusterSample(benchmark::State& state) {
+  const Round round =
+      make_round(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const auto fanout = static_cast<std::size_t>(state.range(2));
+  std::vector<char> memory(1 << 24);
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    eprosima::fastcdr::FastBuffer buffer(memory.data(), memory.size());
+    Cdr cdr(buffer, Cdr::DEFAULT_ENDIAN, Cdr::DDS_CDR);
+    cdr.serialize_encapsulation();
+    Encoding::encode(cdr, round, fanout);
+    bytes = cdr.getSerializedDataLength();
+    benchmark::DoNotOptimize(memory.data());
+  }
+  state.counters["bytes_per_cluster"] = static_cast<double>(bytes);
+}
+
+void ClusterSizes(benchmark::internal::Benchmark* b) {
+  for (const int aircraft : {10, 100, 1000}) b->Args({aircraft, 16, 8});
+  b->ArgNames({"N", "M", "k"})->Unit(benchmark::kMillisecond);
+}
+
+BENCHMARK(BM_ClusterSample<ClusterSumEncoding>)->Apply(ClusterSizes);
+BENCHMARK(BM_ClusterSample<ClusterBundleEncoding>)->Apply(ClusterSizes);
 
 void Sizes(benchmark::internal::Benchmark* b) {
   for (const int stations : {8, 16}) {

@@ -1,13 +1,18 @@
 #pragma once
 // The center process of a run with many aircraft (picture_center.hpp) for one filter part on
 // one motion model and the stations' sensor (multitarget/picture_parts.hpp), compiled by shard
-// of the configuration groups (registry/filter_shards.hpp, picture_center_shard.cpp).
+// of the configuration groups (registry/filter_shards.hpp, picture_center_shard.cpp). It hears
+// each station's scan (`Sample` wire::PictureScan: the flat exchange) or each cluster's scans as
+// its aggregator relays them (wire::PictureBundle: the tree, transport/picture_tree_exchange.hpp).
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <optional>
 #include <stdexcept>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include "center_process.hpp"
@@ -19,15 +24,19 @@
 #include "skyfuse/transport/node_loop.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
+#include "skyfuse/transport/picture_bundles.hpp"
 #include "skyfuse/transport/picture_scans.hpp"
 #include "skyfuse/transport/picture_track_writer.hpp"
+#include "skyfuse/transport/picture_tree_exchange.hpp"
 
 namespace skyfuse::center {
 
 using transport::RunEnd;
 
-template <typename Parts>
+template <typename Parts, typename Sample>
 class PictureCenter {
+  static constexpr bool kTree = std::is_same_v<Sample, wire::PictureBundle>;
+
  public:
   using Sensor = typename Parts::Sensor;
   static constexpr int M = Sensor::kMeasDim;
@@ -40,9 +49,13 @@ class PictureCenter {
         ids_(ids_of(plan_)),
         node_(transport::node_config(options, "skyfuse-center")),
         loop_(node_, options, kCenterSourceId, "a fusion center", "picture scan",
-              plan_.scenario.time_step_s),
+              plan_.scenario.time_step_s,
+              kTree ? std::vector<std::string>{transport::kPictureClustersPartition}
+                    : std::vector<std::string>{}),
         scans_in_(ids_, options.run_id,
                   plan_.scenario.traffic->tracker.association.max_detections_per_scan),
+        writers_(kTree ? static_cast<int>(transport::picture_tree_layout(plan_).clusters())
+                       : plan_.stations),
         rounds_(node_.make_writer<wire::PictureRound>()),
         tracks_(node_),
         picture_(Parts::center(plan_.scenario),
@@ -50,19 +63,20 @@ class PictureCenter {
                  plan_.scenario.traffic->tracker) {}
 
   int run() {
-    const int m = plan_.stations;
     auto& inputs = loop_.inputs();
     auto& ticks = loop_.ticks();
     if (const RunEnd end = loop_.join(
-            [&] { return inputs.matched() >= m && ticks.matched() >= 1 && rounds_.matched() >= 1; },
             [&] {
-              return fmt::format(
-                  "picture scan writers {}/{}, tick writer {}/1, picture readers {}/1",
-                  inputs.matched(), m, ticks.matched(), rounds_.matched());
+              return inputs.matched() >= writers_ && ticks.matched() >= 1 && rounds_.matched() >= 1;
+            },
+            [&] {
+              return fmt::format("{} writers {}/{}, tick writer {}/1, picture readers {}/1",
+                                 kTree ? "cluster" : "picture scan", inputs.matched(), writers_,
+                                 ticks.matched(), rounds_.matched());
             })) {
       return *end;
     }
-    spdlog::info("joined run {} with {} stations", options_.run_id, m);
+    spdlog::info("joined run {} with {} stations", options_.run_id, plan_.stations);
     return loop_.run(*this, 0, static_cast<std::uint64_t>(plan_.scenario.steps), rounds_);
   }
 
@@ -70,9 +84,12 @@ class PictureCenter {
 
   RunEnd open_round(std::uint64_t /*k*/) { return std::nullopt; }  // it scans nothing
 
-  std::optional<DropKind> receive(const wire::PictureScan& sample,
-                                  const transport::WriterId& writer) {
-    return scans_in_.receive(sample, writer);
+  std::optional<DropKind> receive(const Sample& sample, const transport::WriterId& writer) {
+    if constexpr (kTree) {
+      return screen_->receive(sample, writer, scans_in_);
+    } else {
+      return scans_in_.receive(sample, writer);
+    }
   }
 
   bool round_complete() { return scans_in_.complete(); }
@@ -116,8 +133,13 @@ class PictureCenter {
   PicturePlan plan_;
   std::vector<int> ids_;  // the participants in scenario order, as the stations' known list
   transport::DdsNode node_;
-  transport::NodeLoop<wire::PictureScan> loop_;
+  transport::NodeLoop<Sample> loop_;
   transport::PictureScans<Sensor> scans_in_;
+  int writers_;  // of its input: every station's, or every cluster's aggregator's
+  std::optional<transport::ClusterBundleScreen> screen_ =
+      kTree ? std::optional(transport::ClusterBundleScreen(transport::picture_tree_layout(plan_),
+                                                           options_.run_id))
+            : std::nullopt;
   transport::Writer<wire::PictureRound> rounds_;
   transport::PictureTrackWriter tracks_;
   Picture picture_;
@@ -130,7 +152,15 @@ int run_picture_center_in_shard(const options::NodeOptions& options, PicturePlan
   int code = 1;
   const bool ran = visit_picture_parts_in_shard<Shard, 0, 1>(
       plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
-        code = transport::make_lifelong<PictureCenter<Parts>>(options, std::move(plan)).run();
+        if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
+          code = transport::make_lifelong<PictureCenter<Parts, wire::PictureBundle>>(
+                     options, std::move(plan))
+                     .run();
+        } else {
+          code = transport::make_lifelong<PictureCenter<Parts, wire::PictureScan>>(options,
+                                                                                   std::move(plan))
+                     .run();
+        }
       });
   if (!ran) throw std::logic_error("a picture center: no picture runs this filter and sensor");
   return code;

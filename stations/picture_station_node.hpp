@@ -1,7 +1,8 @@
 #pragma once
 // The station process of a run with many aircraft (picture_station.hpp) for one filter part on
-// one motion model and the stations' sensor (multitarget/picture_parts.hpp), compiled by shard
-// of the configuration groups (registry/filter_shards.hpp, picture_station_shard.cpp).
+// one motion model and the stations' sensor (multitarget/picture_parts.hpp) and one exchange
+// (flat: transport/picture_exchange.hpp; tree: transport/picture_tree_exchange.hpp), compiled by
+// shard of the configuration groups (registry/filter_shards.hpp, picture_station_shard.cpp).
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -22,20 +23,22 @@
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/picture_exchange.hpp"
 #include "skyfuse/transport/picture_track_writer.hpp"
+#include "skyfuse/transport/picture_tree_exchange.hpp"
 #include "station_process.hpp"
 
 namespace skyfuse::station {
 
 using transport::RunEnd;
 
-template <typename Parts>
+template <typename Parts, template <typename, typename> class ExchangeOf>
 class PictureStation {
  public:
   using Tracks = typename Parts::Peer;
   using Sensor = typename Parts::Sensor;
   static constexpr int M = Sensor::kMeasDim;
   using Picture = PeerPicture<Tracks, Sensor>;
-  using Exchange = transport::PictureExchange<Tracks, Sensor>;
+  using Exchange = ExchangeOf<Tracks, Sensor>;
+  using Sample = typename Exchange::Sample;
 
   // The endpoints are made in a fixed order: the loop's tick and input readers first.
   PictureStation(const StationOptions& options, PicturePlan plan, std::vector<TargetTruth> truth)
@@ -47,16 +50,16 @@ class PictureStation {
         detection_(plan_.participants()[me_].detection.value_or(plan_.scenario.traffic->detection)),
         node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", options.id))),
         loop_(node_, options.node, options.id, fmt::format("station {}", options.id),
-              "picture scan", plan_.scenario.time_step_s),
-        exchange_(node_, known_, options.node.run_id,
-                  plan_.scenario.traffic->tracker.association.max_detections_per_scan),
+              "picture scan", plan_.scenario.time_step_s,
+              Exchange::input_partitions(plan_, options.id)),
+        exchange_(Exchange::of_station(node_, known_, plan_, options.id, options.node)),
         rounds_(node_.make_writer<wire::PictureRound>()),
         tracks_(node_),
         states_out_(node_.make_writer<wire::PictureState>()),
         states_in_(node_.make_reader<wire::PictureState>()),
         picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.traffic->tracker) {
-    // Its own scan never crosses the simulated link: the exchange keeps it as it goes out.
-    exchange_.keep_own();
+    // What it sends to itself never crosses the simulated link: the exchange keeps it as it
+    // goes out.
     loop_.skip_own(options.id, exchange_.own_writer());
   }
 
@@ -102,12 +105,14 @@ class PictureStation {
     return std::nullopt;
   }
 
-  std::optional<DropKind> receive(const wire::PictureScan& sample,
-                                  const transport::WriterId& writer) {
+  std::optional<DropKind> receive(const Sample& sample, const transport::WriterId& writer) {
     return exchange_.receive(sample, writer);
   }
 
-  bool round_complete() { return exchange_.complete(); }
+  bool round_complete() { return exchange_.round_complete(); }
+  std::optional<std::chrono::system_clock::time_point> wake_at() const {
+    return exchange_.wake_at();
+  }
 
   // Fuses every station's report that arrived and was made against this picture, rebuilt
   // against it, and publishes the picture. The rule that brings parted peers together again:
@@ -126,7 +131,15 @@ class PictureStation {
     if (parted) {
       // Parted last round too, the lowest station saw it then and sent its picture of that
       // round: wait for it (a datagram of it lost waits for its repair) rather than stay apart.
-      if (parted_last_round_ && !realtime()) wait_for_state_of(lowest->first, k - 1);
+      if (parted_last_round_ && !realtime()) {
+        // A restarted station waits longer for its first picture: the lowest station's writer
+        // may match its new reader only after the station has joined (the picture waits for it,
+        // kept for a late reader), and under load that took longer than a round's deadline.
+        wait_for_state_of(
+            lowest->first, k - 1,
+            awaiting_first_picture_ ? kFirstPictureWait : options_.node.round_deadline());
+        awaiting_first_picture_ = false;
+      }
       take_picture_of(*lowest, k);
     }
     parted_last_round_ = parted;
@@ -173,12 +186,16 @@ class PictureStation {
     }
   }
 
+  // How long a restarted station waits for its first picture at most: well below the 10 s a
+  // lock-step harness lets a node stay silent.
+  static constexpr std::chrono::microseconds kFirstPictureWait = std::chrono::seconds(5);
+
   bool realtime() const { return options_.node.realtime_deadline_ms > 0.0; }
 
   // Lock-step: takes pictures that come until station `station`'s of round `step` is in, or
-  // the round's deadline passes.
-  void wait_for_state_of(int station, std::uint64_t step) {
-    const auto give_up = std::chrono::steady_clock::now() + options_.node.round_deadline();
+  // `limit` passes.
+  void wait_for_state_of(int station, std::uint64_t step, std::chrono::microseconds limit) {
+    const auto give_up = std::chrono::steady_clock::now() + limit;
     const auto have = [&] {
       return latest_ && latest_->station_id == station && latest_->step == step;
     };
@@ -221,7 +238,7 @@ class PictureStation {
   std::size_t me_;
   DetectionConfig detection_;
   transport::DdsNode node_;
-  transport::NodeLoop<wire::PictureScan> loop_;
+  transport::NodeLoop<Sample> loop_;
   Exchange exchange_;
   transport::Writer<wire::PictureRound> rounds_;
   transport::PictureTrackWriter tracks_;
@@ -234,7 +251,9 @@ class PictureStation {
   AssignmentWork work_;
   std::optional<PeerState> latest_;
   bool parted_last_round_ = false;  // this picture was not the lowest station's last round
-  std::uint32_t resyncs_ = 0;       // rounds in which this station took another's picture
+  // A restarted station that has not yet waited for the lowest station's picture.
+  bool awaiting_first_picture_ = options_.rejoin_step.has_value();
+  std::uint32_t resyncs_ = 0;  // rounds in which this station took another's picture
 };
 
 /// Runs the station of `plan` whose filter part and motion model lie in shard `Shard`.
@@ -244,9 +263,16 @@ int run_picture_station_in_shard(const StationOptions& options, PicturePlan plan
   int code = 1;
   const bool ran = visit_picture_parts_in_shard<Shard, 0, 1>(
       plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
-        code = transport::make_lifelong<PictureStation<Parts>>(options, std::move(plan),
-                                                               std::move(truth))
-                   .run();
+        const auto run = [&]<template <typename, typename> class ExchangeOf> {
+          code = transport::make_lifelong<PictureStation<Parts, ExchangeOf>>(
+                     options, std::move(plan), std::move(truth))
+                     .run();
+        };
+        if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
+          run.template operator()<transport::PictureTreeExchange>();
+        } else {
+          run.template operator()<transport::PictureExchange>();
+        }
       });
   if (!ran) throw std::logic_error("a picture station: no picture runs this filter and sensor");
   return code;

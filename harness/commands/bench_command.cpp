@@ -187,7 +187,6 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
     // A run of many aircraft: its own defaults, a 10 Hz scan's share of a round.
     if (!o.scale.aircraft.empty()) {
       if (cmd->count("--stations") == 0) o.scale.stations = {8, 16};
-      if (cmd->count("--exchange") == 0) o.scale.exchanges = {"flat"};
       if (cmd->count("--realtime-deadline-ms") == 0) o.scale.realtime_deadline_ms = 80.0;
     }
   });

@@ -24,8 +24,10 @@ DropCounts refused_by_kind(const PictureRunSummary& s) {
 void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
   fmt::print(out,
              "many aircraft over DDS: scenario '{}', {} station processes and the center, {} "
-             "rounds\n",
-             s.scenario, s.stations, s.steps);
+             "rounds, {}\n",
+             s.scenario, s.stations, s.steps,
+             s.fanout > 0 ? fmt::format("tree exchange (clusters of {})", s.fanout)
+                          : std::string("flat exchange"));
   const auto row = [&](std::string_view what, const std::string& value) {
     fmt::print(out, "  {:<36} {}\n", what, value);
   };
@@ -95,6 +97,8 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
   const nlohmann::json json = {
       {"scenario", summary.scenario},
       {"stations", summary.stations},
+      {"exchange", summary.exchange},
+      {"fanout", summary.fanout},
       {"steps", summary.steps},
       {"run_id", run_id},
       {"peers_identical", summary.peers_identical},

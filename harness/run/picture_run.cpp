@@ -92,7 +92,11 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
   const double discovery_timeout =
       o.discovery_timeout_s.value_or(default_discovery_timeout_s(plan.stations));
 
-  const Placement placement(o, plan.scenario.exchange, ids.size());
+  // Discovery as for the flat exchange, whichever exchange the scans take: every station
+  // hears every cluster's aggregator, and the lowest station's whole picture when peers part.
+  ExchangeConfig everyone_meets = plan.scenario.exchange;
+  everyone_meets.kind = ExchangeConfig::Kind::kFlat;
+  const Placement placement(o, everyone_meets, ids.size());
   std::vector<int> nodes = ids;  // the center (0) first, then the stations ascending
   nodes.insert(nodes.begin(), kCenterNodeId);
   // The live stream listens before the nodes start, so that a client can be there for the
@@ -170,6 +174,10 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
     PictureRunSummary summary;
     summary.scenario = plan.scenario.name;
     summary.stations = plan.stations;
+    summary.exchange = std::string(to_string(plan.scenario.exchange.kind));
+    if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
+      summary.fanout = plan.scenario.exchange.fanout;
+    }
     summary.steps = plan.scenario.steps;
     summary.discovery_s = std::chrono::duration<double>(Clock::now() - discovery_start).count();
     Progress progress(fmt::format("picture M={}", plan.stations), plan.scenario.steps);

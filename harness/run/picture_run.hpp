@@ -26,6 +26,9 @@ struct PictureRunSummary {
   std::string scenario;
   int stations = 0;
   int steps = 0;
+  /// How the stations exchanged their scans: "flat", or "tree" with clusters of `fanout`.
+  std::string exchange = "flat";
+  int fanout = 0;
   /// Every station's picture digest equal in every round.
   bool peers_identical = true;
   int first_divergent_step = -1;

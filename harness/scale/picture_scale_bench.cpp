@@ -21,6 +21,7 @@ namespace {
 struct PictureScaleRow {
   int aircraft = 0;
   int stations = 0;
+  std::string exchange;  ///< "flat" or "tree"
   std::optional<PictureRunSummary> lockstep;
   std::optional<PictureRunSummary> realtime;
   std::string error;           ///< the lock-step run failed
@@ -32,7 +33,8 @@ double share_in_time(const PictureRunSummary& s) {
 }
 
 nlohmann::json to_json(const PictureScaleRow& r) {
-  nlohmann::json row = {{"aircraft", r.aircraft}, {"stations", r.stations}};
+  nlohmann::json row = {
+      {"aircraft", r.aircraft}, {"stations", r.stations}, {"exchange", r.exchange}};
   if (!r.error.empty()) row["error"] = r.error;
   if (r.lockstep) {
     const PictureRunSummary& s = *r.lockstep;
@@ -60,32 +62,32 @@ nlohmann::json to_json(const PictureScaleRow& r) {
 
 std::string csv_of(const std::vector<PictureScaleRow>& rows) {
   std::string csv =
-      "aircraft,stations,rounds_per_s,datagrams_per_round,cpu_ms_per_station_round,"
+      "aircraft,stations,exchange,rounds_per_s,datagrams_per_round,cpu_ms_per_station_round,"
       "peers_identical,realtime_share_in_time,realtime_cpu_ms_per_station_round\n";
   for (const PictureScaleRow& r : rows) {
     if (!r.lockstep) continue;
     const PictureRunSummary& s = *r.lockstep;
-    csv +=
-        fmt::format("{},{},{:.2f},{},{:.4f},{},{},{}\n", r.aircraft, r.stations, s.rounds_per_s,
-                    s.datagrams_per_round ? fmt::format("{:.1f}", *s.datagrams_per_round) : "",
-                    s.cpu_ms_per_station_round, s.peers_identical ? 1 : 0,
-                    r.realtime ? fmt::format("{:.4f}", share_in_time(*r.realtime)) : "",
-                    r.realtime ? fmt::format("{:.4f}", r.realtime->cpu_ms_per_station_round) : "");
+    csv += fmt::format(
+        "{},{},{},{:.2f},{},{:.4f},{},{},{}\n", r.aircraft, r.stations, r.exchange, s.rounds_per_s,
+        s.datagrams_per_round ? fmt::format("{:.1f}", *s.datagrams_per_round) : "",
+        s.cpu_ms_per_station_round, s.peers_identical ? 1 : 0,
+        r.realtime ? fmt::format("{:.4f}", share_in_time(*r.realtime)) : "",
+        r.realtime ? fmt::format("{:.4f}", r.realtime->cpu_ms_per_station_round) : "");
   }
   return csv;
 }
 
 void print_row(const PictureScaleRow& r) {
   if (!r.lockstep) {
-    fmt::print("{:>5} {:>4} failed: {}\n", r.aircraft, r.stations, r.error);
+    fmt::print("{:>5} {:>4} {:>5} failed: {}\n", r.aircraft, r.stations, r.exchange, r.error);
     return;
   }
   const PictureRunSummary& s = *r.lockstep;
   const std::string in_time = r.realtime
                                   ? fmt::format("{:.1f} %", 100.0 * share_in_time(*r.realtime))
                                   : (r.realtime_error.empty() ? "-" : "failed");
-  fmt::print("{:>5} {:>4} {:>9.0f} {:>9} {:>8.2f} {:>10} {:>9} {:>10}\n", r.aircraft, r.stations,
-             s.rounds_per_s,
+  fmt::print("{:>5} {:>4} {:>5} {:>9.0f} {:>9} {:>8.2f} {:>10} {:>9} {:>10}\n", r.aircraft,
+             r.stations, r.exchange, s.rounds_per_s,
              s.datagrams_per_round ? fmt::format("{:.0f}", *s.datagrams_per_round) : "-",
              s.cpu_ms_per_station_round, s.peers_identical ? "identical" : "apart", in_time,
              r.realtime ? fmt::format("{:.2f}", r.realtime->cpu_ms_per_station_round) : "-");
@@ -93,17 +95,21 @@ void print_row(const PictureScaleRow& r) {
 }
 
 PictureRunSummary measure(const ScaleBenchOptions& o, const BenchScenario& bench, int n, int m,
-                          bool realtime, const std::filesystem::path& out) {
+                          const std::string& exchange, bool realtime,
+                          const std::filesystem::path& out) {
   RunOptions run;
   run.node.scenario_path = bench.path;
   run.node.overrides.stations = m;
   run.node.overrides.aircraft = n;
+  run.node.overrides.exchange = parse_exchange_kind(exchange);
+  run.node.overrides.fanout = o.fanout;
   run.node.overrides.steps = realtime ? o.realtime_steps : o.rounds;
   run.node.best_effort = o.best_effort;
   run.node.domain = o.domain;
   if (realtime) run.node.realtime_deadline_ms = o.realtime_deadline_ms;
   run.out_dir =
-      (out / fmt::format("N{}-M{}-{}", n, m, realtime ? "realtime" : "lockstep")).string();
+      (out / fmt::format("N{}-M{}-{}-{}", n, m, exchange, realtime ? "realtime" : "lockstep"))
+          .string();
   run.round_timeout_s = 60.0;
   return execute_picture_run(run, bench.scenario);
 }
@@ -118,20 +124,19 @@ int run_picture_scale_bench(const ScaleBenchOptions& o) {
                                 "scenarios/uam-metro.yaml)");
   }
   for (const std::string& e : o.exchanges) {
-    if (e != "flat") {
-      throw std::invalid_argument("--aircraft: the " + e +
-                                  " exchange does not carry the picture yet; give --exchange flat");
+    if (e != "flat" && e != "tree") {
+      throw std::invalid_argument("--exchange: " + e + " not in {flat,tree}");
     }
   }
   const std::filesystem::path out(o.out_dir);
   std::filesystem::create_directories(out);
   fmt::print(
       "skyfuse bench --scale --aircraft on {} cores, scenario '{}': {} lock-step rounds and {} "
-      "real-time steps ({} ms deadline) per run, flat exchange, {}\n",
+      "real-time steps ({} ms deadline) per run, the tree in clusters of {}, {}\n",
       std::thread::hardware_concurrency(), bench.scenario.name, o.rounds, o.realtime_steps,
-      o.realtime_deadline_ms, o.best_effort ? "best effort" : "reliable");
-  fmt::print("{:>5} {:>4} {:>9} {:>9} {:>8} {:>10} {:>9} {:>10}\n", "N", "M", "rounds/s", "datagr.",
-             "CPU ms", "pictures", "in time", "RT CPU ms");
+      o.realtime_deadline_ms, o.fanout, o.best_effort ? "best effort" : "reliable");
+  fmt::print("{:>5} {:>4} {:>5} {:>9} {:>9} {:>8} {:>10} {:>9} {:>10}\n", "N", "M", "exch.",
+             "rounds/s", "datagr.", "CPU ms", "pictures", "in time", "RT CPU ms");
 
   std::vector<PictureScaleRow> rows;
   const auto save = [&] {
@@ -143,30 +148,33 @@ int run_picture_scale_bench(const ScaleBenchOptions& o) {
                                 {"realtime_steps", o.realtime_steps},
                                 {"realtime_deadline_ms", o.realtime_deadline_ms},
                                 {"best_effort", o.best_effort},
+                                {"fanout", o.fanout},
                                 {"rows", json_rows}};
     write_file_atomically(out / "picture_scale.json", doc.dump(2) + "\n");
     write_file_atomically(out / "picture_scale.csv", csv_of(rows));
   };
   for (const int n : o.aircraft) {
     for (const int m : o.stations) {
-      PictureScaleRow row{n, m, std::nullopt, std::nullopt, {}, {}};
-      const auto attempt = [&](bool realtime, std::optional<PictureRunSummary>& into,
-                               std::string& error) {
-        try {
-          into = measure(o, bench, n, m, realtime, out);
-        } catch (const RunAborted& e) {
-          if (transport::shutdown_requested()) {
-            save();
-            throw;
+      for (const std::string& exchange : o.exchanges) {
+        PictureScaleRow row{n, m, exchange, std::nullopt, std::nullopt, {}, {}};
+        const auto attempt = [&](bool realtime, std::optional<PictureRunSummary>& into,
+                                 std::string& error) {
+          try {
+            into = measure(o, bench, n, m, exchange, realtime, out);
+          } catch (const RunAborted& e) {
+            if (transport::shutdown_requested()) {
+              save();
+              throw;
+            }
+            error = e.what();
           }
-          error = e.what();
-        }
-      };
-      attempt(false, row.lockstep, row.error);
-      if (row.lockstep && o.realtime_steps > 0) attempt(true, row.realtime, row.realtime_error);
-      print_row(row);
-      rows.push_back(std::move(row));
-      save();
+        };
+        attempt(false, row.lockstep, row.error);
+        if (row.lockstep && o.realtime_steps > 0) attempt(true, row.realtime, row.realtime_error);
+        print_row(row);
+        rows.push_back(std::move(row));
+        save();
+      }
     }
   }
   fmt::print("\nwrote {} and picture_scale.csv\n", (out / "picture_scale.json").string());

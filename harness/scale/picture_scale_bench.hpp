@@ -1,6 +1,7 @@
 #pragma once
 // `skyfuse bench --scale --aircraft N...`: what a round of many aircraft costs over DDS as the
-// number of aircraft N and of stations M grow. For each N and M, a lock-step run (rounds/s, UDP
+// number of aircraft N and of stations M grow, flat and through the tree. For each N, M and
+// exchange, a lock-step run (rounds/s, UDP
 // datagrams received per round as the kernel counts them, CPU per station-round, the pictures'
 // agreement) and a real-time run at the scenario's step (share of rounds with every scan fused
 // in time). Writes picture_scale.json and picture_scale.csv; the rows are rewritten after each

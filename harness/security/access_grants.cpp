@@ -26,23 +26,27 @@ AccessGrant access_grant(const std::string& identity) {
   const std::string status = topic<wire::StationStatus>();
   // A run of many aircraft (docs/multitarget.md): scans, pictures, a whole picture to take.
   const std::string scan = topic<wire::PictureScan>();
+  const std::string bundle = topic<wire::PictureBundle>();  // the tree's scans
   const std::string picture = topic<wire::PictureRound>();
   const std::string picture_state = topic<wire::PictureState>();
 
   if (identity == transport::kHarnessIdentity) {
-    return {identity, {tick}, {track, measurement, status, picture}, {}, {status}};
+    return {identity, {tick}, {track, measurement, status, picture}, {}, {status}, {}, {}};
   }
   if (identity == transport::kCenterIdentity) {
-    return {identity, {track, status, picture}, {tick, measurement, status, scan}, {status}, {}};
+    return {identity, {track, status, picture}, {tick, measurement, status, scan}, {status}, {}, {},
+            {bundle}};
   }
   if (identity == transport::kObserverIdentity)
-    return {identity, {}, {tick, track, status, picture}, {}, {}};
+    return {identity, {}, {tick, track, status, picture}, {}, {}, {}, {}};
   if (transport::is_station_identity(identity)) {
     return {identity,
             {increment, partial, measurement, track, status, scan, picture, picture_state},
             {tick, increment, partial, status, scan, picture_state},
             {status},
-            {}};
+            {},
+            {bundle},
+            {bundle}};
   }
   throw std::invalid_argument("no access grant defined for identity '" + identity + "'");
 }

@@ -14,7 +14,9 @@
 // and publishes its picture; the harness and an observer subscribe to the pictures.
 //
 // and in partition skyfuse-refusal-reports (transport/refusal_reports.hpp) a station and the
-// center publish status, the harness subscribes to it.
+// center publish status, the harness subscribes to it; in the partitions of a picture's tree
+// exchange (transport/picture_bundles.hpp) a station publishes and subscribes to bundles, the
+// center subscribes to them.
 //
 // The harness subscribes to measurements because it records them (measurements.csv, and the
 // replay that rests on it); it still may not publish them, nor read any increment.
@@ -31,6 +33,9 @@ struct AccessGrant {
   /// Topic names in kRefusalReportsPartition.
   std::vector<std::string> publish_refusal_reports;
   std::vector<std::string> subscribe_refusal_reports;
+  /// Topic names in the partitions of a picture's tree exchange.
+  std::vector<std::string> publish_in_picture_tree;
+  std::vector<std::string> subscribe_in_picture_tree;
 };
 
 /// The grant for a harness, center, station-N or observer identity.

@@ -6,8 +6,10 @@
 #include <ctime>
 
 #include "skyfuse/transport/node_config.hpp"
+#include "skyfuse/transport/picture_bundles.hpp"
 #include "skyfuse/transport/refusal_reports.hpp"
 #include "skyfuse/transport/topics.hpp"
+#include "skyfuse/transport/tree_partitions.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -37,20 +39,27 @@ std::string topic_rule(const std::string& topic) {
                      topic);
 }
 
-// A <publish> or <subscribe> criterion: its topics, in `partition` if one is given (else the
+// A <publish> or <subscribe> criterion: its topics, in `partitions` if any are given (else the
 // default partition).
 std::string topic_list(const char* element, const std::vector<std::string>& topics,
-                       const char* partition = nullptr) {
+                       const std::vector<std::string>& partitions = {}) {
   if (topics.empty()) return {};
   std::string text = fmt::format("        <{}>\n          <topics>\n", element);
   for (const std::string& t : topics) text += fmt::format("            <topic>{}</topic>\n", t);
   text += "          </topics>\n";
-  if (partition != nullptr) {
-    text += fmt::format(
-        "          <partitions>\n            <partition>{}</partition>\n          </partitions>\n",
-        partition);
+  if (!partitions.empty()) {
+    text += "          <partitions>\n";
+    for (const std::string& p : partitions) {
+      text += fmt::format("            <partition>{}</partition>\n", p);
+    }
+    text += "          </partitions>\n";
   }
   return text + fmt::format("        </{}>\n", element);
+}
+
+// The partitions of a picture's tree exchange (transport/picture_bundles.hpp).
+std::vector<std::string> picture_tree_partitions() {
+  return {transport::kPictureClustersPartition, transport::kEveryClusterUpPattern};
 }
 
 // The validity format of the permissions schema: UTC, no zone suffix.
@@ -72,6 +81,7 @@ std::vector<std::string> skyfuse_topics() {
           TopicTraits<wire::TrackEstimate>::kName,
           TopicTraits<wire::StationStatus>::kName,
           TopicTraits<wire::PictureScan>::kName,
+          TopicTraits<wire::PictureBundle>::kName,
           TopicTraits<wire::PictureRound>::kName,
           TopicTraits<wire::PictureState>::kName};
 }
@@ -122,15 +132,17 @@ std::string permissions_xml(const std::vector<AccessGrant>& grants,
         <not_after>{3}</not_after>
       </validity>
       <allow_rule>
-{4}{5}{6}{7}{8}      </allow_rule>
+{4}{5}{6}{7}{8}{9}{10}      </allow_rule>
       <default>DENY</default>
     </grant>
 )",
         g.identity, subject_name(g.identity), xml_time(not_before), xml_time(not_after),
         all_domains("        "), topic_list("publish", g.publish),
         topic_list("subscribe", g.subscribe),
-        topic_list("publish", g.publish_refusal_reports, transport::kRefusalReportsPartition),
-        topic_list("subscribe", g.subscribe_refusal_reports, transport::kRefusalReportsPartition));
+        topic_list("publish", g.publish_refusal_reports, {transport::kRefusalReportsPartition}),
+        topic_list("subscribe", g.subscribe_refusal_reports, {transport::kRefusalReportsPartition}),
+        topic_list("publish", g.publish_in_picture_tree, picture_tree_partitions()),
+        topic_list("subscribe", g.subscribe_in_picture_tree, picture_tree_partitions()));
   }
   return text + "  </permissions>\n</dds>\n";
 }

@@ -217,6 +217,30 @@ INSTANTIATE_TEST_SUITE_P(
         FilterVariant{"ImmOfCvAndCt", kCityFilter, kCityImmFilter, 214}),
     [](const ::testing::TestParamInfo<FilterVariant>& param) { return param.param.name; });
 
+// The tree exchange: five stations in clusters of two ({1, 2}, {3, 4}, {5}), each aggregator
+// relaying its cluster's scans to every station and the center. Routing changes, not one bit of
+// what is fused: every node holds the in-process run's picture in every round.
+TEST(DdsPicture, ThroughTheTreeEveryNodeHoldsTheInProcessPictureBitForBit) {
+  constexpr int kStations = 5;
+  constexpr int kSteps = 80;
+  const auto dir = test_dir();
+  const Completed run = run_to_completion(
+      {bin("skyfuse"), "run", "--scenario", kCity, "--stations", std::to_string(kStations),
+       "--steps", std::to_string(kSteps), "--exchange", "tree", "--fanout", "2", "--domain", "88",
+       "--out", (dir / "out").string()},
+      dir / "out.log", 180s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  EXPECT_NE(run.output.find("tree exchange (clusters of 2)"), std::string::npos) << run.output;
+  const std::size_t confirmed_seen =
+      expect_every_node_is_in_process(dir / "out", kCity, kStations, kSteps);
+  EXPECT_GE(confirmed_seen, 10U) << "the stations confirmed tracks of the city's aircraft";
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_EQ(summary.at("exchange").get<std::string>(), "tree");
+  EXPECT_EQ(summary.at("fanout").get<int>(), 2);
+  EXPECT_EQ(summary.at("rounds_center_tracks_differ").get<int>(), 0);
+  EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
+}
+
 // recorded-airport.yaml on a file of 60 aircraft in OpenSky's format, given by --traffic-file:
 // the stations read it by its absolute path (they run on the scenario's copy in the results
 // folder), and the run goes to its end with the same guarantees.
@@ -243,8 +267,13 @@ TEST(DdsPicture, RecordedTrafficOfSixtyAircraftRunsToTheEndBitForBit) {
 // hold different pictures; a station whose picture is not the round's lowest station's takes
 // that one's, and every station holds the same picture again within two rounds of the loss.
 // Before the loss the run is the in-process one. The EKF's picture, and the IMM's, whose
-// picture taken carries every mode.
-class DdsPictureLoss : public ::testing::TestWithParam<FilterVariant> {};
+// picture taken carries every mode; and the EKF's through the tree, where a member's scan lost
+// on its way up is missing at every peer alike and a cluster's bundle lost parts one peer.
+struct LossVariant {
+  FilterVariant filter;
+  bool tree = false;
+};
+class DdsPictureLoss : public ::testing::TestWithParam<LossVariant> {};
 
 TEST_P(DdsPictureLoss, PeersThatMissedDifferentScansAgreeAgainWithinTwoRoundsOfTheLoss) {
   constexpr int kStations = 4;
@@ -252,16 +281,18 @@ TEST_P(DdsPictureLoss, PeersThatMissedDifferentScansAgreeAgainWithinTwoRoundsOfT
   constexpr int kLossFrom = 40;
   constexpr int kLossTo = 60;
   const auto dir = test_dir();
-  const auto scenario = city_with(dir, GetParam().from, GetParam().to);
-  const Completed run = run_to_completion(
-      {bin("skyfuse"), "run", "--scenario", scenario.string(), "--stations",
-       std::to_string(kStations), "--steps", std::to_string(kSteps), "--loss", "0.2",
-       "--loss-steps", fmt::format("{}:{}", kLossFrom, kLossTo),
-       // A lost scan closes its round at the deadline; 250 ms, as the other loss tests, so that
-       // a starved machine does not lose more than the simulated loss.
-       "--round-deadline-ms", "250", "--domain", std::to_string(GetParam().domain), "--out",
-       (dir / "out").string()},
-      dir / "out.log", 180s);
+  const FilterVariant& filter = GetParam().filter;
+  const auto scenario = city_with(dir, filter.from, filter.to);
+  std::vector<std::string> args = {
+      bin("skyfuse"), "run", "--scenario", scenario.string(), "--stations",
+      std::to_string(kStations), "--steps", std::to_string(kSteps), "--loss", "0.2", "--loss-steps",
+      fmt::format("{}:{}", kLossFrom, kLossTo),
+      // A lost scan closes its round at the deadline; 250 ms, as the other loss tests, so that
+      // a starved machine does not lose more than the simulated loss.
+      "--round-deadline-ms", "250", "--domain", std::to_string(filter.domain), "--out",
+      (dir / "out").string()};
+  if (GetParam().tree) args.insert(args.end(), {"--exchange", "tree", "--fanout", "2"});
+  const Completed run = run_to_completion(args, dir / "out.log", 180s);
   ASSERT_EQ(run.status.code, 0) << run.output;
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   EXPECT_GT(summary.at("samples_lost").get<int>(), 0);
@@ -305,43 +336,64 @@ TEST_P(DdsPictureLoss, PeersThatMissedDifferentScansAgreeAgainWithinTwoRoundsOfT
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Parts, DdsPictureLoss,
-                         ::testing::Values(FilterVariant{"Ekf", nullptr, nullptr, 93},
-                                           FilterVariant{"Imm", kCityFilter, kCityImmFilter, 215}),
-                         [](const ::testing::TestParamInfo<FilterVariant>& param) {
-                           return param.param.name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Parts, DdsPictureLoss,
+    ::testing::Values(LossVariant{FilterVariant{"Ekf", nullptr, nullptr, 93}},
+                      LossVariant{FilterVariant{"Imm", kCityFilter, kCityImmFilter, 215}},
+                      LossVariant{FilterVariant{"EkfThroughTheTree", nullptr, nullptr, 89}, true}),
+    [](const ::testing::TestParamInfo<LossVariant>& param) { return param.param.filter.name; });
 
 // Station 2 killed before round 40 and started again before round 50: the others keep one
 // picture meanwhile; the restarted station starts with an empty one, its first scan shows it,
-// the lowest station sends its picture and the restarted one takes it in the next round.
-TEST(DdsPicture, ARestartedStationRejoinsWithThePictureWithinTwoRounds) {
+// the lowest station sends its picture and the restarted one takes it in the next round. Flat,
+// and through the tree, where station 2 is a member of station 1's cluster.
+struct RestartVariant {
+  const char* name;
+  bool tree;
+  int domain;
+};
+class DdsPictureRestart : public ::testing::TestWithParam<RestartVariant> {};
+
+TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds) {
   constexpr int kSteps = 80;
   const auto dir = test_dir();
-  const Completed run = run_to_completion(
-      {bin("skyfuse"), "run", "--scenario", kCity, "--stations", "4", "--steps",
-       std::to_string(kSteps), "--kill", "2@40", "--restart", "2@50",
-       // Rounds without station 2 wait for their deadline: 250 ms, as the loss tests.
-       "--round-deadline-ms", "250", "--domain", "92", "--out", (dir / "out").string()},
-      dir / "out.log", 180s);
+  std::vector<std::string> args = {
+      bin("skyfuse"), "run", "--scenario", kCity, "--stations", "4", "--steps",
+      std::to_string(kSteps), "--kill", "2@40", "--restart", "2@50",
+      // Rounds without station 2 wait for their deadline: 250 ms, as the loss tests.
+      "--round-deadline-ms", "250", "--domain", std::to_string(GetParam().domain), "--out",
+      (dir / "out").string()};
+  if (GetParam().tree) args.insert(args.end(), {"--exchange", "tree", "--fanout", "2"});
+  const Completed run = run_to_completion(args, dir / "out.log", 180s);
   ASSERT_EQ(run.status.code, 0) << run.output;
   EXPECT_EQ(run.output.find("was killed by signal"), std::string::npos) << run.output;
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
   EXPECT_GE(summary.at("resyncs").get<int>(), 1) << "the restarted station took the picture";
 
-  // Station 2 is missing from rounds 40-49 and there again from 50, with an empty picture. On
-  // an idle machine it differs in round 50 only. Loaded (ctest -j2) it took the picture only in
-  // round 53 in 2 of about 20 runs (2026-11-27; every scan of those rounds fused), so the
-  // test holds the run to one picture at every station for good within 10 rounds of the restart.
+  // Station 2 is missing from rounds 40-49 and there again from 50, with an empty picture: from
+  // the first round whose every station fused its scan (50, unless the restarted process joined
+  // late) every station holds one picture within 2 rounds. Before the lowest station's whole
+  // picture was kept for a reader matched late (transport/src/qos.cpp), a loaded machine took
+  // up to round 53 (2 of about 20 runs, every scan fused from round 50).
   const StationRounds rounds = station_rounds(dir / "out" / "picture_rounds.csv");
   ASSERT_EQ(rounds.size(), static_cast<std::size_t>(kSteps));
+  int rejoined = kSteps;
   for (int k = 0; k < kSteps; ++k) {
     const bool down = k >= 40 && k < 50;
     EXPECT_EQ(rounds.at(k).size(), down ? 3U : 4U) << "step " << k;
     EXPECT_EQ(rounds.at(k).contains(2), !down) << "step " << k;
+    if (k >= 50 && rejoined == kSteps && !disturbed(rounds, k, 4)) rejoined = k;
   }
-  EXPECT_LE(agreed_for_good_from(rounds), 60) << run.output;
+  ASSERT_LE(rejoined, 60) << "the restarted station's scans reached every peer\n" << run.output;
+  EXPECT_LE(agreed_for_good_from(rounds), rejoined + 2) << run.output;
 }
+
+INSTANTIATE_TEST_SUITE_P(Exchanges, DdsPictureRestart,
+                         ::testing::Values(RestartVariant{"Flat", false, 92},
+                                           RestartVariant{"Tree", true, 83}),
+                         [](const ::testing::TestParamInfo<RestartVariant>& param) {
+                           return param.param.name;
+                         });
 
 // On the wall clock (uam-metro: 10 Hz scans): the nodes run their rounds on their own clocks
 // and the harness records every round with the pictures that came. How many rounds are in time
@@ -418,24 +470,28 @@ TEST(DdsPicture, ARoguesScansAreRefusedByEveryNodeAndCountedByKind) {
   }
 }
 
-// skyfuse bench --scale --aircraft: a row per number of aircraft and station count, each with
-// its lock-step and real-time figures, the pictures identical.
+// skyfuse bench --scale --aircraft: a row per number of aircraft, station count and exchange
+// (flat and tree, by default), each with its lock-step and real-time figures, the pictures
+// identical.
 TEST(DdsPicture, TheScaleBenchMeasuresEachNumberOfAircraft) {
   const auto dir = test_dir();
-  const Completed run = run_to_completion(
-      {bin("skyfuse"), "bench", "--scale", "--aircraft", "1", "12", "--stations", "3", "--rounds",
-       "30", "--realtime-steps", "20", "--domain", "91", "--out", (dir / "scale").string()},
-      dir / "bench.log", 240s);
+  const Completed run =
+      run_to_completion({bin("skyfuse"), "bench", "--scale", "--aircraft", "1", "12", "--stations",
+                         "3", "--rounds", "30", "--realtime-steps", "20", "--fanout", "2",
+                         "--domain", "91", "--out", (dir / "scale").string()},
+                        dir / "bench.log", 240s);
   ASSERT_EQ(run.status.code, 0) << run.output;
   std::ifstream file(dir / "scale" / "picture_scale.json");
   const auto doc = nlohmann::json::parse(file);
   EXPECT_EQ(doc["scenario"], "uam-metro");
-  ASSERT_EQ(doc["rows"].size(), 2U);
-  for (std::size_t i = 0; i < 2; ++i) {
+  ASSERT_EQ(doc["rows"].size(), 4U);
+  EXPECT_EQ(doc["fanout"], 2);
+  for (std::size_t i = 0; i < 4; ++i) {
     const auto& row = doc["rows"][i];
     SCOPED_TRACE(row.dump());
-    EXPECT_EQ(row["aircraft"], i == 0 ? 1 : 12);
+    EXPECT_EQ(row["aircraft"], i < 2 ? 1 : 12);
     EXPECT_EQ(row["stations"], 3);
+    EXPECT_EQ(row["exchange"], i % 2 == 0 ? "flat" : "tree");
     EXPECT_GT(row["lockstep"]["rounds_per_s"].get<double>(), 0.0);
     // The kernel counts CPU in 10 ms ticks: 30 lock-step rounds may take less than one, so only
     // the real-time run's CPU must show.
@@ -457,7 +513,6 @@ TEST(DdsPicture, OptionsThatDoNotTakeManyAircraftYetAreRefusedByName) {
       {{"--external"}, "--external"},
       {{"--refusion-lag", "3"}, "--refusion-lag"},
       {{"--speed-kmh", "100"}, "--speed-kmh"},
-      {{"--exchange", "tree"}, "--exchange tree"},
   };
   for (const auto& [extra, name] : refused) {
     std::vector<std::string> args = {

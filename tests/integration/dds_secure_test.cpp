@@ -253,23 +253,43 @@ TEST(DdsSecure, AnIdentityOfTheRunsCaIsHeardAndItsSamplesAreRefused) {
 }
 
 // A run of many aircraft with DDS-Security: every station's picture and the center's the
-// in-process run's in every round, as without it. The stations publish scans, pictures and
-// whole pictures that their grants must name.
+// in-process run's in every round, as without it. The stations publish scans (flat) or bundles
+// (the tree), pictures and whole pictures that their grants must name: one run of each.
 TEST(DdsSecure, ManyAircraftHoldTheInProcessPictureInEveryRound) {
   const auto dir = test_dir();
   const auto pki = make_certs(dir / "pki");
-  const Completed secure = run_to_completion(
-      {bin("skyfuse"), "run", "--scenario", bin("scenarios/uam-city.yaml"), "--stations",
-       std::to_string(kStations), "--steps", "40", "--domain", "185", "--secure", pki.string(),
-       "--discovery-timeout", "60", "--out", (dir / "secure").string()},
-      dir / "secure.log", 180s);
-  ASSERT_EQ(secure.status.code, 0) << secure.output;
-  const nlohmann::json summary = summary_of(dir / "secure");
-  EXPECT_TRUE(summary.at("peers_identical").get<bool>());
-  EXPECT_TRUE(summary.at("equals_in_process").get<bool>());
-  EXPECT_TRUE(summary.at("center_equals_in_process").get<bool>());
-  EXPECT_EQ(summary.at("steps").get<int>(), 40);
-  EXPECT_EQ(refused_in_total(dir / "secure"), 0);
+  for (const std::string exchange : {"flat", "tree"}) {
+    const auto out = dir / exchange;
+    const Completed secure = run_to_completion({bin("skyfuse"),
+                                                "run",
+                                                "--scenario",
+                                                bin("scenarios/uam-city.yaml"),
+                                                "--stations",
+                                                std::to_string(kStations),
+                                                "--steps",
+                                                "40",
+                                                "--exchange",
+                                                exchange,
+                                                "--fanout",
+                                                "2",
+                                                "--domain",
+                                                "185",
+                                                "--secure",
+                                                pki.string(),
+                                                "--discovery-timeout",
+                                                "60",
+                                                "--out",
+                                                out.string()},
+                                               dir / (exchange + ".log"), 180s);
+    ASSERT_EQ(secure.status.code, 0) << secure.output;
+    const nlohmann::json summary = summary_of(out);
+    EXPECT_EQ(summary.at("exchange").get<std::string>(), exchange);
+    EXPECT_TRUE(summary.at("peers_identical").get<bool>()) << exchange;
+    EXPECT_TRUE(summary.at("equals_in_process").get<bool>()) << exchange;
+    EXPECT_TRUE(summary.at("center_equals_in_process").get<bool>()) << exchange;
+    EXPECT_EQ(summary.at("steps").get<int>(), 40);
+    EXPECT_EQ(refused_in_total(out), 0) << exchange;
+  }
 }
 
 TEST(DdsSecure, AFolderMadeForFewerStationsOrMissingAKeyIsRefused) {

@@ -34,6 +34,7 @@ struct StationNode {
     wire::PictureScan sample;
     WriterId writer{};
     while (in->take(sample, &writer)) {
+      if (writer == exchange->own_writer()) continue;  // publish() kept it, as a station does
       if (exchange->receive(sample, writer)) ++refused;
     }
   }

@@ -88,10 +88,19 @@ constexpr int kSamplesPerInstance = 64;
 // fit in the settled instance's history together.
 static_assert(kSamplesPerInstance >= static_cast<int>(options::kMaxRefusionLag));
 
+// A whole picture a peer takes (skyfuse_picture_state): only the latest counts, and it must
+// reach a reader its writer matched only after writing it. A restarted station joins once its
+// own endpoints have matched its peers', which may match its reader later: under load a
+// picture sent in that gap was lost and the station took one only rounds later.
+bool is_latest_state_topic(const std::string& topic) {
+  return topic == "skyfuse_picture_state";
+}
+
 // The links fusion tolerates losing: a round closes at its deadline without the sample.
 bool is_data_link_topic(const std::string& topic) {
   return topic == "skyfuse_increment" || topic == "skyfuse_partial" ||
-         topic == "skyfuse_measurement" || topic == "skyfuse_picture_scan";
+         topic == "skyfuse_measurement" || topic == "skyfuse_picture_scan" ||
+         topic == "skyfuse_picture_bundle";
 }
 
 // The RTPS port mapping (options::kRtpsPortBase, kRtpsDomainGain) gives domain d its
@@ -155,6 +164,11 @@ void apply_common(EndpointQos& qos, const std::string& topic, bool best_effort_d
     qos.resource_limits().max_samples_per_instance = kMaxSamples;
   }
   qos.resource_limits().allocated_samples = 64;
+  if (is_latest_state_topic(topic)) {
+    qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
+    qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
+    qos.history().depth = 1;
+  }
   // Data-sharing would put samples in /dev/shm segments that a killed process leaves behind;
   // at ~500 bytes a sample the copy is not what costs (wake-ups are).
   qos.data_sharing().off();

@@ -17,12 +17,14 @@ PicturePlan make_picture_plan(Scenario scenario, const RunOverrides& overrides) 
     throw std::invalid_argument(fmt::format(
         "--speed-kmh: scenario '{}' has many aircraft, each flying its own speeds", scenario.name));
   }
-  if (overrides.exchange && *overrides.exchange == ExchangeConfig::Kind::kTree) {
-    throw std::invalid_argument(
-        "--exchange tree: a run of many aircraft exchanges its scans flat so far");
-  }
   PicturePlan plan;
   plan.stations = apply_stations_and_steps(scenario, overrides);
+  apply_exchange_overrides(scenario, overrides.exchange, overrides.fanout);
+  // The tree only when asked for: it relays the scans rather than summing them, so what it
+  // saves is receptions, not a station's arithmetic (docs/multitarget.md, "The tree").
+  if (scenario.exchange.kind == ExchangeConfig::Kind::kAuto) {
+    scenario.exchange.kind = ExchangeConfig::Kind::kFlat;
+  }
   if (overrides.aircraft) {
     if (!scenario.traffic->generator) {
       throw std::invalid_argument(fmt::format(

@@ -26,7 +26,8 @@ struct PicturePlan {
 
 /// Applies the overrides to `scenario` (which has_many_targets()); throws
 /// std::invalid_argument naming an option a run of many aircraft does not take (a speed: each
-/// aircraft flies its own; the tree exchange, not yet) or a value out of range.
+/// aircraft flies its own) or a value out of range. The exchange is flat unless the scenario or
+/// `--exchange` asks for the tree.
 PicturePlan make_picture_plan(Scenario scenario, const RunOverrides& overrides);
 
 }  // namespace skyfuse

@@ -4,7 +4,8 @@
 /// exchange, transport/picture_exchange.hpp, and the center alike). Screening, in order: another
 /// run's sample, then a sample wrong anywhere (refused whole by its first problem:
 /// picture_scan_from_wire), then who it claims to be and when (the current step or the next),
-/// and whether its writer speaks for that station (source_binding.hpp).
+/// and whether its writer speaks for that station (source_binding.hpp). Scans a tree exchange's
+/// aggregator relayed come in a bundle whose writer speaks for the cluster (receive_relayed).
 
 #include <algorithm>
 #include <cstddef>
@@ -38,10 +39,31 @@ class PictureScans {
     return admit(collector_, sources_, scan->step, scan->station_id, writer, *scan);
   }
 
+  /// Keeps the scans a tree exchange's aggregator relayed in one bundle, whose sender and
+  /// cluster picture_bundles.hpp checked (its writer speaks for its members): each of this run,
+  /// right, of the current step or the next and not yet in, or none is kept and the first
+  /// problem is said.
+  std::optional<DropKind> receive_relayed(std::span<const wire::PictureScan> samples) {
+    relayed_.clear();
+    for (const wire::PictureScan& sample : samples) {
+      if (sample.run_id() != run_id_) return DropKind::kWrongRun;
+      auto [scan, why] = picture_scan_from_wire<Sensor>(sample, max_detections_);
+      if (!scan) return why;
+      if (const auto late = collector_.check(scan->step, scan->station_id)) return late;
+      relayed_.push_back(std::move(*scan));
+    }
+    for (const ReceivedScan<M>& scan : relayed_) {
+      collector_.offer(scan.step, scan.station_id, scan);
+    }
+    return std::nullopt;
+  }
+
   /// Every station's scan of the current step is in.
   bool complete() const { return collector_.count() == collector_.station_ids().size(); }
   /// The stations whose scan of the current step is still missing.
   std::vector<int> missing() const { return collector_.missing(); }
+  /// Whether station `station_id` delivered nothing in the step closed last.
+  bool absent_last_step(int station_id) const { return collector_.absent_last_step(station_id); }
   /// The stations, ascending id.
   std::span<const int> station_ids() const { return collector_.station_ids(); }
   /// Station `station_id`'s scan of the current step, or nullptr if it has not arrived.
@@ -63,6 +85,7 @@ class PictureScans {
   SourceBinding sources_;
   std::uint64_t run_id_;
   std::size_t max_detections_;
+  std::vector<ReceivedScan<M>> relayed_;  // a bundle's scans, checked before any is kept
 };
 
 }  // namespace skyfuse::transport

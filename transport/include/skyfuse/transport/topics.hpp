@@ -38,6 +38,11 @@ struct TopicTraits<wire::PictureScan> {
   static constexpr const char* kName = "skyfuse_picture_scan";
 };
 template <>
+struct TopicTraits<wire::PictureBundle> {
+  using PubSubType = wire::PictureBundlePubSubType;
+  static constexpr const char* kName = "skyfuse_picture_bundle";
+};
+template <>
 struct TopicTraits<wire::PictureState> {
   using PubSubType = wire::PictureStatePubSubType;
   static constexpr const char* kName = "skyfuse_picture_state";

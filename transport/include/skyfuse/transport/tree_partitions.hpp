@@ -22,6 +22,9 @@ inline std::string cluster_up_partition(std::size_t cluster) {
 inline std::string cluster_down_partition(std::size_t cluster) {
   return fmt::format("skyfuse-cluster-{}-down", cluster);
 }
+/// Every cluster's up partition, as a pattern (DDS-Security's permissions match partitions by
+/// pattern).
+inline constexpr const char* kEveryClusterUpPattern = "skyfuse-cluster-*-up";
 /// Aggregator -> every aggregator: the clusters' sums.
 inline constexpr const char* kAggregatorsPartition = "skyfuse-aggregators";
 
