@@ -55,15 +55,20 @@ constexpr std::chrono::milliseconds kLateAfter{2000};
 
 // What a run of many aircraft does not take yet, each with why; nothing if `o` is fine.
 void refuse_what_a_picture_run_lacks(const RunOptions& o) {
-  const auto refuse = [](const char* option) {
+  const auto refuse = [](const char* option, const char* why) {
     throw std::invalid_argument(
-        fmt::format("{}: not for a run of many aircraft yet (docs/multitarget.md says what "
+        fmt::format("{}: not for a run of many aircraft yet: {} (docs/multitarget.md says what "
                     "runs over DDS so far)",
-                    option));
+                    option, why));
   };
-  if (!o.replay_path.empty()) refuse("--replay");
-  if (o.external) refuse("--external");
-  if (o.node.refusion_lag != 0) refuse("--refusion-lag");
+  if (!o.replay_path.empty()) {
+    refuse("--replay", "its stations' scans are not recorded to be replayed");
+  }
+  if (o.external) {
+    refuse("--external",
+           "the harness starts a picture run's processes itself (containers run one aircraft)");
+  }
+  if (o.node.refusion_lag != 0) refuse("--refusion-lag", "a picture re-fuses no late scan");
 }
 
 // One start of every process of the run.

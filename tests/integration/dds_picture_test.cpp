@@ -511,6 +511,7 @@ TEST(DdsPicture, OptionsThatDoNotTakeManyAircraftYetAreRefusedByName) {
   const auto dir = test_dir();
   const std::vector<std::pair<std::vector<std::string>, std::string>> refused = {
       {{"--external"}, "--external"},
+      {{"--replay", kCity}, "--replay"},
       {{"--refusion-lag", "3"}, "--refusion-lag"},
       {{"--speed-kmh", "100"}, "--speed-kmh"},
   };
