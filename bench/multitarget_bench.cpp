@@ -55,7 +55,10 @@ void BM_MultiTargetStationRound(benchmark::State& state) {
   state.counters["tracks"] = static_cast<double>(tracks);
   state.counters["largest_cluster"] = static_cast<double>(largest_cluster);
 }
+// Arg(1): one aircraft through the picture, against the one-aircraft pipeline's station step
+// and fusion (StationStep, FuseIncrements/8 in core_bench.cpp): docs/multitarget.md, "Not yet".
 BENCHMARK(BM_MultiTargetStationRound)
+    ->Arg(1)
     ->Arg(10)
     ->Arg(100)
     ->Arg(1000)

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/picture_digest.hpp"
 #include "skyfuse/multitarget/picture_parts.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
@@ -140,23 +141,37 @@ class PictureStation {
             awaiting_first_picture_ ? kFirstPictureWait : options_.node.round_deadline());
         awaiting_first_picture_ = false;
       }
+      // The lowest station's picture of this very round came instead (its writer matched this
+      // reader only after sending the one before, and keeps the latest only): it is this
+      // round's result, nothing left to fuse.
+      if (take_finished_round_of(lowest->first, k)) {
+        parted_last_round_ = false;
+        publish_round(
+            k, static_cast<std::uint32_t>(exchange_.station_count() - exchange_.missing().size()));
+        exchange_.advance();
+        return std::nullopt;
+      }
       take_picture_of(*lowest, k);
     }
     parted_last_round_ = parted;
     const std::uint64_t predicted = predicted_digest_;
-    const auto reports = exchange_.reports(picture_, predicted, [&](int station_id, DropKind why) {
-      loop_.count_drop(why, station_id, k);
-    });
+    // A restarted station, whose picture is still empty, fuses nothing until it has taken the
+    // lowest station's: tracks it started alone would make its scans look like a picture to
+    // come back to (PictureRoundScans::lowest), and as the lowest it would hand them to all.
+    const bool waits_for_picture =
+        parted && predicted == empty_digest_ && lowest->second != empty_digest_;
+    const auto reports =
+        waits_for_picture
+            ? std::vector<typename Picture::Report>{}
+            : exchange_.reports(picture_, predicted, [&](int station_id, DropKind why) {
+                loop_.count_drop(why, station_id, k);
+              });
     picture_.fuse(k, reports);
-    const auto step = static_cast<std::uint32_t>(k);
     if (lowest && lowest->first == options_.id && exchange_.any_other_picture(predicted)) {
-      states_out_.write(
-          transport::picture_state_to_wire(picture_, options_.node.run_id, step, options_.id));
+      states_out_.write(transport::picture_state_to_wire(
+          picture_, options_.node.run_id, static_cast<std::uint32_t>(k), options_.id));
     }
-    rounds_.write(transport::picture_round_to_wire(picture_, options_.node.run_id, step,
-                                                   options_.id,
-                                                   static_cast<std::uint32_t>(reports.size())));
-    tracks_.publish(picture_, options_.node.run_id, step, options_.id, wire::PEER);
+    publish_round(k, static_cast<std::uint32_t>(reports.size()));
     exchange_.advance();
     return std::nullopt;
   }
@@ -169,6 +184,7 @@ class PictureStation {
   struct PeerState {
     std::uint64_t step = 0;
     int station_id = 0;
+    std::uint64_t digest = 0;  // of the picture after the round, as its sender computed it
     std::vector<typename Picture::TrackType> tracks;
   };
 
@@ -182,7 +198,8 @@ class PictureStation {
                      sample.station_id());
         continue;
       }
-      latest_ = PeerState{sample.step(), static_cast<int>(sample.station_id()), std::move(*tracks)};
+      latest_ = PeerState{sample.step(), static_cast<int>(sample.station_id()),
+                          sample.picture_digest(), std::move(*tracks)};
     }
   }
 
@@ -192,12 +209,35 @@ class PictureStation {
 
   bool realtime() const { return options_.node.realtime_deadline_ms > 0.0; }
 
+  // The picture after round k, to the harness and to readers of its tracks.
+  void publish_round(std::uint64_t k, std::uint32_t scans_fused) {
+    const auto step = static_cast<std::uint32_t>(k);
+    rounds_.write(transport::picture_round_to_wire(picture_, options_.node.run_id, step,
+                                                   options_.id, scans_fused));
+    tracks_.publish(picture_, options_.node.run_id, step, options_.id, wire::PEER);
+  }
+
+  // Takes station `station`'s picture after round k as this station's, if it came and holds
+  // what its digest says.
+  bool take_finished_round_of(int station, std::uint64_t k) {
+    if (!latest_ || latest_->station_id != station || latest_->step != k) return false;
+    Picture candidate = picture_;
+    candidate.restore(latest_->tracks);
+    if (candidate.digest() != latest_->digest) return false;
+    picture_ = std::move(candidate);
+    ++resyncs_;
+    spdlog::info("step {}: took station {}'s picture of the round", k, station);
+    return true;
+  }
+
   // Lock-step: takes pictures that come until station `station`'s of round `step` is in, or
   // `limit` passes.
   void wait_for_state_of(int station, std::uint64_t step, std::chrono::microseconds limit) {
     const auto give_up = std::chrono::steady_clock::now() + limit;
+    // Its picture of the round after `step` does as well (take_finished_round_of).
     const auto have = [&] {
-      return latest_ && latest_->station_id == station && latest_->step == step;
+      return latest_ && latest_->station_id == station &&
+             (latest_->step == step || latest_->step == step + 1);
     };
     while (!have() && std::chrono::steady_clock::now() < give_up) {
       std::this_thread::sleep_for(std::chrono::microseconds(500));
@@ -248,6 +288,7 @@ class PictureStation {
   // picture_'s digest as predicted for the round (or taken): it is published with the scan and
   // compared with the others', and computed once a round rather than at each use.
   std::uint64_t predicted_digest_ = 0;
+  const std::uint64_t empty_digest_ = empty_picture_digest();
   AssignmentWork work_;
   std::optional<PeerState> latest_;
   bool parted_last_round_ = false;  // this picture was not the lowest station's last round

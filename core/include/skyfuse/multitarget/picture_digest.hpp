@@ -32,4 +32,8 @@ class PictureDigest {
   BitDigest digest_;
 };
 
+/// The digest of a picture without tracks: a restarted station's, or every node's before the
+/// first track.
+inline std::uint64_t empty_picture_digest() { return PictureDigest(0).value(); }
+
 }  // namespace skyfuse

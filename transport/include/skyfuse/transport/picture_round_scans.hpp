@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/picture_digest.hpp"
 #include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/transport/picture_scans.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
@@ -86,15 +87,21 @@ class PictureRoundScans {
     return out;
   }
 
-  /// The lowest-id station whose sample of the current step arrived, and the digest of the
-  /// predicted picture it made it against; nothing if none arrived.
+  /// The station whose picture the peers come back to, and the digest of the predicted picture
+  /// it made its sample of the current step against: the lowest-id station whose sample
+  /// arrived, made against a picture with tracks if any was. A restarted station starts with an
+  /// empty picture, which must not take the others' tracks from them when it is the lowest; a
+  /// picture without tracks is the same at every station (empty_picture_digest), so the rule
+  /// reads only the samples and every peer that has them picks the same. Nothing if none arrived.
   std::optional<std::pair<int, std::uint64_t>> lowest() const {
+    std::optional<std::pair<int, std::uint64_t>> first;
     for (const int id : scans_.station_ids()) {
       if (const ReceivedScan<M>* scan = scans_.scan_of(id)) {
-        return std::pair(id, scan->picture_digest);
+        if (scan->picture_digest != empty_digest_) return std::pair(id, scan->picture_digest);
+        if (!first) first = std::pair(id, scan->picture_digest);
       }
     }
-    return std::nullopt;
+    return first;
   }
   /// Whether a sample of the current step was made against a picture other than `digest`'s.
   bool any_other_picture(std::uint64_t digest) const {
@@ -125,6 +132,7 @@ class PictureRoundScans {
 
   std::vector<KnownStation<Sensor>> stations_;
   PictureScans<Sensor> scans_;
+  std::uint64_t empty_digest_ = empty_picture_digest();
   std::uint64_t other_pictures_ = 0;
   Scan<M> reassigned_;  // a parted station's detections, assigned here
   AssignmentWork work_;
