@@ -53,7 +53,8 @@ class PictureStation {
         loop_(node_, options.node, options.id, fmt::format("station {}", options.id),
               "picture scan", plan_.scenario.time_step_s,
               Exchange::input_partitions(plan_, options.id)),
-        exchange_(Exchange::of_station(node_, known_, plan_, options.id, options.node)),
+        exchange_(
+            Exchange::of_station(node_, known_, plan_, options.id, options.node, loop_.inputs())),
         rounds_(node_.make_writer<wire::PictureRound>()),
         tracks_(node_),
         states_out_(node_.make_writer<wire::PictureState>()),

@@ -249,6 +249,60 @@ TEST(DdsPicture, ThroughTheTreeEveryNodeHoldsTheInProcessPictureBitForBit) {
   EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
 }
 
+// Through the tree, cluster {3, 4}'s aggregator killed before round 40 and restarted before
+// round 60: after two rounds without the cluster, station 4 stands in and relays its own scan;
+// the restarted aggregator takes the cluster back. The peers never part over it, and every
+// station holds one picture again within 2 rounds of the restart.
+TEST(DdsPicture, ThroughTheTreeAKilledAggregatorsClusterIsRelayedByItsStandIn) {
+  constexpr int kSteps = 90;
+  const auto dir = test_dir();
+  const Completed run = run_to_completion({bin("skyfuse"),
+                                           "run",
+                                           "--scenario",
+                                           kCity,
+                                           "--stations",
+                                           "5",
+                                           "--steps",
+                                           std::to_string(kSteps),
+                                           "--exchange",
+                                           "tree",
+                                           "--fanout",
+                                           "2",
+                                           "--kill",
+                                           "3@40",
+                                           "--restart",
+                                           "3@60",
+                                           "--round-deadline-ms",
+                                           "250",
+                                           "--domain",
+                                           "78",
+                                           "--out",
+                                           (dir / "out").string()},
+                                          dir / "out.log", 180s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  const StationRounds rounds = station_rounds(dir / "out" / "picture_rounds.csv");
+  ASSERT_EQ(rounds.size(), static_cast<std::size_t>(kSteps));
+  // Without the cluster in rounds 40 and 41 (scans 1, 2, 5), then with station 4's scan. The
+  // stand-in's first round (42) needs its endpoints moved: 3 or 4 scans there.
+  for (int k = 40; k < 60; ++k) {
+    for (const auto& [station, row] : rounds.at(k)) {
+      if (k == 42) {
+        EXPECT_GE(row.scans_fused, 3) << "step " << k << ", station " << station;
+        EXPECT_LE(row.scans_fused, 4) << "step " << k << ", station " << station;
+      } else {
+        EXPECT_EQ(row.scans_fused, k < 42 ? 3 : 4) << "step " << k << ", station " << station;
+      }
+    }
+    EXPECT_FALSE(apart(rounds.at(k))) << "step " << k;
+  }
+  int rejoined = kSteps;
+  for (int k = 60; k < kSteps && rejoined == kSteps; ++k) {
+    if (every_other_fused_all(rounds.at(k), 3, 5)) rejoined = k;
+  }
+  ASSERT_LE(rejoined, 70) << run.output;
+  EXPECT_LE(agreed_for_good_from(rounds), rejoined + 2) << run.output;
+}
+
 // recorded-airport.yaml on a file of 60 aircraft in OpenSky's format, given by --traffic-file:
 // the stations read it by its absolute path (they run on the scenario's copy in the results
 // folder), and the run goes to its end with the same guarantees.

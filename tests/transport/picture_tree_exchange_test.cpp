@@ -58,10 +58,11 @@ std::vector<StationNode> station_nodes(const World& world, const ClusterLayout& 
     config.name = "picture-tree-station-" + std::to_string(station.id);
     auto node = std::make_unique<DdsNode>(config);
     // The aggregator sends when its members' scans are in: never on the clock here.
-    auto exchange = std::make_unique<Exchange>(*node, world.stations, kRunId, kBound, layout,
-                                               station.id, std::chrono::microseconds(30s));
     auto in = std::make_unique<Reader<wire::PictureBundle>>(
         node->make_reader<wire::PictureBundle>(Exchange::input_partitions(layout, station.id)));
+    auto exchange =
+        std::make_unique<Exchange>(*node, world.stations, kRunId, kBound, layout, station.id,
+                                   std::chrono::microseconds(30s), in.get());
     nodes.push_back({std::move(node), std::move(exchange), std::move(in), world.empty_picture()});
   }
   return nodes;
@@ -142,7 +143,8 @@ TEST(PictureTreeExchange, ThreeStationsInTwoClustersHoldTheInProcessPictureBitFo
   EXPECT_GT(associated, 100U) << "the rounds associated detections to tracks";
 }
 
-// Bundles checked without DDS: stations 1-5 in clusters {1, 2}, {3, 4}, {5}.
+// Bundles checked without DDS: stations 1-5 in clusters {1, 2}, {3, 4}, {5}; a cluster's
+// bundle comes from its aggregator (the first id) or the aggregator's stand-in (the second).
 class PictureBundleScreens : public ::testing::Test {
  protected:
   static constexpr std::uint32_t kStep = 0;
@@ -188,8 +190,12 @@ TEST_F(PictureBundleScreens, AClusterBundleFromItsAggregatorIsUnpackedWhole) {
   EXPECT_NE(scans_.scan_of(3), nullptr);
   EXPECT_NE(scans_.scan_of(4), nullptr);
   EXPECT_EQ(scans_.scan_of(1), nullptr);
-  // The same cluster again: its scans are in.
-  EXPECT_EQ(screen(cluster_bundle(1, 3, {3, 4})), DropKind::kDuplicate);
+  // The same scans again, from the aggregator's stand-in (both relayed while one handed the
+  // cluster to the other): each kept once. Another scan for a station already in: refused.
+  EXPECT_EQ(screen(cluster_bundle(1, 4, {4}), 2), std::nullopt);
+  wire::PictureBundle altered = cluster_bundle(1, 3, {3, 4});
+  altered.scans()[1].picture_digest(altered.scans()[1].picture_digest() + 1);
+  EXPECT_EQ(screen(altered), DropKind::kDuplicate);
 }
 
 TEST_F(PictureBundleScreens, EveryBundleThatIsNotItsAggregatorsIsRefusedByKindAndKeepsNothing) {
@@ -200,7 +206,8 @@ TEST_F(PictureBundleScreens, EveryBundleThatIsNotItsAggregatorsIsRefusedByKindAn
   member.kind(wire::MEMBER_SCAN);
   EXPECT_EQ(screen(member), DropKind::kOutOfRange) << "a member's scan is its aggregator's";
   EXPECT_EQ(screen(cluster_bundle(3, 1, {1})), DropKind::kWrongCluster) << "no cluster 3";
-  EXPECT_EQ(screen(cluster_bundle(0, 2, {1, 2})), DropKind::kWrongCluster) << "2 aggregates none";
+  EXPECT_EQ(screen(cluster_bundle(2, 4, {5})), DropKind::kWrongCluster) << "4 relays no cluster 2";
+  EXPECT_EQ(screen(cluster_bundle(1, 5, {3, 4})), DropKind::kWrongCluster) << "nor 5 cluster 1";
   EXPECT_EQ(screen(cluster_bundle(0, 1, {1, 3})), DropKind::kWrongCluster) << "3 is cluster 1's";
   EXPECT_EQ(screen(cluster_bundle(0, 1, {2, 1})), DropKind::kOverlap) << "out of order";
   EXPECT_EQ(screen(cluster_bundle(0, 1, {1, 1})), DropKind::kOverlap) << "a station twice";

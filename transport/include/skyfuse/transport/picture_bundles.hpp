@@ -11,11 +11,12 @@
 ///    scan, another cluster or a station outside it, other than exactly one scan, a scan wrong
 ///    anywhere or of another step than its bundle's; then who sends it (source_binding.hpp);
 ///  - a cluster's scans, at a receiver (ClusterBundleScreen::receive): another run, not a
-///    cluster's scans, an unknown cluster or a sender that is not its aggregator (the cluster's
-///    lowest id: kWrongCluster), a writer other than the one the aggregator first spoke with
-///    (kDuplicate, unless the cluster was silent the step closed last: a restarted aggregator), a
-///    scan of a station outside the cluster (kWrongCluster), a station twice or out of order
-///    (kOverlap), a scan of another step; then each scan as PictureScans takes it.
+///    cluster's scans, an unknown cluster or a sender that is neither its aggregator (the
+///    cluster's lowest id) nor the aggregator's stand-in (the second: kWrongCluster), a writer
+///    other than the one the aggregator first spoke with (kDuplicate, unless the cluster was silent
+///    the step closed last: a restarted aggregator), a scan of a station outside the cluster
+///    (kWrongCluster), a station twice or out of order (kOverlap), a scan of another step; then
+///    each scan as PictureScans takes it.
 
 #include <cstddef>
 #include <cstdint>
@@ -86,8 +87,14 @@ class ClusterScans {
     return admit(collector_, sources_, scan.step(), scan.station_id(), writer, scan);
   }
 
-  /// Every member's scan of the current step is in.
+  /// Every member's scan of the current step is in; every one but `absent`'s.
   bool complete() const { return collector_.complete(); }
+  bool complete_but(int absent) const {
+    for (std::size_t i = 0; i < members_.size(); ++i) {
+      if (members_[i] != absent && !collector_.filled(i)) return false;
+    }
+    return true;
+  }
 
   /// The cluster's scans of the current step that are in, ascending station id.
   wire::PictureBundle bundle(std::uint32_t step, int aggregator_id) const {
@@ -137,7 +144,7 @@ class ClusterBundleScreen {
     const std::size_t cluster = bundle.cluster();
     if (cluster >= layout_.clusters()) return DropKind::kWrongCluster;
     const std::span<const int> members = layout_.members(cluster);
-    if (bundle.station_id() != members.front()) return DropKind::kWrongCluster;
+    if (!relays(members, bundle.station_id())) return DropKind::kWrongCluster;
     // Another writer for the aggregator is a restarted one only if its cluster was silent the
     // step closed last.
     if (!aggregators_.would_accept(bundle.station_id(), writer) &&
@@ -159,6 +166,11 @@ class ClusterBundleScreen {
   }
 
  private:
+  // The cluster's aggregator, or its stand-in (the second id) while the aggregator is silent.
+  static bool relays(std::span<const int> members, int id) {
+    return id == members.front() || (members.size() >= 2 && id == members[1]);
+  }
+
   ClusterLayout layout_;
   std::uint64_t run_id_;
   SourceBinding aggregators_;  // an aggregator speaks through the writer it first spoke with

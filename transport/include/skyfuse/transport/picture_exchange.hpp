@@ -52,7 +52,8 @@ class PictureExchange : public PictureRoundScans<Tracks, Sensor> {
   /// The exchange of a station of `plan` (any id: every station does the same).
   static PictureExchange of_station(DdsNode& node, std::span<const KnownStation<Sensor>> stations,
                                     const PicturePlan& plan, int /*id*/,
-                                    const options::NodeOptions& options) {
+                                    const options::NodeOptions& options,
+                                    Reader<wire::PictureScan>& /*inputs*/) {
     return PictureExchange(node, stations, options.run_id,
                            plan.scenario.traffic->tracker.association.max_detections_per_scan);
   }

@@ -43,13 +43,18 @@ class PictureScans {
   /// cluster picture_bundles.hpp checked (its writer speaks for its members): each of this run,
   /// right, of the current step or the next and not yet in, or none is kept and the first
   /// problem is said.
+  /// A scan already kept is passed over if the bundle relays it unchanged (an aggregator and
+  /// its stand-in both relayed it while handing the cluster over), refused if not.
   std::optional<DropKind> receive_relayed(std::span<const wire::PictureScan> samples) {
     relayed_.clear();
     for (const wire::PictureScan& sample : samples) {
       if (sample.run_id() != run_id_) return DropKind::kWrongRun;
       auto [scan, why] = picture_scan_from_wire<Sensor>(sample, max_detections_);
       if (!scan) return why;
-      if (const auto late = collector_.check(scan->step, scan->station_id)) return late;
+      if (const auto late = collector_.check(scan->step, scan->station_id)) {
+        if (*late == DropKind::kDuplicate && is_kept(*scan)) continue;
+        return late;
+      }
       relayed_.push_back(std::move(*scan));
     }
     for (const ReceivedScan<M>& scan : relayed_) {
@@ -81,6 +86,14 @@ class PictureScans {
   void start_at(std::uint64_t step) { collector_.start_at(step); }
 
  private:
+  // Whether `scan` is the one kept for its station and step, bit for bit.
+  bool is_kept(const ReceivedScan<M>& scan) const {
+    const auto ids = collector_.station_ids();
+    const auto i = static_cast<std::size_t>(
+        std::lower_bound(ids.begin(), ids.end(), scan.station_id) - ids.begin());
+    return collector_.payload_at(scan.step, i) == scan;
+  }
+
   StepCollector<ReceivedScan<M>> collector_;
   SourceBinding sources_;
   std::uint64_t run_id_;

@@ -19,12 +19,16 @@
 /// it fuses; the in-process run needs no tree of its own. A member's scan lost on its way up is
 /// missing at every peer alike, and the peers stay together; a cluster's bundle lost on its
 /// way to one peer parts that peer as a lost flat scan does, and the same rule brings it back.
-/// The aggregator is fixed: while it is down its cluster's scans are missing at every peer (a
-/// restarted aggregator takes its cluster again).
+/// An aggregator silent for kSilentRoundsToStandIn rounds (its cluster's bundle heard from no
+/// one) is stood in for by its cluster's second id, which moves its reader into the cluster's
+/// up partition and its writer to the clusters' and relays what its members send, until it
+/// hears the aggregator again (a restarted one takes its cluster back). While both relay, a
+/// receiver keeps each scan once (PictureScans::receive_relayed).
 ///
 /// Threading: the node's thread, as every endpoint (dds_node.hpp).
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
@@ -82,18 +86,26 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
     return {kPictureClustersPartition};
   }
 
+  /// Rounds an aggregator's bundle is heard from no one before its stand-in relays its cluster.
+  static constexpr int kSilentRoundsToStandIn = 2;
+
   /// Station `id`'s exchange on `node` among `stations` (every participant of the run), cut
   /// into `layout`'s clusters, for run `run_id`; a sample of more than `max_detections` is
   /// refused, and an aggregator sends its cluster's scans `collect_span` after its own at the
-  /// latest.
+  /// latest. `inputs`: the station's reader of bundles (made in input_partitions()), which a
+  /// stand-in moves; none: this station stands in for nobody.
   PictureTreeExchange(DdsNode& node, std::span<const KnownStation<Sensor>> stations,
                       std::uint64_t run_id, std::size_t max_detections, ClusterLayout layout,
-                      int id, std::chrono::microseconds collect_span)
+                      int id, std::chrono::microseconds collect_span,
+                      Reader<wire::PictureBundle>* inputs)
       : Base(stations, run_id, max_detections),
         layout_(std::move(layout)),
         id_(id),
         cluster_(layout_.cluster_of_id(id)),
         aggregating_(layout_.members(cluster_).front() == id),
+        stand_in_(inputs != nullptr && layout_.members(cluster_).size() >= 2 &&
+                  layout_.members(cluster_)[1] == id),
+        inputs_(inputs),
         run_id_(run_id),
         collect_span_(collect_span),
         screen_(layout_, run_id),
@@ -106,13 +118,15 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
   static PictureTreeExchange of_station(DdsNode& node,
                                         std::span<const KnownStation<Sensor>> stations,
                                         const PicturePlan& plan, int id,
-                                        const options::NodeOptions& options) {
+                                        const options::NodeOptions& options,
+                                        Reader<wire::PictureBundle>& inputs) {
     return PictureTreeExchange(node, stations, options.run_id,
                                plan.scenario.traffic->tracker.association.max_detections_per_scan,
                                picture_tree_layout(plan), id,
                                (options.realtime_deadline_ms > 0.0 ? options.realtime_deadline()
                                                                    : options.round_deadline()) /
-                                   2);
+                                   2,
+                               &inputs);
   }
 
   /// A member: its aggregator's reader of scans, and every aggregator's writer of bundles. An
@@ -145,7 +159,7 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
                std::uint64_t picture_digest) {
     const wire::PictureScan sample = to_wire<Sensor>(scan, report, run_id_, step, picture_digest);
     step_ = step;
-    if (aggregating_) {
+    if (relaying()) {
       cluster_scans_.keep(sample);
       collect_by_ = std::chrono::system_clock::now() + collect_span_;
       sent_ = false;
@@ -157,31 +171,47 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
   /// Keeps a member's scan (an aggregator) or a cluster's scans, or says why not
   /// (picture_bundles.hpp).
   std::optional<DropKind> receive(const wire::PictureBundle& sample, const WriterId& writer) {
-    if (sample.kind() == wire::MEMBER_SCAN && aggregating_) {
+    if (sample.kind() == wire::MEMBER_SCAN && relaying()) {
       return cluster_scans_.receive(sample, writer);
     }
-    return screen_.receive(sample, writer, this->scans());
+    const auto why = screen_.receive(sample, writer, this->scans());
+    if (!why && sample.cluster() == cluster_ && sample.station_id() == aggregator()) {
+      heard_aggregator_ = true;
+    }
+    return why;
   }
 
   /// An aggregator first sends its cluster's scans: when its members' are in, or at half the
   /// deadline. Then every cluster's scans are in.
   bool round_complete() {
-    if (aggregating_ && !sent_ &&
-        (cluster_scans_.complete() || std::chrono::system_clock::now() >= collect_by_)) {
+    // A stand-in waits for every member but the silent aggregator.
+    const bool all_in =
+        standing_in_ ? cluster_scans_.complete_but(aggregator()) : cluster_scans_.complete();
+    if (relaying() && !sent_ && (all_in || std::chrono::system_clock::now() >= collect_by_)) {
       send_cluster();
     }
     return this->complete();
   }
   /// When an aggregator that has not sent must look again.
   std::optional<SystemTime> wake_at() const {
-    if (aggregating_ && !sent_) return collect_by_;
+    if (relaying() && !sent_) return collect_by_;
     return std::nullopt;
   }
 
   void advance() {
     Base::advance();
     cluster_scans_.advance();
+    if (!stand_in_) return;
+    aggregator_silent_ = heard_aggregator_ ? 0 : aggregator_silent_ + 1;
+    if (!standing_in_ && aggregator_silent_ >= kSilentRoundsToStandIn) {
+      stand_in(true);
+    } else if (standing_in_ && heard_aggregator_) {
+      stand_in(false);
+    }
+    heard_aggregator_ = false;
   }
+  /// Whether this station relays its cluster now: its aggregator, or standing in for it.
+  bool relaying() const { return aggregating_ || standing_in_; }
   void start_at(std::uint64_t step) {
     Base::start_at(step);
     cluster_scans_.start_at(step);
@@ -189,6 +219,20 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
 
  private:
   int stations() const { return static_cast<int>(this->station_count()); }
+  int aggregator() const { return layout_.members(cluster_).front(); }
+
+  // Takes the silent aggregator's place (the cluster's up partition in, the clusters' out), or
+  // gives it back.
+  void stand_in(bool on) {
+    inputs_->set_partitions(
+        on ? std::vector<std::string>{kPictureClustersPartition, cluster_up_partition(cluster_)}
+           : std::vector<std::string>{kPictureClustersPartition});
+    out_.set_partitions(
+        {on ? std::string(kPictureClustersPartition) : cluster_up_partition(cluster_)});
+    standing_in_ = on;
+    spdlog::info("{} station {}'s cluster {}", on ? "standing in for" : "giving back", aggregator(),
+                 cluster_);
+  }
 
   void send_cluster() {
     const wire::PictureBundle bundle = cluster_scans_.bundle(step_, id_);
@@ -201,6 +245,11 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
   int id_;
   std::size_t cluster_;
   bool aggregating_;
+  bool stand_in_;  // the cluster's second id: it relays the cluster while its aggregator is silent
+  Reader<wire::PictureBundle>* inputs_;
+  bool standing_in_ = false;
+  bool heard_aggregator_ = false;  // its cluster's aggregator's bundle, the round now closing
+  int aggregator_silent_ = 0;      // rounds without it
   std::uint64_t run_id_;
   std::chrono::microseconds collect_span_;
   ClusterBundleScreen screen_;

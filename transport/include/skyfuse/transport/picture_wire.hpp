@@ -69,6 +69,8 @@ struct ReceivedScan {
   std::vector<std::pair<TrackId, std::uint32_t>> associations;  ///< (track, detection index)
   std::vector<std::uint32_t> unassociated;                      ///< ascending detection index
   std::uint32_t dropped = 0;
+
+  bool operator==(const ReceivedScan&) const = default;
 };
 
 /// The scan a sample carries for a station of `Sensor` with at most `max_detections` detections,
