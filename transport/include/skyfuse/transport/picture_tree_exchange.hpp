@@ -19,10 +19,11 @@
 /// it fuses; the in-process run needs no tree of its own. A member's scan lost on its way up is
 /// missing at every peer alike, and the peers stay together; a cluster's bundle lost on its
 /// way to one peer parts that peer as a lost flat scan does, and the same rule brings it back.
-/// An aggregator silent for kSilentRoundsToStandIn rounds (its cluster's bundle heard from no
-/// one) is stood in for by its cluster's second id, which moves its reader into the cluster's
-/// up partition and its writer to the clusters' and relays what its members send, until it
-/// hears the aggregator again (a restarted one takes its cluster back). While both relay, a
+/// An aggregator whose bundle its cluster's second id did not hear for kSilentRoundsToStandIn
+/// rounds is stood in for by that station, which moves its reader into the cluster's up
+/// partition and its writer to the clusters' and relays what its members send, until it hears
+/// the aggregator again (a restarted one takes its cluster back). A stand-in that only lost
+/// the bundles relays besides the aggregator, which costs receptions, not bits. While both relay, a
 /// receiver keeps each scan once (PictureScans::receive_relayed).
 ///
 /// Threading: the node's thread, as every endpoint (dds_node.hpp).
