@@ -46,7 +46,7 @@ class PictureCenter {
   PictureCenter(const options::NodeOptions& options, PicturePlan plan)
       : options_(options),
         plan_(std::move(plan)),
-        ids_(ids_of(plan_)),
+        ids_(plan_.participant_ids()),
         node_(transport::node_config(options, "skyfuse-center")),
         loop_(node_, options, kCenterSourceId, "a fusion center", "picture scan",
               plan_.scenario.time_step_s,
@@ -123,12 +123,6 @@ class PictureCenter {
   transport::ProcessCounts counts() const { return {}; }
 
  private:
-  static std::vector<int> ids_of(const PicturePlan& plan) {
-    std::vector<int> ids;
-    for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
-    return ids;
-  }
-
   const options::NodeOptions& options_;
   PicturePlan plan_;
   std::vector<int> ids_;  // the participants in scenario order, as the stations' known list

@@ -30,6 +30,7 @@
 #include "run/picture_round_check.hpp"
 #include "run/placement.hpp"
 #include "run/secure_start.hpp"
+#include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
@@ -73,9 +74,7 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
 
 // One start of every process of the run.
 PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan) {
-  std::vector<int> ids;
-  for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
-  std::sort(ids.begin(), ids.end());
+  const std::vector<int> ids = sorted_ascending(plan.participant_ids());
   check_station_events(o, ids, plan.scenario.steps);
   if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
     transport::SecurityFolder{*o.node.secure_dir}.check(transport::run_identities(ids));

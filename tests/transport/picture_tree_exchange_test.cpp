@@ -95,17 +95,7 @@ TEST(PictureTreeExchange, ThreeStationsInTwoClustersHoldTheInProcessPictureBitFo
   AssignmentWork work;
   std::size_t associated = 0;
   for (int k = 0; k < kRounds; ++k) {
-    const auto step = static_cast<std::uint32_t>(k);
-    reference.predict();
-    std::vector<World::Peer::Report> own_reports;
-    for (std::size_t s = 0; s < nodes.size(); ++s) {
-      StationNode& n = nodes[s];
-      n.picture.predict();
-      const Scan<3> scan = world.scan(s, k);
-      own_reports.push_back(reference.report(world.stations[s], scan, work));
-      n.exchange->publish(step, scan, n.picture.report(world.stations[s], scan, work),
-                          n.picture.digest());
-    }
+    const auto own_reports = world.publish_round(nodes, reference, k, work);
     ASSERT_TRUE(eventually(
         [&] {
           bool all = true;

@@ -3,6 +3,8 @@
 // east in parallel lanes, three radars around them, misses and clutter.
 
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "skyfuse/models/constant_velocity.hpp"
@@ -55,6 +57,25 @@ struct PictureWorld {
     const auto& station = stations[s];
     return simulate_scan(station.id, RangeAzimuthElevation<kKinematicsDim>(station.sensor.site()),
                          station.sensor.site(), station.noise, detection, truths, k, 11, 0);
+  }
+
+  // Round k's start at every node of `nodes` (each with a `picture` and an `exchange`): it
+  // predicts its picture, scans and publishes its report against it. `reference`, an
+  // in-process peer, predicts too; each station's own report against it is returned.
+  template <typename Nodes>
+  std::vector<Peer::Report> publish_round(Nodes& nodes, Peer& reference, int k,
+                                          AssignmentWork& work) const {
+    reference.predict();
+    std::vector<Peer::Report> own_reports;
+    for (std::size_t s = 0; s < nodes.size(); ++s) {
+      auto& n = nodes[s];
+      n.picture.predict();
+      const Scan<3> station_scan = scan(s, k);
+      own_reports.push_back(reference.report(stations[s], station_scan, work));
+      n.exchange->publish(static_cast<std::uint32_t>(k), station_scan,
+                          n.picture.report(stations[s], station_scan, work), n.picture.digest());
+    }
+    return own_reports;
   }
 
   std::vector<TargetTruth> truths;

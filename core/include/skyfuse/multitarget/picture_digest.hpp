@@ -34,6 +34,8 @@ class PictureDigest {
 
 /// The digest of a picture without tracks: a restarted station's, or every node's before the
 /// first track.
-inline std::uint64_t empty_picture_digest() { return PictureDigest(0).value(); }
+inline std::uint64_t empty_picture_digest() {
+  return PictureDigest(0).value();
+}
 
 }  // namespace skyfuse

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/sim/run_plan.hpp"
@@ -21,6 +22,12 @@ struct PicturePlan {
 
   std::span<const StationConfig> participants() const {
     return std::span(scenario.stations).first(static_cast<std::size_t>(stations));
+  }
+  /// The participants' ids, in scenario order.
+  std::vector<int> participant_ids() const {
+    std::vector<int> ids;
+    for (const StationConfig& s : participants()) ids.push_back(s.id);
+    return ids;
   }
 };
 

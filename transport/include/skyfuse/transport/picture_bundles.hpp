@@ -18,6 +18,7 @@
 ///    (kWrongCluster), a station twice or out of order (kOverlap), a scan of another step; then
 ///    each scan as PictureScans takes it.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -78,7 +79,7 @@ class ClusterScans {
     }
     const wire::PictureScan& scan = bundle.scans().front();
     if (bundle.cluster() != cluster_ || scan.station_id() != bundle.station_id() ||
-        !is_member(scan.station_id())) {
+        std::find(members_.begin(), members_.end(), scan.station_id()) == members_.end()) {
       return DropKind::kWrongCluster;
     }
     if (scan.run_id() != run_id_) return DropKind::kWrongRun;
@@ -114,13 +115,6 @@ class ClusterScans {
   void start_at(std::uint64_t step) { collector_.start_at(step); }
 
  private:
-  bool is_member(int id) const {
-    for (const int m : members_) {
-      if (m == id) return true;
-    }
-    return false;
-  }
-
   std::vector<int> members_;
   StepCollector<wire::PictureScan> collector_;
   SourceBinding sources_;

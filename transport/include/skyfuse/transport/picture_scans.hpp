@@ -73,11 +73,8 @@ class PictureScans {
   std::span<const int> station_ids() const { return collector_.station_ids(); }
   /// Station `station_id`'s scan of the current step, or nullptr if it has not arrived.
   const ReceivedScan<M>* scan_of(int station_id) const {
-    const auto ids = collector_.station_ids();
-    const auto it = std::lower_bound(ids.begin(), ids.end(), station_id);
-    if (it == ids.end() || *it != station_id) return nullptr;
-    const auto i = static_cast<std::size_t>(it - ids.begin());
-    return collector_.filled(i) ? &collector_.payloads()[i] : nullptr;
+    const auto i = index_of(station_id);
+    return i && collector_.filled(*i) ? &collector_.payloads()[*i] : nullptr;
   }
 
   /// Closes the current step; the next one's scans already taken stay.
@@ -86,12 +83,17 @@ class PictureScans {
   void start_at(std::uint64_t step) { collector_.start_at(step); }
 
  private:
-  // Whether `scan` is the one kept for its station and step, bit for bit.
-  bool is_kept(const ReceivedScan<M>& scan) const {
+  // Station `station_id`'s place among the stations (ascending id), if it is one.
+  std::optional<std::size_t> index_of(int station_id) const {
     const auto ids = collector_.station_ids();
-    const auto i = static_cast<std::size_t>(
-        std::lower_bound(ids.begin(), ids.end(), scan.station_id) - ids.begin());
-    return collector_.payload_at(scan.step, i) == scan;
+    const auto it = std::lower_bound(ids.begin(), ids.end(), station_id);
+    if (it == ids.end() || *it != station_id) return std::nullopt;
+    return static_cast<std::size_t>(it - ids.begin());
+  }
+  // Whether `scan` is the one kept for its station and step, bit for bit (the collector said
+  // its slot is filled).
+  bool is_kept(const ReceivedScan<M>& scan) const {
+    return collector_.payload_at(scan.step, *index_of(scan.station_id)) == scan;
   }
 
   StepCollector<ReceivedScan<M>> collector_;

@@ -31,7 +31,6 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -41,6 +40,7 @@
 #include <utility>
 #include <vector>
 
+#include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
@@ -58,10 +58,8 @@ namespace skyfuse::transport {
 
 /// The clusters of a picture run's tree, as every node derives them from the plan.
 inline ClusterLayout picture_tree_layout(const PicturePlan& plan) {
-  std::vector<int> ids;
-  for (const StationConfig& s : plan.participants()) ids.push_back(s.id);
-  std::sort(ids.begin(), ids.end());
-  return ClusterLayout(ids, static_cast<std::size_t>(plan.scenario.exchange.fanout));
+  return ClusterLayout(sorted_ascending(plan.participant_ids()),
+                       static_cast<std::size_t>(plan.scenario.exchange.fanout));
 }
 
 template <typename Tracks, typename Sensor>
