@@ -1,7 +1,10 @@
 // skyfuse-station: one ground station of the peer-to-peer fusion network.
 #include <spdlog/spdlog.h>
 
+#include <fmt/ranges.h>
+
 #include <CLI/CLI.hpp>
+#include <vector>
 
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/shutdown.hpp"
@@ -11,7 +14,12 @@ int main(int argc, char** argv) {
   using namespace skyfuse;
   CLI::App app{"skyfuse-station: one ground station; fuses every station's increments"};
   station::StationOptions options;
-  app.add_option("--id", options.id, "Station id (from the scenario)")->required();
+  std::vector<int> ids;
+  app.add_option("--id", ids,
+                 "Station id (from the scenario). Given several times, this process runs those "
+                 "stations, each on a thread of its own, sharing one DDS participant (simulation on "
+                 "one host; runs of one aircraft)")
+      ->required();
   app.add_option("--replay", options.replay_path,
                  "Replay measurements from this CSV instead of simulating them")
       ->check(CLI::ExistingFile);
@@ -22,9 +30,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   spdlog::set_level(spdlog::level::from_str(options.node.log_level));
-  spdlog::set_pattern(fmt::format("[station {}] %^%l%$: %v", options.id));
+  spdlog::set_pattern(fmt::format("[station{} {}] %^%l%$: %v", ids.size() > 1 ? "s" : "",
+                                  fmt::join(ids, ",")));
   transport::install_shutdown_handlers();
   // Every way a node's run ends leaves without deleting its participant (node_presence.hpp).
   transport::leave_without_goodbye(
-      options::run_node([&] { return station::run_station(options); }));
+      options::run_node([&] { return station::run_stations(options, ids); }));
 }

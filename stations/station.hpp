@@ -40,14 +40,16 @@ class Station {
   using Sample = typename Exchange::Sample;
   using Sensing = typename Fusion::Sensing;
 
-  // The endpoints are made in a fixed order: the loop's tick and input readers first.
+  // The endpoints are made in a fixed order: the loop's tick and input readers first. `node` is
+  // the process's participant: this station's alone, or shared with the process's other
+  // stations (station_process.hpp).
   Station(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
-          std::unique_ptr<Sensing> sensing)
+          std::unique_ptr<Sensing> sensing, transport::DdsNode& node)
       : options_(options),
         plan_(plan),
         me_(me),
         sensing_(std::move(sensing)),
-        node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", me.id))),
+        node_(node),
         loop_(node_, options.node, me.id, fmt::format("station {}", me.id), Exchange::kInputName,
               plan.scenario.time_step_s, Exchange::input_partitions(plan, me.id)),
         exchange_(node_, loop_.inputs(), plan, me.id, options.node,
@@ -177,7 +179,7 @@ class Station {
   const RunPlan& plan_;
   const StationConfig& me_;
   std::unique_ptr<Sensing> sensing_;
-  transport::DdsNode node_;
+  transport::DdsNode& node_;
   transport::NodeLoop<Sample> loop_;
   Exchange exchange_;
   transport::Writer<wire::Measurement> measurements_;
@@ -189,19 +191,19 @@ class Station {
 // Runs station `me` of the run's exchange over `Fusion`, with its `sensing`; the exit code.
 template <typename Fusion>
 int run_station_of(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
-                   std::unique_ptr<typename Fusion::Sensing> sensing) {
+                   std::unique_ptr<typename Fusion::Sensing> sensing, transport::DdsNode& node) {
   if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
     // load_plan refuses the tree for a filter whose fusion cannot sum partial sums yet.
     if constexpr (requires { &Fusion::admit_contribution; }) {
-      return transport::make_lifelong<Station<Fusion, TreeExchange<Fusion>>>(options, plan, me,
-                                                                             std::move(sensing))
+      return transport::make_lifelong<Station<Fusion, TreeExchange<Fusion>>>(
+                 options, plan, me, std::move(sensing), node)
           .run();
     } else {
       throw std::logic_error("the tree exchange for a fusion without partial sums");
     }
   }
   return transport::make_lifelong<Station<Fusion, FlatExchange<Fusion>>>(options, plan, me,
-                                                                         std::move(sensing))
+                                                                         std::move(sensing), node)
       .run();
 }
 
@@ -210,8 +212,8 @@ int run_station_of(const StationOptions& options, const RunPlan& plan, const Sta
 // The filter part and the model pick the fusion; the sensor is the sensing's business.
 template <std::size_t Shard>
 int run_station_rounds_in_shard(const StationOptions& options, const RunPlan& plan,
-                                const StationConfig& me,
-                                std::unique_ptr<AnyStationSensing> sensing) {
+                                const StationConfig& me, std::unique_ptr<AnyStationSensing> sensing,
+                                transport::DdsNode& node) {
   int code = options::kExitError;
   visit_group_in_shard<Shard>(plan.scenario.filter, [&]<typename Filter, typename Model>(
                                                         std::type_identity<Filter>,
@@ -224,7 +226,8 @@ int run_station_rounds_in_shard(const StationOptions& options, const RunPlan& pl
                                          me.id, Filter::kKind, Model::kKind));
     }
     sensing.release();
-    code = detail::run_station_of<Fusion>(options, plan, me, std::unique_ptr<Sensing>(typed));
+    code =
+        detail::run_station_of<Fusion>(options, plan, me, std::unique_ptr<Sensing>(typed), node);
   });
   return code;
 }

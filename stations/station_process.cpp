@@ -3,16 +3,56 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+#include <deque>
+#include <set>
 #include <stdexcept>
+#include <thread>
 
 #include "picture_station.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 #include "station_rounds.hpp"
 #include "station_sensing.hpp"
 
 namespace skyfuse::station {
+
+namespace {
+
+// Station `id`'s place in the run, or why it has none.
+const StationConfig& participant_of(const RunPlan& plan, int id) {
+  const StationConfig* me = plan.participant(id);
+  if (me == nullptr) {
+    throw std::invalid_argument(fmt::format(
+        "--id: station {} is not one of the {} participating stations of scenario '{}' (ids {})",
+        id, plan.stations, plan.scenario.name, fmt::join(plan.participant_ids(), ", ")));
+  }
+  return *me;
+}
+
+// Runs station `me` of a run of one aircraft on `node`, or on a participant of its own made
+// once its sensing is (a configuration the sensing refuses makes no participant).
+int run_one_aircraft_station(const StationOptions& options, const RunPlan& plan,
+                             const StationConfig& me, transport::DdsNode* node) {
+  // The sensor's arithmetic is compiled by shard of the configuration groups, the rounds once per
+  // fusion (station_sensing.hpp).
+  auto sensing = with_filter_shard(plan.scenario.filter, [&](auto shard) {
+    return make_sensing_in_shard<decltype(shard)::value>(options, plan, me);
+  });
+  if (node == nullptr) {
+    node = &transport::make_lifelong<transport::DdsNode>(
+        transport::node_config(options.node, fmt::format("skyfuse-station-{}", me.id)));
+  }
+  return with_filter_shard(plan.scenario.filter, [&](auto shard) {
+    return run_station_rounds_in_shard<decltype(shard)::value>(options, plan, me,
+                                                               std::move(sensing), *node);
+  });
+}
+
+}  // namespace
 
 int run_station(const StationOptions& options) {
   if (Scenario scenario = load_scenario_or_default(options.node.scenario_path);
@@ -20,12 +60,7 @@ int run_station(const StationOptions& options) {
     return run_picture_station(options, std::move(scenario));
   }
   const RunPlan plan = transport::load_plan(options.node);
-  const StationConfig* me = plan.participant(options.id);
-  if (me == nullptr) {
-    throw std::invalid_argument(fmt::format(
-        "--id: station {} is not one of the {} participating stations of scenario '{}' (ids {})",
-        options.id, plan.stations, plan.scenario.name, fmt::join(plan.participant_ids(), ", ")));
-  }
+  const StationConfig& me = participant_of(plan, options.id);
   if (options.rejoin_step) {
     if (*options.rejoin_step >= static_cast<std::uint64_t>(plan.scenario.steps)) {
       throw std::invalid_argument(fmt::format("--rejoin-at-step: {} is past the run's last step {}",
@@ -35,15 +70,55 @@ int run_station(const StationOptions& options) {
       throw std::invalid_argument("--rejoin-at-step: lock-step runs only, not real time");
     }
   }
-  // The sensor's arithmetic is compiled by shard of the configuration groups, the rounds once per
-  // fusion (station_sensing.hpp).
-  auto sensing = with_filter_shard(plan.scenario.filter, [&](auto shard) {
-    return make_sensing_in_shard<decltype(shard)::value>(options, plan, *me);
-  });
-  return with_filter_shard(plan.scenario.filter, [&](auto shard) {
-    return run_station_rounds_in_shard<decltype(shard)::value>(options, plan, *me,
-                                                               std::move(sensing));
-  });
+  return run_one_aircraft_station(options, plan, me, nullptr);
+}
+
+int run_stations(const StationOptions& options, const std::vector<int>& ids) {
+  if (ids.size() == 1) {
+    StationOptions one = options;
+    one.id = ids.front();
+    return run_station(one);
+  }
+  if (const std::set<int> distinct(ids.begin(), ids.end()); distinct.size() != ids.size()) {
+    throw std::invalid_argument(fmt::format("--id: an id given twice ({})", fmt::join(ids, ", ")));
+  }
+  if (options.rejoin_step) {
+    throw std::invalid_argument(
+        "--rejoin-at-step: one station per process (a restarted station replaces one process)");
+  }
+  if (options.node.secure_dir) {
+    throw std::invalid_argument(
+        "several --id with --secure: DDS-Security authenticates a participant, and each station "
+        "needs its own identity; run one station per process");
+  }
+  if (load_scenario_or_default(options.node.scenario_path).has_many_targets()) {
+    throw std::invalid_argument(
+        "several --id: runs of one aircraft only so far; a run of many aircraft takes one "
+        "station per process");
+  }
+  const RunPlan plan = transport::load_plan(options.node);
+  std::deque<StationOptions> each;  // the stations keep references to their options
+  for (int id : ids) {
+    participant_of(plan, id);  // refuses an unknown id before any participant exists
+    each.push_back(options);
+    each.back().id = id;
+  }
+  auto& node = transport::make_lifelong<transport::DdsNode>(transport::node_config(
+      options.node, fmt::format("skyfuse-stations-{}", fmt::join(ids, "-"))));
+  std::vector<int> codes(ids.size(), options::kExitError);
+  std::vector<std::thread> threads;
+  threads.reserve(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    threads.emplace_back([&, i] {
+      codes[i] = options::run_node([&] {
+        return run_one_aircraft_station(each[i], plan, participant_of(plan, each[i].id), &node);
+      });
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  const auto failed =
+      std::find_if(codes.begin(), codes.end(), [](int code) { return code != options::kExitOk; });
+  return failed == codes.end() ? options::kExitOk : *failed;
 }
 
 }  // namespace skyfuse::station

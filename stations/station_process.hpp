@@ -10,10 +10,17 @@
 // The estimation is the core's, chosen by the run's filter kind: SingleModelFusion
 // (PeerTracker, single_model_fusion.hpp) or ImmFusion (PeerImm, imm_fusion.hpp), which sends
 // one increment per mode; this file only moves samples.
+//
+// For simulation on one host, one process may run several stations (run_stations): each on a
+// thread of its own with its own endpoints, contributions and checks, sharing the process's DDS
+// participant. The wire and the results are those of one process per station; what is saved is
+// the cost of a participant per station (its discovery, threads and sockets) and of the
+// datagrams between stations of one process, which Fast DDS hands over in memory.
 
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "sensor_source.hpp"
 #include "skyfuse/options/node_options.hpp"
@@ -28,7 +35,15 @@ struct StationOptions {
   std::optional<std::uint64_t> rejoin_step;
 };
 
-/// Runs the station to the end of the run; returns a options::ExitCode.
+/// Runs station `options.id` to the end of the run, on a participant of its own; returns an
+/// options::ExitCode.
 int run_station(const StationOptions& options);
+
+/// Runs the stations `ids` of one run of one aircraft in this process, sharing one participant;
+/// `options.id` is ignored. Returns kExitOk if every station ended well, else the first
+/// failure's code in the order of `ids`. Throws std::invalid_argument for what several
+/// stations in one process cannot do (a restart, DDS-Security's identity per station, a run
+/// of many aircraft) and for repeated ids.
+int run_stations(const StationOptions& options, const std::vector<int>& ids);
 
 }  // namespace skyfuse::station

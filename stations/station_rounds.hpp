@@ -9,6 +9,10 @@
 #include "station_process.hpp"
 #include "station_sensing.hpp"
 
+namespace skyfuse::transport {
+class DdsNode;
+}
+
 namespace skyfuse::station {
 
 /// Runs station `me` of `plan`, whose filter part and motion model lie in shard `Shard`, to the end
@@ -16,7 +20,7 @@ namespace skyfuse::station {
 /// and model by make_sensing_in_shard); returns an options::ExitCode.
 template <std::size_t Shard>
 int run_station_rounds_in_shard(const StationOptions& options, const RunPlan& plan,
-                                const StationConfig& me,
-                                std::unique_ptr<AnyStationSensing> sensing);
+                                const StationConfig& me, std::unique_ptr<AnyStationSensing> sensing,
+                                transport::DdsNode& node);
 
 }  // namespace skyfuse::station

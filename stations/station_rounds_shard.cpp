@@ -7,6 +7,7 @@ namespace skyfuse::station {
 template int run_station_rounds_in_shard<SKYFUSE_SHARD>(const StationOptions& options,
                                                         const RunPlan& plan,
                                                         const StationConfig& me,
-                                                        std::unique_ptr<AnyStationSensing> sensing);
+                                                        std::unique_ptr<AnyStationSensing> sensing,
+                                                        transport::DdsNode& node);
 
 }  // namespace skyfuse::station

@@ -173,6 +173,11 @@ void add_bench_command(CLI::App& app, BenchOptions& o) {
                   "deadline 80 ms)")
       ->check(options::whole_number_in(1, 100000))
       ->needs(scale);
+  cmd->add_option("--stations-per-process", o.scale.stations_per_process,
+                  "--scale: stations in each station process, sharing its participant (skyfuse "
+                  "run --stations-per-process)")
+      ->check(CLI::Range(1, 256))
+      ->needs(scale);
   cmd->add_flag("!--reliable", o.scale.best_effort,
                 "--scale: reliable increments, sums and measurements (default: best effort)");
   // The options the two benchmarks share go to the scale benchmark only when given, so that

@@ -121,6 +121,14 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Place the center and the stations, round robin, on N simulated hosts: network "
                   "namespaces joined by a bridge, discovering through the harness (root only)")
       ->check(options::whole_number_in(1, SimulatedHosts::kMaxHosts));
+  cmd->add_option("--stations-per-process", o.stations_per_process,
+                  "Run K stations in each station process, sharing its DDS participant (for "
+                  "simulation on one host or on --hosts: fewer participants to discover, and the "
+                  "samples between stations of one process pass in memory; the wire and the "
+                  "results are those of one process per station). Not with --secure, --external, "
+                  "--kill, --restart or many aircraft")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
   options::add_discovery_option(
       *cmd, o.discovery,
       "How the processes find each other: auto (on one host peers for a tree of 16 or more "

@@ -1,6 +1,7 @@
 #include "run/discovery_peers.hpp"
 
 #include <algorithm>
+#include <set>
 
 #include "skyfuse/tracking/cluster_layout.hpp"
 
@@ -40,6 +41,25 @@ std::vector<std::vector<std::size_t>> discovery_peer_lists(const ExchangeConfig&
         list.push_back(process_of_station(other));
       }
     }
+  }
+  return lists;
+}
+
+std::vector<std::vector<std::size_t>> discovery_peer_lists(const ExchangeConfig& exchange,
+                                                           std::size_t stations,
+                                                           const StationGroups& groups) {
+  const std::vector<std::vector<std::size_t>> by_station = discovery_peer_lists(exchange, stations);
+  const auto process_of = [&](std::size_t station_process) {
+    return station_process == kCenter ? kCenter : groups.process_of(station_process - 1);
+  };
+  std::vector<std::set<std::size_t>> merged(groups.processes());
+  for (std::size_t p = 0; p < by_station.size(); ++p) {
+    for (std::size_t peer : by_station[p]) merged[process_of(p)].insert(process_of(peer));
+  }
+  std::vector<std::vector<std::size_t>> lists(merged.size());
+  for (std::size_t p = 0; p < merged.size(); ++p) {
+    merged[p].erase(p);
+    lists[p].assign(merged[p].begin(), merged[p].end());
   }
   return lists;
 }

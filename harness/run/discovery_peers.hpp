@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "run/station_groups.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 
 namespace skyfuse::harness {
@@ -32,5 +33,11 @@ inline constexpr std::size_t kAggregatorStandIns = 2;
 /// and a cluster's first kAggregatorStandIns members also list the other clusters' first ones.
 std::vector<std::vector<std::size_t>> discovery_peer_lists(const ExchangeConfig& exchange,
                                                            std::size_t stations);
+
+/// The same for processes that run several stations each (`groups`): a process lists the
+/// processes of every station its stations list, itself excepted.
+std::vector<std::vector<std::size_t>> discovery_peer_lists(const ExchangeConfig& exchange,
+                                                           std::size_t stations,
+                                                           const StationGroups& groups);
 
 }  // namespace skyfuse::harness

@@ -22,6 +22,7 @@
 #include "run/lockstep_driver.hpp"
 #include "run/placement.hpp"
 #include "run/secure_start.hpp"
+#include "run/station_groups.hpp"
 #include "skyfuse/options/filter_options.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/registry/filter_info.hpp"
@@ -48,6 +49,10 @@ void warn_if_receive_buffers_too_small(int stations) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// How long the first rounds of a lock-step run may all be incomplete before the network counts
+// as not fully connected (with at least connection_rounds_of() rounds).
+constexpr std::chrono::seconds kConnectionGrace{60};
 
 // Real time: step 0 begins this long after every node joined, so that the start tick reaches
 // every node and discovery's last exchanges are over. At M = 64 both cores stay busy until
@@ -131,6 +136,7 @@ void run_lockstep_rounds(const RunOptions& o, const RunPlan& plan, LockstepDrive
   // How many of the first rounds may all be incomplete before the network counts as broken.
   const int connection_rounds = connection_rounds_of(o);
   bool checking_connection = true;
+  const auto first_round = std::chrono::steady_clock::now();
   for (int k = 0; k < plan.scenario.steps; ++k) {
     const auto step = static_cast<std::uint64_t>(k);
     for (const StationEvent& e : o.kills) {
@@ -152,9 +158,14 @@ void run_lockstep_rounds(const RunOptions& o, const RunPlan& plan, LockstepDrive
     // wait for its deadline. Better to say so at once. With reliable samples one round
     // tells; best effort may lose a sample of round 0 while the sockets still fill (seen at
     // M = 64 on a slow host), which is a loss, not a broken network: it gets a few rounds.
+    // And a large run's first rounds may run beside the last of discovery: at M = 256 in 17
+    // processes the endpoints' announcements went on for the first rounds (66 000 datagrams
+    // a round), and the clusters' sums came after their stage had closed. So the first
+    // rounds may all be incomplete for kConnectionGrace too.
     if (checking_connection && !o.node.loss.enabled()) {
       if (const auto missing = missing_from(round, stations)) {
-        if (k + 1 >= connection_rounds) {
+        if (k + 1 >= connection_rounds &&
+            std::chrono::steady_clock::now() - first_round >= kConnectionGrace) {
           throw RunAborted(fmt::format("{}, the network is not fully connected: {}",
                                        connection_rounds == 1
                                            ? std::string("round 0 incomplete")
@@ -214,16 +225,24 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
   };
 
   try {
-    // Process 0 is the center, process 1 + j the j-th station in ascending id.
+    // Process 0 is the center, then the stations in ascending id, --stations-per-process to a
+    // process (a station restarts only when each has its own: Placement::check).
+    const StationGroups groups(ids.size(), static_cast<std::size_t>(o.stations_per_process));
     const auto process_index = [&](int id) {
-      return 1 + static_cast<std::size_t>(std::find(ids.begin(), ids.end(), id) - ids.begin());
+      return groups.process_of(
+          static_cast<std::size_t>(std::find(ids.begin(), ids.end(), id) - ids.begin()));
     };
-    const auto spawn_station = [&](int id, std::optional<std::uint64_t> rejoin_step) {
-      const auto [network, netns] = placement.of(process_index(id));
+    const auto spawn_process = [&](std::size_t process,
+                                   std::optional<std::uint64_t> rejoin_step) {
+      const std::vector<int> group = groups.ids_of(process, ids);
+      const auto [network, netns] = placement.of(process);
       const std::vector<std::string> common =
           node_arguments(o, plan, run_id, scenario_file, network);
-      std::vector<std::string> station{(executable_dir() / "skyfuse-station").string(), "--id",
-                                       std::to_string(id)};
+      std::vector<std::string> station{(executable_dir() / "skyfuse-station").string()};
+      for (int id : group) {
+        station.push_back("--id");
+        station.push_back(std::to_string(id));
+      }
       station.insert(station.end(), common.begin(), common.end());
       if (!o.replay_path.empty()) {
         station.push_back("--replay");
@@ -233,7 +252,13 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
         station.push_back("--rejoin-at-step");
         station.push_back(std::to_string(*rejoin_step));
       }
-      namespace_members.try_emplace(netns, children.spawn(node_name(id), station, netns));
+      const std::string name = group.size() == 1
+                                   ? node_name(group.front())
+                                   : fmt::format("stations {}-{}", group.front(), group.back());
+      namespace_members.try_emplace(netns, children.spawn(name, station, netns));
+    };
+    const auto spawn_station = [&](int id, std::optional<std::uint64_t> rejoin_step) {
+      spawn_process(process_index(id), rejoin_step);
     };
     RunRecorder recorder(plan, ids, o.restarts);
     // The live stream listens before the nodes start, so that a client can be there for the
@@ -259,7 +284,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       std::vector<std::string> center{(executable_dir() / "skyfuse-center").string()};
       center.insert(center.end(), common.begin(), common.end());
       namespace_members.try_emplace(netns, children.spawn(node_name(kCenterNodeId), center, netns));
-      for (int id : ids) spawn_station(id, std::nullopt);
+      for (std::size_t p = 1; p < groups.processes(); ++p) spawn_process(p, std::nullopt);
     }
     const auto discovery =
         driver.wait_until_joined(seconds_to_ms(discovery_timeout_s(o, plan.stations)));
@@ -353,6 +378,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     summary.loss = o.node.loss;
     summary.best_effort = o.node.best_effort;
     summary.hosts = o.hosts;
+    summary.stations_per_process = o.stations_per_process;
     summary.refusion_lag = o.node.refusion_lag;
     recorder.set_settled(driver.settled_tracks());
     summary.settled = recorder.summarise_settled();

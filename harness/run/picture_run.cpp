@@ -70,6 +70,9 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
            "the harness starts a picture run's processes itself (containers run one aircraft)");
   }
   if (o.node.refusion_lag != 0) refuse("--refusion-lag", "a picture re-fuses no late scan");
+  if (o.stations_per_process != 1) {
+    refuse("--stations-per-process", "a picture's station runs in a process of its own");
+  }
 }
 
 // One start of every process of the run.

@@ -30,6 +30,24 @@ bool multicast_across_hosts(Discovery discovery) {
 // The harness is participant 0 of its address; one host's processes follow it.
 constexpr int kHarnessParticipantId = 0;
 
+StationGroups groups_of(const RunOptions& o, std::size_t stations) {
+  return {stations, static_cast<std::size_t>(o.stations_per_process)};
+}
+
+// Several stations in one process share its participant: one identity for DDS-Security, one
+// process for the harness to kill, a command line the harness writes.
+void check_stations_per_process(const RunOptions& o) {
+  if (o.stations_per_process == 1) return;
+  const auto refuse = [](const char* what) {
+    throw std::invalid_argument(fmt::format("--stations-per-process: not with {}", what));
+  };
+  if (o.node.secure_dir) refuse("--secure (DDS-Security authenticates one station per process)");
+  if (o.external) refuse("--external (the harness starts the processes it groups)");
+  if (!o.kills.empty() || !o.restarts.empty()) {
+    refuse("--kill or --restart (a kill would take every station of the process)");
+  }
+}
+
 // The harness writes every node's peer list and participant id, so it must start the nodes,
 // and their ids must fit the domain's ports on each address.
 void check_peer_discovery(const RunOptions& o, std::size_t stations) {
@@ -41,8 +59,9 @@ void check_peer_discovery(const RunOptions& o, std::size_t stations) {
         "--discovery peers: not with --secure (secure runs discover by multicast)");
   }
   const auto hosts = static_cast<std::size_t>(o.hosts);
-  const std::size_t per_address = hosts > 0 ? (stations + 1 + hosts - 1) / hosts  // round robin
-                                            : stations + 2;  // with the harness on one host
+  const std::size_t processes = groups_of(o, stations).processes();
+  const std::size_t per_address = hosts > 0 ? (processes + hosts - 1) / hosts  // round robin
+                                            : processes + 1;  // with the harness on one host
   const int room = options::participant_ids_per_address(o.node.domain);
   if (per_address > static_cast<std::size_t>(room)) {
     throw std::invalid_argument(fmt::format(
@@ -113,7 +132,7 @@ Discovery chosen_discovery(const RunOptions& o, const ExchangeConfig& exchange,
       stations < kPeersFromStations) {
     return Discovery::kAutomatic;
   }
-  const std::size_t participants = stations + 2;
+  const std::size_t participants = groups_of(o, stations).processes() + 1;
   if (participants >
       static_cast<std::size_t>(options::participant_ids_per_address(o.node.domain))) {
     return Discovery::kAutomatic;
@@ -138,6 +157,7 @@ void Placement::check(const RunOptions& o, std::size_t stations) {
         "--discovery server: the harness serves discovery for --hosts only; on one host give "
         "--discovery-server ADDRESS:PORT of a server of your own");
   }
+  check_stations_per_process(o);
   if (o.discovery == Discovery::kPeers) check_peer_discovery(o, stations);
   const bool network_given = o.node.network != options::NetworkOptions{};
   if (network_given && (o.hosts > 0 || o.discovery == Discovery::kPeers)) {
@@ -164,11 +184,12 @@ Placement::Placement(const RunOptions& o, const ExchangeConfig& exchange, std::s
     }
   }
   if (discovery == Discovery::kPeers) {
-    peer_lists_ = discovery_peer_lists(exchange, stations);
+    peer_lists_ = discovery_peer_lists(exchange, stations, groups_of(o, stations));
     // On one host every port is on the harness's address (simulated hosts have their own);
     // `auto` chose peers only with every port free.
     if (!hosts_ && o.discovery == Discovery::kPeers) {
-      if (const auto held = held_peer_port(harness_.interface_address, domain_, stations + 2)) {
+      if (const auto held = held_peer_port(harness_.interface_address, domain_,
+                                           groups_of(o, stations).processes() + 1)) {
         throw std::invalid_argument(fmt::format(
             "--discovery peers: {}; free it or take another --domain (below 102 keeps every "
             "port out of the kernel's ephemeral range)",

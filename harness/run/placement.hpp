@@ -30,7 +30,8 @@ class Placement {
   /// The harness's interface and discovery.
   const options::NetworkOptions& harness() const { return harness_; }
   /// The network options and namespace (-1: the harness's own) of process `i`: 0 the center,
-  /// then the stations in ascending id. Round robin over the hosts, the center on the first.
+  /// then the stations in ascending id, `--stations-per-process` to a process
+  /// (run/station_groups.hpp). Round robin over the hosts, the center on the first.
   std::pair<options::NetworkOptions, int> of(std::size_t i) const;
   /// "multicast", "server ADDRESS:PORT" or "peers", for the run's summary.
   std::string discovery() const;

@@ -38,6 +38,8 @@ struct RunOptions {
                                 ///< the run while it goes on (report/live_feed.hpp)
   bool external = false;        ///< stations and center are started elsewhere (by hand, compose)
   int hosts = 0;  ///< > 0: place the processes on this many simulated hosts (simulated_hosts.hpp)
+  /// Stations run by one process, sharing its participant (run/station_groups.hpp).
+  int stations_per_process = 1;
   /// How the processes discover each other (run/placement.hpp).
   options::Discovery discovery = options::Discovery::kAutomatic;
   bool verbose = false;

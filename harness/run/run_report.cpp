@@ -453,6 +453,7 @@ std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t r
   }
   full["network"] = {{"hosts", summary.hosts},
                      {"discovery", summary.discovery},
+                     {"stations_per_process", summary.stations_per_process},
                      {"participants_known_by_node", known}};
   full["dropped_by_kind"] = by_kind;
   full["dropped_by_node"] = by_node;

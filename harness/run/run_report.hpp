@@ -112,6 +112,7 @@ struct RunSummary {
   /// and their discovery ("multicast", "server ADDRESS:PORT", "peers").
   int hosts = 0;
   std::string discovery = "multicast";
+  int stations_per_process = 1;  ///< stations sharing a process (run/station_groups.hpp)
   std::size_t refusion_lag = 0;
   std::optional<SettledFigures> settled;  ///< none: no station re-fused
 };

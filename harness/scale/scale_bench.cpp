@@ -144,6 +144,7 @@ RunSummary measure(const ScaleBenchOptions& o, const Scenario& scenario,
   run.node.domain = o.domain;
   if (realtime) run.node.realtime_deadline_ms = o.realtime_deadline_ms;
   run.hosts = hosts;
+  run.stations_per_process = o.stations_per_process;
   if (hosts > 0) run.discovery = o.host_discovery;
   run.out_dir =
       (out / fmt::format("{}-M{}-{}", exchange, m, realtime ? "realtime" : "lockstep")).string();
@@ -178,9 +179,9 @@ int run_scale_bench(const ScaleBenchOptions& o) {
   std::filesystem::create_directories(out);
   fmt::print(
       "skyfuse bench --scale on {} cores: {} lock-step rounds and {} real-time steps ({} ms "
-      "deadline) per run, tree fanout {}, {}\n",
+      "deadline) per run, tree fanout {}, {}, {} station(s) per process\n",
       std::thread::hardware_concurrency(), o.rounds, o.realtime_steps, o.realtime_deadline_ms,
-      o.fanout, o.best_effort ? "best effort" : "reliable");
+      o.fanout, o.best_effort ? "best effort" : "reliable", o.stations_per_process);
   print_header();
 
   std::vector<ScaleRow> rows;
@@ -193,6 +194,7 @@ int run_scale_bench(const ScaleBenchOptions& o) {
                                 {"rounds", o.rounds},
                                 {"realtime_steps", o.realtime_steps},
                                 {"best_effort", o.best_effort},
+                                {"stations_per_process", o.stations_per_process},
                                 {"rows", json_rows}};
     write_file_atomically(out / "scale.json", doc.dump(2) + "\n");
     write_file_atomically(out / "scale.csv", csv_of(rows, o.fanout));

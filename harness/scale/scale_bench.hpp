@@ -29,6 +29,8 @@ struct ScaleBenchOptions {
   /// server's Fast DDS 2.9 dropped endpoints for good (docs/performance.md#m--128-and-m--256).
   options::Discovery host_discovery = options::Discovery::kPeers;
   int domain = 0;
+  /// Stations per station process (`skyfuse run --stations-per-process`); 1: one process each.
+  int stations_per_process = 1;
   /// Numbers of aircraft: the picture's scale benchmark instead (picture_scale_bench.hpp).
   std::vector<int> aircraft;
 };

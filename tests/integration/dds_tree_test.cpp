@@ -95,6 +95,49 @@ TEST(DdsTree, StationsDiscoveringOnlyTheirPeersKnowTheirClusterAndGiveTheInProce
   }
 }
 
+// `--stations-per-process 4`: each cluster of 4 stations in one process, sharing its participant
+// (its samples pass in memory). The wire and the results are those of one process per station:
+// the in-process tree's bits. Each process holds an aggregator and its stand-in, so it knows the
+// harness, the center and the 3 other processes; the center knows the harness and the 4.
+TEST(DdsTree, StationsSharingAProcessGiveTheInProcessTreesBits) {
+  const auto summary = expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 200, 4, 61,
+                                                   {"--discovery", "peers",
+                                                    "--stations-per-process", "4"});
+  ASSERT_FALSE(summary.is_null());
+  const auto& network = summary.at("network");
+  EXPECT_EQ(network.at("stations_per_process"), 4);
+  const auto& known = network.at("participants_known_by_node");
+  EXPECT_EQ(known.at("center").get<int>(), 1 + 4);
+  for (int id = 1; id <= 16; ++id) {
+    EXPECT_EQ(known.at(std::to_string(id)).get<int>(), 2 + 3) << "station " << id;
+  }
+}
+
+// What several stations in one process cannot do is refused before anything starts, naming why:
+// a kill would take the process's every station, and DDS-Security authenticates a participant.
+TEST(DdsTree, StationsSharingAProcessRefuseKillsAndASecureStation) {
+  const auto dir = test_dir();
+  const Completed run = run_to_completion(
+      {bin("skyfuse"), "run", "--stations", "4", "--steps", "20", "--stations-per-process", "2",
+       "--kill", "2@5", "--domain", "62", "--out", (dir / "out").string()},
+      dir / "run.log", 60s);
+  EXPECT_EQ(run.status.code, 2) << run.output;
+  EXPECT_THAT(run.output, ::testing::HasSubstr("--stations-per-process: not with --kill"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.json"));
+
+  const Completed station = run_to_completion(
+      {bin("skyfuse-station"), "--id", "1", "--id", "2", "--secure", dir.string(), "--domain",
+       "62"},
+      dir / "station.log", 60s);
+  EXPECT_EQ(station.status.code, 2) << station.output;
+  EXPECT_THAT(station.output, ::testing::HasSubstr("several --id with --secure"));
+  const Completed twice = run_to_completion(
+      {bin("skyfuse-station"), "--id", "1", "--id", "1", "--domain", "62"}, dir / "twice.log",
+      60s);
+  EXPECT_EQ(twice.status.code, 2) << twice.output;
+  EXPECT_THAT(twice.output, ::testing::HasSubstr("an id given twice"));
+}
+
 // `--discovery auto` (the default) picks peers for a tree of 16 on a domain whose ports lie
 // below the kernel's ephemeral range, and the run still equals the in-process tree bit for bit;
 // on a domain in that range it keeps multicast.

@@ -228,6 +228,14 @@ dds::DomainParticipantQos QosProfiles::participant(const std::string& name) cons
   // Announce quickly at start so that all-matched is reached in tenths of a second.
   discovery.initial_announcements.count = 10;
   discovery.initial_announcements.period = Duration_t(0, 50'000'000);
+  // Fast DDS sizes its pool of send buffers by the threads it knows to send from, and a send
+  // waits for a free buffer. Stations sharing a participant (`skyfuse-station --id A --id B`)
+  // send from threads of their own, and a send can wait while holding a reader's lock for an
+  // in-process delivery that another sender holding a buffer waits on: with 16 stations in a
+  // process, a group hung in discovery, every sender in SendBuffersManager::get_buffer or
+  // StatefulReader::processDataMsg. Growing the pool instead of waiting costs an allocation
+  // only when it is empty.
+  qos.allocation().send_buffers.dynamic = true;
   if (network_.participant_id) qos.wire_protocol().participant_id = *network_.participant_id;
   if (network_.discovery_server) use_discovery_server(qos, *network_.discovery_server);
   if (!network_.discovery_peers.empty()) announce_to_peers_only(qos);

@@ -95,5 +95,42 @@ TEST(DiscoveryPeers, AStationListsNobodyTwiceNorItself) {
   }
 }
 
+// `--stations-per-process K`: stations in ascending id, K to a process after the center.
+TEST(StationGroups, CutTheAscendingIdsIntoProcessesOfK) {
+  const StationGroups groups(10, 4);
+  EXPECT_EQ(groups.processes(), 1u + 3u);  // the center, then 4 + 4 + 2 stations
+  EXPECT_EQ(groups.process_of(0), 1u);
+  EXPECT_EQ(groups.process_of(3), 1u);
+  EXPECT_EQ(groups.process_of(4), 2u);
+  EXPECT_EQ(groups.process_of(9), 3u);
+  const std::vector<int> ids{2, 3, 5, 7, 11, 13, 17, 19, 23, 29};
+  EXPECT_EQ(groups.ids_of(2, ids), (std::vector<int>{11, 13, 17, 19}));
+  EXPECT_EQ(groups.ids_of(3, ids), (std::vector<int>{23, 29}));
+  EXPECT_EQ(StationGroups(10, 1).processes(), 11u);  // one process per station
+}
+
+TEST(DiscoveryPeers, GroupedProcessesListTheProcessesOfTheirStationsPeers) {
+  // M = 64 in clusters of 8, one cluster per process: each process holds an aggregator and its
+  // stand-in, which meet every other cluster's, so every process lists every other one.
+  const auto by_cluster = discovery_peer_lists(tree(8), 64, StationGroups(64, 8));
+  ASSERT_EQ(by_cluster.size(), 9u);
+  EXPECT_EQ(participants_to_know(by_cluster), (std::vector<std::size_t>(9, 8)));
+  // Clusters of 8 in processes of 4: the second half of a cluster holds no stand-in, so it
+  // meets its cluster's first half and the center only.
+  const auto halves = discovery_peer_lists(tree(8), 64, StationGroups(64, 4));
+  ASSERT_EQ(halves.size(), 17u);
+  EXPECT_TRUE(meet(halves, 1, 2));    // cluster 0's halves
+  EXPECT_TRUE(meet(halves, 1, 3));    // cluster 0's stand-ins and cluster 1's
+  EXPECT_FALSE(meet(halves, 2, 3));   // cluster 0's second half, cluster 1's first
+  EXPECT_FALSE(meet(halves, 2, 4));   // the second halves of clusters 0 and 1
+  EXPECT_TRUE(meet(halves, 0, 16));   // the center and the last process
+  for (std::size_t p = 0; p < halves.size(); ++p) {
+    EXPECT_EQ(std::count(halves[p].begin(), halves[p].end(), p), 0) << p;
+  }
+  // K = 1 lists exactly what one process per station does.
+  EXPECT_EQ(discovery_peer_lists(tree(8), 64, StationGroups(64, 1)),
+            discovery_peer_lists(tree(8), 64));
+}
+
 }  // namespace
 }  // namespace skyfuse::harness

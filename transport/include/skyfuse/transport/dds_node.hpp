@@ -4,8 +4,9 @@
 /// endpoints on top. Entities are created in a fixed order and deleted with the node. Every
 /// write is checked; every endpoint reports how many remote endpoints it has matched.
 ///
-/// Threading: a node and its endpoints belong to the thread that created them; readers are
-/// waited on with a WaitSet on that thread (no listener does work).
+/// Threading: an endpoint belongs to the thread that created it; readers are waited on with a
+/// WaitSet on that thread (no listener does work). Endpoints may be made from several threads
+/// (the stations that share a process's participant, `skyfuse-station --id A --id B`).
 
 #include <array>
 #include <atomic>
@@ -24,6 +25,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -168,6 +170,7 @@ class DdsNode {
   template <typename T>
   Writer<T> make_writer(const std::vector<std::string>& partitions = {},
                         const std::string& profile = TopicTraits<T>::kName) {
+    const std::lock_guard lock(entities_);
     dds::Topic* topic = topic_for<T>();
     dds::Publisher* publisher = partitions.empty() ? publisher_ : publisher_in(partitions);
     dds::DataWriter* writer = publisher->create_datawriter(topic, qos_.writer(*publisher, profile));
@@ -183,6 +186,7 @@ class DdsNode {
   /// A reader of T's topic; with `partitions`, its own subscriber in them (as make_writer).
   template <typename T>
   Reader<T> make_reader(const std::vector<std::string>& partitions = {}) {
+    const std::lock_guard lock(entities_);
     dds::Topic* topic = topic_for<T>();
     dds::Subscriber* subscriber = partitions.empty() ? subscriber_ : subscriber_in(partitions);
     dds::DataReader* reader =
@@ -230,6 +234,8 @@ class DdsNode {
   dds::Publisher* publisher_ = nullptr;
   dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, dds::Topic*> topics_;
+  // Held while endpoints are made: the topics and the partitions' groups are made on first use.
+  std::mutex entities_;
 };
 
 }  // namespace skyfuse::transport
