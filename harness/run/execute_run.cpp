@@ -20,6 +20,7 @@
 #include "run/child_processes.hpp"
 #include "run/kernel_counters.hpp"
 #include "run/lockstep_driver.hpp"
+#include "run/discovery_quiet.hpp"
 #include "run/placement.hpp"
 #include "run/secure_start.hpp"
 #include "run/station_groups.hpp"
@@ -49,6 +50,9 @@ void warn_if_receive_buffers_too_small(int stations) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// The longest the rounds wait for discovery to go quiet after every node joined.
+constexpr std::chrono::seconds kSettleLimit{60};
 
 // How long the first rounds of a lock-step run may all be incomplete before the network counts
 // as not fully connected (with at least connection_rounds_of() rounds).
@@ -288,6 +292,17 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     }
     const auto discovery =
         driver.wait_until_joined(seconds_to_ms(discovery_timeout_s(o, plan.stations)));
+    // Endpoint discovery may go on after every node is ready (run/discovery_quiet.hpp).
+    const QuietWait settled = wait_until_quiet(
+        [&] {
+          std::vector<pid_t> processes = children.pids();
+          processes.push_back(getpid());
+          return std::optional<double>(take_snapshot(processes, {}).cpu_s);
+        },
+        quiet_cores(groups.processes() + 1), kSettleLimit, [&] {
+          check();
+          return true;
+        });
 
     Progress progress(fmt::format("run M={} {:.0f} km/h", plan.stations, plan.speed_mps * 3.6),
                       plan.scenario.steps);
@@ -383,6 +398,8 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     recorder.set_settled(driver.settled_tracks());
     summary.settled = recorder.summarise_settled();
     summary.discovery = placement.discovery();
+    summary.settle_s = std::chrono::duration<double>(settled.waited).count();
+    summary.settled_quiet = settled.quiet;
     for (const ChildExit& e : children.exited()) summary.node_exits[e.name] = e.outcome();
     summary.host_verdict = host_verdict(summary, plan.scenario.time_step_s, cpu_model(),
                                         std::thread::hardware_concurrency());

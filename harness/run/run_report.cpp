@@ -454,6 +454,8 @@ std::string RunRecorder::summary_json(const RunSummary& summary, std::uint64_t r
   full["network"] = {{"hosts", summary.hosts},
                      {"discovery", summary.discovery},
                      {"stations_per_process", summary.stations_per_process},
+                     {"settle_s", summary.settle_s},
+                     {"settled_quiet", summary.settled_quiet},
                      {"participants_known_by_node", known}};
   full["dropped_by_kind"] = by_kind;
   full["dropped_by_node"] = by_node;
@@ -491,7 +493,14 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
   fmt::print(out, "  rounds per second        {:.0f}\n", s.rounds_per_s);
   fmt::print(out, "  round latency p50/p99/max {:.0f} / {:.0f} / {:.0f} us\n",
              s.round_latency_us_p50, s.round_latency_us_p99, s.round_latency_us_max);
-  fmt::print(out, "  discovery                {:.2f} s\n", s.discovery_s);
+  fmt::print(out, "  discovery                {:.2f} s", s.discovery_s);
+  // Every run waits a window or two (the participants' first announcements); more says that
+  // discovery went on past READY.
+  if (s.settle_s > 1.0) {
+    fmt::print(out, ", then {:.1f} s until the processes were quiet{}", s.settle_s,
+               s.settled_quiet ? "" : " (not quiet: started at the limit)");
+  }
+  fmt::print(out, "\n");
   if (s.datagrams_per_round) {
     fmt::print(out, "  datagrams received/round {:.0f}  (kernel's count, every process)\n",
                *s.datagrams_per_round);

@@ -113,6 +113,10 @@ struct RunSummary {
   int hosts = 0;
   std::string discovery = "multicast";
   int stations_per_process = 1;  ///< stations sharing a process (run/station_groups.hpp)
+  /// Seconds from every node's READY to the first round, waiting for discovery to go quiet
+  /// (run/discovery_quiet.hpp), and whether it did within the limit.
+  double settle_s = 0.0;
+  bool settled_quiet = true;
   std::size_t refusion_lag = 0;
   std::optional<SettledFigures> settled;  ///< none: no station re-fused
 };

@@ -105,6 +105,23 @@ TEST(DdsHosts, FourStationsOnThreeHostsDiscoveringTheirPeersEqualTheInProcessRun
   }
 }
 
+// Two stations to a process across two hosts (the center and stations 1-2 on the first, stations
+// 3-4 on the second): the flat exchange's samples between the two processes cross the bridge,
+// those within one pass in memory, and the tracks are the in-process run's. Each station's
+// participant knows the harness, the center and the other process.
+TEST(DdsHosts, StationsSharingProcessesOnTwoHostsEqualTheInProcessRun) {
+  if (const auto why = why_no_hosts()) GTEST_SKIP() << *why;
+  const auto summary = expect_equal_to_twin(
+      4, 66, {"--hosts", "2", "--discovery", "peers", "--stations-per-process", "2"});
+  EXPECT_EQ(summary["network"]["hosts"], 2);
+  EXPECT_EQ(summary["network"]["stations_per_process"], 2);
+  const auto& known_by_node = summary["network"]["participants_known_by_node"];
+  EXPECT_EQ(known_by_node.size(), 5u);
+  for (const auto& [node, known] : known_by_node.items()) {
+    EXPECT_EQ(known.get<int>(), 3) << node;
+  }
+}
+
 // Many aircraft on three hosts: every station's picture the in-process run's in every round,
 // the center's too (the harness checks each round against its twin and says so in the summary).
 TEST(DdsHosts, ManyAircraftOnThreeHostsHoldTheInProcessPictureInEveryRound) {
