@@ -19,10 +19,11 @@ int run_center(const options::NodeOptions& options) {
   // What updates the rounds is compiled by shard of the configuration groups, the endpoints once
   // (center_rounds.hpp).
   auto rounds = with_filter_shard(plan.scenario.filter, [&](auto shard) {
-    return with_sensor_part<kSensorParts>(plan.scenario, plan.stations, [&](auto part) {
-      return make_center_rounds_in_shard<decltype(shard)::value, decltype(part)::value>(options,
-                                                                                        plan);
-    });
+    return with_sensor_part<kSensorPartsOf<decltype(shard)::value>>(
+        plan.scenario, plan.stations, [&](auto part) {
+          return make_center_rounds_in_shard<decltype(shard)::value, decltype(part)::value>(options,
+                                                                                            plan);
+        });
   });
   return transport::make_lifelong<Center>(options, plan, std::move(rounds)).run();
 }

@@ -105,7 +105,7 @@ std::unique_ptr<CenterRounds> make_center_rounds_in_shard(const options::NodeOpt
           using Sensor = SensorOf<Model::kDim>;
           // The caller chose the part by with_sensor_part; the loader gives a filter only the
           // stations it runs on.
-          if constexpr (!in_sensor_part<SensorOf, Part, kSensorParts>) {
+          if constexpr (!in_sensor_part<SensorOf, Part, kSensorPartsOf<Shard>>) {
             throw std::logic_error(
                 fmt::format("sensor part {} of the center's shard {} holds no "
                             "'{}' stations",

@@ -72,7 +72,7 @@ std::vector<RunTrace> simulate_configured_runs_in_shard(const Scenario& scenario
         scenario, most, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
           // The caller chose the part by with_sensor_part; the loader allows a filter only on
           // what it runs on.
-          if constexpr (!in_sensor_part<SensorOf, Part, kSensorParts>) {
+          if constexpr (!in_sensor_part<SensorOf, Part, kSensorPartsOf<Shard>>) {
             throw std::logic_error(
                 fmt::format("sensor part {} of the Monte Carlo's shard {} "
                             "holds no '{}' stations",

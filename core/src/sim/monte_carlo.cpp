@@ -28,7 +28,7 @@ std::vector<RunTrace> simulate_configured_runs(const Scenario& scenario,
                                                const StepObserver& observer = {}) {
   const int most = *std::max_element(station_counts.begin(), station_counts.end());
   return with_filter_shard(scenario.filter, [&](auto shard) {
-    return with_sensor_part<kSensorParts>(scenario, most, [&](auto part) {
+    return with_sensor_part<kSensorPartsOf<decltype(shard)::value>>(scenario, most, [&](auto part) {
       return simulate_configured_runs_in_shard<decltype(shard)::value, decltype(part)::value>(
           scenario, truth, station_counts, run, gate, observer);
     });

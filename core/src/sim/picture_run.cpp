@@ -19,7 +19,7 @@ PictureRunResult run_picture(const Scenario& scenario, const std::vector<TargetT
         fmt::format("run_picture: {} stations of {}", stations, scenario.stations.size()));
   }
   const auto result = with_filter_shard(scenario.filter, [&](auto shard) {
-    return with_sensor_part<kSensorParts>(scenario, 1, [&](auto part) {
+    return with_sensor_part<kSensorPartsOf<decltype(shard)::value>>(scenario, 1, [&](auto part) {
       return run_picture_in_shard<decltype(shard)::value, decltype(part)::value>(
           scenario, truth, stations, run, on_step);
     });

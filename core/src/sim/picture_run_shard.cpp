@@ -239,7 +239,7 @@ std::optional<PictureRunResult> run_picture_in_shard(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
     std::uint64_t run, const std::function<void(const PictureStep&)>& on_step) {
   std::optional<PictureRunResult> result;
-  visit_picture_parts_in_shard<Shard, Part, kSensorParts>(
+  visit_picture_parts_in_shard<Shard, Part, kSensorPartsOf<Shard>>(
       scenario, [&]<typename Parts>(std::type_identity<Parts>) {
         result = PictureRun<Parts>(scenario, truth, stations, run).run(on_step);
       });

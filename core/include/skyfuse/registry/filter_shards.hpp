@@ -38,9 +38,6 @@ namespace skyfuse {
 
 /// The number of shards; set by cmake/FilterShards.cmake.
 inline constexpr std::size_t kFilterShards = SKYFUSE_FILTER_SHARDS;
-/// The number of sensor parts of a source compiled by sensor (registry/sensor_parts.hpp); set by
-/// cmake/FilterShards.cmake (1 unless a small machine asks for more).
-inline constexpr std::size_t kSensorParts = SKYFUSE_SENSOR_PARTS;
 
 /// Calls f(std::type_identity<Filter>{}, std::type_identity<Model>{}) for the filter part that
 /// runs `filter` and its motion model, compiled for the groups of shard `Shard` only. The

@@ -9,12 +9,13 @@
 ///
 ///     template <std::size_t Shard, std::size_t Part> R run_in_shard(args);
 ///     // in the shard file, for the sensor template SensorOf the scenario's stations have:
-///     if constexpr (in_sensor_part<SensorOf, Part, kSensorParts>) { ... }
+///     if constexpr (in_sensor_part<SensorOf, Part, kSensorPartsOf<Shard>>) { ... }
 ///
 /// cmake/FilterShards.cmake (`BY_SENSOR`) compiles that file once per shard and part, P being
-/// SKYFUSE_SENSOR_PARTS (1 by default: each part compiles again what the sensors share, so 2 caps
-/// the files at 1.39 GB for 14 % more CPU in the whole build), and the caller goes through
-/// with_sensor_part<P>(scenario, stations, ...).
+/// kSensorPartsOf<Shard>: 2 for the shards whose files were above 1.5 GB with 1, 1 for the
+/// others (each part compiles again what the sensors share), or more where SKYFUSE_SENSOR_PARTS
+/// asks; and the caller goes through with_sensor_part<kSensorPartsOf<Shard>>(scenario, stations,
+/// ...).
 
 #include <cstddef>
 #include <string_view>
@@ -22,10 +23,17 @@
 #include <utility>
 
 #include "skyfuse/core/index_constant.hpp"
+#include "skyfuse/registry/sensor_parts_by_shard.hpp"  // generated: SKYFUSE_SENSOR_PARTS_BY_SHARD
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 
 namespace skyfuse {
+
+/// The sensor parts of each shard, as cmake/FilterShards.cmake compiles them.
+inline constexpr std::size_t kSensorPartsByShard[] = {SKYFUSE_SENSOR_PARTS_BY_SHARD};
+/// The sensor parts of shard `Shard`.
+template <std::size_t Shard>
+inline constexpr std::size_t kSensorPartsOf = kSensorPartsByShard[Shard];
 
 /// The slot of the first `stations` stations' sensor: the place of their common sensor kind in
 /// `Sensors`, or the number of registered sensors when they differ (AnySensor).
