@@ -18,6 +18,7 @@
 #include "center_process.hpp"
 #include "skyfuse/multitarget/central_picture.hpp"
 #include "skyfuse/multitarget/picture_parts.hpp"
+#include "skyfuse/registry/sensor_parts.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_stations.hpp"
@@ -140,11 +141,12 @@ class PictureCenter {
   std::vector<Scan<M>> scans_;
 };
 
-/// Runs the center of `plan`, whose filter part and motion model lie in shard `Shard`.
-template <std::size_t Shard>
+/// Runs the center of `plan`, whose filter part and motion model lie in shard `Shard` and whose
+/// stations' sensor in its sensor part `Part`.
+template <std::size_t Shard, std::size_t Part>
 int run_picture_center_in_shard(const options::NodeOptions& options, PicturePlan plan) {
   int code = 1;
-  const bool ran = visit_picture_parts_in_shard<Shard, 0, 1>(
+  const bool ran = visit_picture_parts_in_shard<Shard, Part, kSensorPartsOf<Shard>>(
       plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
         if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
           code = transport::make_lifelong<PictureCenter<Parts, wire::PictureBundle>>(
