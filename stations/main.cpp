@@ -1,7 +1,6 @@
 // skyfuse-station: one ground station of the peer-to-peer fusion network.
-#include <spdlog/spdlog.h>
-
 #include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #include <vector>
@@ -15,10 +14,11 @@ int main(int argc, char** argv) {
   CLI::App app{"skyfuse-station: one ground station; fuses every station's increments"};
   station::StationOptions options;
   std::vector<int> ids;
-  app.add_option("--id", ids,
-                 "Station id (from the scenario). Given several times, this process runs those "
-                 "stations, each on a thread of its own, sharing one DDS participant (simulation on "
-                 "one host; runs of one aircraft)")
+  app.add_option(
+         "--id", ids,
+         "Station id (from the scenario). Given several times, this process runs those "
+         "stations, each on a thread of its own, sharing one DDS participant (simulation on "
+         "one host; runs of one aircraft)")
       ->required();
   app.add_option("--replay", options.replay_path,
                  "Replay measurements from this CSV instead of simulating them")
@@ -30,8 +30,8 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   spdlog::set_level(spdlog::level::from_str(options.node.log_level));
-  spdlog::set_pattern(fmt::format("[station{} {}] %^%l%$: %v", ids.size() > 1 ? "s" : "",
-                                  fmt::join(ids, ",")));
+  spdlog::set_pattern(
+      fmt::format("[station{} {}] %^%l%$: %v", ids.size() > 1 ? "s" : "", fmt::join(ids, ",")));
   transport::install_shutdown_handlers();
   // Every way a node's run ends leaves without deleting its participant (node_presence.hpp).
   transport::leave_without_goodbye(

@@ -226,8 +226,7 @@ int run_station_rounds_in_shard(const StationOptions& options, const RunPlan& pl
                                          me.id, Filter::kKind, Model::kKind));
     }
     sensing.release();
-    code =
-        detail::run_station_of<Fusion>(options, plan, me, std::unique_ptr<Sensing>(typed), node);
+    code = detail::run_station_of<Fusion>(options, plan, me, std::unique_ptr<Sensing>(typed), node);
   });
   return code;
 }

@@ -97,9 +97,12 @@ int run_stations(const StationOptions& options, const std::vector<int>& ids) {
         "station per process");
   }
   const RunPlan plan = transport::load_plan(options.node);
-  std::deque<StationOptions> each;  // the stations keep references to their options
+  // Every id is checked before any participant exists; the stations keep references to their
+  // options and places.
+  std::deque<StationOptions> each;
+  std::vector<const StationConfig*> places;
   for (int id : ids) {
-    participant_of(plan, id);  // refuses an unknown id before any participant exists
+    places.push_back(&participant_of(plan, id));
     each.push_back(options);
     each.back().id = id;
   }
@@ -110,9 +113,8 @@ int run_stations(const StationOptions& options, const std::vector<int>& ids) {
   threads.reserve(ids.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {
     threads.emplace_back([&, i] {
-      codes[i] = options::run_node([&] {
-        return run_one_aircraft_station(each[i], plan, participant_of(plan, each[i].id), &node);
-      });
+      codes[i] = options::run_node(
+          [&] { return run_one_aircraft_station(each[i], plan, *places[i], &node); });
     });
   }
   for (std::thread& thread : threads) thread.join();

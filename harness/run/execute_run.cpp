@@ -18,9 +18,9 @@
 #include "report/run_live_source.hpp"
 #include "report/run_recording.hpp"
 #include "run/child_processes.hpp"
+#include "run/discovery_quiet.hpp"
 #include "run/kernel_counters.hpp"
 #include "run/lockstep_driver.hpp"
-#include "run/discovery_quiet.hpp"
 #include "run/placement.hpp"
 #include "run/secure_start.hpp"
 #include "run/station_groups.hpp"
@@ -236,8 +236,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       return groups.process_of(
           static_cast<std::size_t>(std::find(ids.begin(), ids.end(), id) - ids.begin()));
     };
-    const auto spawn_process = [&](std::size_t process,
-                                   std::optional<std::uint64_t> rejoin_step) {
+    const auto spawn_process = [&](std::size_t process, std::optional<std::uint64_t> rejoin_step) {
       const std::vector<int> group = groups.ids_of(process, ids);
       const auto [network, netns] = placement.of(process);
       const std::vector<std::string> common =
@@ -299,7 +298,8 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
           processes.push_back(getpid());
           return std::optional<double>(take_snapshot(processes, {}).cpu_s);
         },
-        quiet_cores(groups.processes() + 1), kSettleLimit, [&] {
+        quiet_cores(groups.processes() + 1), kSettleLimit,
+        [&] {
           check();
           return true;
         });

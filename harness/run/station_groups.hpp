@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <span>
-#include <utility>
 #include <vector>
 
 namespace skyfuse::harness {
@@ -21,18 +20,13 @@ class StationGroups {
   std::size_t processes() const { return 1 + (stations_ + per_process_ - 1) / per_process_; }
   /// The process of the station at `position` among the run's ids in ascending order.
   std::size_t process_of(std::size_t position) const { return 1 + position / per_process_; }
-  /// The positions of process `process`'s stations (process >= 1).
-  std::pair<std::size_t, std::size_t> positions_of(std::size_t process) const {
-    const std::size_t first = (process - 1) * per_process_;
-    return {first, std::min(first + per_process_, stations_)};
-  }
-  /// Process `process`'s station ids, out of the run's `ascending_ids`.
+  /// Process `process`'s station ids (process >= 1), out of the run's `ascending_ids`.
   std::vector<int> ids_of(std::size_t process, std::span<const int> ascending_ids) const {
-    const auto [first, last] = positions_of(process);
+    const std::size_t first = (process - 1) * per_process_;
+    const std::size_t last = std::min(first + per_process_, stations_);
     return {ascending_ids.begin() + static_cast<std::ptrdiff_t>(first),
             ascending_ids.begin() + static_cast<std::ptrdiff_t>(last)};
   }
-  std::size_t per_process() const { return per_process_; }
 
  private:
   std::size_t stations_;

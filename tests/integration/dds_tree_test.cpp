@@ -100,9 +100,9 @@ TEST(DdsTree, StationsDiscoveringOnlyTheirPeersKnowTheirClusterAndGiveTheInProce
 // the in-process tree's bits. Each process holds an aggregator and its stand-in, so it knows the
 // harness, the center and the 3 other processes; the center knows the harness and the 4.
 TEST(DdsTree, StationsSharingAProcessGiveTheInProcessTreesBits) {
-  const auto summary = expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 200, 4, 61,
-                                                   {"--discovery", "peers",
-                                                    "--stations-per-process", "4"});
+  const auto summary =
+      expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 200, 4, 61,
+                                  {"--discovery", "peers", "--stations-per-process", "4"});
   ASSERT_FALSE(summary.is_null());
   const auto& network = summary.at("network");
   EXPECT_EQ(network.at("stations_per_process"), 4);
@@ -125,15 +125,13 @@ TEST(DdsTree, StationsSharingAProcessRefuseKillsAndASecureStation) {
   EXPECT_THAT(run.output, ::testing::HasSubstr("--stations-per-process: not with --kill"));
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "summary.json"));
 
-  const Completed station = run_to_completion(
-      {bin("skyfuse-station"), "--id", "1", "--id", "2", "--secure", dir.string(), "--domain",
-       "62"},
-      dir / "station.log", 60s);
+  const Completed station = run_to_completion({bin("skyfuse-station"), "--id", "1", "--id", "2",
+                                               "--secure", dir.string(), "--domain", "62"},
+                                              dir / "station.log", 60s);
   EXPECT_EQ(station.status.code, 2) << station.output;
   EXPECT_THAT(station.output, ::testing::HasSubstr("several --id with --secure"));
   const Completed twice = run_to_completion(
-      {bin("skyfuse-station"), "--id", "1", "--id", "1", "--domain", "62"}, dir / "twice.log",
-      60s);
+      {bin("skyfuse-station"), "--id", "1", "--id", "1", "--domain", "62"}, dir / "twice.log", 60s);
   EXPECT_EQ(twice.status.code, 2) << twice.output;
   EXPECT_THAT(twice.output, ::testing::HasSubstr("an id given twice"));
 }

@@ -119,11 +119,11 @@ TEST(DiscoveryPeers, GroupedProcessesListTheProcessesOfTheirStationsPeers) {
   // meets its cluster's first half and the center only.
   const auto halves = discovery_peer_lists(tree(8), 64, StationGroups(64, 4));
   ASSERT_EQ(halves.size(), 17u);
-  EXPECT_TRUE(meet(halves, 1, 2));    // cluster 0's halves
-  EXPECT_TRUE(meet(halves, 1, 3));    // cluster 0's stand-ins and cluster 1's
-  EXPECT_FALSE(meet(halves, 2, 3));   // cluster 0's second half, cluster 1's first
-  EXPECT_FALSE(meet(halves, 2, 4));   // the second halves of clusters 0 and 1
-  EXPECT_TRUE(meet(halves, 0, 16));   // the center and the last process
+  EXPECT_TRUE(meet(halves, 1, 2));   // cluster 0's halves
+  EXPECT_TRUE(meet(halves, 1, 3));   // cluster 0's stand-ins and cluster 1's
+  EXPECT_FALSE(meet(halves, 2, 3));  // cluster 0's second half, cluster 1's first
+  EXPECT_FALSE(meet(halves, 2, 4));  // the second halves of clusters 0 and 1
+  EXPECT_TRUE(meet(halves, 0, 16));  // the center and the last process
   for (std::size_t p = 0; p < halves.size(); ++p) {
     EXPECT_EQ(std::count(halves[p].begin(), halves[p].end(), p), 0) << p;
   }

@@ -23,8 +23,8 @@
 #include <utility>
 
 #include "skyfuse/core/index_constant.hpp"
-#include "skyfuse/registry/sensor_parts_by_shard.hpp"  // generated: SKYFUSE_SENSOR_PARTS_BY_SHARD
 #include "skyfuse/registry/registry.hpp"
+#include "skyfuse/registry/sensor_parts_by_shard.hpp"  // generated: SKYFUSE_SENSOR_PARTS_BY_SHARD
 #include "skyfuse/scenario/scenario.hpp"
 
 namespace skyfuse {
