@@ -23,10 +23,12 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 
 #include "skyfuse/core/index_constant.hpp"
+#include "skyfuse/registry/compiled_filter_parts.hpp"  // generated: SKYFUSE_COMPILED_FILTER_PARTS
 #include "skyfuse/registry/configuration_groups.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 
@@ -38,6 +40,19 @@ namespace skyfuse {
 
 /// The number of shards; set by cmake/FilterShards.cmake.
 inline constexpr std::size_t kFilterShards = SKYFUSE_FILTER_SHARDS;
+
+/// Whether this build compiles the code of filter part `kind`: every part, unless the build
+/// was configured for some only (SKYFUSE_FILTER_PARTS, as ./quickstart demo does).
+constexpr bool filter_part_compiled(std::string_view kind) {
+  std::string_view parts = SKYFUSE_COMPILED_FILTER_PARTS;
+  if (parts.empty()) return true;
+  while (!parts.empty()) {
+    const std::size_t comma = parts.find(',');
+    if (parts.substr(0, comma) == kind) return true;
+    parts = comma == std::string_view::npos ? std::string_view() : parts.substr(comma + 1);
+  }
+  return false;
+}
 
 /// Calls f(std::type_identity<Filter>{}, std::type_identity<Model>{}) for the filter part that
 /// runs `filter` and its motion model, compiled for the groups of shard `Shard` only. The
@@ -51,7 +66,8 @@ void visit_group_in_shard(const FilterConfig& filter, F&& f) {
     visit_model_kind<MotionModels>(filter.motion_model.kind,
                                    [&]<typename Model>(std::type_identity<Model> model) {
                                      constexpr auto group = kConfigurationGroup<Filter, Model>;
-                                     if constexpr (group && *group % kFilterShards == Shard) {
+                                     if constexpr (group && *group % kFilterShards == Shard &&
+                                                   filter_part_compiled(Filter::kKind)) {
                                        f(part, model);
                                        ran = true;
                                      }
@@ -79,6 +95,13 @@ auto with_filter_shard(const FilterConfig& filter, F&& f) {
   if (!group) {
     throw std::logic_error("no registered filter part '" + filter.kind + "' on motion model '" +
                            filter.motion_model.kind + "'");
+  }
+  if (!filter_part_compiled(filter.kind)) {
+    throw std::invalid_argument(
+        "filter part '" + filter.kind + "' is not compiled into this build, which has only '" +
+        std::string(SKYFUSE_COMPILED_FILTER_PARTS) +
+        "' (./quickstart demo builds the EKF only); `./quickstart test` builds every part, or "
+        "configure with -DSKYFUSE_FILTER_PARTS=all and build again");
   }
   return with_index_constant<kFilterShards>(*group % kFilterShards, std::forward<F>(f));
 }
