@@ -3,28 +3,37 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
+#include <deque>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "picture_station_shards.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
+#include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/node_presence.hpp"
+#include "skyfuse/transport/node_setup.hpp"
 
 namespace skyfuse::station {
 
-int run_picture_station(const StationOptions& options, Scenario scenario) {
+namespace {
+
+// The run's plan, once every id in `ids` is found to take part in it and the options suit a
+// run of many aircraft.
+PicturePlan checked_plan(const StationOptions& options, Scenario scenario,
+                         const std::vector<int>& ids) {
   PicturePlan plan = make_picture_plan(std::move(scenario), options.node.overrides);
-  bool participates = false;
-  std::vector<int> ids;
-  for (const StationConfig& s : plan.participants()) {
-    ids.push_back(s.id);
-    participates = participates || s.id == options.id;
-  }
-  if (!participates) {
-    throw std::invalid_argument(fmt::format(
-        "--id: station {} is not one of the {} participating stations of scenario '{}' (ids {})",
-        options.id, plan.stations, plan.scenario.name, fmt::join(ids, ", ")));
+  std::vector<int> participants;
+  for (const StationConfig& s : plan.participants()) participants.push_back(s.id);
+  for (const int id : ids) {
+    if (std::find(participants.begin(), participants.end(), id) == participants.end()) {
+      throw std::invalid_argument(fmt::format(
+          "--id: station {} is not one of the {} participating stations of scenario '{}' (ids {})",
+          id, plan.stations, plan.scenario.name, fmt::join(participants, ", ")));
+    }
   }
   if (!options.replay_path.empty()) {
     throw std::invalid_argument("--replay: not for a run of many aircraft yet");
@@ -34,12 +43,57 @@ int run_picture_station(const StationOptions& options, Scenario scenario) {
     throw std::invalid_argument(fmt::format("--rejoin-at-step: {} is past the run's last step {}",
                                             *options.rejoin_step, plan.scenario.steps - 1));
   }
-  std::vector<TargetTruth> truth =
-      build_traffic_truth(plan.scenario, options.node.traffic_file).targets;
+  return plan;
+}
+
+// The aircraft, kept for the life of the process: every station of it reads them.
+const std::vector<TargetTruth>& lifelong_truth(const PicturePlan& plan,
+                                               const StationOptions& options) {
+  return transport::make_lifelong<std::vector<TargetTruth>>(
+      build_traffic_truth(plan.scenario, options.node.traffic_file).targets);
+}
+
+int run_on(const StationOptions& options, const PicturePlan& plan,
+           const std::vector<TargetTruth>& truth, transport::DdsNode& node) {
   return with_filter_shard(plan.scenario.filter, [&](auto shard) {
-    return run_picture_station_in_shard<decltype(shard)::value>(options, std::move(plan),
-                                                                std::move(truth));
+    return run_picture_station_in_shard<decltype(shard)::value>(options, plan, truth, node);
   });
+}
+
+}  // namespace
+
+int run_picture_station(const StationOptions& options, Scenario scenario) {
+  const PicturePlan plan = checked_plan(options, std::move(scenario), {options.id});
+  const std::vector<TargetTruth>& truth = lifelong_truth(plan, options);
+  auto& node = transport::make_lifelong<transport::DdsNode>(
+      transport::node_config(options.node, fmt::format("skyfuse-station-{}", options.id)));
+  return run_on(options, plan, truth, node);
+}
+
+int run_picture_stations(const StationOptions& options, const std::vector<int>& ids,
+                         Scenario scenario) {
+  const PicturePlan plan = checked_plan(options, std::move(scenario), ids);
+  const std::vector<TargetTruth>& truth = lifelong_truth(plan, options);
+  // Each station keeps a reference to its options.
+  std::deque<StationOptions> each;
+  for (const int id : ids) {
+    each.push_back(options);
+    each.back().id = id;
+  }
+  auto& node = transport::make_lifelong<transport::DdsNode>(transport::node_config(
+      options.node, fmt::format("skyfuse-stations-{}", fmt::join(ids, "-"))));
+  std::vector<int> codes(ids.size(), options::kExitError);
+  std::vector<std::thread> threads;
+  threads.reserve(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    threads.emplace_back([&, i] {
+      codes[i] = options::run_node([&] { return run_on(each[i], plan, truth, node); });
+    });
+  }
+  for (std::thread& thread : threads) thread.join();
+  const auto failed =
+      std::find_if(codes.begin(), codes.end(), [](int code) { return code != options::kExitOk; });
+  return failed == codes.end() ? options::kExitOk : *failed;
 }
 
 }  // namespace skyfuse::station

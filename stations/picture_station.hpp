@@ -8,6 +8,8 @@
 //          -> publish PictureRound (every track and the picture's digest).
 // Every station holds the same picture bit for bit: the same inputs, the same arithmetic.
 
+#include <vector>
+
 #include "skyfuse/scenario/scenario.hpp"
 #include "station_process.hpp"
 
@@ -16,5 +18,11 @@ namespace skyfuse::station {
 /// Runs station `options.id` of `scenario` (which has_many_targets()) to the end of the run;
 /// returns an options::ExitCode.
 int run_picture_station(const StationOptions& options, Scenario scenario);
+
+/// Runs stations `ids` of `scenario` in this process, each on a thread of its own and all on one
+/// participant (`skyfuse run --stations-per-process`); returns the first failure's
+/// options::ExitCode, or success.
+int run_picture_stations(const StationOptions& options, const std::vector<int>& ids,
+                         Scenario scenario);
 
 }  // namespace skyfuse::station

@@ -41,15 +41,18 @@ class PictureStation {
   using Exchange = ExchangeOf<Tracks, Sensor>;
   using Sample = typename Exchange::Sample;
 
-  // The endpoints are made in a fixed order: the loop's tick and input readers first.
-  PictureStation(const StationOptions& options, PicturePlan plan, std::vector<TargetTruth> truth)
+  // The endpoints are made in a fixed order: the loop's tick and input readers first. `node` is
+  // this station's participant, or the one it shares with the other stations of its process;
+  // `truth` is shared with them too. Both outlive the station.
+  PictureStation(const StationOptions& options, PicturePlan plan,
+                 const std::vector<TargetTruth>& truth, transport::DdsNode& node)
       : options_(options),
         plan_(std::move(plan)),
-        truth_(std::move(truth)),
+        truth_(truth),
         known_(known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run)),
         me_(index_of(plan_, options.id)),
         detection_(plan_.participants()[me_].detection.value_or(plan_.scenario.traffic->detection)),
-        node_(transport::node_config(options.node, fmt::format("skyfuse-station-{}", options.id))),
+        node_(node),
         loop_(node_, options.node, options.id, fmt::format("station {}", options.id),
               "picture scan", plan_.scenario.time_step_s,
               Exchange::input_partitions(plan_, options.id)),
@@ -274,11 +277,11 @@ class PictureStation {
 
   const StationOptions& options_;
   PicturePlan plan_;
-  std::vector<TargetTruth> truth_;
+  const std::vector<TargetTruth>& truth_;
   std::vector<KnownStation<Sensor>> known_;
   std::size_t me_;
   DetectionConfig detection_;
-  transport::DdsNode node_;
+  transport::DdsNode& node_;
   transport::NodeLoop<Sample> loop_;
   Exchange exchange_;
   transport::Writer<wire::PictureRound> rounds_;
@@ -301,13 +304,13 @@ class PictureStation {
 /// Runs the station of `plan` whose filter part and motion model lie in shard `Shard`.
 template <std::size_t Shard>
 int run_picture_station_in_shard(const StationOptions& options, PicturePlan plan,
-                                 std::vector<TargetTruth> truth) {
+                                 const std::vector<TargetTruth>& truth, transport::DdsNode& node) {
   int code = 1;
   const bool ran = visit_picture_parts_in_shard<Shard, 0, 1>(
       plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
         const auto run = [&]<template <typename, typename> class ExchangeOf> {
           code = transport::make_lifelong<PictureStation<Parts, ExchangeOf>>(
-                     options, std::move(plan), std::move(truth))
+                     options, std::move(plan), truth, node)
                      .run();
         };
         if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {

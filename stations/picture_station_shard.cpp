@@ -6,6 +6,7 @@ namespace skyfuse::station {
 
 template int run_picture_station_in_shard<SKYFUSE_SHARD>(const StationOptions& options,
                                                          PicturePlan plan,
-                                                         std::vector<TargetTruth> truth);
+                                                         const std::vector<TargetTruth>& truth,
+                                                         transport::DdsNode& node);
 
 }  // namespace skyfuse::station

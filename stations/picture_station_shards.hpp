@@ -10,12 +10,16 @@
 #include "skyfuse/traffic/target_truth.hpp"
 #include "station_process.hpp"
 
+namespace skyfuse::transport {
+class DdsNode;
+}  // namespace skyfuse::transport
+
 namespace skyfuse::station {
 
-/// Runs the station of `plan` whose filter part and motion model lie in shard `Shard`; returns
-/// an options::ExitCode.
+/// Runs the station of `plan` whose filter part and motion model lie in shard `Shard` on
+/// participant `node` (its own, or its process's); returns an options::ExitCode.
 template <std::size_t Shard>
 int run_picture_station_in_shard(const StationOptions& options, PicturePlan plan,
-                                 std::vector<TargetTruth> truth);
+                                 const std::vector<TargetTruth>& truth, transport::DdsNode& node);
 
 }  // namespace skyfuse::station

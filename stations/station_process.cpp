@@ -91,10 +91,9 @@ int run_stations(const StationOptions& options, const std::vector<int>& ids) {
         "several --id with --secure: DDS-Security authenticates a participant, and each station "
         "needs its own identity; run one station per process");
   }
-  if (load_scenario_or_default(options.node.scenario_path).has_many_targets()) {
-    throw std::invalid_argument(
-        "several --id: runs of one aircraft only so far; a run of many aircraft takes one "
-        "station per process");
+  if (Scenario scenario = load_scenario_or_default(options.node.scenario_path);
+      scenario.has_many_targets()) {
+    return run_picture_stations(options, ids, std::move(scenario));
   }
   const RunPlan plan = transport::load_plan(options.node);
   // Every id is checked before any participant exists; the stations keep references to their

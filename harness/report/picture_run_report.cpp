@@ -99,6 +99,7 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
       {"stations", summary.stations},
       {"exchange", summary.exchange},
       {"fanout", summary.fanout},
+      {"stations_per_process", summary.stations_per_process},
       {"steps", summary.steps},
       {"run_id", run_id},
       {"peers_identical", summary.peers_identical},

@@ -29,6 +29,7 @@
 #include "run/picture_frame.hpp"
 #include "run/picture_round_check.hpp"
 #include "run/placement.hpp"
+#include "run/station_groups.hpp"
 #include "run/secure_start.hpp"
 #include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/options/node_options.hpp"
@@ -70,9 +71,6 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
            "the harness starts a picture run's processes itself (containers run one aircraft)");
   }
   if (o.node.refusion_lag != 0) refuse("--refusion-lag", "a picture re-fuses no late scan");
-  if (o.stations_per_process != 1) {
-    refuse("--stations-per-process", "a picture's station runs in a process of its own");
-  }
 }
 
 // One start of every process of the run.
@@ -128,9 +126,12 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
     // One process per network namespace (a simulated host; -1: the harness's own), for the
     // kernel's UDP counters.
     std::map<int, pid_t> namespace_members{{-1, getpid()}};
-    // Process 0 is the center, process 1 + j the j-th station: each with the run's options, on
-    // its host.
-    const auto spawn = [&](std::size_t process, std::vector<std::string> argv, int id) {
+    // Process 0 is the center, then the stations in ascending id, --stations-per-process to a
+    // process (a station restarts only when each has its own: Placement::check): each with the
+    // run's options, on its host.
+    const StationGroups groups(ids.size(), static_cast<std::size_t>(o.stations_per_process));
+    const auto spawn = [&](std::size_t process, std::vector<std::string> argv,
+                           const std::string& name) {
       options::NodeOptions child = o.node;
       const auto [network, netns] = placement.of(process);
       child.network = network;
@@ -148,24 +149,30 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
       child.log_level = o.verbose ? "info" : "warn";
       const std::vector<std::string> common = options::to_arguments(child);
       argv.insert(argv.end(), common.begin(), common.end());
-      namespace_members.try_emplace(netns, children.spawn(node_name(id), argv, netns));
+      namespace_members.try_emplace(netns, children.spawn(name, argv, netns));
     };
-    const auto spawn_station = [&](int id, std::optional<int> rejoin_step) {
-      const auto participants = plan.participants();
-      const auto j = static_cast<std::size_t>(
-          std::find_if(participants.begin(), participants.end(),
-                       [&](const StationConfig& c) { return c.id == id; }) -
-          participants.begin());
-      std::vector<std::string> argv{(executable_dir() / "skyfuse-station").string(), "--id",
-                                    std::to_string(id)};
+    const auto spawn_stations = [&](std::size_t process, std::optional<int> rejoin_step) {
+      const std::vector<int> group = groups.ids_of(process, ids);
+      std::vector<std::string> argv{(executable_dir() / "skyfuse-station").string()};
+      for (const int id : group) {
+        argv.push_back("--id");
+        argv.push_back(std::to_string(id));
+      }
       if (rejoin_step) {
         argv.push_back("--rejoin-at-step");
         argv.push_back(std::to_string(*rejoin_step));
       }
-      spawn(1 + j, std::move(argv), id);
+      spawn(process, std::move(argv),
+            group.size() == 1 ? node_name(group.front())
+                              : fmt::format("stations {}-{}", group.front(), group.back()));
     };
-    spawn(0, {(executable_dir() / "skyfuse-center").string()}, kCenterNodeId);
-    for (const int id : ids) spawn_station(id, std::nullopt);
+    const auto spawn_station = [&](int id, std::optional<int> rejoin_step) {
+      spawn_stations(groups.process_of(static_cast<std::size_t>(
+                         std::find(ids.begin(), ids.end(), id) - ids.begin())),
+                     rejoin_step);
+    };
+    spawn(0, {(executable_dir() / "skyfuse-center").string()}, node_name(kCenterNodeId));
+    for (std::size_t p = 1; p < groups.processes(); ++p) spawn_stations(p, std::nullopt);
     const auto discovery_start = Clock::now();
     driver.wait_until_joined(std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
     // The kernel's counts over every process of the run, and every namespace's datagrams.
@@ -186,6 +193,7 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
       summary.fanout = plan.scenario.exchange.fanout;
     }
     summary.steps = plan.scenario.steps;
+    summary.stations_per_process = o.stations_per_process;
     summary.discovery_s = std::chrono::duration<double>(Clock::now() - discovery_start).count();
     Progress progress(fmt::format("picture M={}", plan.stations), plan.scenario.steps);
     const auto round_timeout = std::chrono::milliseconds(std::llround(o.round_timeout_s * 1e3));

@@ -29,6 +29,7 @@ struct PictureRunSummary {
   /// How the stations exchanged their scans: "flat", or "tree" with clusters of `fanout`.
   std::string exchange = "flat";
   int fanout = 0;
+  int stations_per_process = 1;  ///< stations sharing a process (run/station_groups.hpp)
   /// Every station's picture digest equal in every round.
   bool peers_identical = true;
   int first_divergent_step = -1;

@@ -155,6 +155,48 @@ TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
             node_rounds(dir / "out" / "picture_rounds.csv").at(kSteps - 1).at(1).digest);
 }
 
+// `skyfuse run --stations-per-process K`: several stations on threads of one process, sharing its
+// participant, hold the pictures one process per station holds — the in-process run's, every
+// node in every round. Flat with an uneven split (3 + 1), and through the tree with a cluster to
+// a process.
+TEST(DdsPicture, StationsSharingAProcessHoldTheInProcessPictureBitForBit) {
+  constexpr int kStations = 4;
+  constexpr int kSteps = 60;
+  struct Variant {
+    std::vector<std::string> exchange;
+    const char* per_process;
+    const char* domain;
+  };
+  for (const Variant& v : {Variant{{"--exchange", "flat"}, "3", "63"},
+                           Variant{{"--exchange", "tree", "--fanout", "2"}, "2", "68"}}) {
+    const auto dir = test_dir();
+    std::vector<std::string> args = {bin("skyfuse"),
+                                     "run",
+                                     "--scenario",
+                                     kCity,
+                                     "--stations",
+                                     std::to_string(kStations),
+                                     "--steps",
+                                     std::to_string(kSteps),
+                                     "--stations-per-process",
+                                     v.per_process,
+                                     "--domain",
+                                     v.domain,
+                                     "--out",
+                                     (dir / "out").string()};
+    args.insert(args.end(), v.exchange.begin(), v.exchange.end());
+    const Completed run = run_to_completion(args, dir / "out.log", 180s);
+    ASSERT_EQ(run.status.code, 0) << run.output;
+    expect_every_node_is_in_process(dir / "out", kCity, kStations, kSteps);
+    const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+    EXPECT_EQ(summary.at("stations_per_process").get<int>(), std::stoi(v.per_process))
+        << v.exchange.back();
+    EXPECT_TRUE(summary.at("peers_identical").get<bool>()) << v.exchange.back();
+    EXPECT_TRUE(summary.at("equals_in_process").get<bool>()) << v.exchange.back();
+    EXPECT_EQ(summary.at("rounds_in_time").get<int>(), kSteps) << v.exchange.back();
+  }
+}
+
 // uam-city's filter, and an IMM of constant velocity and coordinated turns for it.
 constexpr const char* kCityFilter =
     "filter:\n  kind: ekf\n  motion_model:\n    kind: constant_velocity_3d\n"
