@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <deque>
 #include <stdexcept>
-#include <thread>
 #include <vector>
 
 #include "picture_station_shards.hpp"
@@ -82,18 +81,8 @@ int run_picture_stations(const StationOptions& options, const std::vector<int>& 
   }
   auto& node = transport::make_lifelong<transport::DdsNode>(transport::node_config(
       options.node, fmt::format("skyfuse-stations-{}", fmt::join(ids, "-"))));
-  std::vector<int> codes(ids.size(), options::kExitError);
-  std::vector<std::thread> threads;
-  threads.reserve(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) {
-    threads.emplace_back([&, i] {
-      codes[i] = options::run_node([&] { return run_on(each[i], plan, truth, node); });
-    });
-  }
-  for (std::thread& thread : threads) thread.join();
-  const auto failed =
-      std::find_if(codes.begin(), codes.end(), [](int code) { return code != options::kExitOk; });
-  return failed == codes.end() ? options::kExitOk : *failed;
+  return run_on_threads(ids.size(),
+                        [&](std::size_t i) { return run_on(each[i], plan, truth, node); });
 }
 
 }  // namespace skyfuse::station

@@ -107,14 +107,17 @@ int run_stations(const StationOptions& options, const std::vector<int>& ids) {
   }
   auto& node = transport::make_lifelong<transport::DdsNode>(transport::node_config(
       options.node, fmt::format("skyfuse-stations-{}", fmt::join(ids, "-"))));
-  std::vector<int> codes(ids.size(), options::kExitError);
+  return run_on_threads(ids.size(), [&](std::size_t i) {
+    return run_one_aircraft_station(each[i], plan, *places[i], &node);
+  });
+}
+
+int run_on_threads(std::size_t count, const std::function<int(std::size_t)>& station) {
+  std::vector<int> codes(count, options::kExitError);
   std::vector<std::thread> threads;
-  threads.reserve(ids.size());
-  for (std::size_t i = 0; i < ids.size(); ++i) {
-    threads.emplace_back([&, i] {
-      codes[i] = options::run_node(
-          [&] { return run_one_aircraft_station(each[i], plan, *places[i], &node); });
-    });
+  threads.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    threads.emplace_back([&, i] { codes[i] = options::run_node([&] { return station(i); }); });
   }
   for (std::thread& thread : threads) thread.join();
   const auto failed =

@@ -17,7 +17,9 @@
 // the cost of a participant per station (its discovery, threads and sockets) and of the
 // datagrams between stations of one process, which Fast DDS hands over in memory.
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -39,11 +41,16 @@ struct StationOptions {
 /// options::ExitCode.
 int run_station(const StationOptions& options);
 
-/// Runs the stations `ids` of one run of one aircraft in this process, sharing one participant;
-/// `options.id` is ignored. Returns kExitOk if every station ended well, else the first
-/// failure's code in the order of `ids`. Throws std::invalid_argument for what several
-/// stations in one process cannot do (a restart, DDS-Security's identity per station, a run
-/// of many aircraft) and for repeated ids.
+/// Runs the stations `ids` of one run (of one aircraft or many) in this process, sharing one
+/// participant; `options.id` is ignored. Returns kExitOk if every station ended well, else the
+/// first failure's code in the order of `ids`. Throws std::invalid_argument for what several
+/// stations in one process cannot do (a restart, DDS-Security's identity per station) and for
+/// repeated ids.
 int run_stations(const StationOptions& options, const std::vector<int>& ids);
+
+/// Runs station(i) for every i < count, each on a thread of its own, an exception becoming its
+/// exit code (options::run_node); returns kExitOk if every one returned it, else the first
+/// failure's code in the order of i.
+int run_on_threads(std::size_t count, const std::function<int(std::size_t)>& station);
 
 }  // namespace skyfuse::station
