@@ -13,6 +13,7 @@
 
 #include "scenario/traffic_reader.hpp"
 #include "scenario/yaml_field.hpp"
+#include "skyfuse/registry/compiled_parts.hpp"
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/truth.hpp"
@@ -309,6 +310,10 @@ FilterConfig read_filter(const YamlField& field) {
     if (!info) {
       kind->fail(fmt::format("unknown filter '{}' (registered: {})", filter.kind, filter_kinds()));
     }
+  }
+  if (!filter_part_compiled(filter.kind)) {
+    field.fail(
+        fmt::format("filter '{}' is not in this build: {}", filter.kind, kHowToBuildEveryPart));
   }
   const auto model = field.optional("motion_model");
   const auto shorthand_noise = field.optional("process_noise_std");

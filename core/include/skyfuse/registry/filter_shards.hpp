@@ -28,7 +28,7 @@
 #include <utility>
 
 #include "skyfuse/core/index_constant.hpp"
-#include "skyfuse/registry/compiled_filter_parts.hpp"  // generated: SKYFUSE_COMPILED_FILTER_PARTS
+#include "skyfuse/registry/compiled_parts.hpp"
 #include "skyfuse/registry/configuration_groups.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 
@@ -40,19 +40,6 @@ namespace skyfuse {
 
 /// The number of shards; set by cmake/FilterShards.cmake.
 inline constexpr std::size_t kFilterShards = SKYFUSE_FILTER_SHARDS;
-
-/// Whether this build compiles the code of filter part `kind`: every part, unless the build
-/// was configured for some only (SKYFUSE_FILTER_PARTS, as ./quickstart demo does).
-constexpr bool filter_part_compiled(std::string_view kind) {
-  std::string_view parts = SKYFUSE_COMPILED_FILTER_PARTS;
-  if (parts.empty()) return true;
-  while (!parts.empty()) {
-    const std::size_t comma = parts.find(',');
-    if (parts.substr(0, comma) == kind) return true;
-    parts = comma == std::string_view::npos ? std::string_view() : parts.substr(comma + 1);
-  }
-  return false;
-}
 
 /// Calls f(std::type_identity<Filter>{}, std::type_identity<Model>{}) for the filter part that
 /// runs `filter` and its motion model, compiled for the groups of shard `Shard` only. The
@@ -96,12 +83,9 @@ auto with_filter_shard(const FilterConfig& filter, F&& f) {
     throw std::logic_error("no registered filter part '" + filter.kind + "' on motion model '" +
                            filter.motion_model.kind + "'");
   }
-  if (!filter_part_compiled(filter.kind)) {
-    throw std::invalid_argument(
-        "filter part '" + filter.kind + "' is not compiled into this build, which has only '" +
-        std::string(SKYFUSE_COMPILED_FILTER_PARTS) +
-        "' (./quickstart demo builds the EKF only); `./quickstart test` builds every part, or "
-        "configure with -DSKYFUSE_FILTER_PARTS=all and build again");
+  if (!filter_part_compiled(filter.kind)) {  // the loader refuses such a scenario first
+    throw std::invalid_argument("filter part '" + filter.kind +
+                                "' is not in this build: " + std::string(kHowToBuildEveryPart));
   }
   return with_index_constant<kFilterShards>(*group % kFilterShards, std::forward<F>(f));
 }
