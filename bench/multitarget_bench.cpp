@@ -21,12 +21,10 @@ constexpr int kTimedRounds = 20;
 // One station's round at N aircraft: its own gating, assignment and increments, then fusing
 // every station's reports with management and initiation (what every peer does). The other
 // stations' reports and the scans are made outside the timing.
-void BM_MultiTargetStationRound(benchmark::State& state) {
-  const int aircraft = static_cast<int>(state.range(0));
+void station_round(benchmark::State& state, int aircraft, const DetectionConfig& detection) {
   const int steps = kWarmUpSteps + kTimedRounds + 1;
   const auto truths = traffic(aircraft, steps);
   const auto stations = radars(aircraft, kStations);
-  const DetectionConfig detection = detection_for(aircraft);
   Peer peer = warmed_picture(stations, detection, truths);
   AssignmentWork work;
   std::vector<Peer::Report> reports(kStations);
@@ -55,8 +53,14 @@ void BM_MultiTargetStationRound(benchmark::State& state) {
   state.counters["tracks"] = static_cast<double>(tracks);
   state.counters["largest_cluster"] = static_cast<double>(largest_cluster);
 }
+
+void BM_MultiTargetStationRound(benchmark::State& state) {
+  const int aircraft = static_cast<int>(state.range(0));
+  station_round(state, aircraft, detection_for(aircraft));
+}
 // Arg(1): one aircraft through the picture, against the one-aircraft pipeline's station step
-// and fusion (StationStep, FuseIncrements/8 in core_bench.cpp): docs/multitarget.md, "Not yet".
+// and fusion (StationStep, FuseIncrements/8 in core_bench.cpp): docs/multitarget.md, "What
+// stays apart, and why".
 BENCHMARK(BM_MultiTargetStationRound)
     ->Arg(1)
     ->Arg(10)
@@ -64,6 +68,16 @@ BENCHMARK(BM_MultiTargetStationRound)
     ->Arg(1000)
     ->Iterations(kTimedRounds)
     ->Unit(benchmark::kMillisecond);
+
+// One aircraft always detected, no false alarm: the single-aircraft runs' setting, through the
+// picture. What the picture's own machinery (gating, assignment, initiation's bookkeeping)
+// costs where a single-aircraft run needs none of it.
+void BM_OneAircraftPictureRoundWithoutClutter(benchmark::State& state) {
+  station_round(state, 1, detection_for(1, 1.0, 0.0));
+}
+BENCHMARK(BM_OneAircraftPictureRoundWithoutClutter)
+    ->Iterations(kTimedRounds)
+    ->Unit(benchmark::kMicrosecond);
 
 // Predicting every track, which every node does once a round.
 void BM_MultiTargetPredict(benchmark::State& state) {

@@ -67,13 +67,14 @@ inline std::vector<KnownStation<TrackSensor>> radars(int aircraft, int count) {
   return stations;
 }
 
-// P_D 0.9 and 10 false alarms a scan, every aircraft in view.
-inline DetectionConfig detection_for(int aircraft) {
+// P_D 0.9 and 10 false alarms a scan (or what is given), every aircraft in view.
+inline DetectionConfig detection_for(int aircraft, double probability = 0.9,
+                                     double clutter_per_scan = 10.0) {
   DetectionConfig detection;
-  detection.probability = 0.9;
+  detection.probability = probability;
   detection.field_of_view.max_range_m = 4.0 * (700.0 * std::sqrt(aircraft) + 2000.0);
   detection.field_of_view.min_elevation_rad = 0.0;
-  detection.clutter_per_scan = 10.0;
+  detection.clutter_per_scan = clutter_per_scan;
   return detection;
 }
 

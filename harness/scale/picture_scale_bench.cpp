@@ -111,6 +111,7 @@ PictureRunSummary measure(const ScaleBenchOptions& o, const BenchScenario& bench
       (out / fmt::format("N{}-M{}-{}-{}", n, m, exchange, realtime ? "realtime" : "lockstep"))
           .string();
   run.round_timeout_s = 60.0;
+  run.stations_per_process = o.stations_per_process;
   return execute_picture_run(run, bench.scenario);
 }
 
@@ -132,9 +133,11 @@ int run_picture_scale_bench(const ScaleBenchOptions& o) {
   std::filesystem::create_directories(out);
   fmt::print(
       "skyfuse bench --scale --aircraft on {} cores, scenario '{}': {} lock-step rounds and {} "
-      "real-time steps ({} ms deadline) per run, the tree in clusters of {}, {}\n",
+      "real-time steps ({} ms deadline) per run, the tree in clusters of {}, {}, {} station(s) "
+      "per process\n",
       std::thread::hardware_concurrency(), bench.scenario.name, o.rounds, o.realtime_steps,
-      o.realtime_deadline_ms, o.fanout, o.best_effort ? "best effort" : "reliable");
+      o.realtime_deadline_ms, o.fanout, o.best_effort ? "best effort" : "reliable",
+      o.stations_per_process);
   fmt::print("{:>5} {:>4} {:>5} {:>9} {:>9} {:>8} {:>10} {:>9} {:>10}\n", "N", "M", "exch.",
              "rounds/s", "datagr.", "CPU ms", "pictures", "in time", "RT CPU ms");
 
@@ -149,6 +152,7 @@ int run_picture_scale_bench(const ScaleBenchOptions& o) {
                                 {"realtime_deadline_ms", o.realtime_deadline_ms},
                                 {"best_effort", o.best_effort},
                                 {"fanout", o.fanout},
+                                {"stations_per_process", o.stations_per_process},
                                 {"rows", json_rows}};
     write_file_atomically(out / "picture_scale.json", doc.dump(2) + "\n");
     write_file_atomically(out / "picture_scale.csv", csv_of(rows));
