@@ -312,8 +312,8 @@ FilterConfig read_filter(const YamlField& field) {
     }
   }
   if (!filter_part_compiled(filter.kind)) {
-    field.fail(
-        fmt::format("filter '{}' is not in this build: {}", filter.kind, kHowToBuildEveryPart));
+    field.fail(fmt::format("filter '{}' is not in this build (it has {}): {}", filter.kind,
+                           kCompiledFilterParts, kHowToBuildEveryPart));
   }
   const auto model = field.optional("motion_model");
   const auto shorthand_noise = field.optional("process_noise_std");
