@@ -25,8 +25,7 @@ namespace {
 PicturePlan checked_plan(const StationOptions& options, Scenario scenario,
                          const std::vector<int>& ids) {
   PicturePlan plan = make_picture_plan(std::move(scenario), options.node.overrides);
-  std::vector<int> participants;
-  for (const StationConfig& s : plan.participants()) participants.push_back(s.id);
+  const std::vector<int> participants = plan.participant_ids();
   for (const int id : ids) {
     if (std::find(participants.begin(), participants.end(), id) == participants.end()) {
       throw std::invalid_argument(fmt::format(

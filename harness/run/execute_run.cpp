@@ -232,20 +232,14 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     // Process 0 is the center, then the stations in ascending id, --stations-per-process to a
     // process (a station restarts only when each has its own: Placement::check).
     const StationGroups groups(ids.size(), static_cast<std::size_t>(o.stations_per_process));
-    const auto process_index = [&](int id) {
-      return groups.process_of(
-          static_cast<std::size_t>(std::find(ids.begin(), ids.end(), id) - ids.begin()));
-    };
     const auto spawn_process = [&](std::size_t process, std::optional<std::uint64_t> rejoin_step) {
       const std::vector<int> group = groups.ids_of(process, ids);
       const auto [network, netns] = placement.of(process);
       const std::vector<std::string> common =
           node_arguments(o, plan, run_id, scenario_file, network);
       std::vector<std::string> station{(executable_dir() / "skyfuse-station").string()};
-      for (int id : group) {
-        station.push_back("--id");
-        station.push_back(std::to_string(id));
-      }
+      const std::vector<std::string> id_args = id_arguments(group);
+      station.insert(station.end(), id_args.begin(), id_args.end());
       station.insert(station.end(), common.begin(), common.end());
       if (!o.replay_path.empty()) {
         station.push_back("--replay");
@@ -255,13 +249,10 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
         station.push_back("--rejoin-at-step");
         station.push_back(std::to_string(*rejoin_step));
       }
-      const std::string name = group.size() == 1
-                                   ? node_name(group.front())
-                                   : fmt::format("stations {}-{}", group.front(), group.back());
-      namespace_members.try_emplace(netns, children.spawn(name, station, netns));
+      namespace_members.try_emplace(netns, children.spawn(process_name(group), station, netns));
     };
     const auto spawn_station = [&](int id, std::optional<std::uint64_t> rejoin_step) {
-      spawn_process(process_index(id), rejoin_step);
+      spawn_process(groups.process_of_id(id, ids), rejoin_step);
     };
     RunRecorder recorder(plan, ids, o.restarts);
     // The live stream listens before the nodes start, so that a client can be there for the

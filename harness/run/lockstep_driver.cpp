@@ -122,6 +122,12 @@ std::string node_name(int id) {
   return id == kCenterNodeId ? "center" : fmt::format("station {}", id);
 }
 
+std::string process_name(std::span<const int> station_ids) {
+  return station_ids.size() == 1
+             ? node_name(station_ids.front())
+             : fmt::format("stations {}-{}", station_ids.front(), station_ids.back());
+}
+
 std::uint64_t fresh_run_id() {
   std::random_device device;
   return (static_cast<std::uint64_t>(device()) << 32) ^ device();

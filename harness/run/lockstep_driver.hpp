@@ -53,6 +53,10 @@ class RunAborted : public std::runtime_error {
 /// is started under, so that a message about either points at the same node.
 std::string node_name(int id);
 
+/// The name a station process is started under: its station's node_name, or "stations A-B" for
+/// several (ascending ids).
+std::string process_name(std::span<const int> station_ids);
+
 /// A random run id: samples of another run on the same domain carry another id and are dropped.
 std::uint64_t fresh_run_id();
 

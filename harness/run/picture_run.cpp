@@ -153,23 +153,16 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
     };
     const auto spawn_stations = [&](std::size_t process, std::optional<int> rejoin_step) {
       const std::vector<int> group = groups.ids_of(process, ids);
-      std::vector<std::string> argv{(executable_dir() / "skyfuse-station").string()};
-      for (const int id : group) {
-        argv.push_back("--id");
-        argv.push_back(std::to_string(id));
-      }
+      std::vector<std::string> argv = id_arguments(group);
+      argv.insert(argv.begin(), (executable_dir() / "skyfuse-station").string());
       if (rejoin_step) {
         argv.push_back("--rejoin-at-step");
         argv.push_back(std::to_string(*rejoin_step));
       }
-      spawn(process, std::move(argv),
-            group.size() == 1 ? node_name(group.front())
-                              : fmt::format("stations {}-{}", group.front(), group.back()));
+      spawn(process, std::move(argv), process_name(group));
     };
     const auto spawn_station = [&](int id, std::optional<int> rejoin_step) {
-      spawn_stations(groups.process_of(static_cast<std::size_t>(
-                         std::find(ids.begin(), ids.end(), id) - ids.begin())),
-                     rejoin_step);
+      spawn_stations(groups.process_of_id(id, ids), rejoin_step);
     };
     spawn(0, {(executable_dir() / "skyfuse-center").string()}, node_name(kCenterNodeId));
     for (std::size_t p = 1; p < groups.processes(); ++p) spawn_stations(p, std::nullopt);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace skyfuse::harness {
@@ -20,6 +21,11 @@ class StationGroups {
   std::size_t processes() const { return 1 + (stations_ + per_process_ - 1) / per_process_; }
   /// The process of the station at `position` among the run's ids in ascending order.
   std::size_t process_of(std::size_t position) const { return 1 + position / per_process_; }
+  /// The process of station `id`, one of the run's `ascending_ids`.
+  std::size_t process_of_id(int id, std::span<const int> ascending_ids) const {
+    return process_of(static_cast<std::size_t>(
+        std::find(ascending_ids.begin(), ascending_ids.end(), id) - ascending_ids.begin()));
+  }
   /// Process `process`'s station ids (process >= 1), out of the run's `ascending_ids`.
   std::vector<int> ids_of(std::size_t process, std::span<const int> ascending_ids) const {
     const std::size_t first = (process - 1) * per_process_;
@@ -32,5 +38,15 @@ class StationGroups {
   std::size_t stations_;
   std::size_t per_process_;
 };
+
+/// How a station process is told its stations: `--id A --id B ...`.
+inline std::vector<std::string> id_arguments(std::span<const int> group) {
+  std::vector<std::string> arguments;
+  for (const int id : group) {
+    arguments.push_back("--id");
+    arguments.push_back(std::to_string(id));
+  }
+  return arguments;
+}
 
 }  // namespace skyfuse::harness

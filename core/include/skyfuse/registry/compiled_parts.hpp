@@ -5,6 +5,7 @@
 /// does for the EKF), those. A scenario of another part is refused when it is loaded, with the
 /// way to build it.
 
+#include <cstddef>
 #include <string_view>
 
 #include "skyfuse/registry/compiled_filter_parts.hpp"  // generated: SKYFUSE_COMPILED_FILTER_PARTS
@@ -26,7 +27,7 @@ constexpr bool filter_part_compiled(std::string_view kind) {
   return false;
 }
 
-/// Why filter part `kind` does not run in this build, and how to build it.
+/// What to do when a filter part is not in this build.
 inline constexpr std::string_view kHowToBuildEveryPart =
     "./quickstart demo builds the EKF only; `./quickstart test` builds every part, or configure "
     "with -DSKYFUSE_FILTER_PARTS=all and build again";
