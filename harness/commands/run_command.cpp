@@ -9,6 +9,7 @@
 
 #include "report/picture_run_report.hpp"
 #include "run/picture_run.hpp"
+#include "run/placement.hpp"
 #include "run/simulated_hosts.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/options/number_checks.hpp"
@@ -121,14 +122,14 @@ void add_run_command(CLI::App& app, RunOptions& o) {
                   "Place the center and the stations, round robin, on N simulated hosts: network "
                   "namespaces joined by a bridge, discovering through the harness (root only)")
       ->check(options::whole_number_in(1, SimulatedHosts::kMaxHosts));
-  cmd->add_option("--stations-per-process", o.stations_per_process,
-                  "Run K stations in each station process, sharing its DDS participant (for "
-                  "simulation on one host or on --hosts: fewer participants to discover, and the "
-                  "samples between stations of one process pass in memory; the wire and the "
-                  "results are those of one process per station). Not with --secure, --external, "
-                  "--kill, --restart or many aircraft")
-      ->check(CLI::Range(1, 256))
-      ->capture_default_str();
+  cmd->add_option(
+         "--stations-per-process", o.stations_per_process_given,
+         "Run K stations in each station process, sharing its DDS participant (for "
+         "simulation on one host or on --hosts: fewer participants to discover, and the "
+         "samples between stations of one process pass in memory; the wire and the "
+         "results are those of one process per station). Not with --secure, --external, "
+         "--kill or --restart. Default: 1 up to 8 stations, ceil(sqrt(M)) above (1 where refused)")
+      ->check(CLI::Range(1, 256));
   options::add_discovery_option(
       *cmd, o.discovery,
       "How the processes find each other: auto (on one host peers for a tree of 16 or more "
@@ -142,9 +143,15 @@ void add_run_command(CLI::App& app, RunOptions& o) {
   cmd->add_flag("-v,--verbose", o.verbose, "Let the node processes log at info level");
 }
 
-int run_run(const RunOptions& o) {
-  if (const Scenario scenario = load_scenario_or_default(o.node.scenario_path);
-      scenario.has_many_targets()) {
+int run_run(const RunOptions& given) {
+  const Scenario scenario = load_scenario_or_default(given.node.scenario_path);
+  // How many stations share a process is the run's to pick, for both kinds, unless told.
+  RunOptions o = given;
+  o.stations_per_process =
+      given.stations_per_process_given.value_or(Placement::auto_stations_per_process(
+          given, static_cast<std::size_t>(given.node.overrides.stations.value_or(
+                     static_cast<int>(scenario.stations.size())))));
+  if (scenario.has_many_targets()) {
     const PictureRunSummary summary = execute_picture_run(o, scenario);
     print_picture_run_table(summary, stdout);
     fmt::print("results in {}\n", o.out_dir);

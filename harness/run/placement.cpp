@@ -148,6 +148,15 @@ Discovery chosen_discovery(const RunOptions& o, const ExchangeConfig& exchange,
 
 }  // namespace
 
+int Placement::auto_stations_per_process(const RunOptions& o, std::size_t stations) {
+  const bool grouping_refused =
+      o.node.secure_dir || o.external || !o.kills.empty() || !o.restarts.empty();
+  if (stations <= kStationsAlone || grouping_refused) return 1;
+  int k = 1;
+  while (static_cast<std::size_t>(k) * static_cast<std::size_t>(k) < stations) ++k;
+  return k;
+}
+
 void Placement::check(const RunOptions& o, std::size_t stations) {
   if (o.node.secure_dir && (o.hosts > 0 || o.node.network.discovery_server)) {
     throw std::invalid_argument(transport::kSecureDiscoveryServerRefusal);

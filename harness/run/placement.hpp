@@ -22,6 +22,13 @@ class Placement {
   /// Throws std::invalid_argument, with the reason, for options that do not go together
   /// (before anything is created), as the constructor would.
   static void check(const RunOptions& o, std::size_t stations);
+  /// Stations a process for a run of `stations` stations without --stations-per-process: one
+  /// each up to kStationsAlone; above, ceil(sqrt(M)), so that processes and stations a process
+  /// grow alike (16 stations: 4 of 4, 64: 8 of 8, the best measured on 2 cores:
+  /// docs/performance.md#several-stations-in-one-process); but one each where a process of
+  /// several is refused (--secure, --external, --kill, --restart).
+  static int auto_stations_per_process(const RunOptions& o, std::size_t stations);
+  static constexpr std::size_t kStationsAlone = 8;
 
   /// Creates the hosts if `o.hosts` asks for them. `exchange` and `stations` decide the peer
   /// lists of `--discovery peers`.

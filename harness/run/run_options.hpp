@@ -40,6 +40,8 @@ struct RunOptions {
   int hosts = 0;  ///< > 0: place the processes on this many simulated hosts (simulated_hosts.hpp)
   /// Stations run by one process, sharing its participant (run/station_groups.hpp).
   int stations_per_process = 1;
+  /// `--stations-per-process` as given; none: the run picks (auto_stations_per_process).
+  std::optional<int> stations_per_process_given;
   /// How the processes discover each other (run/placement.hpp).
   options::Discovery discovery = options::Discovery::kAutomatic;
   bool verbose = false;

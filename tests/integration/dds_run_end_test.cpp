@@ -27,11 +27,13 @@ using ::testing::Not;
 
 constexpr int kStations = 64;
 
-// The options that make a run ring64's (or `scenario`'s) stations in clusters of 8, then
-// `extra`; the number of stations is added by whoever starts the run.
+// The options that make a run ring64's (or `scenario`'s) stations in clusters of 8, each station
+// its own process (what these tests stop, kill and count), then `extra`; the number of stations
+// is added by whoever starts the run.
 std::vector<std::string> ring64_tree(const std::vector<std::string>& extra,
                                      const std::string& scenario = bin("scenarios/ring64.yaml")) {
-  std::vector<std::string> options = {"--scenario", scenario, "--exchange", "tree"};
+  std::vector<std::string> options = {
+      "--scenario", scenario, "--exchange", "tree", "--stations-per-process", "1"};
   options.insert(options.end(), extra.begin(), extra.end());
   return options;
 }

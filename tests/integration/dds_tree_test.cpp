@@ -71,8 +71,12 @@ nlohmann::json expect_tree_run_equals_twin(const std::string& scenario, int stat
   return summary;
 }
 
+// With default options 16 stations share 4 processes (Placement::auto_stations_per_process);
+// the bits are those of the in-process tree all the same.
 TEST(DdsTree, SixteenStationsInClustersOfFourEqualTheInProcessTreeBitForBit) {
-  expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 200, 4, 208);
+  const auto summary = expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 200, 4, 208);
+  ASSERT_FALSE(summary.is_null());
+  EXPECT_EQ(summary.at("network").at("stations_per_process").get<int>(), 4);
 }
 
 // `--discovery peers`: each process announces itself only to those it exchanges samples with.
@@ -81,8 +85,11 @@ TEST(DdsTree, SixteenStationsInClustersOfFourEqualTheInProcessTreeBitForBit) {
 // aggregator and its stand-in) the first two of each of the 3 other clusters. The center knows
 // the harness and every station. With multicast discovery every node knows all 17 others.
 TEST(DdsTree, StationsDiscoveringOnlyTheirPeersKnowTheirClusterAndGiveTheInProcessTreesBits) {
-  const auto summary = expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 200, 4, 221,
-                                                   {"--discovery", "peers"});
+  // One process a station, as the counts below are of processes (16 stations would otherwise
+  // share 4 by default).
+  const auto summary =
+      expect_tree_run_equals_twin(bin("scenarios/ring64.yaml"), 16, 200, 4, 221,
+                                  {"--discovery", "peers", "--stations-per-process", "1"});
   ASSERT_FALSE(summary.is_null());
   const auto& network = summary.at("network");
   EXPECT_EQ(network.at("discovery"), "peers");
