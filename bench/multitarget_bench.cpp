@@ -9,6 +9,7 @@
 
 #include "multitarget_setup.hpp"
 #include "skyfuse/association/assignment.hpp"
+#include "skyfuse/multitarget/detection_prior.hpp"
 
 namespace skyfuse {
 namespace {
@@ -21,12 +22,16 @@ constexpr int kTimedRounds = 20;
 // One station's round at N aircraft: its own gating, assignment and increments, then fusing
 // every station's reports with management and initiation (what every peer does). The other
 // stations' reports and the scans are made outside the timing.
-void station_round(benchmark::State& state, int aircraft, const DetectionConfig& detection) {
+void station_round(benchmark::State& state, int aircraft, const DetectionConfig& detection,
+                   const TrackerConfig& tracker = {}) {
   const int steps = kWarmUpSteps + kTimedRounds + 1;
   const auto truths = traffic(aircraft, steps);
-  const auto stations = radars(aircraft, kStations);
-  Peer peer = warmed_picture(stations, detection, truths);
-  AssignmentWork work;
+  auto stations = radars(aircraft, kStations);
+  for (auto& station : stations) {
+    station.prior = detection_prior(detection, TrackSensor::kKind, tracker.association);
+  }
+  Peer peer = warmed_picture(stations, detection, truths, tracker);
+  AssociationWork work;
   std::vector<Peer::Report> reports(kStations);
   int k = kWarmUpSteps;
   std::size_t tracks = 0;
@@ -44,9 +49,7 @@ void station_round(benchmark::State& state, int aircraft, const DetectionConfig&
     benchmark::DoNotOptimize(peer.tracks().data());
     state.PauseTiming();
     tracks = peer.tracks().size();
-    const auto assignment =
-        assign_scan(peer.estimates(), stations[0].sensor, scans[0], peer.gate(), 4096, work);
-    largest_cluster = assignment.largest_cluster;
+    largest_cluster = peer.associate(stations[0], scans[0], work).largest_cluster;
     ++k;
     state.ResumeTiming();
   }
@@ -66,6 +69,21 @@ BENCHMARK(BM_MultiTargetStationRound)
     ->Arg(10)
     ->Arg(100)
     ->Arg(1000)
+    ->Iterations(kTimedRounds)
+    ->Unit(benchmark::kMillisecond);
+
+// 100 aircraft in 50 false alarms a scan per radar, by each associator: what JPDA's weighing
+// of every gated pair costs a station's round against GNN's one detection per track
+// (docs/multitarget.md, "JPDA").
+void BM_DenseStationRound(benchmark::State& state, const char* associator) {
+  TrackerConfig tracker;
+  tracker.association.associator = associator;
+  station_round(state, 100, detection_for(100, 0.9, 50.0), tracker);
+}
+BENCHMARK_CAPTURE(BM_DenseStationRound, gnn, "gnn")
+    ->Iterations(kTimedRounds)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DenseStationRound, jpda, "jpda")
     ->Iterations(kTimedRounds)
     ->Unit(benchmark::kMillisecond);
 

@@ -62,7 +62,7 @@ inline std::vector<KnownStation<TrackSensor>> radars(int aircraft, int count) {
   for (int i = 0; i < count; ++i) {
     const double bearing = 2.0 * std::numbers::pi * i / count;
     const Vector3 site(radius * std::cos(bearing), radius * std::sin(bearing), 30.0);
-    stations.push_back({i + 1, TrackSensor(site), noise, 1.0});
+    stations.push_back({i + 1, TrackSensor(site), noise, 1.0, {}});
   }
   return stations;
 }
@@ -92,11 +92,11 @@ inline std::vector<Scan<3>> scans_of(const std::vector<KnownStation<TrackSensor>
 
 // A picture of the traffic after kWarmUpSteps rounds, every aircraft tracked.
 inline Peer warmed_picture(const std::vector<KnownStation<TrackSensor>>& stations,
-                           const DetectionConfig& detection,
-                           const std::vector<TargetTruth>& truths) {
+                           const DetectionConfig& detection, const std::vector<TargetTruth>& truths,
+                           const TrackerConfig& tracker = {}) {
   Peer peer(PeerTracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0)), stations,
-            TrackerConfig{});
-  AssignmentWork work;
+            tracker);
+  AssociationWork work;
   std::vector<Peer::Report> reports(stations.size());
   for (int k = 0; k < kWarmUpSteps; ++k) {
     const auto scans = scans_of(stations, detection, truths, k);

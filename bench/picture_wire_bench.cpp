@@ -59,7 +59,7 @@ Round make_round(int aircraft, int station_count) {
               scans_of(stations, detection, truths, kWarmUpSteps),
               {}};
   round.picture.predict();
-  AssignmentWork work;
+  AssociationWork work;
   for (std::size_t s = 0; s < stations.size(); ++s) {
     round.reports.push_back(round.picture.report(stations[s], round.scans[s], work));
   }
@@ -72,13 +72,15 @@ class IncrementEncoding {
   static void encode(Cdr& cdr, const Report& report, const Scan<kMeasDim>& /*scan*/) {
     cdr << report.station_id << static_cast<std::uint32_t>(report.updates.size());
     double upper[kUpperTriangle];
-    for (const auto& update : report.updates) {
+    // GNN's report: one pair per update, in the same order.
+    for (std::size_t u = 0; u < report.updates.size(); ++u) {
+      const auto& update = report.updates[u];
       const auto& q = update.contribution.delta_information;
       int n = 0;
       for (int r = 0; r < kDim; ++r) {
         for (int c = r; c < kDim; ++c) upper[n++] = q(r, c);
       }
-      cdr << update.track << update.detection;
+      cdr << update.track << report.pairs[u].detection;
       cdr.serializeSequence(upper, kUpperTriangle);
       cdr.serializeSequence(update.contribution.delta_vector.data(), kDim);
     }
@@ -91,8 +93,11 @@ class IncrementEncoding {
     report.updates.resize(count);
     std::vector<double> upper;
     std::vector<double> vector;
-    for (auto& update : report.updates) {
-      cdr >> update.track >> update.detection;
+    report.pairs.resize(count);
+    for (std::size_t u = 0; u < count; ++u) {
+      auto& update = report.updates[u];
+      cdr >> update.track >> report.pairs[u].detection;
+      report.pairs[u].track = update.track;
       cdr >> upper >> vector;
       auto& q = update.contribution.delta_information;
       int n = 0;

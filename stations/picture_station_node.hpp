@@ -293,7 +293,7 @@ class PictureStation {
   // compared with the others', and computed once a round rather than at each use.
   std::uint64_t predicted_digest_ = 0;
   const std::uint64_t empty_digest_ = empty_picture_digest();
-  AssignmentWork work_;
+  AssociationWork work_;
   std::optional<PeerState> latest_;
   bool parted_last_round_ = false;  // this picture was not the lowest station's last round
   // A restarted station that has not yet waited for the lowest station's picture.

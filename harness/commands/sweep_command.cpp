@@ -12,6 +12,7 @@
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
+#include "skyfuse/scenario/associator_choice.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/sim/picture_run.hpp"
@@ -37,6 +38,7 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
   cmd->add_option("--threads", options.threads, "Worker threads (default: one per core)")
       ->check(options::whole_number_in(0, 1024));
   options::add_exchange_options(*cmd, options.exchange, options.fanout);
+  options::add_associator_option(*cmd, options.associator);
   cmd->add_flag("!--no-plot", options.plot, "Skip the PNG plot");
   cmd->add_option("--traffic-file", options.traffic_file,
                   "An OpenSky state-vector CSV to fly instead of the scenario's recorded file "
@@ -66,6 +68,7 @@ int run_picture_sweep(const SweepOptions& options, const Scenario& scenario, int
 int run_sweep(const SweepOptions& options) {
   Scenario scenario = load_scenario_or_default(options.scenario_path);
   if (options.seed) scenario.seed = *options.seed;
+  if (options.associator) set_associator(scenario, *options.associator, "--associator");
   apply_exchange_overrides(scenario, options.exchange, options.fanout);
   if (options.steps) {
     scenario.steps = *options.steps;

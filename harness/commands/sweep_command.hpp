@@ -24,6 +24,7 @@ struct SweepOptions {
   bool plot = true;
   /// A scenario with recorded traffic: the OpenSky CSV file to run instead of the scenario's.
   std::string traffic_file;
+  std::optional<std::string> associator;  ///< default: the scenario's
 };
 
 void add_sweep_command(CLI::App& app, SweepOptions& options);

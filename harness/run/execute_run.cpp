@@ -89,7 +89,8 @@ std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan
   child.run_id = run_id;
   child.overrides = {plan.stations, plan.scenario.steps,         plan.speed_mps * 3.6,
                      plan.mc_run,   plan.scenario.exchange.kind, plan.scenario.exchange.fanout,
-                     std::nullopt};  // one target: no aircraft to count
+                     std::nullopt,   // one target: no aircraft to count
+                     std::nullopt};  // nor anything to associate
   child.discovery_timeout_s = discovery_timeout_s(o, plan.stations);
   child.idle_timeout_s = std::max(30.0, 3.0 * o.round_timeout_s);
   child.log_level = o.verbose ? "info" : "warn";

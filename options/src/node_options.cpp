@@ -49,6 +49,14 @@ void add_plan_options(CLI::App& app, RunOverrides& overrides) {
   app.add_option("--aircraft", overrides.aircraft,
                  "A scenario with generated traffic: how many aircraft (default: the scenario's)")
       ->check(whole_number_at_least(1));
+  add_associator_option(app, overrides.associator);
+}
+
+void add_associator_option(CLI::App& app, std::optional<std::string>& associator) {
+  app.add_option("--associator", associator,
+                 "A scenario with many aircraft: the tracker's data associator, gnn or jpda "
+                 "(default: the scenario's tracker.associator, gnn if it gives none)")
+      ->check(CLI::IsMember({"gnn", "jpda"}));
 }
 
 void add_exchange_options(CLI::App& app, std::optional<ExchangeConfig::Kind>& exchange,
@@ -151,6 +159,7 @@ std::vector<std::string> to_arguments(const NodeOptions& o) {
   if (o.overrides.exchange) add("--exchange", std::string(to_string(*o.overrides.exchange)));
   if (o.overrides.fanout) add("--fanout", std::to_string(*o.overrides.fanout));
   if (o.overrides.aircraft) add("--aircraft", std::to_string(*o.overrides.aircraft));
+  if (o.overrides.associator) add("--associator", *o.overrides.associator);
   if (o.qos_file) add("--qos", *o.qos_file);
   if (o.secure_dir) add("--secure", *o.secure_dir);
   add("--discovery-timeout", fmt::format("{}", o.discovery_timeout_s));

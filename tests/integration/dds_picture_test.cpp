@@ -264,7 +264,11 @@ INSTANTIATE_TEST_SUITE_P(
                       "kind: constant_acceleration_3d\n    process_noise_std: {position_m: 0.5, "
                       "velocity_mps: 1.0, acceleration_mps2: 1.0}",
                       213},
-        FilterVariant{"ImmOfCvAndCt", kCityFilter, kCityImmFilter, 214}),
+        FilterVariant{"ImmOfCvAndCt", kCityFilter, kCityImmFilter, 214},
+        // JPDA: every gated pair weighed by its probability, which every peer rebuilds from the
+        // wire's weights and the center applies as noise R / w (docs/multitarget.md, "JPDA").
+        FilterVariant{"EkfWithJpda", "  gate_probability: 0.9999",
+                      "  associator: jpda\n  gate_probability: 0.9999", 224}),
     [](const ::testing::TestParamInfo<FilterVariant>& param) { return param.param.name; });
 
 // The tree exchange: five stations in clusters of two ({1, 2}, {3, 4}, {5}), each aggregator

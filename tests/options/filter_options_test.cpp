@@ -16,7 +16,7 @@ namespace {
 // ring64's first `stations`, with `exchange` asked for (nothing: auto).
 Scenario planned(int stations, std::optional<ExchangeConfig::Kind> exchange = std::nullopt) {
   const Scenario ring = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/ring64.yaml");
-  return make_run_plan(ring, {stations, 10, {}, 0, exchange, {}, {}}).scenario;
+  return make_run_plan(ring, {stations, 10, {}, 0, exchange, {}, {}, {}}).scenario;
 }
 
 ExchangeConfig::Kind settled(Scenario s, const NodeOptions& node) {

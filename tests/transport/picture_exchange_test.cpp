@@ -89,7 +89,7 @@ TEST(PictureExchange, ThreeStationsOverLoopbackDdsHoldTheInProcessPictureBitForB
   ASSERT_TRUE(all_matched(nodes)) << "the three participants did not match each other";
 
   World::Peer reference = world.empty_picture();
-  AssignmentWork work;
+  AssociationWork work;
   std::size_t associated = 0;
   for (int k = 0; k < kRounds; ++k) {
     const auto own_reports = world.publish_round(nodes, reference, k, work);
@@ -131,7 +131,7 @@ TEST(PictureExchange, AScanNamingATrackThePictureDoesNotHoldIsLeftOutAndCounted)
   Writer<wire::PictureScan> third = nodes[2].node->make_writer<wire::PictureScan>();
   ASSERT_TRUE(all_matched(nodes));
   ASSERT_TRUE(eventually([&] { return third.matched() >= 3; }, 20s));
-  AssignmentWork work;
+  AssociationWork work;
   for (int k = 0; k < kRounds; ++k) {
     const auto step = static_cast<std::uint32_t>(k);
     const bool forged = k + 1 == kRounds;

@@ -92,7 +92,7 @@ TEST(PictureTreeExchange, ThreeStationsInTwoClustersHoldTheInProcessPictureBitFo
       << "the participants did not match as the tree wants";
 
   World::Peer reference = world.empty_picture();
-  AssignmentWork work;
+  AssociationWork work;
   std::size_t associated = 0;
   for (int k = 0; k < kRounds; ++k) {
     const auto own_reports = world.publish_round(nodes, reference, k, work);
@@ -172,7 +172,7 @@ class PictureBundleScreens : public ::testing::Test {
   ClusterLayout layout_;
   ClusterBundleScreen screen_;
   PictureScans<World::Sensor> scans_;
-  AssignmentWork work_;
+  AssociationWork work_;
 };
 
 TEST_F(PictureBundleScreens, AClusterBundleFromItsAggregatorIsUnpackedWhole) {

@@ -42,9 +42,8 @@ Sent a_round() {
   sent.report.station_id = 4;
   sent.report.updates.resize(2);
   sent.report.updates[0].track = 5;
-  sent.report.updates[0].detection = 2;
   sent.report.updates[1].track = 9;
-  sent.report.updates[1].detection = 0;
+  sent.report.pairs = {{5, 2, 1.0}, {9, 0, 1.0}};
   sent.report.unassociated = {{1, sent.scan.detections[1]}, {3, sent.scan.detections[3]}};
   sent.report.dropped = 1;
   return sent;
@@ -76,8 +75,7 @@ TEST(PictureWire, ARoundArrivesAsSentThroughTheSerializer) {
   for (std::size_t j = 0; j < sent.scan.detections.size(); ++j) {
     EXPECT_EQ(received->detections[j], sent.scan.detections[j]) << "detection " << j;
   }
-  using Pair = std::pair<TrackId, std::uint32_t>;
-  EXPECT_EQ(received->associations, (std::vector<Pair>{{5, 2}, {9, 0}}));
+  EXPECT_EQ(received->associations, (std::vector<ReportedPair>{{5, 2, 1.0}, {9, 0, 1.0}}));
   EXPECT_EQ(received->unassociated, (std::vector<std::uint32_t>{1, 3}));
 }
 
@@ -116,6 +114,17 @@ TEST(PictureWire, ASampleWrongAnywhereIsRefusedWhole) {
        DropKind::kOutOfRange},
       {"a detection associated twice", [](auto& s) { s.associations()[1].detection(2); },
        DropKind::kOutOfRange},
+      {"a weight of 0", [](auto& s) { s.associations()[0].weight(0.0); }, DropKind::kOutOfRange},
+      {"a weight above 1", [](auto& s) { s.associations()[0].weight(1.5); }, DropKind::kOutOfRange},
+      {"a weight not finite", [&](auto& s) { s.associations()[0].weight(nan); },
+       DropKind::kNonFinite},
+      {"a detection's weights summing past 1",
+       [](auto& s) {
+         s.associations()[0].weight(0.6);
+         s.associations()[1].weight(0.6);
+         s.associations()[1].detection(2);
+       },
+       DropKind::kOutOfRange},
       {"a detection associated and unassociated", [](auto& s) { s.unassociated()[0] = 2; },
        DropKind::kOutOfRange},
       {"unassociated out of order",
@@ -149,7 +158,7 @@ TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBit
   const auto& stations = world.stations;
   Peer own = world.empty_picture();      // fuses the stations' own reports
   Peer rebuilt = world.empty_picture();  // fuses the reports rebuilt from the wire
-  AssignmentWork work;
+  AssociationWork work;
   std::size_t updates = 0;
   for (int k = 0; k < kRounds; ++k) {
     own.predict();
@@ -195,7 +204,7 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   using Peer = test::PictureWorld::Peer;
   const test::PictureWorld world(12);
   Peer sender = world.empty_picture();
-  AssignmentWork work;
+  AssociationWork work;
   for (int k = 0; k < 12; ++k) {
     sender.predict();
     std::vector<Peer::Report> reports;
@@ -312,8 +321,8 @@ TEST(PictureWire, AReportNamingATrackThePictureLacksIsNotRebuilt) {
   using Model = ConstantVelocity3D;
   using TrackSensor = RangeAzimuthElevation<Model::kDim>;
   using Peer = PeerPicture<PeerModelTracks<Model, EkfIncrementRule>, TrackSensor>;
-  const KnownStation<TrackSensor> station{1, TrackSensor(Vector3(0.0, 0.0, 0.0)),
-                                          Covariance<3>::Identity(), 1.0};
+  const KnownStation<TrackSensor> station{
+      1, TrackSensor(Vector3(0.0, 0.0, 0.0)), Covariance<3>::Identity(), 1.0, {}};
   Peer picture(PeerModelTracks<Model, EkfIncrementRule>(Model(1.0, {0.5, 1.0}),
                                                         Vector<Model::kDim>::Constant(100.0)),
                {station}, TrackerConfig{});
@@ -322,9 +331,8 @@ TEST(PictureWire, AReportNamingATrackThePictureLacksIsNotRebuilt) {
   known.covariance = Covariance<Model::kDim>::Identity();
   picture.add_known_track(7, known);
   const std::vector<Vector3> detections = {Vector3(1005.0, 0.0, 0.1)};
-  using Pair = std::pair<TrackId, std::uint32_t>;
-  const std::vector<Pair> known_track = {{7, 0}};
-  const std::vector<Pair> unknown_track = {{8, 0}};
+  const std::vector<ReportedPair> known_track = {{7, 0, 1.0}};
+  const std::vector<ReportedPair> unknown_track = {{8, 0, 1.0}};
   EXPECT_TRUE(picture.report_of(station, detections, known_track, {}, 0).has_value());
   EXPECT_FALSE(picture.report_of(station, detections, unknown_track, {}, 0).has_value());
 }

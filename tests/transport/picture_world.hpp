@@ -37,7 +37,7 @@ struct PictureWorld {
     noise.diagonal() << 25.0, 1e-6, 1e-6;
     for (int i = 0; i < 3; ++i) {
       const Vector3 site(6000.0 * std::cos(2.0 * i), 6000.0 * std::sin(2.0 * i), 30.0);
-      stations.push_back({i + 1, Sensor(site), noise, 1.0});
+      stations.push_back({i + 1, Sensor(site), noise, 1.0, {}});
     }
     detection.probability = 0.9;
     detection.field_of_view.max_range_m = 20000.0;
@@ -64,7 +64,7 @@ struct PictureWorld {
   // in-process peer, predicts too; each station's own report against it is returned.
   template <typename Nodes>
   std::vector<Peer::Report> publish_round(Nodes& nodes, Peer& reference, int k,
-                                          AssignmentWork& work) const {
+                                          AssociationWork& work) const {
     reference.predict();
     std::vector<Peer::Report> own_reports;
     for (std::size_t s = 0; s < nodes.size(); ++s) {

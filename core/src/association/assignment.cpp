@@ -125,12 +125,8 @@ std::optional<std::vector<int>> solve_assignment(const CostMatrix& cost) {
   return shortest_augmenting_paths(shifted);
 }
 
-GatedAssignment solve_gated_assignment(std::size_t rows, std::size_t cols,
-                                       std::span<const GatedPair> pairs,
-                                       std::span<const double> unassigned_cost) {
-  if (unassigned_cost.size() != rows) {
-    throw std::invalid_argument("solve_gated_assignment: one unassigned cost per row");
-  }
+std::vector<PairCluster> cluster_pairs(std::size_t rows, std::size_t cols,
+                                       std::span<const GatedPair> pairs) {
   Clusters clusters(rows + cols);
   for (const GatedPair& pair : pairs) {
     if (pair.row < 0 || static_cast<std::size_t>(pair.row) >= rows || pair.col < 0 ||
@@ -140,16 +136,9 @@ GatedAssignment solve_gated_assignment(std::size_t rows, std::size_t cols,
     }
     clusters.join(static_cast<std::size_t>(pair.row), rows + static_cast<std::size_t>(pair.col));
   }
-  // Each cluster's rows, columns and pairs, in ascending order: the order the dense problem
-  // sees, and so its tie-breaks, depends on the numbers only.
-  struct Cluster {
-    std::vector<std::size_t> rows;
-    std::vector<std::size_t> cols;
-    std::vector<const GatedPair*> pairs;
-  };
   std::vector<std::size_t> cluster_of(rows + cols, rows + cols);  // by root
-  std::vector<Cluster> found;
-  auto cluster_at = [&](std::size_t node) -> Cluster& {
+  std::vector<PairCluster> found;
+  auto cluster_at = [&](std::size_t node) -> PairCluster& {
     const std::size_t r = clusters.root(node);
     if (cluster_of[r] == rows + cols) {
       cluster_of[r] = found.size();
@@ -164,18 +153,28 @@ GatedAssignment solve_gated_assignment(std::size_t rows, std::size_t cols,
   }
   for (std::size_t node = 0; node < rows + cols; ++node) {
     if (!in_pair[node]) continue;
-    Cluster& cluster = cluster_at(node);
+    PairCluster& cluster = cluster_at(node);
     (node < rows ? cluster.rows : cluster.cols).push_back(node < rows ? node : node - rows);
   }
-  for (const GatedPair& pair : pairs) {
-    cluster_at(static_cast<std::size_t>(pair.row)).pairs.push_back(&pair);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    cluster_at(static_cast<std::size_t>(pairs[p].row)).pairs.push_back(p);
   }
+  return found;
+}
+
+GatedAssignment solve_gated_assignment(std::size_t rows, std::size_t cols,
+                                       std::span<const GatedPair> pairs,
+                                       std::span<const double> unassigned_cost) {
+  if (unassigned_cost.size() != rows) {
+    throw std::invalid_argument("solve_gated_assignment: one unassigned cost per row");
+  }
+  const std::vector<PairCluster> found = cluster_pairs(rows, cols, pairs);
 
   GatedAssignment result;
   result.column_of_row.assign(rows, -1);
   result.clusters = found.size();
   std::vector<std::size_t> local(std::max(rows, cols), 0);
-  for (const Cluster& cluster : found) {
+  for (const PairCluster& cluster : found) {
     result.largest_cluster = std::max(result.largest_cluster, cluster.rows.size());
     const std::size_t n = cluster.rows.size();
     const std::size_t m = cluster.cols.size();
@@ -187,7 +186,8 @@ GatedAssignment solve_gated_assignment(std::size_t rows, std::size_t cols,
     }
     std::vector<std::size_t> col_local(m);
     for (std::size_t j = 0; j < m; ++j) col_local[j] = cluster.cols[j];
-    for (const GatedPair* pair : cluster.pairs) {
+    for (const std::size_t p : cluster.pairs) {
+      const GatedPair* pair = &pairs[p];
       const std::size_t i = local[static_cast<std::size_t>(pair->row)];
       const auto j =
           static_cast<std::size_t>(std::lower_bound(col_local.begin(), col_local.end(),

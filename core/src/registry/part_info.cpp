@@ -44,7 +44,10 @@ std::vector<FilterInfo> describe(FilterList<Filters...> /*list*/) {
       // A picture of many aircraft: parts with an increment rule, and the IMM (its modes).
       requires {typename Filters::IncrementRule;
 }
-|| !Filters::kModeNames.empty()
+|| !Filters::kModeNames.empty(),
+    // A weighed association (JPDA's): a station's contributions must add up, as increments do.
+    requires {typename Filters::IncrementRule;
+}
 }  // namespace
 ...
 };  // namespace skyfuse

@@ -16,6 +16,7 @@
 #include "skyfuse/registry/compiled_parts.hpp"
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/part_info.hpp"
+#include "skyfuse/scenario/associator_choice.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse {
@@ -524,6 +525,13 @@ Scenario read_scenario(const YamlField& root) {
       station_items[i].fail(
           fmt::format("a {} sensor reads {} state entries; motion model {} has only {}",
                       sensor.kind, sensor.state_entries, model.kind, model.state_dim));
+    }
+  }
+  if (s.traffic) {
+    try {
+      check_associator(s);
+    } catch (const std::invalid_argument& e) {
+      root.optional("tracker").value_or(root).fail(e.what());
     }
   }
   return s;

@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
+
+#include "skyfuse/multitarget/associator.hpp"
 
 namespace skyfuse::detail {
 namespace {
@@ -77,9 +80,27 @@ double read_probability(const YamlField& field) {
 }
 
 TrackerConfig read_tracker(const YamlField& field) {
-  field.allow_only({"gate_probability", "max_detections_per_scan", "confirm", "delete_after_misses",
-                    "max_position_std_m", "initiation"});
+  field.allow_only({"associator", "gate_probability", "max_detections_per_scan", "clutter_density",
+                    "jpda_max_events", "confirm", "delete_after_misses", "max_position_std_m",
+                    "initiation"});
   TrackerConfig t;
+  if (const auto f = field.optional("associator")) {
+    const std::string name = f->string();
+    if (find_associator(name) == nullptr) {
+      f->fail(fmt::format("unknown associator '{}'; known: {}", name, associator_names()));
+    }
+    t.association.associator = name;
+  }
+  if (const auto f = field.optional("clutter_density")) {
+    t.association.clutter_density = f->positive_number();
+  }
+  if (const auto f = field.optional("jpda_max_events")) {
+    const std::int64_t n = f->integer();
+    if (n < 1 || n > 100'000'000) {
+      f->fail(fmt::format("must be in [1, 100000000], got {}", f->text()));
+    }
+    t.association.jpda_max_events = static_cast<std::size_t>(n);
+  }
   if (const auto f = field.optional("gate_probability")) {
     t.association.gate_probability = read_probability(*f);
     if (t.association.gate_probability >= 1.0) f->fail("must be < 1");

@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "skyfuse/scenario/associator_choice.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 
 namespace skyfuse {
@@ -40,6 +41,7 @@ PicturePlan make_picture_plan(Scenario scenario, const RunOverrides& overrides) 
     traffic->generator->aircraft = *overrides.aircraft;
     scenario.traffic = std::move(traffic);
   }
+  if (overrides.associator) set_associator(scenario, *overrides.associator, "--associator");
   plan.mc_run = overrides.mc_run;
   plan.scenario = std::move(scenario);
   return plan;

@@ -146,8 +146,8 @@ class PictureRun {
     }
     peer_associations_.clear();
     for (const auto& report : reports_) {
-      for (const auto& update : report.updates) {
-        peer_associations_.push_back({report.station_id, update.detection, update.track});
+      for (const ReportedPair& pair : report.pairs) {
+        peer_associations_.push_back({report.station_id, pair.detection, pair.track});
       }
     }
     result_.associations += peer_associations_.size();
@@ -221,7 +221,7 @@ class PictureRun {
   std::vector<Peer> peers_;
   std::optional<Center> center_;
   PictureScore score_;
-  AssignmentWork work_;
+  AssociationWork work_;
   std::vector<Scan<M>> scans_;
   std::vector<typename Peer::Report> reports_;
   std::vector<Association> peer_associations_;

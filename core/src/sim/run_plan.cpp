@@ -56,6 +56,12 @@ RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
         "--aircraft: scenario '{}' has one target; the option is for one with generated traffic",
         scenario.name));
   }
+  if (overrides.associator) {
+    throw std::invalid_argument(fmt::format(
+        "--associator: scenario '{}' has one aircraft, known before the run: there is nothing "
+        "to associate",
+        scenario.name));
+  }
   RunPlan plan;
   plan.stations = apply_stations_and_steps(scenario, overrides);
   if (overrides.speed_kmh) {

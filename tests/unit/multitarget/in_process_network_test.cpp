@@ -67,7 +67,7 @@ std::vector<KnownStation<TrackSensor>> radars() {
       std::pow(0.2 * std::numbers::pi / 180.0, 2);
   std::vector<KnownStation<TrackSensor>> stations;
   for (std::size_t i = 0; i < sites.size(); ++i) {
-    stations.push_back({static_cast<int>(i + 1), TrackSensor(sites[i]), noise, 1.0});
+    stations.push_back({static_cast<int>(i + 1), TrackSensor(sites[i]), noise, 1.0, {}});
   }
   return stations;
 }
@@ -125,7 +125,7 @@ TEST(MultiTargetNetwork, PeersHoldOnePictureAndTheCenterAgrees) {
     for (Peer& peer : peers) peer.predict();
     center.predict();
     std::vector<Peer::Report> reports;
-    AssignmentWork work;
+    AssociationWork work;
     for (std::size_t s = 0; s < stations.size(); ++s) {
       reports.push_back(peers[s].report(stations[s], scans[s], work));
     }
@@ -137,8 +137,8 @@ TEST(MultiTargetNetwork, PeersHoldOnePictureAndTheCenterAgrees) {
     }
     std::vector<Association> peer_associations;
     for (const auto& report : reports) {
-      for (const auto& update : report.updates) {
-        peer_associations.push_back({report.station_id, update.detection, update.track});
+      for (const ReportedPair& pair : report.pairs) {
+        peer_associations.push_back({report.station_id, pair.detection, pair.track});
       }
     }
     ASSERT_EQ(peer_associations, center.associations()) << "step " << k;

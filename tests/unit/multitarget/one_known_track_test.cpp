@@ -54,8 +54,11 @@ void expect_the_single_target_bits(const std::string& filter_kind) {
   std::vector<KnownStation<Sensor>> stations;
   for (int s = 0; s < kStations; ++s) {
     const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
-    stations.push_back({station.id, make_sensor<Sensor>(station),
-                        station_noise_covariance<3>(scenario, station, kRun), station.weight});
+    stations.push_back({station.id,
+                        make_sensor<Sensor>(station),
+                        station_noise_covariance<3>(scenario, station, kRun),
+                        station.weight,
+                        {}});
   }
   TrackerConfig config;
   config.association.gate_probability = 1.0 - 1e-15;  // the single-target run has no gate
@@ -68,7 +71,7 @@ void expect_the_single_target_bits(const std::string& filter_kind) {
                           initial_estimate<Model>(scenario, truth.states.front(), kRun));
   const std::vector<TargetTruth> aircraft = {TargetTruth{"T0", 0, truth.states}};
 
-  AssignmentWork work;
+  AssociationWork work;
   std::size_t identical = 0;
   for (int k = 0; k < scenario.steps; ++k) {
     if (k > 0) picture.predict();

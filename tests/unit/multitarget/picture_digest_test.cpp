@@ -19,8 +19,8 @@ using Tracks = PeerModelTracks<Model, EkfIncrementRule>;
 using Picture = PeerPicture<Tracks, Sensor>;
 
 Picture empty_picture() {
-  const KnownStation<Sensor> station{1, Sensor(Vector3(0.0, 0.0, 0.0)), Covariance<3>::Identity(),
-                                     1.0};
+  const KnownStation<Sensor> station{
+      1, Sensor(Vector3(0.0, 0.0, 0.0)), Covariance<3>::Identity(), 1.0, {}};
   return Picture(Tracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0)), {station},
                  TrackerConfig{});
 }

@@ -346,7 +346,7 @@ TEST(ScenarioLoader, AutoChoosesTheTreeFromSixteenStationsWhereTheStationsTakeIt
             ExchangeConfig::Kind::kFlat);
   EXPECT_EQ(make_run_plan(ring, stations_and_steps(16, 10)).scenario.exchange.kind,
             ExchangeConfig::Kind::kTree);
-  EXPECT_EQ(make_run_plan(ring, {64, 10, {}, 0, ExchangeConfig::Kind::kFlat, {}, {}})
+  EXPECT_EQ(make_run_plan(ring, {64, 10, {}, 0, ExchangeConfig::Kind::kFlat, {}, {}, {}})
                 .scenario.exchange.kind,
             ExchangeConfig::Kind::kFlat);
 

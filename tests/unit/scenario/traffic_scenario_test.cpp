@@ -7,6 +7,7 @@
 #include <fstream>
 #include <string>
 
+#include "skyfuse/multitarget/detection_prior.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
@@ -144,6 +145,95 @@ TEST(TrafficScenario, TakesTheImmOnItsConstantAccelerationMode) {
     process_noise_std: {position_m: 0.5, velocity_mps: 2.0, acceleration_mps2: 0.5})"),
                                     "test.yaml");
   EXPECT_EQ(s.filter.kind, "imm");
+}
+
+// uam-city.yaml whose tracker names `tracker_lines` before its gate, and whose filter is
+// replaced where given.
+std::string uam_city_tracking(const std::string& tracker_lines, const std::string& filter = "") {
+  std::string text =
+      uam_city_with("  gate_probability: 0.9999", tracker_lines + "\n  gate_probability: 0.9999");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    if (to.empty()) return;
+    text.replace(text.find(from), from.size(), to);
+  };
+  replace(R"(  kind: ekf
+  motion_model:
+    kind: constant_velocity_3d
+    process_noise_std: {position_m: 0.5, velocity_mps: 2.0})",
+          filter);
+  return text;
+}
+
+TEST(TrafficScenario, NamesItsAssociatorAndRefusesOneItCannotRun) {
+  EXPECT_EQ(load_scenario_file(kUamCity).traffic->tracker.association.associator, "gnn");
+  const Scenario jpda = parse_scenario(uam_city_tracking("  associator: jpda"), "test.yaml");
+  EXPECT_EQ(jpda.traffic->tracker.association.associator, "jpda");
+
+  const std::string unknown = rejection(uam_city_tracking("  associator: mht"));
+  EXPECT_NE(unknown.find("unknown associator 'mht'; known: gnn, jpda"), std::string::npos)
+      << unknown;
+  // The IMM's mode likelihoods do not add up over weighed pairs.
+  const std::string imm = rejection(uam_city_tracking("  associator: jpda", R"(  kind: imm
+  motion_model:
+    kind: constant_acceleration_3d
+    process_noise_std: {position_m: 0.5, velocity_mps: 2.0, acceleration_mps2: 0.5})"));
+  EXPECT_NE(imm.find("filter 'imm' cannot fuse the weighed pairs of associator 'jpda'"),
+            std::string::npos)
+      << imm;
+  // A given density is every station's; without one a radar's comes from its clutter and field
+  // of view: 5 a scan over 12 km x 2 pi x pi / 2.
+  const Scenario given = parse_scenario(
+      uam_city_tracking("  associator: jpda\n  clutter_density: 1.0e-9"), "test.yaml");
+  const AssociationConfig& association = given.traffic->tracker.association;
+  EXPECT_EQ(association.clutter_density, 1.0e-9);
+  EXPECT_EQ(detection_prior(given.traffic->detection, "range_azimuth_elevation", association)
+                .clutter_density,
+            1.0e-9);
+  const DetectionPrior radar = detection_prior(jpda.traffic->detection, "range_azimuth_elevation",
+                                               jpda.traffic->tracker.association);
+  EXPECT_DOUBLE_EQ(radar.clutter_density,
+                   5.0 / (12000.0 * 2.0 * std::numbers::pi * std::numbers::pi / 2.0));
+  EXPECT_EQ(radar.detection_probability, 0.9);
+  EXPECT_EQ(radar.gate_probability, 0.9999);
+  // A position fix's clutter, drawn uniform in range and angles, is not uniform in x, y, z: JPDA
+  // needs its density given; GNN never reads it.
+  try {
+    (void)detection_prior(jpda.traffic->detection, "position_velocity",
+                          jpda.traffic->tracker.association);
+    ADD_FAILURE() << "a position fix's clutter density was made up";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("give tracker.clutter_density"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_NO_THROW(
+      (void)detection_prior(jpda.traffic->detection, "position_velocity", AssociationConfig{}));
+}
+
+// --associator swaps the associator of a run of many aircraft and checks it again; a run of one
+// aircraft refuses it.
+TEST(TrafficScenario, AssociatorOverridesTheTrackersOnlyWhereItCanRun) {
+  RunOverrides overrides;
+  overrides.associator = "jpda";
+  const PicturePlan plan = make_picture_plan(load_scenario_file(kUamCity), overrides);
+  EXPECT_EQ(plan.scenario.traffic->tracker.association.associator, "jpda");
+  const auto refusal = [&](auto make) -> std::string {
+    try {
+      make();
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  const std::string one = refusal([&] { make_run_plan(load_default_scenario(), overrides); });
+  EXPECT_NE(one.find("--associator: scenario 'paper000' has one aircraft"), std::string::npos)
+      << one;
+  Scenario imm = parse_scenario(uam_city_tracking("  associator: gnn", R"(  kind: imm
+  motion_model:
+    kind: constant_acceleration_3d
+    process_noise_std: {position_m: 0.5, velocity_mps: 2.0, acceleration_mps2: 0.5})"),
+                                "test.yaml");
+  const std::string part = refusal([&] { make_picture_plan(imm, overrides); });
+  EXPECT_NE(part.find("--associator: filter 'imm' cannot fuse"), std::string::npos) << part;
 }
 
 TEST(TrafficScenario, AOneTargetScenarioTakesNoTrackerSettings) {

@@ -54,6 +54,20 @@ struct GatedPair {
   double cost = 0.0;
 };
 
+/// Rows and columns that share gated pairs, directly or through others: an independent problem.
+/// Its rows, columns and pairs (indices into the pairs given) ascend, so that what is solved
+/// on it, and so its tie-breaks, depends on the numbers only.
+struct PairCluster {
+  std::vector<std::size_t> rows;
+  std::vector<std::size_t> cols;
+  std::vector<std::size_t> pairs;
+};
+
+/// The clusters of `pairs` over `rows` rows and `cols` columns, by their lowest row; rows and
+/// columns in no pair belong to none. Pairs out of range: std::invalid_argument.
+std::vector<PairCluster> cluster_pairs(std::size_t rows, std::size_t cols,
+                                       std::span<const GatedPair> pairs);
+
 /// What solve_gated_assignment decided.
 struct GatedAssignment {
   std::vector<int> column_of_row;   ///< per row: its column, or -1 when it stays unassigned

@@ -1,11 +1,13 @@
 #pragma once
 /// \file
 /// The fused picture as the fusion center keeps it, from the raw scans: the same rule as the
-/// peers' (peer_picture.hpp) — each station's own assignment against the center's predicted
-/// tracks, with the same costs, then one update per track of the detections assigned to it
-/// (ascending station id; multitarget/track_filters.hpp says which), then the same management
-/// and initiation. Its prior agrees with the peers' to rounding only, so a pair at a gate's
-/// edge could be decided otherwise: the associations are kept for comparison.
+/// peers' (peer_picture.hpp) — each station's own association against the center's predicted
+/// tracks, with the same hypotheses and associator, then one update per track of the
+/// detections associated with it (ascending station id; multitarget/track_filters.hpp says
+/// which), a pair of weight w < 1 (JPDA's) entering with its noise R / w, which weighs its
+/// information by w as the peers' weighed sum does; then the same management and initiation. Its
+/// prior agrees with the peers' to rounding only, so a pair at a gate's edge could be decided
+/// otherwise: the associations are kept for comparison.
 
 #include <cstdint>
 #include <span>
@@ -43,19 +45,17 @@ class CentralPicture : public TrackTable<Tracks, Sensor> {
     clear_each(unassociated_, scans.size());
     for (std::size_t s = 0; s < scans.size(); ++s) {
       const KnownStation<Sensor>& station = this->stations()[s];
-      const ScanAssignment assignment =
-          assign_scan(this->estimates(), station.sensor, scans[s], this->gate(),
-                      this->config().association.max_detections_per_scan, work_);
-      for (std::size_t t = 0; t < count; ++t) {
-        const int j = assignment.detection_of_track[t];
-        if (j < 0) continue;
-        const auto detection = static_cast<std::uint32_t>(j);
-        associations_.push_back({station.id, detection, this->tracks()[t].id});
-        observations_[t].push_back(
-            {station.id, station.sensor, scans[s].detections[detection], station.noise});
+      const ScanAssociation association = this->associate(station, scans[s], work_);
+      for (const WeightedPair& pair : association.pairs) {
+        const auto t = static_cast<std::size_t>(pair.track);
+        associations_.push_back({station.id, pair.detection, this->tracks()[t].id});
+        observations_[t].push_back({station.id, station.sensor, scans[s].detections[pair.detection],
+                                    pair.weight == 1.0
+                                        ? station.noise
+                                        : Covariance<kMeasDim>(station.noise / pair.weight)});
         weights_[t].push_back(station.weight);
       }
-      for (const std::uint32_t j : assignment.unassociated) {
+      for (const std::uint32_t j : association.unassociated) {
         unassociated_[s].push_back({j, scans[s].detections[j]});
       }
     }
@@ -70,7 +70,11 @@ class CentralPicture : public TrackTable<Tracks, Sensor> {
         continue;
       }
       hit_[t] = 1;
-      for (const auto& o : observations_[t]) track.updated_by.push_back(o.station_id);
+      for (const auto& o : observations_[t]) {
+        if (track.updated_by.empty() || track.updated_by.back() != o.station_id) {
+          track.updated_by.push_back(o.station_id);
+        }
+      }
     }
     return this->close_round(step, hit_, [&](std::size_t s) {
       return std::span<const UnassociatedDetection<kMeasDim>>(unassociated_[s]);
@@ -89,7 +93,7 @@ class CentralPicture : public TrackTable<Tracks, Sensor> {
     for (auto& list : lists) list.clear();
   }
 
-  AssignmentWork work_;
+  AssociationWork work_;
   std::vector<Association> associations_;
   std::vector<std::vector<StationObservation<Sensor>>> observations_;
   std::vector<std::vector<double>> weights_;

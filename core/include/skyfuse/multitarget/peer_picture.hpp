@@ -2,9 +2,10 @@
 /// \file
 /// The fused picture as every peer keeps it. A round:
 ///  1. every peer predicts every track (TrackTable::predict);
-///  2. each station assigns its own scan to the predicted tracks and turns each pair into its
-///     filter part's contribution against the track's prior (station_report): what it
-///     publishes, with its unassociated detections;
+///  2. each station associates its own scan with the predicted tracks (TrackTable::associate:
+///     the hypothesiser, then the scenario's associator) and turns each track's pairs into its
+///     filter part's contribution against the track's prior (report): what it publishes, with
+///     its unassociated detections;
 ///  3. every peer fuses each track's contributions in ascending station id — a track no
 ///     station updated is a miss — and closes the round: management, then initiation from
 ///     every station's unassociated detections (PeerPicture::fuse).
@@ -14,6 +15,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -23,16 +25,27 @@
 
 namespace skyfuse {
 
+/// One pair of a station's association as it publishes it: its detection `detection` went to
+/// track `track` with `weight` (1 for GNN, the association probability for JPDA).
+struct ReportedPair {
+  TrackId track = 0;
+  std::uint32_t detection = 0;
+  double weight = 1.0;
+  bool operator==(const ReportedPair&) const = default;
+};
+
 /// What a station publishes of a round; `Contribution` is its filter part's for one track.
 template <typename Contribution, int M>
 struct StationReport {
   struct Update {
     TrackId track = 0;
-    std::uint32_t detection = 0;
+    /// The station's contribution to the track: its one detection's, or the sum of its
+    /// detections' weighed by their pairs' weights.
     Contribution contribution;
   };
   int station_id = 0;
   std::vector<Update> updates;                         ///< ascending track id
+  std::vector<ReportedPair> pairs;                     ///< ascending track id, then detection
   std::vector<UnassociatedDetection<M>> unassociated;  ///< ascending detection index
   std::size_t dropped = 0;  ///< detections beyond the assignment's bound, left out
 };
@@ -46,50 +59,60 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
   using Report = StationReport<Contribution, Sensor::kMeasDim>;
   using Table::Table;
 
-  /// Station `station`'s report of `scan` against this (predicted) picture: its assignment,
-  /// each pair's contribution, its unassociated detections.
+  /// Station `station`'s report of `scan` against this (predicted) picture: its association,
+  /// each associated track's contribution, its unassociated detections.
   Report report(const KnownStation<Sensor>& station, const Scan<Sensor::kMeasDim>& scan,
-                AssignmentWork& work) const {
+                AssociationWork& work) const {
     Report report;
     report.station_id = station.id;
-    const ScanAssignment assignment =
-        assign_scan(this->estimates(), station.sensor, scan, this->gate(),
-                    this->config().association.max_detections_per_scan, work);
-    report.dropped = assignment.dropped;
-    for (std::size_t t = 0; t < this->tracks().size(); ++t) {
-      const int j = assignment.detection_of_track[t];
-      if (j < 0) continue;
-      add_update(report, station, this->tracks()[t], static_cast<std::uint32_t>(j),
-                 scan.detections[static_cast<std::size_t>(j)]);
+    const ScanAssociation association = this->associate(station, scan, work);
+    report.dropped = association.dropped;
+    const auto tracks = this->tracks();
+    std::vector<ReportedPair> pairs;
+    pairs.reserve(association.pairs.size());
+    for (const WeightedPair& p : association.pairs) {
+      pairs.push_back({tracks[static_cast<std::size_t>(p.track)].id, p.detection, p.weight});
     }
-    for (const std::uint32_t j : assignment.unassociated) {
+    const std::span<const ReportedPair> all(pairs);
+    for (std::size_t first = 0; first < pairs.size();) {
+      std::size_t end = first;
+      while (end < pairs.size() && pairs[end].track == pairs[first].track) ++end;
+      add_update(report, station, tracks[static_cast<std::size_t>(association.pairs[first].track)],
+                 all.subspan(first, end - first),
+                 std::span<const Vector<Sensor::kMeasDim>>(scan.detections));
+      first = end;
+    }
+    for (const std::uint32_t j : association.unassociated) {
       report.unassociated.push_back({j, scan.detections[j]});
     }
     return report;
   }
 
   /// Station `station`'s report rebuilt from what it published (transport/picture_wire.hpp):
-  /// its detections, its associations (ascending track id) and its unassociated detections'
-  /// indices, each association's contribution computed here against this (predicted) picture's
-  /// track — the station's own arithmetic on the same inputs, so its bits when this picture is
-  /// the station's. Nothing when an association names a track this picture does not hold:
+  /// its detections, its pairs (ascending track id, then detection) and its unassociated
+  /// detections' indices, each track's contribution computed here against this (predicted)
+  /// picture's track — the station's own arithmetic on the same inputs, so its bits when this
+  /// picture is the station's. Nothing when a pair names a track this picture does not hold:
   /// this picture is not the station's. Every index is within `detections` (the receiver
   /// checked it: picture_scan_from_wire).
   std::optional<Report> report_of(const KnownStation<Sensor>& station,
                                   std::span<const Vector<Sensor::kMeasDim>> detections,
-                                  std::span<const std::pair<TrackId, std::uint32_t>> associations,
+                                  std::span<const ReportedPair> pairs,
                                   std::span<const std::uint32_t> unassociated,
                                   std::size_t dropped) const {
     Report report;
     report.station_id = station.id;
     report.dropped = dropped;
     const auto tracks = this->tracks();
-    auto next = tracks.begin();  // associations ascend, as tracks do
-    for (const auto& [id, j] : associations) {
-      next = std::lower_bound(next, tracks.end(), id,
+    auto next = tracks.begin();  // pairs ascend, as tracks do
+    for (auto pair = pairs.begin(); pair != pairs.end();) {
+      auto end = pair;
+      while (end != pairs.end() && end->track == pair->track) ++end;
+      next = std::lower_bound(next, tracks.end(), pair->track,
                               [](const auto& track, TrackId wanted) { return track.id < wanted; });
-      if (next == tracks.end() || next->id != id) return std::nullopt;
-      add_update(report, station, *next, j, detections[j]);
+      if (next == tracks.end() || next->id != pair->track) return std::nullopt;
+      add_update(report, station, *next, std::span<const ReportedPair>(pair, end), detections);
+      pair = end;
     }
     for (const std::uint32_t j : unassociated) report.unassociated.push_back({j, detections[j]});
     return report;
@@ -136,19 +159,41 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
   }
 
  private:
-  // Adds `track`'s contribution from `station`'s detection `j` of value `z` to `report`; nothing
-  // for a pair whose contribution fails numerically (the station publishes none for it, so a
-  // peer rebuilding the report skips it too).
-  static void add_update(Report& report, const KnownStation<Sensor>& station,
-                         const typename Table::TrackType& track, std::uint32_t j,
-                         const Vector<Sensor::kMeasDim>& z) {
+  // Adds `track`'s contribution from `station`'s detections `pairs` (all of this track) to
+  // `report`, with the pairs that made it. A pair whose contribution fails numerically adds
+  // nothing and is not published, so a peer rebuilding the report skips it too. One pair of
+  // weight 1 (GNN's) is its contribution as it is; several are summed, each weighed, which
+  // only a part whose contributions add up (an increment rule) can do: the scenario's loader
+  // refuses an associator that weighs pairs for any other.
+  void add_update(Report& report, const KnownStation<Sensor>& station,
+                  const typename Table::TrackType& track, std::span<const ReportedPair> pairs,
+                  std::span<const Vector<Sensor::kMeasDim>> detections) const {
     typename Report::Update update;
     update.track = track.id;
-    update.detection = j;
-    const StationObservation<Sensor> observation{station.id, station.sensor, z, station.noise};
-    if (Tracks::contribute(track.filter, observation, update.contribution) ==
-        NumericalStatus::kOk) {
+    const auto contribute = [&](const ReportedPair& pair, Contribution& out) {
+      const StationObservation<Sensor> observation{station.id, station.sensor,
+                                                   detections[pair.detection], station.noise};
+      return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;
+    };
+    if (pairs.size() == 1 && pairs.front().weight == 1.0) {
+      if (!contribute(pairs.front(), update.contribution)) return;
       report.updates.push_back(std::move(update));
+      report.pairs.push_back(pairs.front());
+      return;
+    }
+    if constexpr (requires(Contribution & c) { Tracks::add_weighted(c, c, 1.0); }) {
+      bool any = false;
+      Contribution one;
+      for (const ReportedPair& pair : pairs) {
+        if (!contribute(pair, one)) continue;
+        if (!any) Tracks::start_sum(update.contribution, station.id);
+        Tracks::add_weighted(update.contribution, one, pair.weight);
+        report.pairs.push_back(pair);
+        any = true;
+      }
+      if (any) report.updates.push_back(std::move(update));
+    } else {
+      throw std::logic_error("a weighed association reached a filter part that cannot sum it");
     }
   }
 

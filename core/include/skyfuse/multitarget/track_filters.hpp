@@ -76,6 +76,13 @@ class PeerModelTracks : public ModelTracks<Model> {
                               std::span<const double> weights) {
     return fuse_increments(state, IndirectView<Contribution>(contributions), weights, state);
   }
+  /// A station's contribution of several detections (JPDA's): a zero sum, then each
+  /// detection's increment weighed by its pair's weight.
+  static void start_sum(Contribution& sum, int station_id) { sum.set_zero(station_id); }
+  static void add_weighted(Contribution& sum, const Contribution& one, double weight) {
+    sum.delta_information.noalias() += weight * one.delta_information;
+    sum.delta_vector.noalias() += weight * one.delta_vector;
+  }
 };
 
 /// The center's side for the EKF: one stacked update of a track's detections, the peers' sum
@@ -110,19 +117,30 @@ class CenterIncrementTracks : public ModelTracks<Model> {
 
   bool update(State& state, std::span<const StationObservation<Sensor>> observations,
               std::span<const double> weights) {
-    increments_.assign(observations.size(), {});
+    // One increment per station (ascending, as the observations come): a station with several
+    // detections of the track (JPDA's, each with its noise already weighed) adds theirs up.
+    increments_.clear();
+    station_weights_.clear();
+    InformationIncrement<kDim> one;
     for (std::size_t i = 0; i < observations.size(); ++i) {
-      if (PeerModelTracks<Model, Rule>::contribute(state, observations[i], increments_[i]) !=
+      if (PeerModelTracks<Model, Rule>::contribute(state, observations[i], one) !=
           NumericalStatus::kOk) {
         return false;
       }
+      if (!increments_.empty() && increments_.back().station_id == observations[i].station_id) {
+        PeerModelTracks<Model, Rule>::add_weighted(increments_.back(), one, 1.0);
+      } else {
+        increments_.push_back(one);
+        station_weights_.push_back(weights[i]);
+      }
     }
-    return fuse_increments(state, std::span<const InformationIncrement<kDim>>(increments_), weights,
-                           state) == NumericalStatus::kOk;
+    return fuse_increments(state, std::span<const InformationIncrement<kDim>>(increments_),
+                           station_weights_, state) == NumericalStatus::kOk;
   }
 
  private:
   std::vector<InformationIncrement<kDim>> increments_;
+  std::vector<double> station_weights_;
 };
 
 /// A track of the network IMM of mode set `Set` (tracking/network_imm.hpp), in its common

@@ -1,11 +1,12 @@
 #pragma once
 /// \file
 /// The table of tracks every node keeps, peer or center, and what every node does with it the
-/// same way: predict every track, and close a round — record which tracks were hit, confirm
-/// and delete by the management rule, start tracks from the round's unassociated detections
-/// by the initiation rule. How a hit track is updated (peers: summed contributions; the
-/// center: one update of its detections) is the caller's, between the two. `Tracks` says what
-/// a track's filter is (multitarget/track_filters.hpp).
+/// same way: predict every track, associate a station's scan with the predicted tracks by the
+/// tracker's parts (hypothesiser.hpp, then the scenario's associator), and close a round — record
+/// which tracks were hit, confirm and delete by the management rule, start tracks from the round's
+/// unassociated detections by the initiation rule. How a hit track is updated (peers: summed
+/// contributions; the center: one update of its detections) is the caller's, between the two.
+/// `Tracks` says what a track's filter is (multitarget/track_filters.hpp).
 ///
 /// Tracks are kept in ascending id; a new track's id holds its round in the high bits, so new
 /// tracks go at the end and the order never needs sorting.
@@ -13,13 +14,16 @@
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "skyfuse/metrics/chi_square.hpp"
+#include "skyfuse/multitarget/associator.hpp"
+#include "skyfuse/multitarget/hypothesiser.hpp"
 #include "skyfuse/multitarget/initiation.hpp"
 #include "skyfuse/multitarget/picture_digest.hpp"
-#include "skyfuse/multitarget/scan_assignment.hpp"
 #include "skyfuse/multitarget/track.hpp"
 #include "skyfuse/multitarget/track_management.hpp"
 #include "skyfuse/multitarget/tracker_config.hpp"
@@ -28,13 +32,15 @@
 namespace skyfuse {
 
 /// A station as every node knows it: its id, its sensor (of the tracks' estimate), the noise
-/// of its detections and its fusion weight. Ascending id in every list.
+/// of its detections, its fusion weight and what its associator knows of its detections.
+/// Ascending id in every list.
 template <typename Sensor>
 struct KnownStation {
   int id = 0;
   Sensor sensor;
   Covariance<Sensor::kMeasDim> noise;
   double weight = 1.0;
+  DetectionPrior prior;
 };
 
 /// What closing a round did to the table.
@@ -65,7 +71,13 @@ class TrackTable {
       : filters_(std::move(filters)),
         stations_(std::move(stations)),
         config_(config),
-        gate_(chi_square_quantile(config.association.gate_probability, kMeasDim)) {}
+        gate_(chi_square_quantile(config.association.gate_probability, kMeasDim)),
+        associator_(find_associator(config.association.associator)) {
+    if (associator_ == nullptr) {
+      throw std::invalid_argument("tracker.associator: '" + config.association.associator +
+                                  "' is none of " + associator_names());
+    }
+  }
 
   std::span<const TrackType> tracks() const { return tracks_; }
   /// Each track's estimate (tracks()[i]'s), as of the last predict() or close_round().
@@ -76,6 +88,19 @@ class TrackTable {
   Tracks& filters() { return filters_; }
   /// The chi-square(M) gate of a pair.
   double gate() const { return gate_; }
+  const Associator& associator() const { return *associator_; }
+
+  /// Station `station`'s association of its `scan` with this (predicted) picture: the
+  /// hypotheses of its pairs, decided by the scenario's associator.
+  ScanAssociation associate(const KnownStation<Sensor>& station, const Scan<kMeasDim>& scan,
+                            AssociationWork& work) const {
+    hypothesise(estimates(), station.sensor, scan, gate_,
+                config_.association.max_detections_per_scan, associator_->reads_densities,
+                work.hypothesiser, work.hypotheses);
+    ScanAssociation decided;
+    associator_->associate(work.hypotheses, station.prior, config_.association, work, decided);
+    return decided;
+  }
 
   /// A track known before the run (the one aircraft of a single-target scenario), confirmed.
   void add_known_track(TrackId id, const GaussianState<kDim>& estimate) {
@@ -187,6 +212,7 @@ class TrackTable {
   std::vector<KnownStation<Sensor>> stations_;
   TrackerConfig config_;
   double gate_;
+  const Associator* associator_;
   std::vector<TrackType> tracks_;
   std::vector<GaussianState<kDim>> estimates_;
   std::vector<PositionFix> fixes_;

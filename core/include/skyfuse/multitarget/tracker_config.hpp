@@ -1,17 +1,28 @@
 #pragma once
 /// \file
 /// The multi-target tracker's settings, as a scenario's `tracker:` gives them (plain data; the
-/// rules that use them are in scan_assignment.hpp, initiation.hpp and track_management.hpp).
+/// rules that use them are in hypothesiser.hpp, associator.hpp, initiation.hpp and
+/// track_management.hpp).
 
 #include <cstddef>
+#include <optional>
+#include <string>
 
 namespace skyfuse {
 
 struct AssociationConfig {
+  /// The data associator, as the registry names it (multitarget/associator.hpp).
+  std::string associator = "gnn";
   double gate_probability = 0.9999;  ///< of the chi-square(M) gate on a pair's NIS
   /// The most detections of one scan the assignment takes; the rest (a clutter burst) are
   /// counted and left out, so that a round's work stays bounded.
   std::size_t max_detections_per_scan = 4096;
+  /// JPDA: a cluster of competing pairs whose joint events could number more than this is
+  /// decided by GNN instead (and counted), so that a round's work stays bounded.
+  std::size_t jpda_max_events = 100000;
+  /// JPDA: false alarms per unit of measurement volume, every station's; none: each station's
+  /// from its detection settings (multitarget/detection_prior.hpp).
+  std::optional<double> clutter_density;
 };
 
 struct InitiationConfig {

@@ -41,6 +41,10 @@ struct FilterInfo {
   /// station turns one detection into one increment per track by its increment rule does (the
   /// EKF, the unscented filter), and the IMM; the NCRKF's TDOA receivers fix no position.
   bool tracks_many = false;
+  /// Whether its picture takes an associator that weighs pairs (JPDA): a station's
+  /// contributions of several detections must add up, as an increment rule's do; the IMM's
+  /// mode likelihoods do not.
+  bool sums_weighed_pairs = false;
 };
 
 struct FilterConfig;

@@ -1,15 +1,18 @@
 #pragma once
 /// \file
 /// The participants of a run with many aircraft as every node knows them: each station's id,
-/// sensor, noise and weight, the same bits in every process and in the in-process run.
+/// sensor, noise, weight and detection prior, the same bits in every process and in the in-process
+/// run.
 
 #include <cstdint>
 #include <vector>
 
+#include "skyfuse/multitarget/detection_prior.hpp"
 #include "skyfuse/multitarget/track_table.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/scenario/traffic_config.hpp"
 
 namespace skyfuse {
 
@@ -23,7 +26,9 @@ std::vector<KnownStation<Sensor>> known_stations(const Scenario& scenario, int s
     const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
     known.push_back({station.id, make_sensor<Sensor>(station),
                      station_noise_covariance<Sensor::kMeasDim>(scenario, station, run),
-                     station.weight});
+                     station.weight,
+                     detection_prior(station.detection.value_or(scenario.traffic->detection),
+                                     station.sensor.kind, scenario.traffic->tracker.association)});
   }
   return known;
 }

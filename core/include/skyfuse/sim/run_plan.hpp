@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
@@ -59,6 +60,8 @@ struct RunOverrides {
   std::optional<int> fanout;                     ///< default: the scenario's network.fanout
   /// A scenario with generated traffic: how many aircraft (default: the generator's).
   std::optional<int> aircraft;
+  /// A scenario with many aircraft: the tracker's associator (default: the scenario's).
+  std::optional<std::string> associator;
 };
 
 /// The overrides of a run of `stations` stations for `steps` steps; everything else the

@@ -93,6 +93,8 @@ std::vector<std::string> to_arguments(const NodeOptions& options);
 /// `--stations M`, `--steps K`, `--speed-kmh V` and `--mc-run N` into `overrides`: what makes a
 /// RunPlan of the scenario, shared by the nodes and `skyfuse run`, which passes them on.
 void add_plan_options(CLI::App& app, RunOverrides& overrides);
+/// `--associator NAME`: a run of many aircraft with another data associator.
+void add_associator_option(CLI::App& app, std::optional<std::string>& associator);
 
 /// `--exchange flat|tree` and `--fanout K`: the scenario's network block, overridden.
 void add_exchange_options(CLI::App& app, std::optional<ExchangeConfig::Kind>& exchange,

@@ -135,7 +135,7 @@ class PictureRoundScans {
   std::uint64_t empty_digest_ = empty_picture_digest();
   std::uint64_t other_pictures_ = 0;
   Scan<M> reassigned_;  // a parted station's detections, assigned here
-  AssignmentWork work_;
+  AssociationWork work_;
 };
 
 }  // namespace skyfuse::transport

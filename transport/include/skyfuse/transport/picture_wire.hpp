@@ -8,6 +8,7 @@
 /// A receiver takes a sample only whole: one problem anywhere refuses it, named by the first
 /// found, so that a peer never fuses part of a station's round.
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -44,11 +45,12 @@ wire::PictureScan to_wire(const Scan<Sensor::kMeasDim>& scan,
   values.reserve(scan.detections.size() * M);
   for (const Vector<M>& z : scan.detections) values.insert(values.end(), z.data(), z.data() + M);
   std::vector<wire::Association>& associations = sample.associations();
-  associations.reserve(report.updates.size());
-  for (const auto& update : report.updates) {
+  associations.reserve(report.pairs.size());
+  for (const ReportedPair& pair : report.pairs) {
     wire::Association association;
-    association.track_id(update.track);
-    association.detection(update.detection);
+    association.track_id(pair.track);
+    association.detection(pair.detection);
+    association.weight(pair.weight);
     associations.push_back(association);
   }
   std::vector<std::uint32_t>& unassociated = sample.unassociated();
@@ -65,9 +67,9 @@ struct ReceivedScan {
   int station_id = 0;
   std::uint32_t step = 0;
   std::uint64_t picture_digest = 0;
-  std::vector<Vector<M>> detections;                            ///< in scan order
-  std::vector<std::pair<TrackId, std::uint32_t>> associations;  ///< (track, detection index)
-  std::vector<std::uint32_t> unassociated;                      ///< ascending detection index
+  std::vector<Vector<M>> detections;        ///< in scan order
+  std::vector<ReportedPair> associations;   ///< ascending (track, detection index)
+  std::vector<std::uint32_t> unassociated;  ///< ascending detection index
   std::uint32_t dropped = 0;
 
   bool operator==(const ReceivedScan&) const = default;
@@ -77,10 +79,10 @@ struct ReceivedScan {
 /// or why it is refused:
 ///  - kOutOfRange: another sensor kind or measurement dimension, values not a whole number of
 ///    detections, more detections than the bound, an index beyond the scan, associations not in
-///    strictly ascending track id (a track twice), unassociated indices not strictly ascending,
-///    a detection both associated and unassociated or associated twice, or a detection its
-///    sensor cannot report;
-///  - kNonFinite: a value that is not finite.
+///    strictly ascending (track id, detection) (a pair twice), a weight not in (0, 1], a
+///    detection whose weights sum past 1, unassociated indices not strictly ascending, a
+///    detection both associated and unassociated, or a detection its sensor cannot report;
+///  - kNonFinite: a value or a weight that is not finite.
 /// Whether each track id is one of the receiver's picture is the receiver's to check.
 template <typename Sensor>
 std::pair<std::optional<ReceivedScan<Sensor::kMeasDim>>, std::optional<DropKind>>
@@ -107,23 +109,27 @@ picture_scan_from_wire(const wire::PictureScan& sample, std::size_t max_detectio
     if (const auto why = Sensor::check_reported(z)) return refuse(*why);  // kNonFinite too
     received.detections.push_back(z);
   }
-  std::vector<char> used(count, 0);
-  const auto take = [&](std::uint32_t j) {
-    if (j >= count || used[j]) return false;
-    used[j] = 1;
-    return true;
-  };
+  // Each detection's weights over the tracks it went to sum to at most 1 (a probability; 1 for
+  // GNN's one track), and an unassociated detection went to none.
+  constexpr double kRoundingOfASum = 1e-9;
+  std::vector<double> taken(count, 0.0);
   received.associations.reserve(sample.associations().size());
   for (const wire::Association& a : sample.associations()) {
     const bool ascending =
-        received.associations.empty() || a.track_id() > received.associations.back().first;
-    if (!ascending || !take(a.detection())) return refuse(DropKind::kOutOfRange);
-    received.associations.emplace_back(a.track_id(), a.detection());
+        received.associations.empty() ||
+        std::pair(a.track_id(), a.detection()) >
+            std::pair(received.associations.back().track, received.associations.back().detection);
+    if (!ascending || a.detection() >= count) return refuse(DropKind::kOutOfRange);
+    if (!std::isfinite(a.weight())) return refuse(DropKind::kNonFinite);
+    double& sum = taken[a.detection()];
+    sum += a.weight();
+    if (!(a.weight() > 0.0) || sum > 1.0 + kRoundingOfASum) return refuse(DropKind::kOutOfRange);
+    received.associations.push_back({a.track_id(), a.detection(), a.weight()});
   }
   received.unassociated.reserve(sample.unassociated().size());
   for (const std::uint32_t j : sample.unassociated()) {
     const bool ascending = received.unassociated.empty() || j > received.unassociated.back();
-    if (!ascending || !take(j)) return refuse(DropKind::kOutOfRange);
+    if (!ascending || j >= count || taken[j] != 0.0) return refuse(DropKind::kOutOfRange);
     received.unassociated.push_back(j);
   }
   return {std::move(received), std::nullopt};

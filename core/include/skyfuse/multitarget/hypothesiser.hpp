@@ -1,13 +1,15 @@
 #pragma once
 /// \file
-/// One station's global-nearest-neighbour assignment of its own detections to the common
-/// predicted tracks: at most one detection per track and one track per detection, at least
-/// total cost, costs only from the track's prior and the station's own sensor. Because no
-/// station's assignment constrains another's, the union of the stations' assignments is the
-/// joint one, which is what keeps the network's picture the center's.
+/// The hypothesiser: the part of the tracker that says which (track, detection) pairs of one
+/// station's scan are possible and what each costs, before any associator decides. Costs come
+/// only from the track's prior and the station's own sensor, so every peer computes the same
+/// hypotheses from the same predicted picture and the same published scan.
 ///
-/// The cost of a pair is its normalised innovation squared d^2 = nu^T S^-1 nu, S = H P H^T + R;
-/// a pair enters only within the chi-square gate g, and a track may stay unassigned at cost g.
+/// A pair (t, j) is a hypothesis when its normalised innovation squared d^2 = nu^T S^-1 nu,
+/// S = H P H^T + R, lies within the chi-square gate g; it carries d^2 (GNN's cost) and the log
+/// of its Gaussian density N(nu; 0, S) (JPDA's likelihood). Every track also has the
+/// missed-detection hypothesis, whose GNN cost is g (multitarget/associators/).
+///
 /// A coarse pre-gate on positions (detections sorted by east coordinate; a track looks only at
 /// those within a radius of its own) keeps the work near linear in tracks and detections; the
 /// radius, sqrt(g) times the sum of the two position standard deviations, bounds the exact
@@ -16,14 +18,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <span>
 #include <vector>
 
-#include "skyfuse/association/assignment.hpp"
 #include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/multitarget/initiation.hpp"
 #include "skyfuse/multitarget/scan.hpp"
-#include "skyfuse/multitarget/track.hpp"
 
 namespace skyfuse {
 
@@ -31,17 +32,27 @@ namespace skyfuse {
 /// with every track.
 inline constexpr double kDegenerateFixStdM = 1e12;
 
-/// What one station's assignment decided.
-struct ScanAssignment {
-  std::vector<int> detection_of_track;      ///< per track (picture order): a detection, or -1
-  std::vector<std::uint32_t> unassociated;  ///< detections no track took, ascending
-  std::size_t dropped = 0;                  ///< detections beyond max_detections_per_scan
-  std::size_t gated_pairs = 0;
-  std::size_t largest_cluster = 0;
+/// One gated pair: track `track` (its index in picture order) may have produced detection
+/// `detection` (its index in the scan).
+struct Hypothesis {
+  int track = 0;
+  int detection = 0;
+  double nis = 0.0;          ///< d^2 = nu^T S^-1 nu
+  double log_density = 0.0;  ///< log N(nu; 0, S), where asked for; else 0
 };
 
-/// Reusable buffers of assign_scan: a round allocates only when the picture grows.
-struct AssignmentWork {
+/// Every gated pair of one station's scan against the predicted tracks, in the order the
+/// pre-gate finds them (track by track; within a track, by the detections' east coordinate).
+struct Hypotheses {
+  std::size_t tracks = 0;
+  std::size_t detections = 0;  ///< those taken: at most the bound on a scan
+  std::size_t dropped = 0;     ///< detections beyond the bound, left out and counted
+  double gate = 0.0;           ///< g: the chi-square quantile of the gate
+  std::vector<Hypothesis> pairs;
+};
+
+/// Reusable buffers of the hypothesiser: a round allocates only when the picture grows.
+struct HypothesiserWork {
   struct Candidate {
     double east;
     double std_m;
@@ -49,21 +60,24 @@ struct AssignmentWork {
     std::uint32_t index;
   };
   std::vector<Candidate> candidates;
-  std::vector<association::GatedPair> pairs;
-  std::vector<double> unassigned_cost;
 };
 
-/// Assigns `scan` (the station's detections; `sensor` its sensor, of the tracks' state
-/// dimension N) to the tracks' `priors` with the gate threshold `gate` (chi-square(M)
-/// quantile).
+/// The hypotheses of `scan` (the station's detections; `sensor` its sensor, of the tracks'
+/// state dimension N) against the tracks' `priors`, within the gate `gate` (chi-square(M)
+/// quantile), taking at most `max_detections` detections, each pair's log-density computed
+/// only `with_densities` (an associator that reads them: GNN's costs need none). Written into
+/// `out`, whose storage is kept from round to round.
 template <typename Sensor, int N>
-ScanAssignment assign_scan(std::span<const GaussianState<N>> priors, const Sensor& sensor,
-                           const Scan<Sensor::kMeasDim>& scan, double gate,
-                           std::size_t max_detections, AssignmentWork& work) {
+void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
+                 const Scan<Sensor::kMeasDim>& scan, double gate, std::size_t max_detections,
+                 bool with_densities, HypothesiserWork& work, Hypotheses& out) {
   constexpr int M = Sensor::kMeasDim;
-  ScanAssignment result;
   const std::size_t taken = std::min(scan.detections.size(), max_detections);
-  result.dropped = scan.detections.size() - taken;
+  out.tracks = priors.size();
+  out.detections = taken;
+  out.dropped = scan.detections.size() - taken;
+  out.gate = gate;
+  out.pairs.clear();
 
   // The detections' positions, by east coordinate, and how uncertain each is.
   work.candidates.clear();
@@ -81,7 +95,7 @@ ScanAssignment assign_scan(std::span<const GaussianState<N>> priors, const Senso
   });
 
   const double reach = std::sqrt(gate);
-  work.pairs.clear();
+  const double log_2pi_m = M * std::log(2.0 * std::numbers::pi);
   for (std::size_t t = 0; t < priors.size(); ++t) {
     const GaussianState<N>& prior = priors[t];
     const Vector3 p = prior.mean.template head<3>();
@@ -95,29 +109,22 @@ ScanAssignment assign_scan(std::span<const GaussianState<N>> priors, const Senso
     if (!s_factor.compute(s)) continue;  // a track with no usable S takes nothing this round
     auto from = std::lower_bound(work.candidates.begin(), work.candidates.end(), p.x() - radius,
                                  [](const auto& c, double east) { return c.east < east; });
+    double log_normaliser = 0.0;  // -1/2 log det(2 pi S), once a pair of this track gates
+    bool normalised = false;
     for (auto c = from; c != work.candidates.end() && c->east <= p.x() + radius; ++c) {
       if ((c->position - p).norm() > reach * (track_std + c->std_m)) continue;
       const Vector<M> nu = sensor.residual(scan.detections[c->index], predicted);
       const double nis = nu.dot(s_factor.solve(nu));
       if (nis <= gate) {
-        work.pairs.push_back({static_cast<int>(t), static_cast<int>(c->index), nis});
+        if (with_densities && !normalised) {
+          log_normaliser = -0.5 * (log_2pi_m + s_factor.log_determinant());
+          normalised = true;
+        }
+        out.pairs.push_back(
+            {static_cast<int>(t), static_cast<int>(c->index), nis, log_normaliser - 0.5 * nis});
       }
     }
   }
-  result.gated_pairs = work.pairs.size();
-  work.unassigned_cost.assign(priors.size(), gate);
-  const association::GatedAssignment solved =
-      association::solve_gated_assignment(priors.size(), taken, work.pairs, work.unassigned_cost);
-  result.detection_of_track = solved.column_of_row;
-  result.largest_cluster = solved.largest_cluster;
-  std::vector<char> associated(taken, 0);
-  for (const int j : result.detection_of_track) {
-    if (j >= 0) associated[static_cast<std::size_t>(j)] = 1;
-  }
-  for (std::uint32_t j = 0; j < taken; ++j) {
-    if (!associated[j]) result.unassociated.push_back(j);
-  }
-  return result;
 }
 
 }  // namespace skyfuse

@@ -1,0 +1,57 @@
+#include "skyfuse/scenario/associator_choice.hpp"
+
+#include <fmt/format.h>
+
+#include <memory>
+#include <stdexcept>
+
+#include "skyfuse/multitarget/associator.hpp"
+#include "skyfuse/multitarget/detection_prior.hpp"
+#include "skyfuse/registry/filter_info.hpp"
+#include "skyfuse/scenario/traffic_config.hpp"
+
+namespace skyfuse {
+
+void check_associator(const Scenario& scenario) {
+  const AssociationConfig& association = scenario.traffic->tracker.association;
+  const Associator* associator = find_associator(association.associator);
+  if (associator == nullptr) {
+    throw std::invalid_argument(fmt::format("unknown associator '{}'; known: {}",
+                                            association.associator, associator_names()));
+  }
+  const FilterInfo filter = *find_filter(scenario.filter);
+  if (associator->weighs_pairs && !filter.sums_weighed_pairs) {
+    throw std::invalid_argument(fmt::format(
+        "filter '{}' cannot fuse the weighed pairs of associator '{}' (its contributions do not "
+        "add up); use a filter with an increment rule (ekf, ukf) or associator 'gnn'",
+        filter.kind, associator->name));
+  }
+  for (const StationConfig& station : scenario.stations) {
+    try {
+      (void)detection_prior(station.detection.value_or(scenario.traffic->detection),
+                            station.sensor.kind, association);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("station {}: {}", station.id, e.what()));
+    }
+  }
+}
+
+void set_associator(Scenario& scenario, const std::string& name, const char* option) {
+  if (!scenario.has_many_targets()) {
+    throw std::invalid_argument(fmt::format(
+        "{}: scenario '{}' has one aircraft, known before the run: there is nothing to associate",
+        option, scenario.name));
+  }
+  auto traffic = std::make_shared<TrafficConfig>(*scenario.traffic);
+  traffic->tracker.association.associator = name;
+  Scenario changed = scenario;
+  changed.traffic = std::move(traffic);
+  try {
+    check_associator(changed);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format("{}: {}", option, e.what()));
+  }
+  scenario = std::move(changed);
+}
+
+}  // namespace skyfuse
