@@ -94,7 +94,15 @@ function subscribeToEverything(port) {
     p.__log_time = timestamp;
     payloads.get(bySubscription.get(subscriptionId).topic).push(p);
   });
-  return { client, channels, payloads };
+  return { client, channels, payloads, drained: drainer(client) };
+}
+
+// The server closes every connection when the run ends, after its last message; the run's
+// process may be seen to exit before a client has read what is still on its socket. The
+// function returned waits for the close (10 s at most).
+function drainer(client) {
+  const closed = new Promise((resolve) => client.on("close", resolve));
+  return () => Promise.race([closed, new Promise((resolve) => setTimeout(resolve, 10000))]);
 }
 
 test("a live run streams every channel to its last round, and ignores what it does not serve", async () => {
@@ -102,7 +110,7 @@ test("a live run streams every channel to its last round, and ignores what it do
   try {
     const recording = join(dir, "run.mcap");
     const { port, exited } = startLiveRun(dir, { record: recording });
-    const { client, channels, payloads } = subscribeToEverything(await port);
+    const { client, channels, payloads, drained } = subscribeToEverything(await port);
     const statuses = [];
     let serverInfo = null;
     client.on("serverInfo", (info) => { serverInfo = info; });
@@ -120,6 +128,7 @@ test("a live run streams every channel to its last round, and ignores what it do
 
     const { code, output } = await exited;
     assert.equal(code, 0, output);
+    await drained();
     client.close();
     rude.close();
 
@@ -210,6 +219,7 @@ test("a stream capped to a display thins the scenes and their trails, and ends o
     // Lock-step runs its rounds far faster than the 30 scenes and 5 trails a second sent.
     const { port, exited } = startLiveRun(dir, { runSteps, sceneHz: 30 });
     const client = new FoxgloveClient({ ws: connect(await port) });
+    const drained = drainer(client);
     const topics = new Map();
     client.on("advertise", (advertised) => {
       for (const c of advertised) {
@@ -225,6 +235,7 @@ test("a stream capped to a display thins the scenes and their trails, and ends o
     });
     const { code, output } = await exited;
     assert.equal(code, 0, output);
+    await drained();
     client.close();
 
     const trailsOf = (scene) => scene.entities.filter((e) => e.id.startsWith("trail/")).map((e) => e.id).sort();
@@ -252,8 +263,9 @@ test("a live run of many aircraft streams the picture of every round, as its rec
     const runSteps = 300;
     const { port, exited } = startLiveRun(dir, { runSteps, record: recording,
       scenario: join(scenarios, "uam-city.yaml") });
-    const { client, channels, payloads } = subscribeToEverything(await port);
+    const { client, channels, payloads, drained } = subscribeToEverything(await port);
     const { code, output } = await exited;
+    await drained();
     assert.equal(code, 0, output);
     client.close();
 
