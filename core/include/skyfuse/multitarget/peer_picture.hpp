@@ -68,17 +68,14 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
     const ScanAssociation association = this->associate(station, scan, work);
     report.dropped = association.dropped;
     const auto tracks = this->tracks();
-    std::vector<ReportedPair> pairs;
-    pairs.reserve(association.pairs.size());
-    for (const WeightedPair& p : association.pairs) {
-      pairs.push_back({tracks[static_cast<std::size_t>(p.track)].id, p.detection, p.weight});
-    }
-    const std::span<const ReportedPair> all(pairs);
+    const std::span<const WeightedPair> pairs(association.pairs);
+    report.updates.reserve(pairs.size());
+    report.pairs.reserve(pairs.size());
     for (std::size_t first = 0; first < pairs.size();) {
       std::size_t end = first;
       while (end < pairs.size() && pairs[end].track == pairs[first].track) ++end;
-      add_update(report, station, tracks[static_cast<std::size_t>(association.pairs[first].track)],
-                 all.subspan(first, end - first),
+      add_update(report, station, tracks[static_cast<std::size_t>(pairs[first].track)],
+                 pairs.subspan(first, end - first),
                  std::span<const Vector<Sensor::kMeasDim>>(scan.detections));
       first = end;
     }
@@ -165,12 +162,14 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
   // weight 1 (GNN's) is its contribution as it is; several are summed, each weighed, which
   // only a part whose contributions add up (an increment rule) can do: the scenario's loader
   // refuses an associator that weighs pairs for any other.
+  // `Pair`: a WeightedPair (the station's own association) or a ReportedPair (a published one).
+  template <typename Pair>
   void add_update(Report& report, const KnownStation<Sensor>& station,
-                  const typename Table::TrackType& track, std::span<const ReportedPair> pairs,
+                  const typename Table::TrackType& track, std::span<const Pair> pairs,
                   std::span<const Vector<Sensor::kMeasDim>> detections) const {
     typename Report::Update update;
     update.track = track.id;
-    const auto contribute = [&](const ReportedPair& pair, Contribution& out) {
+    const auto contribute = [&](const Pair& pair, Contribution& out) {
       const StationObservation<Sensor> observation{station.id, station.sensor,
                                                    detections[pair.detection], station.noise};
       return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;
@@ -178,17 +177,17 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
     if (pairs.size() == 1 && pairs.front().weight == 1.0) {
       if (!contribute(pairs.front(), update.contribution)) return;
       report.updates.push_back(std::move(update));
-      report.pairs.push_back(pairs.front());
+      report.pairs.push_back({track.id, pairs.front().detection, pairs.front().weight});
       return;
     }
     if constexpr (requires(Contribution & c) { Tracks::add_weighted(c, c, 1.0); }) {
       bool any = false;
       Contribution one;
-      for (const ReportedPair& pair : pairs) {
+      for (const Pair& pair : pairs) {
         if (!contribute(pair, one)) continue;
         if (!any) Tracks::start_sum(update.contribution, station.id);
         Tracks::add_weighted(update.contribution, one, pair.weight);
-        report.pairs.push_back(pair);
+        report.pairs.push_back({track.id, pair.detection, pair.weight});
         any = true;
       }
       if (any) report.updates.push_back(std::move(update));

@@ -10,6 +10,7 @@ void associate_gnn(const Hypotheses& hypotheses, const DetectionPrior& /*prior*/
   const association::GatedAssignment solved = association::solve_gated_assignment(
       hypotheses.tracks, hypotheses.detections, work.gated, work.unassigned_cost);
   out.largest_cluster = solved.largest_cluster;
+  out.pairs.reserve(hypotheses.tracks);
   std::vector<char> associated(hypotheses.detections, 0);
   for (std::size_t t = 0; t < hypotheses.tracks; ++t) {
     const int j = solved.column_of_row[t];
