@@ -8,8 +8,11 @@
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <tuple>
+#include <vector>
 
+#include "skyfuse/multitarget/associator.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -53,10 +56,14 @@ void add_plan_options(CLI::App& app, RunOverrides& overrides) {
 }
 
 void add_associator_option(CLI::App& app, std::optional<std::string>& associator) {
+  // The registry's names, so that a new associator needs no line here.
+  std::vector<std::string> names;
+  for (const Associator& a : associators()) names.emplace_back(a.name);
   app.add_option("--associator", associator,
-                 "A scenario with many aircraft: the tracker's data associator, gnn or jpda "
-                 "(default: the scenario's tracker.associator, gnn if it gives none)")
-      ->check(CLI::IsMember({"gnn", "jpda"}));
+                 "A scenario with many aircraft: the tracker's data associator, one of " +
+                     associator_names() +
+                     " (default: the scenario's tracker.associator, gnn if it gives none)")
+      ->check(CLI::IsMember(names));
 }
 
 void add_exchange_options(CLI::App& app, std::optional<ExchangeConfig::Kind>& exchange,

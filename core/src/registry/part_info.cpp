@@ -34,6 +34,12 @@ std::vector<SensorInfo> describe(SensorList<Sensors...> /*list*/) {
                      FixesPosition<Sensors<kAnyStateDim>>}...};
 }
 
+// Whether a filter part's station turns one detection into one increment by an increment rule.
+template <typename Filter>
+constexpr bool kHasIncrementRule = requires {
+  typename Filter::IncrementRule;
+};
+
 template <typename... Filters>
 std::vector<FilterInfo> describe(FilterList<Filters...> /*list*/) {
   return {FilterInfo{
@@ -42,15 +48,9 @@ std::vector<FilterInfo> describe(FilterList<Filters...> /*list*/) {
       std::vector<std::string_view>(Filters::kModeNames.begin(), Filters::kModeNames.end()),
       Filters::kNodesTakeTree, Filters::kNeesDof,
       // A picture of many aircraft: parts with an increment rule, and the IMM (its modes).
-      requires {typename Filters::IncrementRule;
-}
-|| !Filters::kModeNames.empty(),
-    // A weighed association (JPDA's): a station's contributions must add up, as increments do.
-    requires {typename Filters::IncrementRule;
-}
-}  // namespace
-...
-};  // namespace skyfuse
+      kHasIncrementRule<Filters> || !Filters::kModeNames.empty(),
+      // A weighed association (JPDA's): a station's contributions must add up, as increments do.
+      kHasIncrementRule<Filters>}...};
 }
 
 // Each kind once, in registry order.
