@@ -70,8 +70,8 @@ int main(int argc, char** argv) {
   } catch (const RunStoppedEarly& e) {
     std::fprintf(stderr, "skyfuse: run stopped early (%s): %s\n",
                  std::string(to_string(e.cause())).c_str(), e.what());
-    if (!e.summary().host_verdict.empty()) {
-      std::fprintf(stderr, "skyfuse: %s\n", e.summary().host_verdict.c_str());
+    if (!e.host_verdict().empty()) {
+      std::fprintf(stderr, "skyfuse: %s\n", e.host_verdict().c_str());
     }
     return exit_status_of(e);
   } catch (const RunAborted& e) {

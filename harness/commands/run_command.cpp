@@ -53,6 +53,31 @@ LiveEndpoint parse_live_endpoint(const std::string& text) {
   return e;
 }
 
+// Runs `execute` (a run of either kind) and prints its table (`print_table`), where its files
+// are and, for a run stopped once its rounds began, how many steps it recorded — then rethrows
+// the stop, which main reports.
+template <typename Summary, typename Execute>
+Summary report_run(const RunOptions& o, void (*print_table)(const Summary&, std::FILE*),
+                   const Execute& execute) {
+  const auto report = [&](const Summary& summary) {
+    print_table(summary, stdout);
+    fmt::print("results in {}{}\n", o.out_dir,
+               summary.stop_cause ? fmt::format(" (the {} of {} steps recorded before the run "
+                                                "stopped)",
+                                                summary.steps, summary.steps_planned)
+                                  : "");
+    if (!o.record_path.empty()) fmt::print("recording in {}\n", o.record_path);
+  };
+  try {
+    Summary summary = execute();
+    report(summary);
+    return summary;
+  } catch (const StoppedEarlyWith<Summary>& e) {
+    report(e.summary());  // every file is written; main says why the run stopped
+    throw;
+  }
+}
+
 }  // namespace
 
 void add_run_command(CLI::App& app, RunOptions& o) {
@@ -152,10 +177,8 @@ int run_run(const RunOptions& given) {
           given, static_cast<std::size_t>(given.node.overrides.stations.value_or(
                      static_cast<int>(scenario.stations.size())))));
   if (scenario.has_many_targets()) {
-    const PictureRunSummary summary = execute_picture_run(o, scenario);
-    print_picture_run_table(summary, stdout);
-    fmt::print("results in {}\n", o.out_dir);
-    if (!o.record_path.empty()) fmt::print("recording in {}\n", o.record_path);
+    const PictureRunSummary summary =
+        report_run(o, print_picture_run_table, [&] { return execute_picture_run(o, scenario); });
     // Without faults every picture is its in-process twin's; with loss, a kill or the wall
     // clock (a late scan) the peers must agree again by the end.
     const bool held = summary.faults || summary.realtime
@@ -170,21 +193,7 @@ int run_run(const RunOptions& given) {
   }
   const RunPlan plan = load_run_plan(o);
   warn_if_receive_buffers_too_small(plan.stations);
-  const auto report = [&](const RunSummary& summary) {
-    print_run_table(summary, stdout);
-    fmt::print("results in {}{}\n", o.out_dir,
-               summary.stop_cause ? fmt::format(" (the {} of {} steps recorded before the run "
-                                                "stopped)",
-                                                summary.steps, summary.steps_planned)
-                                  : "");
-    if (!o.record_path.empty()) fmt::print("recording in {}\n", o.record_path);
-  };
-  try {
-    report(execute_run(o, plan));
-  } catch (const RunStoppedEarly& e) {
-    report(e.summary());  // every file is written; main says why the run stopped
-    throw;
-  }
+  report_run(o, print_run_table, [&] { return execute_run(o, plan); });
   return 0;
 }
 

@@ -5,12 +5,10 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <map>
 #include <string>
-#include <vector>
 
+#include "report/channel_file.hpp"
 #include "report/picture_channels.hpp"
-#include "skyfuse/record/mcap_writer.hpp"
 
 namespace skyfuse::harness {
 
@@ -23,12 +21,11 @@ class PictureRecording {
   void add(const PictureFrame& frame);
   /// summary.json's text after the last of `steps` steps; ends the file.
   void finish(std::string summary_json, int steps);
-  std::uint64_t message_count() const { return writer_.message_count(); }
+  std::uint64_t message_count() const { return file_.message_count(); }
 
  private:
   PictureChannels channels_;
-  record::McapWriter writer_;
-  std::vector<std::uint16_t> channel_ids_;
+  ChannelFile file_;
 };
 
 }  // namespace skyfuse::harness

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <string_view>
 
@@ -24,8 +25,11 @@ DropCounts refused_by_kind(const PictureRunSummary& s) {
 void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
   fmt::print(out,
              "many aircraft over DDS: scenario '{}', {} station processes and the center, {} "
-             "rounds, {}\n",
+             "rounds{}, {}\n",
              s.scenario, s.stations, s.steps,
+             s.stop_cause ? fmt::format(" (of {}: stopped early, {})", s.steps_planned,
+                                        to_string(*s.stop_cause))
+                          : std::string(),
              s.fanout > 0 ? fmt::format("tree exchange (clusters of {})", s.fanout)
                           : std::string("flat exchange"));
   const auto row = [&](std::string_view what, const std::string& value) {
@@ -54,7 +58,8 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
                   s.max_state_gap_center_vs_p2p, s.rounds_center_tracks_differ));
   row(s.realtime ? "rounds in time" : "rounds with every scan fused",
       fmt::format(
-          "{} of {} ({:.1f} %){}", s.rounds_in_time, s.steps, 100.0 * s.rounds_in_time / s.steps,
+          "{} of {} ({:.1f} %){}", s.rounds_in_time, s.steps,
+          100.0 * s.rounds_in_time / std::max(s.steps, 1),
           s.rounds_without_a_picture > 0
               ? fmt::format("; {} rounds without any station's picture", s.rounds_without_a_picture)
               : std::string()));
@@ -70,7 +75,8 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
   row("tracks at the end", fmt::format("{} ({} confirmed)", s.tracks_at_end, s.confirmed_at_end));
   row("GOSPA, mean over rounds", fmt::format("{:.2f} (the in-process run, without faults: {:.2f})",
                                              s.gospa_mean, s.in_process_gospa_mean));
-  row("discovery", fmt::format("{:.2f} s", s.discovery_s));
+  row("discovery", fmt::format("{:.2f} s, then {:.2f} s until quiet{}", s.discovery_s, s.settle_s,
+                               s.settled_quiet ? "" : " (not quiet)"));
   row("rounds per second", fmt::format("{:.0f}", s.rounds_per_s));
   row("datagrams received per round",
       s.datagrams_per_round
@@ -101,13 +107,16 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
       {"fanout", summary.fanout},
       {"stations_per_process", summary.stations_per_process},
       {"steps", summary.steps},
+      {"steps_planned", summary.steps_planned},
+      {"ended", summary.stop_cause ? to_string(*summary.stop_cause) : "complete"},
       {"run_id", run_id},
       {"peers_identical", summary.peers_identical},
       {"first_divergent_step", summary.first_divergent_step},
       {"rounds_peers_apart", summary.rounds_peers_apart},
       {"realtime", summary.realtime},
       {"rounds_in_time", summary.rounds_in_time},
-      {"share_of_rounds_in_time", static_cast<double>(summary.rounds_in_time) / summary.steps},
+      {"share_of_rounds_in_time",
+       static_cast<double>(summary.rounds_in_time) / std::max(summary.steps, 1)},
       {"rounds_without_a_picture", summary.rounds_without_a_picture},
       {"last_round_peers_apart", summary.last_round_peers_apart},
       {"loss", summary.loss},
@@ -124,6 +133,9 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
       {"max_state_gap_center_vs_p2p", summary.max_state_gap_center_vs_p2p},
       {"rounds_center_tracks_differ", summary.rounds_center_tracks_differ},
       {"discovery_s", summary.discovery_s},
+      {"settle_s", summary.settle_s},
+      {"settled_quiet", summary.settled_quiet},
+      {"node_peak_resident_mib", summary.node_peak_resident_mib},
       {"rounds_per_s", summary.rounds_per_s},
       {"datagrams_received_per_round", number_or_null(summary.datagrams_per_round)},
       {"cpu_ms_per_station_round", summary.cpu_ms_per_station_round},
@@ -136,7 +148,10 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
         {"max_state_gap_center_vs_p2p", twin.max_state_gap},
         {"association_flips", twin.association_flips},
         {"gospa_mean", twin.score.gospa_mean}}}};
-  return json.dump(2);
+  nlohmann::json full = json;
+  if (!summary.end_detail.empty()) full["end_detail"] = summary.end_detail;
+  if (!summary.node_exits.empty()) full["node_exits"] = summary.node_exits;
+  return full.dump(2);
 }
 
 }  // namespace skyfuse::harness

@@ -2,34 +2,23 @@
 
 #include <fmt/format.h>
 
-#include <map>
 #include <stdexcept>
 
+#include "report/channel_file.hpp"
 #include "report/run_channels.hpp"
 #include "skyfuse/record/mcap_summary.hpp"
-#include "skyfuse/record/mcap_writer.hpp"
 
 namespace skyfuse::harness {
 
 void write_recording(const RunRecorder& recorder, std::string summary_json,
                      const std::filesystem::path& path, std::uint64_t epoch_ns) {
   RunChannels channels(recorder, epoch_ns);
-  record::McapWriter writer(path);
-  std::map<std::string, std::uint16_t> schema_ids;  // one schema record per name
-  std::vector<std::uint16_t> channel_ids;
-  for (const ChannelSpec& spec : channels.specs()) {
-    auto [it, added] = schema_ids.try_emplace(spec.schema_name, 0);
-    if (added) it->second = writer.add_schema(spec.schema_name, "jsonschema", spec.schema);
-    channel_ids.push_back(writer.add_channel(it->second, spec.topic, "json"));
-  }
-  const auto write = [&](const ChannelMessage& m) {
-    writer.write(channel_ids[m.channel], m.log_time_ns, m.json);
-  };
+  ChannelFile file(path, channels.specs());
   for (const RoundRecord& round : recorder.rounds()) {
-    for (const ChannelMessage& m : channels.round_messages(round)) write(m);
+    for (const ChannelMessage& m : channels.round_messages(round)) file.write(m);
   }
-  write(channels.summary_message(std::move(summary_json)));
-  writer.close();
+  file.write(channels.summary_message(std::move(summary_json)));
+  file.close();
 }
 
 void check_viewable_recording(const std::filesystem::path& path) {

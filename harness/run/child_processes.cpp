@@ -75,8 +75,10 @@ void ChildProcesses::kill_now(const std::string& name) {
   if (it == children_.end()) throw std::runtime_error(fmt::format("no live child called {}", name));
   kill(it->pid, SIGKILL);
   int status = 0;
-  while (waitpid(it->pid, &status, 0) < 0 && errno == EINTR) {
+  rusage usage{};
+  while (wait4(it->pid, &status, 0, &usage) < 0 && errno == EINTR) {
   }
+  add_cpu(usage);
   children_.erase(it);
 }
 
@@ -84,8 +86,10 @@ std::vector<ChildExit> ChildProcesses::poll() {
   std::vector<ChildExit> now_exited;
   for (auto it = children_.begin(); it != children_.end();) {
     int status = 0;
-    const pid_t r = waitpid(it->pid, &status, WNOHANG);
+    rusage usage{};
+    const pid_t r = wait4(it->pid, &status, WNOHANG, &usage);
     if (r == it->pid) {
+      add_cpu(usage);
       now_exited.push_back({it->name, it->pid, status});
       exited_.push_back(now_exited.back());
       it = children_.erase(it);
@@ -113,6 +117,13 @@ void ChildProcesses::terminate_all(std::chrono::milliseconds grace) {
   if (wait_all(grace)) return;
   for (const Child& c : children_) kill(c.pid, SIGKILL);
   wait_all(std::chrono::milliseconds(5000));
+}
+
+void ChildProcesses::add_cpu(const rusage& usage) {
+  const auto seconds = [](const timeval& t) {
+    return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
+  };
+  reaped_cpu_s_ += seconds(usage.ru_utime) + seconds(usage.ru_stime);
 }
 
 std::vector<pid_t> ChildProcesses::pids() const {

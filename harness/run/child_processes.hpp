@@ -3,6 +3,7 @@
 // killed with SIGKILL (PR_SET_PDEATHSIG), exits are noticed while the harness waits for
 // anything, and on the way out every child still alive is terminated, then killed.
 
+#include <sys/resource.h>
 #include <sys/types.h>
 
 #include <chrono>
@@ -49,14 +50,20 @@ class ChildProcesses {
   /// The live children's process ids.
   std::vector<pid_t> pids() const;
   const std::vector<ChildExit>& exited() const { return exited_; }
+  /// The CPU time (user and system) of every child reaped so far, s: with the live children's,
+  /// a count that does not drop when a child exits between two readings.
+  double reaped_cpu_s() const { return reaped_cpu_s_; }
 
  private:
   struct Child {
     std::string name;
     pid_t pid;
   };
+  void add_cpu(const rusage& usage);
+
   std::vector<Child> children_;
   std::vector<ChildExit> exited_;
+  double reaped_cpu_s_ = 0.0;
 };
 
 }  // namespace skyfuse::harness

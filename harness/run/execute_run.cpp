@@ -13,17 +13,17 @@
 #include <optional>
 #include <thread>
 
+#include "report/live_serving.hpp"
 #include "report/output_files.hpp"
 #include "report/progress.hpp"
 #include "report/run_live_source.hpp"
 #include "report/run_recording.hpp"
-#include "run/child_processes.hpp"
-#include "run/discovery_quiet.hpp"
+#include "run/connection_check.hpp"
 #include "run/kernel_counters.hpp"
 #include "run/lockstep_driver.hpp"
 #include "run/placement.hpp"
+#include "run/run_nodes.hpp"
 #include "run/secure_start.hpp"
-#include "run/station_groups.hpp"
 #include "skyfuse/options/filter_options.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/registry/filter_info.hpp"
@@ -51,24 +51,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The longest the rounds wait for discovery to go quiet after every node joined.
-constexpr std::chrono::seconds kSettleLimit{60};
-
-// How long the first rounds of a lock-step run may all be incomplete before the network counts
-// as not fully connected (with at least connection_rounds_of() rounds).
-constexpr std::chrono::seconds kConnectionGrace{60};
-
-// Real time: step 0 begins this long after every node joined, so that the start tick reaches
-// every node and discovery's last exchanges are over. At M = 64 both cores stay busy until
-// 0.2-0.3 s after the last node joins; with 300 ms, the first rounds ran beside them and came
-// late.
-constexpr std::chrono::milliseconds kRealtimeHeadStart{1000};
-
-// The embedded default, or the file: the nodes read exactly this text from the results folder.
-std::string scenario_text(const std::string& path) {
-  return path.empty() ? std::string(default_scenario_yaml()) : read_scenario_text(path);
-}
-
 RunPlan plan_from(const std::string& text, const std::string& source,
                   const options::NodeOptions& node) {
   RunPlan plan = make_run_plan(parse_scenario(text, source), node.overrides);
@@ -83,18 +65,12 @@ std::vector<std::string> node_arguments(const RunOptions& o, const RunPlan& plan
                                         std::uint64_t run_id,
                                         const std::filesystem::path& scenario_file,
                                         const options::NetworkOptions& network) {
-  options::NodeOptions child = o.node;
-  child.network = network;
-  child.scenario_path = scenario_file.string();
-  child.run_id = run_id;
+  options::NodeOptions child =
+      node_options_for(o, network, scenario_file, run_id, discovery_timeout_s(o, plan.stations));
   child.overrides = {plan.stations, plan.scenario.steps,         plan.speed_mps * 3.6,
                      plan.mc_run,   plan.scenario.exchange.kind, plan.scenario.exchange.fanout,
                      std::nullopt,   // one target: no aircraft to count
                      std::nullopt};  // nor anything to associate
-  child.discovery_timeout_s = discovery_timeout_s(o, plan.stations);
-  child.idle_timeout_s = std::max(30.0, 3.0 * o.round_timeout_s);
-  child.log_level = o.verbose ? "info" : "warn";
-  if (child.secure_dir) child.secure_dir = std::filesystem::absolute(*child.secure_dir).string();
   return options::to_arguments(child);
 }
 
@@ -130,57 +106,20 @@ std::optional<std::string> missing_from(const RoundRecord& r, std::size_t statio
 
 // The lock-step rounds: kills and restarts before their step's round, each round recorded
 // (and streamed) as it closes.
-template <typename SpawnStation>
 void run_lockstep_rounds(const RunOptions& o, const RunPlan& plan, LockstepDriver& driver,
-                         ChildProcesses& children, RunRecorder& recorder, LiveFeed* live,
-                         Progress& progress, const SpawnStation& spawn_station) {
+                         RunNodes& nodes, RunRecorder& recorder, LiveFeed* live,
+                         Progress& progress) {
   const auto round_timeout = seconds_to_ms(o.round_timeout_s);
   const auto close_after =
       std::chrono::milliseconds(std::llround(2.0 * o.node.round_deadline_ms + 250.0));
   const std::size_t stations = plan.participant_ids().size();
-  // How many of the first rounds may all be incomplete before the network counts as broken.
-  const int connection_rounds = connection_rounds_of(o);
-  bool checking_connection = true;
-  const auto first_round = std::chrono::steady_clock::now();
+  ConnectionCheck connection(!o.node.loss.enabled(), o.node.best_effort);
   for (int k = 0; k < plan.scenario.steps; ++k) {
     const auto step = static_cast<std::uint64_t>(k);
-    for (const StationEvent& e : o.kills) {
-      if (e.step != step) continue;
-      children.kill_now(node_name(e.station_id));
-      driver.set_down(e.station_id, true);
-      spdlog::info("killed station {} before step {}", e.station_id, step);
-    }
-    for (const StationEvent& e : o.restarts) {
-      if (e.step != step) continue;
-      spawn_station(e.station_id, step);
-      driver.wait_until_ready(e.station_id, seconds_to_ms(discovery_timeout_s(o, plan.stations)));
-      driver.set_down(e.station_id, false);
-      spdlog::info("restarted station {} before step {}", e.station_id, step);
-    }
+    apply_station_events(o, step, nodes, driver,
+                         seconds_to_ms(discovery_timeout_s(o, plan.stations)));
     RoundRecord round = driver.run_round(step, close_after, round_timeout);
-    // Without loss, the first rounds are complete in a connected network; if none is, some
-    // pair of processes never matched (seen with secure discovery), and every round would
-    // wait for its deadline. Better to say so at once. With reliable samples one round
-    // tells; best effort may lose a sample of round 0 while the sockets still fill (seen at
-    // M = 64 on a slow host), which is a loss, not a broken network: it gets a few rounds.
-    // And a large run's first rounds may run beside the last of discovery: at M = 256 in 17
-    // processes the endpoints' announcements went on for the first rounds (66 000 datagrams
-    // a round), and the clusters' sums came after their stage had closed. So the first
-    // rounds may all be incomplete for kConnectionGrace too.
-    if (checking_connection && !o.node.loss.enabled()) {
-      if (const auto missing = missing_from(round, stations)) {
-        if (k + 1 >= connection_rounds &&
-            std::chrono::steady_clock::now() - first_round >= kConnectionGrace) {
-          throw RunAborted(fmt::format("{}, the network is not fully connected: {}",
-                                       connection_rounds == 1
-                                           ? std::string("round 0 incomplete")
-                                           : fmt::format("rounds 0-{} all incomplete", k),
-                                       *missing));
-        }
-      } else {
-        checking_connection = false;
-      }
-    }
+    connection.take(k, missing_from(round, stations));
     if (live) live->offer(round);
     recorder.add(std::move(round));
     progress.advance();
@@ -188,118 +127,50 @@ void run_lockstep_rounds(const RunOptions& o, const RunPlan& plan, LockstepDrive
 }
 
 RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
-  // Refusals first: a refused command leaves an earlier run's folder as it was.
-  check_station_events(o, plan.participant_ids(), plan.scenario.steps);
-  Placement::check(o, static_cast<std::size_t>(plan.stations));
   const std::vector<int> ids = plan.participant_ids();
-  if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
-    transport::SecurityFolder{*o.node.secure_dir}.check(transport::run_identities(ids));
-  }
+  check_before_start(o, ids, plan.scenario.steps);
 
   const std::filesystem::path out(o.out_dir);
-  std::filesystem::create_directories(out);
-  // The processes read the very file saved with the results: what ran is what is on disk.
-  const std::filesystem::path scenario_file = std::filesystem::absolute(out / "scenario.yaml");
-  write_file_atomically(scenario_file, scenario_text(o.node.scenario_path));
+  const std::filesystem::path scenario_file = write_run_scenario(o);
   const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
 
-  ChildProcesses children;
-  const auto check = [&] {
-    if (transport::shutdown_requested()) {
-      throw RunAborted(fmt::format("interrupted by signal {}", transport::shutdown_signal()),
-                       StopCause::kInterrupted);
-    }
-    for (const ChildExit& e : children.poll()) {
-      if (!e.success()) throw RunAborted(e.describe(), StopCause::kNodeFailed);
-    }
-  };
   const Placement placement(o, plan.scenario.exchange, ids.size());
   const transport::NodeConfig config = harness_node_config(o, placement, plan.stations);
   const TrackShape shape{find_motion_model(plan.scenario.filter.motion_model.kind)->state_dim,
                          find_filter(plan.scenario.filter)->mode_names.size()};
-  LockstepDriver driver(config, run_id, plan.participants(), shape, check);
-
-  // One process per network namespace, for the kernel's UDP counters (-1: the harness's own).
-  std::map<int, pid_t> namespace_members{{-1, getpid()}};
-  const auto kernel_snapshot = [&] {
-    std::vector<pid_t> processes = children.pids();
-    processes.push_back(getpid());
-    std::vector<pid_t> one_per_namespace;
-    for (const auto& [netns, pid] : namespace_members) one_per_namespace.push_back(pid);
-    return take_snapshot(processes, one_per_namespace);
-  };
+  std::vector<std::string> station_extra;
+  if (!o.replay_path.empty()) {
+    station_extra = {"--replay", std::filesystem::absolute(o.replay_path).string()};
+  }
+  // Process 0 is the center, then the stations in ascending id, --stations-per-process to a
+  // process (a station restarts only when each has its own: Placement::check).
+  RunNodes nodes(
+      o, placement, ids,
+      [&](const options::NetworkOptions& network) {
+        return node_arguments(o, plan, run_id, scenario_file, network);
+      },
+      std::move(station_extra));
+  LockstepDriver driver(config, run_id, plan.participants(), shape, [&] { nodes.check(); });
 
   try {
-    // Process 0 is the center, then the stations in ascending id, --stations-per-process to a
-    // process (a station restarts only when each has its own: Placement::check).
-    const StationGroups groups(ids.size(), static_cast<std::size_t>(o.stations_per_process));
-    const auto spawn_process = [&](std::size_t process, std::optional<std::uint64_t> rejoin_step) {
-      const std::vector<int> group = groups.ids_of(process, ids);
-      const auto [network, netns] = placement.of(process);
-      const std::vector<std::string> common =
-          node_arguments(o, plan, run_id, scenario_file, network);
-      std::vector<std::string> station{(executable_dir() / "skyfuse-station").string()};
-      const std::vector<std::string> id_args = id_arguments(group);
-      station.insert(station.end(), id_args.begin(), id_args.end());
-      station.insert(station.end(), common.begin(), common.end());
-      if (!o.replay_path.empty()) {
-        station.push_back("--replay");
-        station.push_back(std::filesystem::absolute(o.replay_path).string());
-      }
-      if (rejoin_step) {
-        station.push_back("--rejoin-at-step");
-        station.push_back(std::to_string(*rejoin_step));
-      }
-      namespace_members.try_emplace(netns, children.spawn(process_name(group), station, netns));
-    };
-    const auto spawn_station = [&](int id, std::optional<std::uint64_t> rejoin_step) {
-      spawn_process(groups.process_of_id(id, ids), rejoin_step);
-    };
     RunRecorder recorder(plan, ids, o.restarts);
     // The live stream listens before the nodes start, so that a client can be there for the
     // first round.
     std::unique_ptr<LiveFeed> live;
     if (o.live) {
-      live::LiveServer::Options server;
-      server.address = o.live->address;
-      server.port = o.live->port;
-      if (const auto site = executable_dir() / "view";
-          std::filesystem::exists(site / "index.html")) {
-        server.site_dir = site.string();
-      }
-      live = std::make_unique<LiveFeed>(std::move(server), o.live_scene_hz, recorder);
-      fmt::print("live: ws://{0}:{1} (Foxglove), http://{0}:{1}/ (page)\n", o.live->address,
-                 live->port());
-      std::fflush(stdout);
+      live = std::make_unique<LiveFeed>(live_server_options(*o.live), o.live_scene_hz, recorder);
+      announce_live(*o.live, live->port());
     }
-    if (!o.external) {
-      const auto [network, netns] = placement.of(0);
-      const std::vector<std::string> common =
-          node_arguments(o, plan, run_id, scenario_file, network);
-      std::vector<std::string> center{(executable_dir() / "skyfuse-center").string()};
-      center.insert(center.end(), common.begin(), common.end());
-      namespace_members.try_emplace(netns, children.spawn(node_name(kCenterNodeId), center, netns));
-      for (std::size_t p = 1; p < groups.processes(); ++p) spawn_process(p, std::nullopt);
-    }
+    nodes.start();
     const auto discovery =
         driver.wait_until_joined(seconds_to_ms(discovery_timeout_s(o, plan.stations)));
     // Endpoint discovery may go on after every node is ready (run/discovery_quiet.hpp).
-    const QuietWait settled = wait_until_quiet(
-        [&] {
-          std::vector<pid_t> processes = children.pids();
-          processes.push_back(getpid());
-          return std::optional<double>(take_snapshot(processes, {}).cpu_s);
-        },
-        quiet_cores(groups.processes() + 1), kSettleLimit,
-        [&] {
-          check();
-          return true;
-        });
+    const QuietWait settled = nodes.wait_until_quiet();
 
     Progress progress(fmt::format("run M={} {:.0f} km/h", plan.stations, plan.speed_mps * 3.6),
                       plan.scenario.steps);
     const auto round_timeout = seconds_to_ms(o.round_timeout_s);
-    const KernelSnapshot before_rounds = kernel_snapshot();
+    const KernelSnapshot before_rounds = nodes.kernel_snapshot();
     const auto start = Clock::now();
     const auto wall_start = std::chrono::system_clock::now();
     if (live) live->set_epoch_ns(wall_clock_ns(wall_start));
@@ -318,18 +189,14 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
                               progress.advance();
                             });
       } else {
-        run_lockstep_rounds(o, plan, driver, children, recorder, live.get(), progress,
-                            spawn_station);
+        run_lockstep_rounds(o, plan, driver, nodes, recorder, live.get(), progress);
       }
     } catch (const RunAborted& e) {
       stopped = e;
     }
     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    const KernelSnapshot after_rounds = kernel_snapshot();
-    std::uint64_t node_peak_kib = 0;
-    for (pid_t pid : children.pids()) {
-      node_peak_kib = std::max(node_peak_kib, peak_resident_kib(pid).value_or(0));
-    }
+    const KernelSnapshot after_rounds = nodes.kernel_snapshot();
+    const double node_peak_mib = nodes.peak_resident_mib();
     progress.finish();
 
     // Nodes announce FINISHED after their last track and wait to be released; anything else
@@ -338,20 +205,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
       spdlog::warn("not every node announced FINISHED within 5 s of the last step");
     }
     driver.stop();
-    if (!children.wait_all(std::chrono::seconds(5))) {
-      spdlog::warn("{} node process(es) still running after the {}; terminating", children.alive(),
-                   stopped ? "run stopped" : "last step");
-    }
-    children.terminate_all(std::chrono::seconds(2));
-    // A node that fails during the run ends it (check() above), so these exits came after
-    // every round was recorded (nodes leave without their participant's goodbye so that
-    // Fast DDS's teardown race cannot abort them: transport/node_presence.hpp).
-    for (const ChildExit& e : children.exited()) {
-      if (!e.success()) {
-        spdlog::warn("{} after the {}; every round is recorded", e.describe(),
-                     stopped ? "run stopped" : "last round");
-      }
-    }
+    nodes.finish(std::chrono::seconds(5), stopped.has_value());
 
     RunSummary summary =
         recorder.summarise(std::chrono::duration<double>(discovery).count(), elapsed);
@@ -377,7 +231,7 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     }
     summary.cpu_ms_per_station_round = 1e3 * (after_rounds.cpu_s - before_rounds.cpu_s) /
                                        (static_cast<double>(plan.stations) * rounds_worked);
-    summary.node_peak_resident_mib = static_cast<double>(node_peak_kib) / 1024.0;
+    summary.node_peak_resident_mib = node_peak_mib;
     summary.node_counts = driver.finished_counts();
     recorder.set_refusals_after_run(
         driver.take_refusals(static_cast<std::uint64_t>(plan.scenario.steps)));
@@ -392,32 +246,23 @@ RunSummary run_once(const RunOptions& o, const RunPlan& plan) {
     summary.discovery = placement.discovery();
     summary.settle_s = std::chrono::duration<double>(settled.waited).count();
     summary.settled_quiet = settled.quiet;
-    for (const ChildExit& e : children.exited()) summary.node_exits[e.name] = e.outcome();
+    summary.node_exits = nodes.exits();
     summary.host_verdict = host_verdict(summary, plan.scenario.time_step_s, cpu_model(),
                                         std::thread::hardware_concurrency());
     recorder.write(out, summary, run_id);
     const std::string summary_json = recorder.summary_json(summary, run_id);
-    if (live) {
-      live->finish(summary_json);
-      const live::LiveServer::Stats stats = live->stats();
-      fmt::print("live: {} message(s) sent, {} client(s) connected at the end\n", stats.frames_sent,
-                 stats.clients);
-      if (const auto dropped = stats.clients_dropped; dropped > 0) {
-        fmt::print("live: {} client(s) dropped for falling behind\n", dropped);
-      }
-      if (live->rounds_dropped() > 0) {
-        spdlog::warn("live: {} round(s) not streamed: the stream fell more than {} rounds behind",
-                     live->rounds_dropped(), LiveFeed::kMaxWaitingRounds);
-      }
-    }
+    if (live) finish_live(*live, summary_json);
     if (!o.record_path.empty()) {
       write_recording(recorder, summary_json, o.record_path, wall_clock_ns(wall_start));
     }
-    if (stopped) throw RunStoppedEarly(*stopped, std::move(summary));
+    if (stopped) {
+      std::string verdict = summary.host_verdict;
+      throw StoppedEarlyWith<RunSummary>(*stopped, std::move(summary), std::move(verdict));
+    }
     return summary;
   } catch (...) {
     driver.stop();
-    children.terminate_all(std::chrono::seconds(2));
+    nodes.terminate();
     throw;
   }
 }
@@ -499,7 +344,7 @@ RunSummary execute_run(const RunOptions& o, const RunPlan& plan) {
 }
 
 RunPlan load_run_plan(const RunOptions& o) {
-  return plan_from(scenario_text(o.node.scenario_path),
+  return plan_from(run_scenario_text(o),
                    o.node.scenario_path.empty() ? "<embedded paper000.yaml>" : o.node.scenario_path,
                    o.node);
 }

@@ -10,17 +10,10 @@
 #include "run/placement.hpp"
 #include "run/run_options.hpp"
 #include "run/run_report.hpp"
+#include "run/run_stopped_early.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 
 namespace skyfuse::harness {
-
-/// How many first rounds of a lock-step run without loss may all be incomplete before it is
-/// stopped as not fully connected: one with reliable samples; with best-effort ones, whose
-/// first round may lose a sample while the sockets fill, a few.
-inline int connection_rounds_of(const RunOptions& o) {
-  constexpr int kBestEffortConnectionRounds = 5;
-  return o.node.best_effort ? kBestEffortConnectionRounds : 1;
-}
 
 /// Seconds to wait until every process has joined: the option if given, else
 /// default_discovery_timeout_s(stations).
@@ -44,20 +37,6 @@ void check_station_events(const RunOptions& o, const std::vector<int>& participa
 transport::NodeConfig harness_node_config(const RunOptions& o, const Placement& placement,
                                           int stations);
 
-/// A run that stopped before its last round once its rounds had begun: it fell behind real
-/// time, a node went silent past --round-timeout, a signal interrupted it, or a node failed.
-/// The nodes were stopped and every file written with the rounds recorded; summary() is what
-/// summary.json says.
-class RunStoppedEarly : public RunAborted {
- public:
-  RunStoppedEarly(const RunAborted& why, RunSummary summary)
-      : RunAborted(why.what(), why.cause()), summary_(std::move(summary)) {}
-  const RunSummary& summary() const { return summary_; }
-
- private:
-  RunSummary summary_;
-};
-
 /// The exit status of `skyfuse run` (and the commands that run the system) for a run that
 /// ended with `e`: 128 + the signal when interrupted (130 for Ctrl-C), kExitStoppedEarly when
 /// it fell behind real time or a node went silent, 1 otherwise (a node failed, discovery did
@@ -67,8 +46,8 @@ inline constexpr int kExitStoppedEarly = 3;
 
 /// One DDS run of `plan` with results written to options.out_dir; throws RunAborted on
 /// failure, RunStoppedEarly when the rounds began but did not all complete (with the files
-/// written). A secure run is started again after a stalled start while --discovery-timeout
-/// lasts (secure_start.hpp).
+/// written: StoppedEarlyWith<RunSummary>). A secure run is started again after a stalled start
+/// while --discovery-timeout lasts (secure_start.hpp).
 RunSummary execute_run(const RunOptions& options, const RunPlan& plan);
 
 }  // namespace skyfuse::harness

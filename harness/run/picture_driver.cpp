@@ -7,7 +7,6 @@
 
 #include "run/lockstep_driver.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"
-#include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -20,10 +19,10 @@ constexpr auto kTickRepeat = std::chrono::milliseconds(50);
 }  // namespace
 
 PictureDriver::PictureDriver(const transport::NodeConfig& config, std::uint64_t run_id,
-                             std::vector<int> ids, ChildProcesses& children)
+                             std::vector<int> ids, std::function<void()> stop_check)
     : run_id_(run_id),
       ids_(std::move(ids)),
-      children_(children),
+      stop_check_(std::move(stop_check)),
       node_(config),
       ticks_(node_.make_writer<wire::Tick>()),
       rounds_(node_.make_reader<wire::PictureRound>()),
@@ -180,13 +179,7 @@ void PictureDriver::release() {
 }
 
 void PictureDriver::check() {
-  if (transport::shutdown_requested()) {
-    throw RunAborted(fmt::format("interrupted by signal {}", transport::shutdown_signal()),
-                     StopCause::kInterrupted);
-  }
-  for (const ChildExit& e : children_.poll()) {
-    if (!e.success()) throw RunAborted(e.describe(), StopCause::kNodeFailed);
-  }
+  stop_check_();
   wire::StationStatus s;
   while (statuses_.take(s)) {
     if (s.run_id() != run_id_) continue;

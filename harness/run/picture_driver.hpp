@@ -13,7 +13,6 @@
 #include <utility>
 #include <vector>
 
-#include "run/child_processes.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
@@ -21,9 +20,10 @@ namespace skyfuse::harness {
 
 class PictureDriver {
  public:
-  /// `ids`: the nodes, ascending (the center, 0, first).
+  /// `ids`: the nodes, ascending (the center, 0, first). `stop_check` is called at least every
+  /// 50 ms while waiting; it throws RunAborted to end the run (a signal, a failed node).
   PictureDriver(const transport::NodeConfig& config, std::uint64_t run_id, std::vector<int> ids,
-                ChildProcesses& children);
+                std::function<void()> stop_check);
 
   /// Until every node announced READY and the harness's endpoints match them.
   void wait_until_joined(std::chrono::milliseconds timeout);
@@ -61,7 +61,7 @@ class PictureDriver {
 
   std::uint64_t run_id_;
   std::vector<int> ids_;  // ascending
-  ChildProcesses& children_;
+  std::function<void()> stop_check_;
   transport::DdsNode node_;
   transport::Writer<wire::Tick> ticks_;
   transport::Reader<wire::PictureRound> rounds_;

@@ -16,21 +16,21 @@
 #include <string_view>
 #include <vector>
 
+#include "report/live_serving.hpp"
 #include "report/output_files.hpp"
 #include "report/picture_live_source.hpp"
 #include "report/picture_recording.hpp"
 #include "report/picture_run_report.hpp"
 #include "report/progress.hpp"
-#include "run/child_processes.hpp"
+#include "run/connection_check.hpp"
 #include "run/execute_run.hpp"
 #include "run/kernel_counters.hpp"
-#include "run/lockstep_driver.hpp"
 #include "run/picture_driver.hpp"
 #include "run/picture_frame.hpp"
 #include "run/picture_round_check.hpp"
 #include "run/placement.hpp"
+#include "run/run_nodes.hpp"
 #include "run/secure_start.hpp"
-#include "run/station_groups.hpp"
 #include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -39,8 +39,6 @@
 #include "skyfuse/sim/picture_run.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 #include "skyfuse/transport/dds_node.hpp"
-#include "skyfuse/transport/security_folder.hpp"
-#include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -48,9 +46,6 @@ namespace {
 using namespace std::chrono_literals;
 
 using Clock = std::chrono::steady_clock;
-// Real time: step 0 begins this long after every node joined, so that the start tick reaches
-// every node first (the single-target run's head start).
-constexpr std::chrono::milliseconds kRealtimeHeadStart{1000};
 // Real time: a round whose pictures have not all come this long after its scheduled end is
 // handed over with those that did.
 constexpr std::chrono::milliseconds kLateAfter{2000};
@@ -71,15 +66,36 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
            "the harness starts a picture run's processes itself (containers run one aircraft)");
   }
   if (o.node.refusion_lag != 0) refuse("--refusion-lag", "a picture re-fuses no late scan");
+  if (o.node.delay.enabled()) {
+    refuse(o.node.delay.delay_ms > 0.0 ? "--link-delay-ms" : "--link-jitter-ms",
+           "the picture's exchange holds no scan back on a simulated link");
+  }
+  if (o.node.gate.enabled()) {
+    refuse("--nis-gate",
+           "a picture gates each (track, detection) pair by its tracker's own chi^2 gate "
+           "(the scenario's tracker.gate_probability)");
+  }
+}
+
+// What round k's pictures lack: nothing when every node fused every station's scan, else
+// which fused how many.
+std::optional<std::string> scans_missing(const std::vector<wire::PictureRound>& rounds,
+                                         int stations) {
+  std::vector<std::string> short_of;
+  for (const wire::PictureRound& r : rounds) {
+    if (r.scans_fused() < static_cast<std::uint32_t>(stations)) {
+      short_of.push_back(
+          fmt::format("{}: {} of {} scans", node_name(r.source_id()), r.scans_fused(), stations));
+    }
+  }
+  if (short_of.empty()) return std::nullopt;
+  return fmt::format("{}", fmt::join(short_of, ", "));
 }
 
 // One start of every process of the run.
 PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan) {
   const std::vector<int> ids = sorted_ascending(plan.participant_ids());
-  check_station_events(o, ids, plan.scenario.steps);
-  if (o.node.secure_dir) {  // every node's identity checked here: one message instead of M + 1
-    transport::SecurityFolder{*o.node.secure_dir}.check(transport::run_identities(ids));
-  }
+  check_before_start(o, ids, plan.scenario.steps);
 
   // The in-process twin first: what every peer's picture must equal, round by round.
   const TrafficTruth truth = build_traffic_truth(plan.scenario, o.node.traffic_file);
@@ -90,104 +106,57 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
       run_picture(plan.scenario, truth.targets, plan.stations, plan.mc_run);
 
   const std::filesystem::path out(o.out_dir);
-  std::filesystem::create_directories(out);
-  const std::filesystem::path scenario_file = std::filesystem::absolute(out / "scenario.yaml");
-  write_file_atomically(scenario_file, read_scenario_text(o.node.scenario_path));
+  const std::filesystem::path scenario_file = write_run_scenario(o);
   const std::uint64_t run_id = o.run_id.value_or(fresh_run_id());
-  const double discovery_timeout =
-      o.discovery_timeout_s.value_or(default_discovery_timeout_s(plan.stations));
+  const double discovery_timeout = discovery_timeout_s(o, plan.stations);
+  const auto ready_timeout = std::chrono::milliseconds(std::llround(discovery_timeout * 1e3));
 
   // Discovery as for the flat exchange, whichever exchange the scans take: every station
   // hears every cluster's aggregator, and the lowest station's whole picture when peers part.
   ExchangeConfig everyone_meets = plan.scenario.exchange;
   everyone_meets.kind = ExchangeConfig::Kind::kFlat;
   const Placement placement(o, everyone_meets, ids.size());
-  std::vector<int> nodes = ids;  // the center (0) first, then the stations ascending
-  nodes.insert(nodes.begin(), kCenterNodeId);
+  std::vector<int> node_ids = ids;  // the center (0) first, then the stations ascending
+  node_ids.insert(node_ids.begin(), kCenterNodeId);
   // The live stream listens before the nodes start, so that a client can be there for the
   // first round.
   std::unique_ptr<PictureLiveFeed> live;
   if (o.live) {
-    live::LiveServer::Options server;
-    server.address = o.live->address;
-    server.port = o.live->port;
-    if (const auto site = executable_dir() / "view"; std::filesystem::exists(site / "index.html")) {
-      server.site_dir = site.string();
-    }
-    live =
-        std::make_unique<PictureLiveFeed>(std::move(server), o.live_scene_hz, plan, truth.targets);
-    fmt::print("live: ws://{0}:{1} (Foxglove), http://{0}:{1}/ (page)\n", o.live->address,
-               live->port());
-    std::fflush(stdout);
+    live = std::make_unique<PictureLiveFeed>(live_server_options(*o.live), o.live_scene_hz, plan,
+                                             truth.targets);
+    announce_live(*o.live, live->port());
   }
-  ChildProcesses children;
-  PictureDriver driver(harness_node_config(o, placement, plan.stations), run_id, nodes, children);
+  RunNodes nodes(o, placement, ids, [&](const options::NetworkOptions& network) {
+    options::NodeOptions child =
+        node_options_for(o, network, scenario_file, run_id, discovery_timeout);
+    if (recorded) child.traffic_file = std::filesystem::absolute(*recorded).string();
+    child.overrides.stations = plan.stations;
+    child.overrides.steps = plan.scenario.steps;
+    child.overrides.mc_run = plan.mc_run;
+    return options::to_arguments(child);
+  });
+  PictureDriver driver(harness_node_config(o, placement, plan.stations), run_id, node_ids,
+                       [&] { nodes.check(); });
   try {
-    // One process per network namespace (a simulated host; -1: the harness's own), for the
-    // kernel's UDP counters.
-    std::map<int, pid_t> namespace_members{{-1, getpid()}};
-    // Process 0 is the center, then the stations in ascending id, --stations-per-process to a
-    // process (a station restarts only when each has its own: Placement::check): each with the
-    // run's options, on its host.
-    const StationGroups groups(ids.size(), static_cast<std::size_t>(o.stations_per_process));
-    const auto spawn = [&](std::size_t process, std::vector<std::string> argv,
-                           const std::string& name) {
-      options::NodeOptions child = o.node;
-      const auto [network, netns] = placement.of(process);
-      child.network = network;
-      if (child.secure_dir) {
-        child.secure_dir = std::filesystem::absolute(*child.secure_dir).string();
-      }
-      child.scenario_path = scenario_file.string();
-      if (recorded) child.traffic_file = std::filesystem::absolute(*recorded).string();
-      child.run_id = run_id;
-      child.overrides.stations = plan.stations;
-      child.overrides.steps = plan.scenario.steps;
-      child.overrides.mc_run = plan.mc_run;
-      child.discovery_timeout_s = discovery_timeout;
-      child.idle_timeout_s = std::max(30.0, 3.0 * o.round_timeout_s);
-      child.log_level = o.verbose ? "info" : "warn";
-      const std::vector<std::string> common = options::to_arguments(child);
-      argv.insert(argv.end(), common.begin(), common.end());
-      namespace_members.try_emplace(netns, children.spawn(name, argv, netns));
-    };
-    const auto spawn_stations = [&](std::size_t process, std::optional<int> rejoin_step) {
-      const std::vector<int> group = groups.ids_of(process, ids);
-      std::vector<std::string> argv = id_arguments(group);
-      argv.insert(argv.begin(), (executable_dir() / "skyfuse-station").string());
-      if (rejoin_step) {
-        argv.push_back("--rejoin-at-step");
-        argv.push_back(std::to_string(*rejoin_step));
-      }
-      spawn(process, std::move(argv), process_name(group));
-    };
-    const auto spawn_station = [&](int id, std::optional<int> rejoin_step) {
-      spawn_stations(groups.process_of_id(id, ids), rejoin_step);
-    };
-    spawn(0, {(executable_dir() / "skyfuse-center").string()}, node_name(kCenterNodeId));
-    for (std::size_t p = 1; p < groups.processes(); ++p) spawn_stations(p, std::nullopt);
+    nodes.start();
     const auto discovery_start = Clock::now();
-    driver.wait_until_joined(std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
-    // The kernel's counts over every process of the run, and every namespace's datagrams.
-    const auto kernel_snapshot = [&] {
-      std::vector<pid_t> processes = children.pids();
-      processes.push_back(getpid());
-      std::vector<pid_t> one_per_namespace;
-      for (const auto& [netns, pid] : namespace_members) one_per_namespace.push_back(pid);
-      return take_snapshot(processes, one_per_namespace);
-    };
-    const KernelSnapshot before_rounds = kernel_snapshot();
-
+    driver.wait_until_joined(ready_timeout);
     PictureRunSummary summary;
+    summary.discovery_s = std::chrono::duration<double>(Clock::now() - discovery_start).count();
+    // Endpoint discovery may go on after every node is ready (run/discovery_quiet.hpp).
+    const QuietWait settled = nodes.wait_until_quiet();
+    summary.settle_s = std::chrono::duration<double>(settled.waited).count();
+    summary.settled_quiet = settled.quiet;
+    const KernelSnapshot before_rounds = nodes.kernel_snapshot();
+
     summary.scenario = plan.scenario.name;
     summary.stations = plan.stations;
     summary.exchange = std::string(to_string(plan.scenario.exchange.kind));
     if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
       summary.fanout = plan.scenario.exchange.fanout;
     }
-    summary.steps = plan.scenario.steps;
+    summary.steps_planned = plan.scenario.steps;
     summary.stations_per_process = o.stations_per_process;
-    summary.discovery_s = std::chrono::duration<double>(Clock::now() - discovery_start).count();
     Progress progress(fmt::format("picture M={}", plan.stations), plan.scenario.steps);
     const auto round_timeout = std::chrono::milliseconds(std::llround(o.round_timeout_s * 1e3));
     const auto start = Clock::now();
@@ -199,39 +168,17 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
     std::optional<PictureRecording> recording;
     if (!o.record_path.empty()) recording.emplace(o.record_path, plan, epoch_ns);
     if (live) live->set_epoch_ns(epoch_ns);
+    ConnectionCheck connection(!realtime && !o.node.loss.enabled(), o.node.best_effort);
+    int rounds_taken = 0;
     // `latency`: lock-step, from the tick to the last picture; real time, from the round's
     // scheduled end to its hand-over.
-    // Without loss or a station down, the first round of a lock-step run fuses every scan at
-    // every node in a connected network; if none of the first connection_rounds_of(o) does,
-    // some pair of processes never matched (seen with secure discovery) and every round would
-    // wait for its deadline: say so at once.
-    const int connection_rounds = connection_rounds_of(o);
-    bool checking_connection = !realtime && !o.node.loss.enabled() &&
-                               std::none_of(o.kills.begin(), o.kills.end(),
-                                            [](const StationEvent& e) { return e.step == 0; });
     const auto take_round = [&](int k, const std::vector<wire::PictureRound>& rounds,
                                 std::chrono::duration<double, std::milli> latency) {
-      if (checking_connection) {
-        std::vector<std::string> short_of;
-        for (const wire::PictureRound& r : rounds) {
-          if (r.scans_fused() < static_cast<std::uint32_t>(plan.stations)) {
-            short_of.push_back(fmt::format("{}: {} of {} scans", node_name(r.source_id()),
-                                           r.scans_fused(), plan.stations));
-          }
-        }
-        if (short_of.empty()) {
-          checking_connection = false;
-        } else if (k + 1 >= connection_rounds) {
-          throw RunAborted(fmt::format("{}, the network is not fully connected: {}",
-                                       connection_rounds == 1
-                                           ? std::string("round 0 incomplete")
-                                           : fmt::format("rounds 0-{} all incomplete", k),
-                                       fmt::join(short_of, ", ")));
-        }
-      }
+      connection.take(k, scans_missing(rounds, plan.stations));
       const PictureStep* scored = check.add(k, rounds);
+      ++rounds_taken;
       if ((recording || live) && scored != nullptr) {
-        PictureFrame frame = picture_frame(k, rounds, nodes, *scored);
+        PictureFrame frame = picture_frame(k, rounds, node_ids, *scored);
         frame.latency_ms = latency.count();
         if (live) live->offer(frame);
         if (recording) {
@@ -241,79 +188,74 @@ PictureRunSummary run_picture_once(const RunOptions& o, const PicturePlan& plan)
       }
       progress.advance();
     };
-    if (realtime) {
-      driver.run_realtime(
-          plan.scenario.steps, plan.scenario.time_step_s, epoch, kLateAfter,
-          [&](int k, std::vector<wire::PictureRound> rounds) {
-            const auto scheduled_end =
-                epoch + std::chrono::duration_cast<std::chrono::system_clock::duration>(
-                            std::chrono::duration<double>((k + 1) * plan.scenario.time_step_s));
-            take_round(k, rounds, std::chrono::system_clock::now() - scheduled_end);
-          });
-    } else {
-      for (int k = 0; k < plan.scenario.steps; ++k) {
-        for (const StationEvent& e : o.kills) {
-          if (e.step != static_cast<std::uint64_t>(k)) continue;
-          children.kill_now(node_name(e.station_id));
-          driver.set_down(e.station_id, true);
-          spdlog::info("killed station {} before step {}", e.station_id, k);
+    // A run that stops once its rounds have begun keeps what it recorded, as one aircraft's
+    // does: the nodes are stopped as after the last round, and every file is written before the
+    // run is reported as stopped (StoppedEarlyWith).
+    std::optional<RunAborted> stopped;
+    try {
+      if (realtime) {
+        driver.run_realtime(
+            plan.scenario.steps, plan.scenario.time_step_s, epoch, kLateAfter,
+            [&](int k, std::vector<wire::PictureRound> rounds) {
+              const auto scheduled_end =
+                  epoch + std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                              std::chrono::duration<double>((k + 1) * plan.scenario.time_step_s));
+              take_round(k, rounds, std::chrono::system_clock::now() - scheduled_end);
+            });
+      } else {
+        for (int k = 0; k < plan.scenario.steps; ++k) {
+          apply_station_events(o, static_cast<std::uint64_t>(k), nodes, driver, ready_timeout);
+          const auto tick = Clock::now();
+          const auto rounds = driver.run_round(static_cast<std::uint32_t>(k), round_timeout);
+          take_round(k, rounds, Clock::now() - tick);
         }
-        for (const StationEvent& e : o.restarts) {
-          if (e.step != static_cast<std::uint64_t>(k)) continue;
-          spawn_station(e.station_id, k);
-          driver.wait_until_ready(e.station_id,
-                                  std::chrono::milliseconds(std::llround(discovery_timeout * 1e3)));
-          driver.set_down(e.station_id, false);
-          spdlog::info("restarted station {} before step {}", e.station_id, k);
-        }
-        const auto tick = Clock::now();
-        const auto rounds = driver.run_round(static_cast<std::uint32_t>(k), round_timeout);
-        take_round(k, rounds, Clock::now() - tick);
       }
+    } catch (const RunAborted& e) {
+      stopped = e;
     }
-    const KernelSnapshot after_rounds = kernel_snapshot();
+    const KernelSnapshot after_rounds = nodes.kernel_snapshot();
+    summary.node_peak_resident_mib = nodes.peak_resident_mib();
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    const double rounds = plan.scenario.steps;
+    progress.finish();
+    summary.steps = rounds_taken;
+    const double rounds = std::max(rounds_taken, 1);
     if (before_rounds.udp_datagrams && after_rounds.udp_datagrams) {
       summary.datagrams_per_round =
           static_cast<double>(*after_rounds.udp_datagrams - *before_rounds.udp_datagrams) / rounds;
     }
     summary.cpu_ms_per_station_round =
         1e3 * (after_rounds.cpu_s - before_rounds.cpu_s) / (plan.stations * rounds);
-    summary.rounds_per_s = plan.scenario.steps / seconds;
+    summary.rounds_per_s = rounds_taken / seconds;
     summary.loss = o.node.loss.enabled();
     summary.faults = summary.loss || !o.kills.empty();
-    summary.realtime = o.node.realtime_deadline_ms > 0.0;
+    summary.realtime = realtime;
     summary.gospa_mean = check.gospa_mean();
     summary.in_process_gospa_mean = twin.score.gospa_mean;
-    for (const auto& [id, finished] : driver.wait_finished(std::chrono::seconds(5))) {
+    if (stopped) {
+      summary.stop_cause = stopped->cause();
+      summary.end_detail = stopped->what();
+    }
+    // Nodes announce FINISHED after their last round and wait to be released; a run that
+    // stopped early releases them at once.
+    const auto finish_wait = stopped ? std::chrono::milliseconds(0) : std::chrono::seconds(5);
+    for (const auto& [id, finished] : driver.wait_finished(finish_wait)) {
       if (id != kCenterNodeId) summary.resyncs += finished.resyncs;
       summary.lost += finished.lost;
       summary.dropped_by_node[id] = finished.dropped;
     }
     driver.release();
-    if (!children.wait_all(std::chrono::seconds(10))) {
-      spdlog::warn("station processes still running 10 s after the run; stopping them");
-      children.terminate_all(std::chrono::seconds(2));
-    }
+    nodes.finish(std::chrono::seconds(10), stopped.has_value());
+    summary.node_exits = nodes.exits();
 
     write_file_atomically(out / "picture_rounds.csv", check.csv());
     const std::string summary_json = picture_run_json(summary, run_id, twin);
     write_file_atomically(out / "summary.json", summary_json + "\n");
-    if (recording) recording->finish(summary_json, plan.scenario.steps);
-    if (live) {
-      live->finish(summary_json);
-      const live::LiveServer::Stats stats = live->stats();
-      fmt::print("live: {} message(s) sent, {} client(s) connected at the end\n", stats.frames_sent,
-                 stats.clients);
-      if (live->rounds_dropped() > 0) {
-        spdlog::warn("live: {} round(s) not streamed: the stream fell more than {} rounds behind",
-                     live->rounds_dropped(), PictureLiveFeed::kMaxWaitingRounds);
-      }
-    }
+    if (recording) recording->finish(summary_json, rounds_taken);
+    if (live) finish_live(*live, summary_json);
+    if (stopped) throw StoppedEarlyWith<PictureRunSummary>(*stopped, std::move(summary));
     return summary;
   } catch (...) {
-    children.terminate_all(std::chrono::seconds(2));
+    nodes.terminate();
     throw;
   }
 }

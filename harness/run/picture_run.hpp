@@ -16,7 +16,9 @@
 #include <optional>
 #include <string>
 
+#include "run/lockstep_driver.hpp"
 #include "run/run_options.hpp"
+#include "run/run_stopped_early.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
@@ -25,7 +27,12 @@ namespace skyfuse::harness {
 struct PictureRunSummary {
   std::string scenario;
   int stations = 0;
+  /// Rounds recorded, and the run's rounds: fewer recorded when it stopped early.
   int steps = 0;
+  int steps_planned = 0;
+  /// Why the run stopped before its last round (none: it completed), in words.
+  std::optional<StopCause> stop_cause;
+  std::string end_detail;
   /// How the stations exchanged their scans: "flat", or "tree" with clusters of `fanout`.
   std::string exchange = "flat";
   int fanout = 0;
@@ -61,6 +68,13 @@ struct PictureRunSummary {
   int rounds_in_time = 0;
   int rounds_without_a_picture = 0;
   double discovery_s = 0.0;
+  /// The wait for discovery to go quiet before the first round (run/discovery_quiet.hpp).
+  double settle_s = 0.0;
+  bool settled_quiet = false;
+  /// The largest resident memory of any node at the end of the rounds, MiB.
+  double node_peak_resident_mib = 0.0;
+  /// How each node process ended, by its name.
+  std::map<std::string, std::string> node_exits;
   /// UDP datagrams the kernel delivered to the run's sockets per round (none if unreadable),
   /// and CPU per station and round of every process (stations, center, harness), ms.
   std::optional<double> datagrams_per_round;
@@ -73,7 +87,8 @@ struct PictureRunSummary {
 
 /// Runs `scenario` (which has_many_targets()) as `o` says, writing picture_rounds.csv and
 /// summary.json into o.out_dir. Throws std::invalid_argument for an option it does not take,
-/// RunAborted when the run fails.
+/// RunAborted when the run fails, StoppedEarlyWith<PictureRunSummary> when its rounds began
+/// but did not all complete (with the files of the rounds recorded).
 PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scenario);
 
 }  // namespace skyfuse::harness

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -153,6 +154,73 @@ TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
   // The last round's picture, which the rows above held to the in-process run's.
   EXPECT_EQ(summary.at("picture_digest_at_end").get<std::string>(),
             node_rounds(dir / "out" / "picture_rounds.csv").at(kSteps - 1).at(1).digest);
+  // What a run of one aircraft says of its run, this one says too: how it ended, the wait for
+  // discovery to go quiet, the nodes' memory and how each process left.
+  EXPECT_EQ(summary.at("ended"), "complete");
+  EXPECT_EQ(summary.at("steps_planned").get<int>(), kSteps);
+  EXPECT_GE(summary.at("settle_s").get<double>(), 0.0);
+  EXPECT_TRUE(summary.contains("settled_quiet"));
+  EXPECT_GT(summary.at("node_peak_resident_mib").get<double>(), 1.0);
+  const auto& exits = summary.at("node_exits");
+  EXPECT_EQ(exits.size(), static_cast<std::size_t>(kStations + 1)) << exits.dump();
+  for (const auto& [node, how] : exits.items()) EXPECT_EQ(how, "exit 0") << node;
+}
+
+// A run of many aircraft that stops once its rounds have begun ends as one aircraft's does:
+// interrupted (Ctrl-C, exit 130) or with a station killed from outside (node_failed, exit 1),
+// it stops every node, writes picture_rounds.csv with every round it recorded and summary.json
+// saying how it ended, and says so.
+TEST(DdsPicture, ARunStoppedOnceItsRoundsBeganKeepsItsFiles) {
+  constexpr int kStations = 4;
+  constexpr int kSteps = 20000;  // far more than the seconds the test lets it run
+  struct Stop {
+    const char* domain;
+    bool kill_station;  // else Ctrl-C to the harness
+    int code;
+    const char* ended;
+  };
+  for (const Stop& stop :
+       {Stop{"151", false, 130, "interrupted"}, Stop{"152", true, 1, "node_failed"}}) {
+    SCOPED_TRACE(stop.ended);
+    const auto dir = test_dir();
+    Process run({bin("skyfuse"), "run", "--scenario", kCity, "--stations",
+                 std::to_string(kStations), "--steps", std::to_string(kSteps), "--domain",
+                 stop.domain, "--out", (dir / "out").string()},
+                dir / "run.log");
+    ASSERT_TRUE(eventually([&] { return run.output().find("%]") != std::string::npos; }, 120s))
+        << run.output();
+    pid_t victim = -1;
+    if (stop.kill_station) {
+      const auto pids = find_processes({"--id", "2", "--domain", stop.domain});
+      ASSERT_EQ(pids.size(), 1U) << run.output();
+      victim = pids.front();
+      ::kill(victim, SIGKILL);
+    } else {
+      run.signal(SIGINT);
+    }
+    const auto status = run.wait(60s);
+    ASSERT_TRUE(status.has_value()) << run.output();
+    EXPECT_TRUE(status->exited);
+    EXPECT_EQ(status->code, stop.code) << run.output();
+    EXPECT_NE(run.output().find(std::string("run stopped early (") + stop.ended + ")"),
+              std::string::npos)
+        << run.output();
+    ASSERT_TRUE(std::filesystem::exists(dir / "out" / "summary.json")) << run.output();
+    const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+    EXPECT_EQ(summary.at("ended"), stop.ended);
+    EXPECT_EQ(summary.at("steps_planned").get<int>(), kSteps);
+    const int recorded = summary.at("steps").get<int>();
+    EXPECT_GT(recorded, 0);
+    EXPECT_LT(recorded, kSteps);
+    EXPECT_EQ(node_rounds(dir / "out" / "picture_rounds.csv").size(),
+              static_cast<std::size_t>(recorded));
+    const auto& exits = summary.at("node_exits");
+    EXPECT_EQ(exits.size(), static_cast<std::size_t>(kStations + 1)) << exits.dump();
+    if (stop.kill_station) {
+      EXPECT_NE(exits.at("station 2").get<std::string>().find("signal 9"), std::string::npos)
+          << exits.dump();
+    }
+  }
 }
 
 // `skyfuse run --stations-per-process K`: several stations on threads of one process, sharing its
@@ -636,6 +704,9 @@ TEST(DdsPicture, OptionsThatDoNotTakeManyAircraftYetAreRefusedByName) {
       {{"--replay", kCity}, "--replay"},
       {{"--refusion-lag", "3"}, "--refusion-lag"},
       {{"--speed-kmh", "100"}, "--speed-kmh"},
+      {{"--link-delay-ms", "5"}, "--link-delay-ms"},
+      {{"--link-jitter-ms", "2"}, "--link-jitter-ms"},
+      {{"--nis-gate", "0.999"}, "--nis-gate"},
   };
   for (const auto& [extra, name] : refused) {
     std::vector<std::string> args = {

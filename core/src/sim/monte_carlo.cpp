@@ -3,18 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <mutex>
 #include <span>
-#include <thread>
 
 #include "sim/configured_runs.hpp"
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/registry/sensor_parts.hpp"
+#include "skyfuse/sim/parallel_runs.hpp"
 
 namespace skyfuse {
 
@@ -68,36 +66,6 @@ RunTrace simulate_run(const Scenario& scenario, const TruthTrajectory& truth, in
   const int counts[] = {stations};
   return std::move(simulate_configured_runs(scenario, truth, counts, run, gate, observer).front());
 }
-
-namespace {
-
-// Runs fn(run) for run = 0..runs-1 on up to `threads` threads; the first exception thrown by
-// any run is rethrown here after all workers have stopped.
-void parallel_runs(int runs, int threads, const std::function<void(int)>& fn) {
-  std::atomic<int> next{0};
-  std::exception_ptr failure;
-  std::mutex failure_mutex;
-  auto worker = [&] {
-    for (int run = next++; run < runs; run = next++) {
-      try {
-        fn(run);
-      } catch (...) {
-        const std::lock_guard lock(failure_mutex);
-        if (!failure) failure = std::current_exception();
-        next = runs;  // stop handing out work
-      }
-    }
-  };
-  const int extra = std::clamp(threads, 1, std::max(runs, 1)) - 1;
-  std::vector<std::thread> pool;
-  pool.reserve(static_cast<std::size_t>(extra));
-  for (int t = 0; t < extra; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-  if (failure) std::rethrow_exception(failure);
-}
-
-}  // namespace
 
 namespace {
 
