@@ -16,6 +16,7 @@
 #include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
+#include "skyfuse/traffic/scan_simulation.hpp"
 
 namespace skyfuse::bench {
 

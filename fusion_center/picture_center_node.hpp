@@ -54,14 +54,14 @@ class PictureCenter {
               kTree ? std::vector<std::string>{transport::kPictureClustersPartition}
                     : std::vector<std::string>{}),
         scans_in_(ids_, options.run_id,
-                  plan_.scenario.traffic->tracker.association.max_detections_per_scan),
+                  plan_.scenario.tracker.association.max_detections_per_scan),
         writers_(kTree ? static_cast<int>(transport::picture_tree_layout(plan_).clusters())
                        : plan_.stations),
         rounds_(node_.make_writer<wire::PictureRound>()),
         tracks_(node_),
         picture_(Parts::center(plan_.scenario),
                  known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run),
-                 plan_.scenario.traffic->tracker) {}
+                 plan_.scenario.tracker) {}
 
   int run() {
     auto& inputs = loop_.inputs();

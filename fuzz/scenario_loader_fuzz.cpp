@@ -111,9 +111,10 @@ void check_traffic(const Scenario& s) {
   }
   check_detection(traffic.detection);
   for (const auto& station : s.stations) {
+    if (!station.detection) finding("a station's detection not resolved by the loader");
     if (station.detection) check_detection(*station.detection);
   }
-  const auto& t = traffic.tracker;
+  const auto& t = s.tracker;
   if (!(t.association.gate_probability > 0.0 && t.association.gate_probability < 1.0) ||
       !(t.initiation.gate_probability > 0.0 && t.initiation.gate_probability < 1.0)) {
     finding("gate probability not in (0, 1)");

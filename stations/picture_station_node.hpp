@@ -19,6 +19,7 @@
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_stations.hpp"
+#include "skyfuse/traffic/scan_simulation.hpp"
 #include "skyfuse/transport/node_loop.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
@@ -51,7 +52,7 @@ class PictureStation {
         truth_(truth),
         known_(known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run)),
         me_(index_of(plan_, options.id)),
-        detection_(plan_.participants()[me_].detection.value_or(plan_.scenario.traffic->detection)),
+        detection_(plan_.participants()[me_].detection.value()),
         node_(node),
         loop_(node_, options.node, options.id, fmt::format("station {}", options.id),
               "picture scan", plan_.scenario.time_step_s,
@@ -62,7 +63,7 @@ class PictureStation {
         tracks_(node_),
         states_out_(node_.make_writer<wire::PictureState>()),
         states_in_(node_.make_reader<wire::PictureState>()),
-        picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.traffic->tracker) {
+        picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.tracker) {
     // What it sends to itself never crosses the simulated link: the exchange keeps it as it
     // goes out.
     loop_.skip_own(options.id, exchange_.own_writer());

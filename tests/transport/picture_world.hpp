@@ -13,6 +13,7 @@
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
+#include "skyfuse/traffic/scan_simulation.hpp"
 
 namespace skyfuse::test {
 

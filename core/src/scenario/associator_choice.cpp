@@ -13,7 +13,7 @@
 namespace skyfuse {
 
 void check_associator(const Scenario& scenario) {
-  const AssociationConfig& association = scenario.traffic->tracker.association;
+  const AssociationConfig& association = scenario.tracker.association;
   const Associator* associator = find_associator(association.associator);
   if (associator == nullptr) {
     throw std::invalid_argument(fmt::format("unknown associator '{}'; known: {}",
@@ -28,8 +28,7 @@ void check_associator(const Scenario& scenario) {
   }
   for (const StationConfig& station : scenario.stations) {
     try {
-      (void)detection_prior(station.detection.value_or(scenario.traffic->detection),
-                            station.sensor.kind, association);
+      (void)detection_prior(station.detection.value(), station.sensor.kind, association);
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(fmt::format("station {}: {}", station.id, e.what()));
     }
@@ -42,10 +41,8 @@ void set_associator(Scenario& scenario, const std::string& name, const char* opt
         "{}: scenario '{}' has one aircraft, known before the run: there is nothing to associate",
         option, scenario.name));
   }
-  auto traffic = std::make_shared<TrafficConfig>(*scenario.traffic);
-  traffic->tracker.association.associator = name;
   Scenario changed = scenario;
-  changed.traffic = std::move(traffic);
+  changed.tracker.association.associator = name;
   try {
     check_associator(changed);
   } catch (const std::invalid_argument& e) {

@@ -436,7 +436,7 @@ void check_many_targets(const Scenario& s, std::size_t i, const YamlField& item,
         "has {}, station {} has {}",
         s.stations[0].id, s.stations[0].sensor.kind, s.stations[i].id, s.stations[i].sensor.kind));
   }
-  const DetectionConfig& detection = s.stations[i].detection.value_or(s.traffic->detection);
+  const DetectionConfig& detection = *s.stations[i].detection;
   if (detection.clutter_per_scan > 0.0 && !std::isfinite(detection.field_of_view.max_range_m)) {
     item.fail("clutter needs a field of view with a finite detection.max_range_m");
   }
@@ -476,8 +476,9 @@ Scenario read_scenario(const YamlField& root) {
       }
     }
   } else {
-    s.traffic = std::make_shared<const TrafficConfig>(detail::read_traffic(
-        *traffic, root.optional("detection"), root.optional("tracker"), root.optional("metrics")));
+    s.traffic = std::make_shared<const TrafficConfig>(
+        detail::read_traffic(*traffic, root.optional("detection"), root.optional("metrics")));
+    if (const auto tracker = root.optional("tracker")) s.tracker = detail::read_tracker(*tracker);
   }
 
   const YamlField stations = root.required("stations");
@@ -516,9 +517,13 @@ Scenario read_scenario(const YamlField& root) {
           s.stations[i].sensor.kind));
     }
     const SensorInfo sensor = *find_sensor(s.stations[i].sensor.kind);
+    // Each station's detection, resolved here once: its own over the scenario's, or the
+    // scenario's.
     if (const auto detection = station_items[i].optional("detection")) {
       if (!s.traffic) detection->fail("only a scenario with 'traffic' (many aircraft) takes it");
       s.stations[i].detection = detail::read_detection(*detection, s.traffic->detection);
+    } else if (s.traffic) {
+      s.stations[i].detection = s.traffic->detection;
     }
     if (s.traffic) check_many_targets(s, i, station_items[i], filter, filter_info, sensor);
     if (sensor.state_entries > model.state_dim) {

@@ -79,6 +79,8 @@ double read_probability(const YamlField& field) {
   return p;
 }
 
+}  // namespace
+
 TrackerConfig read_tracker(const YamlField& field) {
   field.allow_only({"associator", "gate_probability", "max_detections_per_scan", "clutter_density",
                     "jpda_max_events", "confirm", "delete_after_misses", "max_position_std_m",
@@ -148,8 +150,6 @@ TrackerConfig read_tracker(const YamlField& field) {
   return t;
 }
 
-}  // namespace
-
 DetectionConfig read_detection(const YamlField& field, const DetectionConfig& defaults) {
   field.allow_only({"probability", "max_range_m", "min_elevation_deg", "azimuth_sector_deg",
                     "clutter_per_scan", "clutter_max_speed_mps"});
@@ -184,7 +184,6 @@ DetectionConfig read_detection(const YamlField& field, const DetectionConfig& de
 }
 
 TrafficConfig read_traffic(const YamlField& traffic, const std::optional<YamlField>& detection,
-                           const std::optional<YamlField>& tracker,
                            const std::optional<YamlField>& metrics) {
   traffic.allow_only({"targets", "generator", "recorded"});
   TrafficConfig config;
@@ -209,7 +208,6 @@ TrafficConfig read_traffic(const YamlField& traffic, const std::optional<YamlFie
         fmt::format("{} aircraft exceed the bound of {}", listed, TrafficConfig::kMaxAircraft));
   }
   if (detection) config.detection = read_detection(*detection, config.detection);
-  if (tracker) config.tracker = read_tracker(*tracker);
   if (metrics) {
     metrics->allow_only({"gospa_cutoff_m", "gospa_order"});
     if (const auto f = metrics->optional("gospa_cutoff_m"))

@@ -17,9 +17,11 @@ TargetConfig read_target(const YamlField& field, std::span<const std::string_vie
 /// `detection:` over `defaults` (a station's over the scenario's).
 DetectionConfig read_detection(const YamlField& field, const DetectionConfig& defaults);
 
-/// The scenario's `traffic:`, with its optional `detection:`, `tracker:` and `metrics:`.
+/// The scenario's `traffic:`, with its optional `detection:` and `metrics:`.
 TrafficConfig read_traffic(const YamlField& traffic, const std::optional<YamlField>& detection,
-                           const std::optional<YamlField>& tracker,
                            const std::optional<YamlField>& metrics);
+
+/// The scenario's `tracker:`.
+TrackerConfig read_tracker(const YamlField& field);
 
 }  // namespace skyfuse::detail

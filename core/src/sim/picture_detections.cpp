@@ -3,11 +3,11 @@
 #include <stdexcept>
 
 #include "skyfuse/multitarget/fixes_position.hpp"
-#include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
+#include "skyfuse/traffic/scan_simulation.hpp"
 
 namespace skyfuse {
 
@@ -28,7 +28,7 @@ std::vector<ScanPositions> scan_positions_at(const Scenario& scenario,
             const auto scan =
                 simulate_scan(station.id, sensor, station.position_m,
                               station_noise_covariance<Sensor::kMeasDim>(scenario, station, run),
-                              station.detection.value_or(scenario.traffic->detection), truth, step,
+                              station.detection.value(), truth, step,
                               scenario.seed, run, &origins);
             ScanPositions& out = scans.emplace_back();
             out.station_id = station.id;

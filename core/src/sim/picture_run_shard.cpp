@@ -23,6 +23,7 @@
 #include "skyfuse/sim/picture_stations.hpp"
 #include "skyfuse/sim/picture_truth.hpp"
 #include "skyfuse/tracking/increment_rules.hpp"
+#include "skyfuse/traffic/scan_simulation.hpp"
 
 namespace skyfuse {
 namespace {
@@ -76,11 +77,11 @@ class PictureRun {
         run_(run),
         known_(known_stations<Sensor>(scenario, stations, run)),
         score_(traffic_.gospa, truth.size(), scenario.time_step_s) {
-    peers_.assign(known_.size(), Peer(Parts::peer(scenario), known_, traffic_.tracker));
-    center_.emplace(Parts::center(scenario), known_, traffic_.tracker);
+    peers_.assign(known_.size(), Peer(Parts::peer(scenario), known_, scenario.tracker));
+    center_.emplace(Parts::center(scenario), known_, scenario.tracker);
     for (int s = 0; s < stations; ++s) {
       const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
-      detection_.push_back(station.detection.value_or(traffic_.detection));
+      detection_.push_back(station.detection.value());
     }
   }
 

@@ -13,7 +13,7 @@ void aircraft_at_step(const Scenario& scenario, int stations, const std::vector<
     bool in_view = false;
     for (int s = 0; s < stations && !in_view; ++s) {
       const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
-      const DetectionConfig& detection = station.detection.value_or(scenario.traffic->detection);
+      const DetectionConfig& detection = station.detection.value();
       in_view = detection.field_of_view.contains(station.position_m, p);
     }
     out.push_back({t, p, in_view});

@@ -17,6 +17,7 @@
 #include "skyfuse/multitarget/peer_picture.hpp"
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
+#include "skyfuse/traffic/scan_simulation.hpp"
 
 namespace skyfuse {
 namespace {

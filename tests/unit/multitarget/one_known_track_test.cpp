@@ -18,6 +18,7 @@
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
 #include "skyfuse/tracking/unscented_increment_rule.hpp"
+#include "skyfuse/traffic/scan_simulation.hpp"
 
 namespace skyfuse {
 namespace {

@@ -52,10 +52,10 @@ TEST(TrafficScenario, LoadsUamCity) {
   EXPECT_DOUBLE_EQ(traffic.detection.probability, 0.9);
   EXPECT_DOUBLE_EQ(traffic.detection.clutter_per_scan, 5.0);
   EXPECT_DOUBLE_EQ(traffic.detection.field_of_view.max_range_m, 12000.0);
-  EXPECT_EQ(traffic.tracker.management.confirm_hits, 2);
-  EXPECT_EQ(traffic.tracker.management.confirm_window, 3);
-  EXPECT_EQ(traffic.tracker.management.delete_misses, 5);
-  EXPECT_EQ(traffic.tracker.initiation.min_stations, 2);
+  EXPECT_EQ(s.tracker.management.confirm_hits, 2);
+  EXPECT_EQ(s.tracker.management.confirm_window, 3);
+  EXPECT_EQ(s.tracker.management.delete_misses, 5);
+  EXPECT_EQ(s.tracker.initiation.min_stations, 2);
   EXPECT_DOUBLE_EQ(traffic.gospa.cutoff_m, 50.0);
 }
 
@@ -110,7 +110,10 @@ TEST(TrafficScenario, AStationMayDetectDifferently) {
   ASSERT_TRUE(s.stations[1].detection->field_of_view.azimuth_sector);
   EXPECT_NEAR(s.stations[1].detection->field_of_view.azimuth_sector->half_width_rad,
               60.0 * std::numbers::pi / 180.0, 1e-12);
-  EXPECT_FALSE(s.stations[0].detection);
+  // A station without its own takes the scenario's, resolved by the loader once for every user.
+  ASSERT_TRUE(s.stations[0].detection);
+  EXPECT_DOUBLE_EQ(s.stations[0].detection->probability, s.traffic->detection.probability);
+  EXPECT_FALSE(s.stations[0].detection->field_of_view.azimuth_sector);
 }
 
 TEST(TrafficScenario, RefusesWhatAPictureCannotTake) {
@@ -165,9 +168,9 @@ std::string uam_city_tracking(const std::string& tracker_lines, const std::strin
 }
 
 TEST(TrafficScenario, NamesItsAssociatorAndRefusesOneItCannotRun) {
-  EXPECT_EQ(load_scenario_file(kUamCity).traffic->tracker.association.associator, "gnn");
+  EXPECT_EQ(load_scenario_file(kUamCity).tracker.association.associator, "gnn");
   const Scenario jpda = parse_scenario(uam_city_tracking("  associator: jpda"), "test.yaml");
-  EXPECT_EQ(jpda.traffic->tracker.association.associator, "jpda");
+  EXPECT_EQ(jpda.tracker.association.associator, "jpda");
 
   const std::string unknown = rejection(uam_city_tracking("  associator: mht"));
   EXPECT_NE(unknown.find("unknown associator 'mht'; known: gnn, jpda"), std::string::npos)
@@ -184,13 +187,13 @@ TEST(TrafficScenario, NamesItsAssociatorAndRefusesOneItCannotRun) {
   // of view: 5 a scan over 12 km x 2 pi x pi / 2.
   const Scenario given = parse_scenario(
       uam_city_tracking("  associator: jpda\n  clutter_density: 1.0e-9"), "test.yaml");
-  const AssociationConfig& association = given.traffic->tracker.association;
+  const AssociationConfig& association = given.tracker.association;
   EXPECT_EQ(association.clutter_density, 1.0e-9);
   EXPECT_EQ(detection_prior(given.traffic->detection, "range_azimuth_elevation", association)
                 .clutter_density,
             1.0e-9);
   const DetectionPrior radar = detection_prior(jpda.traffic->detection, "range_azimuth_elevation",
-                                               jpda.traffic->tracker.association);
+                                               jpda.tracker.association);
   EXPECT_DOUBLE_EQ(radar.clutter_density,
                    5.0 / (12000.0 * 2.0 * std::numbers::pi * std::numbers::pi / 2.0));
   EXPECT_EQ(radar.detection_probability, 0.9);
@@ -199,7 +202,7 @@ TEST(TrafficScenario, NamesItsAssociatorAndRefusesOneItCannotRun) {
   // needs its density given; GNN never reads it.
   try {
     (void)detection_prior(jpda.traffic->detection, "position_velocity",
-                          jpda.traffic->tracker.association);
+                          jpda.tracker.association);
     ADD_FAILURE() << "a position fix's clutter density was made up";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("give tracker.clutter_density"), std::string::npos)
@@ -215,7 +218,7 @@ TEST(TrafficScenario, AssociatorOverridesTheTrackersOnlyWhereItCanRun) {
   RunOverrides overrides;
   overrides.associator = "jpda";
   const PicturePlan plan = make_picture_plan(load_scenario_file(kUamCity), overrides);
-  EXPECT_EQ(plan.scenario.traffic->tracker.association.associator, "jpda");
+  EXPECT_EQ(plan.scenario.tracker.association.associator, "jpda");
   const auto refusal = [&](auto make) -> std::string {
     try {
       make();

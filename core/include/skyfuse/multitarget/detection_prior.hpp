@@ -6,7 +6,7 @@
 #include <optional>
 #include <string_view>
 
-#include "skyfuse/multitarget/detection_model.hpp"
+#include "skyfuse/traffic/detection_model.hpp"
 #include "skyfuse/multitarget/scan_association.hpp"
 #include "skyfuse/multitarget/tracker_config.hpp"
 

@@ -1,21 +1,12 @@
 #pragma once
 /// \file
 /// A station's scan: the unlabelled list of what its sensor reported in one step — aircraft
-/// detected, false alarms — in an order that says nothing of which is which. Simulated here as
-/// a pure function of (seed, run, station, step), so any process order gives the same bits.
+/// detected, false alarms — in an order that says nothing of which is which: what the tracker
+/// is given. The simulator that makes one from the truth is traffic/scan_simulation.hpp.
 
-#include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <span>
-#include <utility>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
-#include "skyfuse/multitarget/detection_model.hpp"
-#include "skyfuse/multitarget/fixes_position.hpp"
-#include "skyfuse/random/counter_rng.hpp"
-#include "skyfuse/traffic/target_truth.hpp"
 
 namespace skyfuse {
 
@@ -26,78 +17,5 @@ struct Scan {
   Covariance<M> noise;  ///< R of every detection of the station
   std::vector<Vector<M>> detections;
 };
-
-/// Where each detection of a simulated scan came from: for metrics and tests, never for a
-/// tracker.
-struct ScanOrigins {
-  std::vector<int> target;   ///< per detection: the index of its target, or -1 for clutter
-  std::uint32_t missed = 0;  ///< targets in the field of view not detected
-};
-
-/// The scan of the station `station_id`, whose sensor `sensor` (of the true kinematics, a
-/// 9-entry state) stands at `site`, at `step`: each target present and in the field of view
-/// detected with probability P_D (its value h(x) + nu, nu ~ N(0, R)), then the false alarms,
-/// then all of them shuffled. A target's noise is drawn from its own stream, the first
-/// target's from the one a one-target run uses, so that with P_D = 1 and no clutter its values
-/// are today's.
-template <typename Sensor>
-Scan<Sensor::kMeasDim> simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
-                                     const Covariance<Sensor::kMeasDim>& noise,
-                                     const DetectionConfig& detection,
-                                     std::span<const TargetTruth> truths, int step,
-                                     std::uint64_t seed, std::uint64_t run,
-                                     ScanOrigins* origins = nullptr) {
-  static_assert(Sensor::kStateDim == kKinematicsDim, "scans are simulated from the kinematics");
-  constexpr int M = Sensor::kMeasDim;
-  const auto station = static_cast<std::uint64_t>(station_id);
-  const auto at = static_cast<std::uint64_t>(step);
-  Scan<M> scan{station_id, noise, {}};
-  std::vector<int> origin;
-  std::uint32_t missed = 0;
-
-  CounterRng detect({seed, run, station, at, NoiseStream::kDetection});
-  for (std::size_t t = 0; t < truths.size(); ++t) {
-    if (!truths[t].present_at(step)) continue;
-    const Vector<kKinematicsDim>& x = truths[t].at(step);
-    if (!detection.field_of_view.contains(site, x.head<3>())) continue;
-    // Drawn for every target in view, so one target's draw never shifts another's.
-    const double u = detect.uniform();
-    if (detection.probability < 1.0 && u >= detection.probability) {
-      ++missed;
-      continue;
-    }
-    CounterRng rng({seed, run, station, at, NoiseStream::kMeasurement, t});
-    Vector<M> z = sensor.predict(x);
-    for (int i = 0; i < M; ++i) z(i) += std::sqrt(noise(i, i)) * rng.normal();
-    scan.detections.push_back(Sensor::to_reported(z));
-    origin.push_back(static_cast<int>(t));
-  }
-
-  if (detection.clutter_per_scan > 0.0) {
-    CounterRng clutter({seed, run, station, at, NoiseStream::kClutter});
-    const std::uint32_t count = draw_poisson(detection.clutter_per_scan, clutter);
-    for (std::uint32_t c = 0; c < count; ++c) {
-      Vector<kKinematicsDim> x = Vector<kKinematicsDim>::Zero();
-      x.head<3>() = detection.field_of_view.draw_point(site, clutter);
-      if constexpr (Sensor::kJacobianCols >= 6) {  // it measures the velocity too
-        for (int i = 3; i < 6; ++i) {
-          x(i) = detection.clutter_max_speed_mps * (2.0 * clutter.uniform() - 1.0);
-        }
-      }
-      scan.detections.push_back(Sensor::to_reported(sensor.predict(x)));
-      origin.push_back(-1);
-    }
-  }
-
-  // Fisher-Yates, from its own stream: the order says nothing of the origin.
-  CounterRng order({seed, run, station, at, NoiseStream::kScanOrder});
-  for (std::size_t i = scan.detections.size(); i > 1; --i) {
-    const auto j = static_cast<std::size_t>(order.next_u64() % i);
-    std::swap(scan.detections[i - 1], scan.detections[j]);
-    std::swap(origin[i - 1], origin[j]);
-  }
-  if (origins != nullptr) *origins = {std::move(origin), missed};
-  return scan;
-}
 
 }  // namespace skyfuse

@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
-#include "skyfuse/multitarget/detection_model.hpp"
+#include "skyfuse/multitarget/tracker_config.hpp"
+#include "skyfuse/traffic/detection_model.hpp"
 
 namespace skyfuse {
 
@@ -32,8 +33,9 @@ struct StationConfig {
   SensorConfig sensor;
   /// Fusion weight w_i of this station's increments.
   double weight = 1.0;
-  /// A run with many aircraft: this station's own probability of detection, field of view and
-  /// clutter; none takes the scenario's (TrafficConfig::detection).
+  /// A run with many aircraft: this station's probability of detection, field of view and
+  /// clutter — its own `detection:` over the scenario's, or the scenario's
+  /// (TrafficConfig::detection) — resolved once by the loader; none for one aircraft.
   std::optional<DetectionConfig> detection;
 };
 
@@ -165,6 +167,9 @@ struct Scenario {
   /// Many aircraft instead of one `target` (scenario/traffic_config.hpp); shared so that a
   /// Scenario stays cheap to copy and to include.
   std::shared_ptr<const TrafficConfig> traffic;
+  /// Many aircraft: the tracker's parts and settings (`tracker:`), its own part of the scenario
+  /// beside the truth (`traffic:`) and the sensors' detection (`detection:`).
+  TrackerConfig tracker;
   /// The file it was read from, if any (a recorded-traffic file is found relative to it).
   std::string source_path;
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// What a scenario with many aircraft adds (its `traffic:`, `detection:`, `tracker:` and
-/// `metrics:`; see scenarios/uam-city.yaml). Plain data: the loader reads it
+/// What a scenario with many aircraft adds of the world (its `traffic:`, `detection:` and
+/// `metrics:`; see scenarios/uam-city.yaml; its `tracker:` is Scenario::tracker). Plain data: the loader reads it
 /// (scenario/traffic_reader.cpp), traffic/traffic_truth.hpp turns it into truth.
 
 #include <array>
@@ -10,8 +10,7 @@
 #include <vector>
 
 #include "skyfuse/metrics/gospa.hpp"
-#include "skyfuse/multitarget/detection_model.hpp"
-#include "skyfuse/multitarget/tracker_config.hpp"
+#include "skyfuse/traffic/detection_model.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 
 namespace skyfuse {
@@ -52,9 +51,9 @@ struct TrafficConfig {
   std::vector<ScheduledTarget> targets;
   std::optional<TrafficGeneratorConfig> generator;
   std::optional<RecordedTrafficConfig> recorded;
-  /// Every station's, unless the station gives its own.
+  /// Every station's, unless the station gives its own (the loader resolves each station's
+  /// into StationConfig::detection).
   DetectionConfig detection;
-  TrackerConfig tracker;
   GospaParameters gospa{.cutoff_m = 50.0, .order = 2.0};
 };
 

@@ -55,7 +55,7 @@ class PictureExchange : public PictureRoundScans<Tracks, Sensor> {
                                     const options::NodeOptions& options,
                                     Reader<wire::PictureScan>& /*inputs*/) {
     return PictureExchange(node, stations, options.run_id,
-                           plan.scenario.traffic->tracker.association.max_detections_per_scan);
+                           plan.scenario.tracker.association.max_detections_per_scan);
   }
 
   /// Every station's writer and reader matched, this one's own included (`in`: the node's

@@ -120,7 +120,7 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
                                         const options::NodeOptions& options,
                                         Reader<wire::PictureBundle>& inputs) {
     return PictureTreeExchange(node, stations, options.run_id,
-                               plan.scenario.traffic->tracker.association.max_detections_per_scan,
+                               plan.scenario.tracker.association.max_detections_per_scan,
                                picture_tree_layout(plan), id,
                                (options.realtime_deadline_ms > 0.0 ? options.realtime_deadline()
                                                                    : options.round_deadline()) /

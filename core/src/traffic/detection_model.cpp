@@ -1,4 +1,4 @@
-#include "skyfuse/multitarget/detection_model.hpp"
+#include "skyfuse/traffic/detection_model.hpp"
 
 #include <algorithm>
 #include <cmath>

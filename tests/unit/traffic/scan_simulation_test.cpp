@@ -1,3 +1,5 @@
+#include "skyfuse/traffic/scan_simulation.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,7 +10,6 @@
 
 #include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
-#include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 
 namespace skyfuse {
