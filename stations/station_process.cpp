@@ -52,33 +52,14 @@ int run_one_aircraft_station(const StationOptions& options, const RunPlan& plan,
   });
 }
 
-}  // namespace
-
-int run_station(const StationOptions& options) {
-  if (Scenario scenario = load_scenario_or_default(options.node.scenario_path);
-      scenario.has_many_targets()) {
-    return run_picture_station(options, std::move(scenario));
-  }
-  const RunPlan plan = transport::load_plan(options.node);
-  const StationConfig& me = participant_of(plan, options.id);
-  if (options.rejoin_step) {
-    if (*options.rejoin_step >= static_cast<std::uint64_t>(plan.scenario.steps)) {
-      throw std::invalid_argument(fmt::format("--rejoin-at-step: {} is past the run's last step {}",
-                                              *options.rejoin_step, plan.scenario.steps - 1));
-    }
-    if (options.node.realtime_deadline_ms > 0.0) {
-      throw std::invalid_argument("--rejoin-at-step: lock-step runs only, not real time");
-    }
-  }
-  return run_one_aircraft_station(options, plan, me, nullptr);
+// `options` for station `id`.
+StationOptions with_id(StationOptions options, int id) {
+  options.id = id;
+  return options;
 }
 
-int run_stations(const StationOptions& options, const std::vector<int>& ids) {
-  if (ids.size() == 1) {
-    StationOptions one = options;
-    one.id = ids.front();
-    return run_station(one);
-  }
+// What a process of several stations cannot do, and ids given twice.
+void check_several_stations(const StationOptions& options, const std::vector<int>& ids) {
   if (const std::set<int> distinct(ids.begin(), ids.end()); distinct.size() != ids.size()) {
     throw std::invalid_argument(fmt::format("--id: an id given twice ({})", fmt::join(ids, ", ")));
   }
@@ -91,19 +72,48 @@ int run_stations(const StationOptions& options, const std::vector<int>& ids) {
         "several --id with --secure: DDS-Security authenticates a participant, and each station "
         "needs its own identity; run one station per process");
   }
+}
+
+// A one-aircraft station that replaces one that died rejoins a lock-step run before its end.
+void check_rejoin(const StationOptions& options, const RunPlan& plan) {
+  if (!options.rejoin_step) return;
+  if (*options.rejoin_step >= static_cast<std::uint64_t>(plan.scenario.steps)) {
+    throw std::invalid_argument(fmt::format("--rejoin-at-step: {} is past the run's last step {}",
+                                            *options.rejoin_step, plan.scenario.steps - 1));
+  }
+  if (options.node.realtime_deadline_ms > 0.0) {
+    throw std::invalid_argument("--rejoin-at-step: lock-step runs only, not real time");
+  }
+}
+
+}  // namespace
+
+int run_station(const StationOptions& options) {
+  return run_stations(options, {options.id});
+}
+
+int run_stations(const StationOptions& options, const std::vector<int>& ids) {
+  if (ids.size() > 1) check_several_stations(options, ids);
+  // The run's kind, decided once for the process, from the scenario every node reads.
   if (Scenario scenario = load_scenario_or_default(options.node.scenario_path);
       scenario.has_many_targets()) {
-    return run_picture_stations(options, ids, std::move(scenario));
+    return ids.size() == 1 ? run_picture_station(with_id(options, ids.front()), std::move(scenario))
+                           : run_picture_stations(options, ids, std::move(scenario));
   }
   const RunPlan plan = transport::load_plan(options.node);
+  if (ids.size() == 1) {
+    const StationOptions one = with_id(options, ids.front());
+    const StationConfig& me = participant_of(plan, one.id);
+    check_rejoin(one, plan);
+    return run_one_aircraft_station(one, plan, me, nullptr);
+  }
   // Every id is checked before any participant exists; the stations keep references to their
   // options and places.
   std::deque<StationOptions> each;
   std::vector<const StationConfig*> places;
   for (int id : ids) {
     places.push_back(&participant_of(plan, id));
-    each.push_back(options);
-    each.back().id = id;
+    each.push_back(with_id(options, id));
   }
   auto& node = transport::make_lifelong<transport::DdsNode>(transport::node_config(
       options.node, fmt::format("skyfuse-stations-{}", fmt::join(ids, "-"))));
