@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "report/output_files.hpp"
@@ -35,8 +36,7 @@ options::NodeOptions node_options_for(const RunOptions& o, const options::Networ
   child.scenario_path = scenario_file.string();
   child.run_id = run_id;
   child.discovery_timeout_s = discovery_timeout_s;
-  // A node waits well past the harness's own round timeout before it gives up on the run.
-  child.idle_timeout_s = std::max(30.0, 3.0 * o.round_timeout_s);
+  child.idle_timeout_s = node_idle_timeout_s(o);
   child.log_level = o.verbose ? "info" : "warn";
   if (child.secure_dir) child.secure_dir = std::filesystem::absolute(*child.secure_dir).string();
   return child;
@@ -114,14 +114,28 @@ KernelSnapshot RunNodes::kernel_snapshot() {
   return snapshot;
 }
 
+double node_idle_timeout_s(const RunOptions& o) {
+  // A node waits well past the harness's own round timeout before it gives up on the run.
+  return std::max(30.0, 3.0 * o.round_timeout_s);
+}
+
 QuietWait RunNodes::wait_until_quiet() {
+  // The nodes wait for the first tick as long as their discovery or idle limit, whichever is
+  // longer (NodeOptions::first_tick_timeout): the wait for quiet ends well before that, so that
+  // a start that never goes quiet (a secure pair stuck in its handshake) meets round 0, which
+  // says so, rather than a node that gave up first.
+  const double first_tick_s = std::max(discovery_timeout_s(options_, static_cast<int>(ids_.size())),
+                                       node_idle_timeout_s(options_));
+  const auto limit = std::min<std::chrono::milliseconds>(
+      kSettleLimit, std::chrono::milliseconds(
+                        std::llround(1e3 * std::max(0.0, first_tick_s - kFirstTickMarginS))));
   return harness::wait_until_quiet(
       [&] {
         std::vector<pid_t> processes = children_.pids();
         processes.push_back(getpid());
         return std::optional<double>(take_snapshot(processes, {}).cpu_s + children_.reaped_cpu_s());
       },
-      quiet_cores(groups_.processes() + 1), kSettleLimit,  // and the harness
+      quiet_cores(groups_.processes() + 1), limit,  // and the harness
       [&] {
         check();
         return true;

@@ -57,8 +57,13 @@ void check_before_start(const RunOptions& o, const std::vector<int>& ids, int st
 /// late.
 inline constexpr std::chrono::milliseconds kRealtimeHeadStart{1000};
 
-/// The longest the rounds wait for discovery to go quiet after every node joined.
+/// The longest the rounds wait for discovery to go quiet after every node joined, and how long
+/// before the nodes would give up waiting for the first tick that wait ends at the latest.
 inline constexpr std::chrono::seconds kSettleLimit{60};
+inline constexpr double kFirstTickMarginS = 10.0;
+
+/// How long a node of the run may see no progress before it gives up (--idle-timeout).
+double node_idle_timeout_s(const RunOptions& o);
 
 class RunNodes {
  public:
@@ -86,7 +91,8 @@ class RunNodes {
   /// nodes that have left included.
   KernelSnapshot kernel_snapshot();
   /// Until the run's processes have gone quiet after discovery (discovery_quiet.hpp), at most
-  /// kSettleLimit, check()ing between windows.
+  /// kSettleLimit and kFirstTickMarginS before the nodes' wait for the first tick ends,
+  /// check()ing between windows.
   QuietWait wait_until_quiet();
   /// The largest resident memory any live node has had, MiB.
   double peak_resident_mib() const;
