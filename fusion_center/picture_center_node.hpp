@@ -53,8 +53,7 @@ class PictureCenter {
               plan_.scenario.time_step_s,
               kTree ? std::vector<std::string>{transport::kPictureClustersPartition}
                     : std::vector<std::string>{}),
-        scans_in_(ids_, options.run_id,
-                  plan_.scenario.tracker.association.max_detections_per_scan),
+        scans_in_(ids_, options.run_id, plan_.scenario.tracker.association.max_detections_per_scan),
         writers_(kTree ? static_cast<int>(transport::picture_tree_layout(plan_).clusters())
                        : plan_.stations),
         rounds_(node_.make_writer<wire::PictureRound>()),

@@ -28,8 +28,7 @@ std::vector<ScanPositions> scan_positions_at(const Scenario& scenario,
             const auto scan =
                 simulate_scan(station.id, sensor, station.position_m,
                               station_noise_covariance<Sensor::kMeasDim>(scenario, station, run),
-                              station.detection.value(), truth, step,
-                              scenario.seed, run, &origins);
+                              station.detection.value(), truth, step, scenario.seed, run, &origins);
             ScanPositions& out = scans.emplace_back();
             out.station_id = station.id;
             out.target = std::move(origins.target);

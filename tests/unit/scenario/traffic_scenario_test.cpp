@@ -192,8 +192,8 @@ TEST(TrafficScenario, NamesItsAssociatorAndRefusesOneItCannotRun) {
   EXPECT_EQ(detection_prior(given.traffic->detection, "range_azimuth_elevation", association)
                 .clutter_density,
             1.0e-9);
-  const DetectionPrior radar = detection_prior(jpda.traffic->detection, "range_azimuth_elevation",
-                                               jpda.tracker.association);
+  const DetectionPrior radar =
+      detection_prior(jpda.traffic->detection, "range_azimuth_elevation", jpda.tracker.association);
   EXPECT_DOUBLE_EQ(radar.clutter_density,
                    5.0 / (12000.0 * 2.0 * std::numbers::pi * std::numbers::pi / 2.0));
   EXPECT_EQ(radar.detection_probability, 0.9);
@@ -201,8 +201,7 @@ TEST(TrafficScenario, NamesItsAssociatorAndRefusesOneItCannotRun) {
   // A position fix's clutter, drawn uniform in range and angles, is not uniform in x, y, z: JPDA
   // needs its density given; GNN never reads it.
   try {
-    (void)detection_prior(jpda.traffic->detection, "position_velocity",
-                          jpda.tracker.association);
+    (void)detection_prior(jpda.traffic->detection, "position_velocity", jpda.tracker.association);
     ADD_FAILURE() << "a position fix's clutter density was made up";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("give tracker.clutter_density"), std::string::npos)

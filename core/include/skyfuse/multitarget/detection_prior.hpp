@@ -6,9 +6,9 @@
 #include <optional>
 #include <string_view>
 
-#include "skyfuse/traffic/detection_model.hpp"
 #include "skyfuse/multitarget/scan_association.hpp"
 #include "skyfuse/multitarget/tracker_config.hpp"
+#include "skyfuse/traffic/detection_model.hpp"
 
 namespace skyfuse {
 

@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// What a scenario with many aircraft adds of the world (its `traffic:`, `detection:` and
-/// `metrics:`; see scenarios/uam-city.yaml; its `tracker:` is Scenario::tracker). Plain data: the loader reads it
-/// (scenario/traffic_reader.cpp), traffic/traffic_truth.hpp turns it into truth.
+/// `metrics:`; see scenarios/uam-city.yaml; its `tracker:` is Scenario::tracker). Plain data: the
+/// loader reads it (scenario/traffic_reader.cpp), traffic/traffic_truth.hpp turns it into truth.
 
 #include <array>
 #include <optional>
@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "skyfuse/metrics/gospa.hpp"
-#include "skyfuse/traffic/detection_model.hpp"
 #include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/traffic/detection_model.hpp"
 
 namespace skyfuse {
 

@@ -27,8 +27,8 @@ std::vector<KnownStation<Sensor>> known_stations(const Scenario& scenario, int s
     known.push_back({station.id, make_sensor<Sensor>(station),
                      station_noise_covariance<Sensor::kMeasDim>(scenario, station, run),
                      station.weight,
-                     detection_prior(station.detection.value(),
-                                     station.sensor.kind, scenario.tracker.association)});
+                     detection_prior(station.detection.value(), station.sensor.kind,
+                                     scenario.tracker.association)});
   }
   return known;
 }
