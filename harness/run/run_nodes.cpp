@@ -103,12 +103,16 @@ void RunNodes::check() {
   }
 }
 
-KernelSnapshot RunNodes::kernel_snapshot() {
+std::vector<pid_t> RunNodes::run_processes() const {
   std::vector<pid_t> processes = children_.pids();
   processes.push_back(getpid());
+  return processes;
+}
+
+KernelSnapshot RunNodes::kernel_snapshot() {
   std::vector<pid_t> one_per_namespace;
   for (const auto& [netns, pid] : namespace_members_) one_per_namespace.push_back(pid);
-  KernelSnapshot snapshot = take_snapshot(processes, one_per_namespace);
+  KernelSnapshot snapshot = take_snapshot(run_processes(), one_per_namespace);
   // A node that left between two snapshots keeps its CPU time in the count.
   snapshot.cpu_s += children_.reaped_cpu_s();
   return snapshot;
@@ -131,9 +135,8 @@ QuietWait RunNodes::wait_until_quiet() {
                         std::llround(1e3 * std::max(0.0, first_tick_s - kFirstTickMarginS))));
   return harness::wait_until_quiet(
       [&] {
-        std::vector<pid_t> processes = children_.pids();
-        processes.push_back(getpid());
-        return std::optional<double>(take_snapshot(processes, {}).cpu_s + children_.reaped_cpu_s());
+        return std::optional<double>(take_snapshot(run_processes(), {}).cpu_s +
+                                     children_.reaped_cpu_s());
       },
       quiet_cores(groups_.processes() + 1), limit,  // and the harness
       [&] {

@@ -110,6 +110,8 @@ class RunNodes {
 
  private:
   void spawn(std::size_t process, std::vector<std::string> argv, const std::string& name);
+  /// The live nodes and the harness itself.
+  std::vector<pid_t> run_processes() const;
   void spawn_stations(std::size_t process, std::optional<std::uint64_t> rejoin_step);
 
   const RunOptions& options_;
