@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <variant>
 #include <vector>
 
 #include "skyfuse/models/constant_velocity.hpp"
@@ -24,7 +25,8 @@ using Model = ConstantVelocity3D;
 using TrackSensor = RangeAzimuthElevation<Model::kDim>;
 using TruthSensor = RangeAzimuthElevation<kKinematicsDim>;
 using PeerTracks = PeerModelTracks<Model, EkfIncrementRule>;
-using Peer = PeerPicture<PeerTracks, TrackSensor>;
+using Peer = PeerPicture<PeerTracks>;
+using Station = KnownStation<Model::kDim>;
 
 constexpr int kWarmUpSteps = 8;  // rounds for every aircraft to get a confirmed track
 
@@ -54,12 +56,12 @@ inline std::vector<TargetTruth> traffic(int aircraft, int steps) {
 }
 
 // `count` radars on a circle around the area, seeing all of it.
-inline std::vector<KnownStation<TrackSensor>> radars(int aircraft, int count) {
+inline std::vector<Station> radars(int aircraft, int count) {
   const double radius = 700.0 * std::sqrt(static_cast<double>(aircraft)) + 2000.0;
   Covariance<3> noise = Covariance<3>::Zero();
   const double angle_std = 0.05 * std::numbers::pi / 180.0;
   noise.diagonal() << 5.0 * 5.0, angle_std * angle_std, angle_std * angle_std;
-  std::vector<KnownStation<TrackSensor>> stations;
+  std::vector<Station> stations;
   for (int i = 0; i < count; ++i) {
     const double bearing = 2.0 * std::numbers::pi * i / count;
     const Vector3 site(radius * std::cos(bearing), radius * std::sin(bearing), 30.0);
@@ -80,20 +82,21 @@ inline DetectionConfig detection_for(int aircraft, double probability = 0.9,
 }
 
 // Every station's scan of step `step`.
-inline std::vector<Scan<3>> scans_of(const std::vector<KnownStation<TrackSensor>>& stations,
-                                     const DetectionConfig& detection,
-                                     const std::vector<TargetTruth>& truths, int step) {
-  std::vector<Scan<3>> scans;
+inline std::vector<Scan> scans_of(const std::vector<Station>& stations,
+                                  const DetectionConfig& detection,
+                                  const std::vector<TargetTruth>& truths, int step) {
+  std::vector<Scan> scans;
   for (const auto& s : stations) {
-    scans.push_back(simulate_scan(s.id, TruthSensor(s.sensor.site()), s.sensor.site(), s.noise,
-                                  detection, truths, step, 7, 0));
+    const Vector3 site = std::get<TrackSensor>(s.sensor).site();
+    scans.push_back(simulate_scan(s.id, TruthSensor(site), site, fixed_noise<3>(s.noise), detection,
+                                  truths, step, 7, 0));
   }
   return scans;
 }
 
 // A picture of the traffic after kWarmUpSteps rounds, every aircraft tracked.
-inline Peer warmed_picture(const std::vector<KnownStation<TrackSensor>>& stations,
-                           const DetectionConfig& detection, const std::vector<TargetTruth>& truths,
+inline Peer warmed_picture(const std::vector<Station>& stations, const DetectionConfig& detection,
+                           const std::vector<TargetTruth>& truths,
                            const TrackerConfig& tracker = {}) {
   Peer peer(PeerTracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0)), stations,
             tracker);

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <map>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -45,9 +46,10 @@ using Cdr = eprosima::fastcdr::Cdr;
 // the report it makes of it.
 struct Round {
   Peer picture;
-  std::vector<KnownStation<TrackSensor>> stations;
-  std::vector<Scan<kMeasDim>> scans;
+  std::vector<Station> stations;
+  std::vector<Scan> scans;
   std::vector<Report> reports;
+  transport::StationSensorKinds kinds;  // what a receiver checks each sample against
 };
 
 Round make_round(int aircraft, int station_count) {
@@ -57,7 +59,8 @@ Round make_round(int aircraft, int station_count) {
   Round round{warmed_picture(stations, detection, truths),
               stations,
               scans_of(stations, detection, truths, kWarmUpSteps),
-              {}};
+              {},
+              transport::StationSensorKinds(std::span<const Station>(stations))};
   round.picture.predict();
   AssociationWork work;
   for (std::size_t s = 0; s < stations.size(); ++s) {
@@ -69,7 +72,8 @@ Round make_round(int aircraft, int station_count) {
 // Each encoding into its own buffer, then read back by a peer into the reports it fuses.
 class IncrementEncoding {
  public:
-  static void encode(Cdr& cdr, const Report& report, const Scan<kMeasDim>& /*scan*/) {
+  static void encode(Cdr& cdr, const Station& /*station*/, const Report& report,
+                     const Scan& /*scan*/) {
     cdr << report.station_id << static_cast<std::uint32_t>(report.updates.size());
     double upper[kUpperTriangle];
     // GNN's report: one pair per update, in the same order.
@@ -134,8 +138,8 @@ class DetectionEncoding {
  public:
   // The wire type itself (transport/picture_wire.hpp). Its digest's 8 bytes travel; their
   // value does not matter here.
-  static void encode(Cdr& cdr, const Report& report, const Scan<kMeasDim>& scan) {
-    transport::to_wire<TrackSensor>(scan, report, 1, kWarmUpSteps, 0).serialize(cdr);
+  static void encode(Cdr& cdr, const Station& station, const Report& report, const Scan& scan) {
+    transport::to_wire<kDim>(station.sensor, scan, report, 1, kWarmUpSteps, 0).serialize(cdr);
   }
 
   // Checked as a receiver checks it, and the station's increments computed here against the
@@ -143,7 +147,7 @@ class DetectionEncoding {
   static void decode(Cdr& cdr, const Round& round, Report& report) {
     wire::PictureScan sample;
     sample.deserialize(cdr);
-    const auto [scan, why] = transport::picture_scan_from_wire<TrackSensor>(sample, 4096);
+    const auto [scan, why] = transport::picture_scan_from_wire(sample, round.kinds, 4096);
     const auto& station = *std::find_if(round.stations.begin(), round.stations.end(),
                                         [&](const auto& s) { return s.id == scan->station_id; });
     report = *round.picture.report_of(station, scan->detections, scan->associations,
@@ -165,7 +169,7 @@ void BM_PictureRound(benchmark::State& state) {
     eprosima::fastcdr::FastBuffer buffer(memory.data(), memory.size());
     Cdr cdr(buffer, Cdr::DEFAULT_ENDIAN, Cdr::DDS_CDR);
     cdr.serialize_encapsulation();
-    Encoding::encode(cdr, round.reports[s], round.scans[s]);
+    Encoding::encode(cdr, round.stations[s], round.reports[s], round.scans[s]);
     memory.resize(cdr.getSerializedDataLength());
     bytes += static_cast<double>(memory.size());
     samples[s] = std::move(memory);
@@ -242,8 +246,8 @@ struct ClusterBundleEncoding {
     bundle.kind(wire::CLUSTER_SCANS);
     bundle.station_id(round.reports[0].station_id);
     for (std::size_t s = 0; s < fanout; ++s) {
-      bundle.scans().push_back(
-          transport::to_wire<TrackSensor>(round.scans[s], round.reports[s], 1, kWarmUpSteps, 0));
+      bundle.scans().push_back(transport::to_wire<kDim>(round.stations[s].sensor, round.scans[s],
+                                                        round.reports[s], 1, kWarmUpSteps, 0));
     }
     bundle.serialize(cdr);
   }

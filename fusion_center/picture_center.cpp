@@ -2,7 +2,6 @@
 
 #include "picture_center_shards.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
-#include "skyfuse/registry/sensor_parts.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 
 namespace skyfuse::center {
@@ -10,11 +9,7 @@ namespace skyfuse::center {
 int run_picture_center(const options::NodeOptions& options, Scenario scenario) {
   PicturePlan plan = make_picture_plan(std::move(scenario), options.overrides);
   return with_filter_shard(plan.scenario.filter, [&](auto shard) {
-    return with_sensor_part<kSensorPartsOf<decltype(shard)::value>>(
-        plan.scenario, 1, [&](auto part) {
-          return run_picture_center_in_shard<decltype(shard)::value, decltype(part)::value>(
-              options, std::move(plan));
-        });
+    return run_picture_center_in_shard<decltype(shard)::value>(options, std::move(plan));
   });
 }
 

@@ -1,9 +1,10 @@
 #pragma once
 // The center process of a run with many aircraft (picture_center.hpp) for one filter part on
-// one motion model and the stations' sensor (multitarget/picture_parts.hpp), compiled by shard
-// of the configuration groups (registry/filter_shards.hpp, picture_center_shard.cpp). It hears
-// each station's scan (`Sample` wire::PictureScan: the flat exchange) or each cluster's scans as
-// its aggregator relays them (wire::PictureBundle: the tree, transport/picture_tree_exchange.hpp).
+// one motion model (multitarget/picture_parts.hpp; the stations' sensors are values), compiled by
+// shard of the configuration groups (registry/filter_shards.hpp, picture_center_shard.cpp). It
+// hears each station's scan (`Sample` wire::PictureScan: the flat exchange) or each cluster's scans
+// as its aggregator relays them (wire::PictureBundle: the tree,
+// transport/picture_tree_exchange.hpp).
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -18,7 +19,6 @@
 #include "center_process.hpp"
 #include "skyfuse/multitarget/central_picture.hpp"
 #include "skyfuse/multitarget/picture_parts.hpp"
-#include "skyfuse/registry/sensor_parts.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_stations.hpp"
@@ -39,28 +39,27 @@ class PictureCenter {
   static constexpr bool kTree = std::is_same_v<Sample, wire::PictureBundle>;
 
  public:
-  using Sensor = typename Parts::Sensor;
-  static constexpr int M = Sensor::kMeasDim;
-  using Picture = CentralPicture<typename Parts::Center, Sensor>;
+  using Picture = CentralPicture<typename Parts::Center>;
+  static constexpr int N = Picture::kDim;
 
   // The endpoints are made in a fixed order: the loop's tick and input readers first.
   PictureCenter(const options::NodeOptions& options, PicturePlan plan)
       : options_(options),
         plan_(std::move(plan)),
         ids_(plan_.participant_ids()),
+        known_(known_stations<N>(plan_.scenario, plan_.stations, plan_.mc_run)),
         node_(transport::node_config(options, "skyfuse-center")),
         loop_(node_, options, kCenterSourceId, "a fusion center", "picture scan",
               plan_.scenario.time_step_s,
               kTree ? std::vector<std::string>{transport::kPictureClustersPartition}
                     : std::vector<std::string>{}),
-        scans_in_(ids_, options.run_id, plan_.scenario.tracker.association.max_detections_per_scan),
+        scans_in_(ids_, transport::StationSensorKinds(std::span<const KnownStation<N>>(known_)),
+                  options.run_id, plan_.scenario.tracker.association.max_detections_per_scan),
         writers_(kTree ? static_cast<int>(transport::picture_tree_layout(plan_).clusters())
                        : plan_.stations),
         rounds_(node_.make_writer<wire::PictureRound>()),
         tracks_(node_),
-        picture_(Parts::center(plan_.scenario),
-                 known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run),
-                 plan_.scenario.tracker) {}
+        picture_(Parts::center(plan_.scenario), known_, plan_.scenario.tracker) {}
 
   int run() {
     auto& inputs = loop_.inputs();
@@ -126,9 +125,10 @@ class PictureCenter {
   const options::NodeOptions& options_;
   PicturePlan plan_;
   std::vector<int> ids_;  // the participants in scenario order, as the stations' known list
+  std::vector<KnownStation<N>> known_;
   transport::DdsNode node_;
   transport::NodeLoop<Sample> loop_;
-  transport::PictureScans<Sensor> scans_in_;
+  transport::PictureScans scans_in_;
   int writers_;  // of its input: every station's, or every cluster's aggregator's
   std::optional<transport::ClusterBundleScreen> screen_ =
       kTree ? std::optional(transport::ClusterBundleScreen(transport::picture_tree_layout(plan_),
@@ -137,15 +137,14 @@ class PictureCenter {
   transport::Writer<wire::PictureRound> rounds_;
   transport::PictureTrackWriter tracks_;
   Picture picture_;
-  std::vector<Scan<M>> scans_;
+  std::vector<Scan> scans_;
 };
 
-/// Runs the center of `plan`, whose filter part and motion model lie in shard `Shard` and whose
-/// stations' sensor in its sensor part `Part`.
-template <std::size_t Shard, std::size_t Part>
+/// Runs the center of `plan`, whose filter part and motion model lie in shard `Shard`.
+template <std::size_t Shard>
 int run_picture_center_in_shard(const options::NodeOptions& options, PicturePlan plan) {
   int code = 1;
-  const bool ran = visit_picture_parts_in_shard<Shard, Part, kSensorPartsOf<Shard>>(
+  const bool ran = visit_picture_parts_in_shard<Shard>(
       plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
         if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
           code = transport::make_lifelong<PictureCenter<Parts, wire::PictureBundle>>(
@@ -157,7 +156,7 @@ int run_picture_center_in_shard(const options::NodeOptions& options, PicturePlan
                      .run();
         }
       });
-  if (!ran) throw std::logic_error("a picture center: no picture runs this filter and sensor");
+  if (!ran) throw std::logic_error("a picture center: no picture runs this filter and model");
   return code;
 }
 

@@ -10,10 +10,9 @@
 
 namespace skyfuse::center {
 
-/// Runs the center of `plan`, whose filter part and motion model lie in shard `Shard` and whose
-/// stations' sensor in sensor part `Part` (registry/sensor_parts.hpp); returns an
-/// options::ExitCode.
-template <std::size_t Shard, std::size_t Part>
+/// Runs the center of `plan`, whose filter part and motion model lie in shard `Shard`; returns
+/// an options::ExitCode.
+template <std::size_t Shard>
 int run_picture_center_in_shard(const options::NodeOptions& options, PicturePlan plan);
 
 }  // namespace skyfuse::center

@@ -1,8 +1,9 @@
 #pragma once
 // The station process of a run with many aircraft (picture_station.hpp) for one filter part on
-// one motion model and the stations' sensor (multitarget/picture_parts.hpp) and one exchange
-// (flat: transport/picture_exchange.hpp; tree: transport/picture_tree_exchange.hpp), compiled by
-// shard of the configuration groups (registry/filter_shards.hpp, picture_station_shard.cpp).
+// one motion model (multitarget/picture_parts.hpp; the stations' sensors are values) and one
+// exchange (flat: transport/picture_exchange.hpp; tree: transport/picture_tree_exchange.hpp),
+// compiled by shard of the configuration groups (registry/filter_shards.hpp,
+// picture_station_shard.cpp).
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -32,14 +33,13 @@ namespace skyfuse::station {
 
 using transport::RunEnd;
 
-template <typename Parts, template <typename, typename> class ExchangeOf>
+template <typename Parts, template <typename> class ExchangeOf>
 class PictureStation {
  public:
   using Tracks = typename Parts::Peer;
-  using Sensor = typename Parts::Sensor;
-  static constexpr int M = Sensor::kMeasDim;
-  using Picture = PeerPicture<Tracks, Sensor>;
-  using Exchange = ExchangeOf<Tracks, Sensor>;
+  static constexpr int N = Tracks::kDim;
+  using Picture = PeerPicture<Tracks>;
+  using Exchange = ExchangeOf<Tracks>;
   using Sample = typename Exchange::Sample;
 
   // The endpoints are made in a fixed order: the loop's tick and input readers first. `node` is
@@ -50,9 +50,10 @@ class PictureStation {
       : options_(options),
         plan_(std::move(plan)),
         truth_(truth),
-        known_(known_stations<Sensor>(plan_.scenario, plan_.stations, plan_.mc_run)),
+        known_(known_stations<N>(plan_.scenario, plan_.stations, plan_.mc_run)),
         me_(index_of(plan_, options.id)),
         detection_(plan_.participants()[me_].detection.value()),
+        truth_sensor_(make_picture_sensor<kKinematicsDim>(plan_.participants()[me_])),
         node_(node),
         loop_(node_, options.node, options.id, fmt::format("station {}", options.id),
               "picture scan", plan_.scenario.time_step_s,
@@ -103,9 +104,9 @@ class PictureStation {
     picture_.predict();
     predicted_digest_ = picture_.digest();
     const StationConfig& station = plan_.participants()[me_];
-    const Scan<M> scan = simulate_scan(station.id, make_sensor<TruthSensorOf<Sensor>>(station),
-                                       station.position_m, known_[me_].noise, detection_, truth_,
-                                       static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
+    const Scan scan =
+        simulate_scan(station.id, truth_sensor_, station.position_m, known_[me_].noise, detection_,
+                      truth_, static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
     exchange_.publish(static_cast<std::uint32_t>(k), scan,
                       picture_.report(known_[me_], scan, work_), predicted_digest_);
     return std::nullopt;
@@ -279,9 +280,10 @@ class PictureStation {
   const StationOptions& options_;
   PicturePlan plan_;
   const std::vector<TargetTruth>& truth_;
-  std::vector<KnownStation<Sensor>> known_;
+  std::vector<KnownStation<N>> known_;
   std::size_t me_;
   DetectionConfig detection_;
+  PictureSensor<kKinematicsDim> truth_sensor_;  // this station's sensor, on the truth
   transport::DdsNode& node_;
   transport::NodeLoop<Sample> loop_;
   Exchange exchange_;
@@ -307,9 +309,9 @@ template <std::size_t Shard>
 int run_picture_station_in_shard(const StationOptions& options, PicturePlan plan,
                                  const std::vector<TargetTruth>& truth, transport::DdsNode& node) {
   int code = 1;
-  const bool ran = visit_picture_parts_in_shard<Shard, 0, 1>(
+  const bool ran = visit_picture_parts_in_shard<Shard>(
       plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
-        const auto run = [&]<template <typename, typename> class ExchangeOf> {
+        const auto run = [&]<template <typename> class ExchangeOf> {
           code = transport::make_lifelong<PictureStation<Parts, ExchangeOf>>(
                      options, std::move(plan), truth, node)
                      .run();
@@ -320,7 +322,7 @@ int run_picture_station_in_shard(const StationOptions& options, PicturePlan plan
           run.template operator()<transport::PictureExchange>();
         }
       });
-  if (!ran) throw std::logic_error("a picture station: no picture runs this filter and sensor");
+  if (!ran) throw std::logic_error("a picture station: no picture runs this filter and model");
   return code;
 }
 

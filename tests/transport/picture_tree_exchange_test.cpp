@@ -9,6 +9,8 @@
 
 #include <chrono>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "support/process.hpp"
 #include "transport/picture_world.hpp"
@@ -19,10 +21,21 @@ namespace {
 using namespace std::chrono_literals;
 using test::eventually;
 using World = test::PictureWorld;
-using Exchange = PictureTreeExchange<World::Tracks, World::Sensor>;
+using Exchange = PictureTreeExchange<World::Tracks>;
 constexpr int kDomain = 87;
 constexpr std::uint64_t kRunId = 0x5eed'0000'0087ULL;
 constexpr std::size_t kBound = 64;
+
+// The sensor kinds of stations `ids`, each a radar as the world's stations are.
+StationSensorKinds radars(const World& world, std::span<const int> ids) {
+  std::vector<World::Station> stations;
+  for (const int id : ids) {
+    World::Station station = world.stations.front();
+    station.id = id;
+    stations.push_back(station);
+  }
+  return StationSensorKinds(std::span<const World::Station>(stations));
+}
 
 ClusterLayout layout_of(const World& world, std::size_t fanout) {
   std::vector<int> ids;
@@ -140,16 +153,20 @@ class PictureBundleScreens : public ::testing::Test {
   static constexpr std::uint32_t kStep = 0;
 
   PictureBundleScreens()
-      : world_(2), layout_(ids_, 2), screen_(layout_, kRunId), scans_(ids_, kRunId, kBound) {}
+      : world_(2),
+        layout_(ids_, 2),
+        screen_(layout_, kRunId),
+        scans_(ids_, radars(world_, ids_), kRunId, kBound) {}
 
   // Station `id`'s scan of step 0, as it would send it, against an empty picture.
   wire::PictureScan scan_of(int id) {
     World::Peer picture = world_.empty_picture();
     picture.predict();
-    const Scan<3> scan = world_.scan(0, 0);
+    const Scan scan = world_.scan(0, 0);
     auto report = picture.report(world_.stations[0], scan, work_);
     report.station_id = id;
-    return to_wire<World::Sensor>(scan, report, kRunId, kStep, picture.digest());
+    return to_wire<World::Model::kDim>(world_.stations[0].sensor, scan, report, kRunId, kStep,
+                                       picture.digest());
   }
   wire::PictureBundle cluster_bundle(std::uint32_t cluster, int sender, std::vector<int> ids) {
     wire::PictureBundle b;
@@ -171,7 +188,7 @@ class PictureBundleScreens : public ::testing::Test {
   World world_;
   ClusterLayout layout_;
   ClusterBundleScreen screen_;
-  PictureScans<World::Sensor> scans_;
+  PictureScans scans_;
   AssociationWork work_;
 };
 
@@ -219,7 +236,8 @@ TEST_F(PictureBundleScreens, EveryBundleThatIsNotItsAggregatorsIsRefusedByKindAn
 }
 
 TEST_F(PictureBundleScreens, AnAggregatorTakesOnlyItsOwnMembersScansEachFromItsWriter) {
-  ClusterScans<World::Sensor> cluster(layout_, 1, kRunId, kBound);  // {3, 4}, aggregated by 3
+  // {3, 4}, aggregated by 3.
+  ClusterScans cluster(layout_, 1, radars(world_, ids_), kRunId, kBound);
   cluster.keep(scan_of(3));
   EXPECT_FALSE(cluster.complete());
   const auto member = [&](int id, std::uint32_t in_cluster) {

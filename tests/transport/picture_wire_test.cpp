@@ -9,10 +9,15 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <span>
+#include <string>
+#include <vector>
 
 #include "skyfuse/fusion/information_increment.hpp"
 #include "skyfuse/models/constant_velocity.hpp"
+#include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/multitarget/picture_sensor.hpp"
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/multitarget/track_table.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -25,20 +30,27 @@ namespace skyfuse::transport {
 namespace {
 
 using Sensor = RangeAzimuthElevation<6>;
-using Report = StationReport<InformationIncrement<6>, 3>;
+using Report = StationReport<InformationIncrement<6>>;
 constexpr std::size_t kBound = 64;
+
+// The sending station's radar (its site does not go on the wire).
+PictureSensor<6> radar() {
+  return Sensor(Vector3(100.0, -200.0, 30.0));
+}
 
 // Four detections: tracks 5 and 9 took detections 2 and 0; 1 and 3 are unassociated.
 struct Sent {
-  Scan<3> scan;
+  Scan scan;
   Report report;
 };
 
 Sent a_round() {
   Sent sent;
   sent.scan.station_id = 4;
-  sent.scan.detections = {Vector3(1500.125, 0.25, 0.0625), Vector3(2000.0, -1.5, 0.125),
-                          Vector3(1234.5678901234567, 3.0, -0.5), Vector3(99.0, 0.0, 1.5)};
+  for (const Vector3& z : {Vector3(1500.125, 0.25, 0.0625), Vector3(2000.0, -1.5, 0.125),
+                           Vector3(1234.5678901234567, 3.0, -0.5), Vector3(99.0, 0.0, 1.5)}) {
+    sent.scan.detections.emplace_back(z);
+  }
   sent.report.station_id = 4;
   sent.report.updates.resize(2);
   sent.report.updates[0].track = 5;
@@ -62,8 +74,10 @@ wire::PictureScan through_cdr(wire::PictureScan sample) {
 TEST(PictureWire, ARoundArrivesAsSentThroughTheSerializer) {
   const Sent sent = a_round();
   const wire::PictureScan sample =
-      through_cdr(to_wire<Sensor>(sent.scan, sent.report, 42, 17, 0xfeedfacecafef00dULL));
-  const auto [received, why] = picture_scan_from_wire<Sensor>(sample, kBound);
+      through_cdr(to_wire<6>(radar(), sent.scan, sent.report, 42, 17, 0xfeedfacecafef00dULL));
+  EXPECT_EQ(std::string(sample.sensor().c_str()), Sensor::kKind);
+  EXPECT_EQ(sample.measurement_dim(), 3U);
+  const auto [received, why] = picture_scan_from_wire(sample, Sensor::kKind, kBound);
   ASSERT_EQ(why, std::nullopt);
   ASSERT_TRUE(received.has_value());
   EXPECT_EQ(sample.run_id(), 42U);
@@ -73,15 +87,16 @@ TEST(PictureWire, ARoundArrivesAsSentThroughTheSerializer) {
   EXPECT_EQ(received->dropped, 1U);
   ASSERT_EQ(received->detections.size(), sent.scan.detections.size());
   for (std::size_t j = 0; j < sent.scan.detections.size(); ++j) {
-    EXPECT_EQ(received->detections[j], sent.scan.detections[j]) << "detection " << j;
+    EXPECT_TRUE(same_detection(received->detections[j], sent.scan.detections[j]))
+        << "detection " << j;
   }
   EXPECT_EQ(received->associations, (std::vector<ReportedPair>{{5, 2, 1.0}, {9, 0, 1.0}}));
   EXPECT_EQ(received->unassociated, (std::vector<std::uint32_t>{1, 3}));
 }
 
 TEST(PictureWire, AnEmptyScanArrivesEmpty) {
-  const wire::PictureScan sample = through_cdr(to_wire<Sensor>(Scan<3>{}, Report{}, 1, 0, 0));
-  const auto [received, why] = picture_scan_from_wire<Sensor>(sample, kBound);
+  const wire::PictureScan sample = through_cdr(to_wire<6>(radar(), Scan{}, Report{}, 1, 0, 0));
+  const auto [received, why] = picture_scan_from_wire(sample, Sensor::kKind, kBound);
   ASSERT_TRUE(received.has_value());
   EXPECT_TRUE(received->detections.empty());
   EXPECT_TRUE(received->associations.empty());
@@ -136,26 +151,63 @@ TEST(PictureWire, ASampleWrongAnywhereIsRefusedWhole) {
        DropKind::kOutOfRange},
   };
   const Sent sent = a_round();
-  const wire::PictureScan good = to_wire<Sensor>(sent.scan, sent.report, 42, 17, 0);
-  ASSERT_TRUE(picture_scan_from_wire<Sensor>(good, kBound).first.has_value());
+  const wire::PictureScan good = to_wire<6>(radar(), sent.scan, sent.report, 42, 17, 0);
+  ASSERT_TRUE(picture_scan_from_wire(good, Sensor::kKind, kBound).first.has_value());
   for (const Forgery& forgery : forgeries) {
     wire::PictureScan forged = good;
     forgery.forge(forged);
-    const auto [received, why] = picture_scan_from_wire<Sensor>(forged, kBound);
+    const auto [received, why] = picture_scan_from_wire(forged, Sensor::kKind, kBound);
     EXPECT_FALSE(received.has_value()) << forgery.what;
     EXPECT_EQ(why, forgery.why) << forgery.what;
   }
+}
+
+// In a picture of stations of different sensors, a sample is read as its station's sensor's: a
+// position-velocity station's six values a detection arrive bit for bit, and the same sample
+// claiming to be from the radar station, or relabelled as the radar's kind, is refused.
+TEST(PictureWire, EachStationsSampleIsCheckedAgainstItsOwnSensor) {
+  using Pv = PositionVelocity<6>;
+  const std::vector<KnownStation<6>> stations = {{4, radar(), Covariance<3>::Identity(), 1.0, {}},
+                                                 {5, Pv(), Covariance<6>::Identity(), 1.0, {}}};
+  const StationSensorKinds kinds{std::span<const KnownStation<6>>(stations)};
+  Scan scan;
+  scan.station_id = 5;
+  Vector<6> z;
+  z << 1500.125, -20.5, 300.0625, 12.0, -3.5, 0.25;
+  scan.detections.emplace_back(z);
+  scan.detections.emplace_back(Vector<6>(z.reverse()));
+  Report report;
+  report.station_id = 5;
+  report.unassociated = {{0, scan.detections[0]}, {1, scan.detections[1]}};
+  const wire::PictureScan sample =
+      through_cdr(to_wire<6>(stations[1].sensor, scan, report, 1, 3, 0));
+  EXPECT_EQ(std::string(sample.sensor().c_str()), Pv::kKind);
+  EXPECT_EQ(sample.measurement_dim(), 6U);
+  const auto [received, why] = picture_scan_from_wire(sample, kinds, kBound);
+  ASSERT_TRUE(received.has_value());
+  ASSERT_EQ(received->detections.size(), 2U);
+  for (std::size_t j = 0; j < 2; ++j) {
+    EXPECT_EQ(received->detections[j].size(), 6);
+    EXPECT_TRUE(same_detection(received->detections[j], scan.detections[j])) << "detection " << j;
+  }
+
+  wire::PictureScan as_the_radar = sample;
+  as_the_radar.station_id(4);
+  EXPECT_EQ(picture_scan_from_wire(as_the_radar, kinds, kBound).second, DropKind::kOutOfRange);
+  wire::PictureScan relabelled = sample;
+  relabelled.sensor(std::string(Sensor::kKind));
+  EXPECT_EQ(picture_scan_from_wire(relabelled, kinds, kBound).second, DropKind::kOutOfRange);
 }
 
 // Five aircraft crossing in front of three radars, P_D 0.9 and two false alarms a scan: every
 // peer that rebuilds every station's report from the station's sample holds, round after round,
 // the picture of a peer that fused the stations' own reports, bit for bit.
 TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBitForBit) {
-  using TrackSensor = test::PictureWorld::Sensor;
   using Peer = test::PictureWorld::Peer;
   constexpr int kRounds = 20;
   const test::PictureWorld world(kRounds);
   const auto& stations = world.stations;
+  const StationSensorKinds kinds{std::span<const test::PictureWorld::Station>(stations)};
   Peer own = world.empty_picture();      // fuses the stations' own reports
   Peer rebuilt = world.empty_picture();  // fuses the reports rebuilt from the wire
   AssociationWork work;
@@ -167,13 +219,13 @@ TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBit
     std::vector<Peer::Report> received;
     for (std::size_t s = 0; s < stations.size(); ++s) {
       const auto& station = stations[s];
-      const Scan<3> scan = world.scan(s, k);
+      const Scan scan = world.scan(s, k);
       sent.push_back(own.report(station, scan, work));
       updates += sent.back().updates.size();
-      const auto [scan_back, why] = picture_scan_from_wire<TrackSensor>(
-          through_cdr(to_wire<TrackSensor>(scan, sent.back(), 1, static_cast<std::uint32_t>(k),
-                                           own.digest())),
-          kBound);
+      const auto [scan_back, why] = picture_scan_from_wire(
+          through_cdr(to_wire<6>(station.sensor, scan, sent.back(), 1,
+                                 static_cast<std::uint32_t>(k), own.digest())),
+          kinds, kBound);
       ASSERT_TRUE(scan_back.has_value()) << "round " << k;
       EXPECT_EQ(scan_back->picture_digest, rebuilt.digest()) << "the same predicted picture";
       auto report = rebuilt.report_of(station, scan_back->detections, scan_back->associations,
@@ -257,7 +309,7 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
 // wrong, probabilities that are not, or a single model's state on an IMM track are refused.
 TEST(PictureWire, AnImmPictureArrivesWithEveryModeBitForBit) {
   using Tracks = PeerImmTracks<DefaultImmModes>;
-  using Table = TrackTable<Tracks, RangeAzimuthElevation<KinematicState::kDim>>;
+  using Table = TrackTable<Tracks>;
   constexpr int N = KinematicState::kDim;
   const Scenario scenario =
       load_scenario_file(std::string(SKYFUSE_BIN_DIR) + "/scenarios/paper000-imm.yaml");
@@ -320,8 +372,8 @@ TEST(PictureWire, AnImmPictureArrivesWithEveryModeBitForBit) {
 TEST(PictureWire, AReportNamingATrackThePictureLacksIsNotRebuilt) {
   using Model = ConstantVelocity3D;
   using TrackSensor = RangeAzimuthElevation<Model::kDim>;
-  using Peer = PeerPicture<PeerModelTracks<Model, EkfIncrementRule>, TrackSensor>;
-  const KnownStation<TrackSensor> station{
+  using Peer = PeerPicture<PeerModelTracks<Model, EkfIncrementRule>>;
+  const KnownStation<Model::kDim> station{
       1, TrackSensor(Vector3(0.0, 0.0, 0.0)), Covariance<3>::Identity(), 1.0, {}};
   Peer picture(PeerModelTracks<Model, EkfIncrementRule>(Model(1.0, {0.5, 1.0}),
                                                         Vector<Model::kDim>::Constant(100.0)),
@@ -330,7 +382,7 @@ TEST(PictureWire, AReportNamingATrackThePictureLacksIsNotRebuilt) {
   known.mean << 1000.0, 0.0, 100.0, 0.0, 0.0, 0.0;
   known.covariance = Covariance<Model::kDim>::Identity();
   picture.add_known_track(7, known);
-  const std::vector<Vector3> detections = {Vector3(1005.0, 0.0, 0.1)};
+  const std::vector<Detection> detections = {Detection(Vector3(1005.0, 0.0, 0.1))};
   const std::vector<ReportedPair> known_track = {{7, 0, 1.0}};
   const std::vector<ReportedPair> unknown_track = {{8, 0, 1.0}};
   EXPECT_TRUE(picture.report_of(station, detections, known_track, {}, 0).has_value());

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <variant>
 #include <vector>
 
 #include "skyfuse/models/constant_velocity.hpp"
@@ -21,7 +22,8 @@ struct PictureWorld {
   using Model = ConstantVelocity3D;
   using Sensor = RangeAzimuthElevation<Model::kDim>;
   using Tracks = PeerModelTracks<Model, EkfIncrementRule>;
-  using Peer = PeerPicture<Tracks, Sensor>;
+  using Peer = PeerPicture<Tracks>;
+  using Station = KnownStation<Model::kDim>;
 
   explicit PictureWorld(int rounds) {
     for (int a = 0; a < 5; ++a) {
@@ -54,10 +56,11 @@ struct PictureWorld {
   Peer empty_picture() const { return Peer(track_filters(), stations, TrackerConfig{}); }
 
   // Station `s`'s scan of round k (seeded: the same at every call).
-  Scan<3> scan(std::size_t s, int k) const {
+  Scan scan(std::size_t s, int k) const {
     const auto& station = stations[s];
-    return simulate_scan(station.id, RangeAzimuthElevation<kKinematicsDim>(station.sensor.site()),
-                         station.sensor.site(), station.noise, detection, truths, k, 11, 0);
+    const Vector3 site = std::get<Sensor>(station.sensor).site();
+    return simulate_scan(station.id, RangeAzimuthElevation<kKinematicsDim>(site), site,
+                         fixed_noise<3>(station.noise), detection, truths, k, 11, 0);
   }
 
   // Round k's start at every node of `nodes` (each with a `picture` and an `exchange`): it
@@ -71,7 +74,7 @@ struct PictureWorld {
     for (std::size_t s = 0; s < nodes.size(); ++s) {
       auto& n = nodes[s];
       n.picture.predict();
-      const Scan<3> station_scan = scan(s, k);
+      const Scan station_scan = scan(s, k);
       own_reports.push_back(reference.report(stations[s], station_scan, work));
       n.exchange->publish(static_cast<std::uint32_t>(k), station_scan,
                           n.picture.report(stations[s], station_scan, work), n.picture.digest());
@@ -80,7 +83,7 @@ struct PictureWorld {
   }
 
   std::vector<TargetTruth> truths;
-  std::vector<KnownStation<Sensor>> stations;
+  std::vector<Station> stations;
   DetectionConfig detection;
 };
 

@@ -33,7 +33,8 @@ std::vector<ScanPositions> scan_positions_at(const Scenario& scenario,
             out.station_id = station.id;
             out.target = std::move(origins.target);
             for (const auto& detection : scan.detections) {
-              out.positions.push_back(sensor.position_of(detection));
+              out.positions.push_back(
+                  sensor.position_of(fixed_detection<Sensor::kMeasDim>(detection)));
             }
           }
         } else {

@@ -6,7 +6,6 @@
 
 #include "sim/picture_shards.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
-#include "skyfuse/registry/sensor_parts.hpp"
 
 namespace skyfuse {
 
@@ -19,10 +18,7 @@ PictureRunResult run_picture(const Scenario& scenario, const std::vector<TargetT
         fmt::format("run_picture: {} stations of {}", stations, scenario.stations.size()));
   }
   const auto result = with_filter_shard(scenario.filter, [&](auto shard) {
-    return with_sensor_part<kSensorPartsOf<decltype(shard)::value>>(scenario, 1, [&](auto part) {
-      return run_picture_in_shard<decltype(shard)::value, decltype(part)::value>(
-          scenario, truth, stations, run, on_step);
-    });
+    return run_picture_in_shard<decltype(shard)::value>(scenario, truth, stations, run, on_step);
   });
   if (!result) {
     throw std::logic_error(fmt::format(

@@ -1,6 +1,5 @@
 // One shard of the in-process picture's runs (registry/filter_shards.hpp): cmake/FilterShards.cmake
-// compiles this file once per shard and sensor part (registry/sensor_parts.hpp), with
-// SKYFUSE_SHARD and SKYFUSE_SENSOR_PART set.
+// compiles this file once per shard, with SKYFUSE_SHARD set.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -17,7 +16,6 @@
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/registry/registry.hpp"
-#include "skyfuse/registry/sensor_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_stations.hpp"
@@ -61,13 +59,10 @@ bool same_bits(std::span<const Track> a, std::span<const Track> b) {
 template <typename Parts>
 class PictureRun {
  public:
-  using Sensor = typename Parts::Sensor;
   using PeerTracks = typename Parts::Peer;
   static constexpr int N = PeerTracks::kDim;
-  static constexpr int M = Sensor::kMeasDim;
-  using Peer = PeerPicture<PeerTracks, Sensor>;
-  using Center = CentralPicture<typename Parts::Center, Sensor>;
-  using TruthSensor = TruthSensorOf<Sensor>;
+  using Peer = PeerPicture<PeerTracks>;
+  using Center = CentralPicture<typename Parts::Center>;
 
   PictureRun(const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
              std::uint64_t run)
@@ -75,13 +70,14 @@ class PictureRun {
         traffic_(*scenario.traffic),
         truth_(truth),
         run_(run),
-        known_(known_stations<Sensor>(scenario, stations, run)),
+        known_(known_stations<N>(scenario, stations, run)),
         score_(traffic_.gospa, truth.size(), scenario.time_step_s) {
     peers_.assign(known_.size(), Peer(Parts::peer(scenario), known_, scenario.tracker));
     center_.emplace(Parts::center(scenario), known_, scenario.tracker);
     for (int s = 0; s < stations; ++s) {
       const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
       detection_.push_back(station.detection.value());
+      truth_sensors_.push_back(make_picture_sensor<kKinematicsDim>(station));
     }
   }
 
@@ -112,9 +108,9 @@ class PictureRun {
     for (std::size_t s = 0; s < known_.size(); ++s) {
       const StationConfig& station = scenario_.stations[s];
       ScanOrigins origins;
-      scans_.push_back(simulate_scan(station.id, make_sensor<TruthSensor>(station),
-                                     station.position_m, known_[s].noise, detection_[s], truth_, k,
-                                     scenario_.seed, run_, &origins));
+      scans_.push_back(simulate_scan(station.id, truth_sensors_[s], station.position_m,
+                                     known_[s].noise, detection_[s], truth_, k, scenario_.seed,
+                                     run_, &origins));
       result_.detections += scans_.back().detections.size();
       for (const int o : origins.target) {
         if (o < 0) {
@@ -217,13 +213,14 @@ class PictureRun {
   const TrafficConfig& traffic_;
   const std::vector<TargetTruth>& truth_;
   std::uint64_t run_;
-  std::vector<KnownStation<Sensor>> known_;
+  std::vector<KnownStation<N>> known_;
   std::vector<DetectionConfig> detection_;
+  std::vector<PictureSensor<kKinematicsDim>> truth_sensors_;  // each station's, on the truth
   std::vector<Peer> peers_;
   std::optional<Center> center_;
   PictureScore score_;
   AssociationWork work_;
-  std::vector<Scan<M>> scans_;
+  std::vector<Scan> scans_;
   std::vector<typename Peer::Report> reports_;
   std::vector<Association> peer_associations_;
   std::vector<Association> differing_;
@@ -235,19 +232,18 @@ class PictureRun {
 
 }  // namespace
 
-template <std::size_t Shard, std::size_t Part>
+template <std::size_t Shard>
 std::optional<PictureRunResult> run_picture_in_shard(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
     std::uint64_t run, const std::function<void(const PictureStep&)>& on_step) {
   std::optional<PictureRunResult> result;
-  visit_picture_parts_in_shard<Shard, Part, kSensorPartsOf<Shard>>(
-      scenario, [&]<typename Parts>(std::type_identity<Parts>) {
-        result = PictureRun<Parts>(scenario, truth, stations, run).run(on_step);
-      });
+  visit_picture_parts_in_shard<Shard>(scenario, [&]<typename Parts>(std::type_identity<Parts>) {
+    result = PictureRun<Parts>(scenario, truth, stations, run).run(on_step);
+  });
   return result;
 }
 
-template std::optional<PictureRunResult> run_picture_in_shard<SKYFUSE_SHARD, SKYFUSE_SENSOR_PART>(
+template std::optional<PictureRunResult> run_picture_in_shard<SKYFUSE_SHARD>(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
     std::uint64_t run, const std::function<void(const PictureStep&)>& on_step);
 

@@ -20,7 +20,7 @@ using testing::track_at;
 TEST(Hypothesiser, EachGatedPairCarriesItsNisAndGaussianLogDensity) {
   std::vector<GaussianState<6>> tracks = {track_at({0, 0, 100}), track_at({50, 0, 100})};
   tracks[1].covariance.diagonal() << 4.0, 1.0, 2.0, 1.0, 1.0, 3.0;
-  const Scan<6> scan = scan_of(
+  const Scan scan = scan_of(
       {detection_at({51, 1, 99}), detection_at({0.5, -0.5, 100.5}), detection_at({25, 0, 100})});
   HypothesiserWork work;
   Hypotheses h;
@@ -32,8 +32,9 @@ TEST(Hypothesiser, EachGatedPairCarriesItsNisAndGaussianLogDensity) {
   ASSERT_EQ(h.pairs.size(), 2U);  // detection 2 lies between the tracks, in neither's gate
   for (const Hypothesis& pair : h.pairs) {
     const auto& prior = tracks[static_cast<std::size_t>(pair.track)];
-    const Eigen::Matrix<double, 6, 6> s = prior.covariance + scan.noise;
-    const Vector<6> nu = scan.detections[static_cast<std::size_t>(pair.detection)] - prior.mean;
+    const Eigen::Matrix<double, 6, 6> s = prior.covariance + fixed_noise<6>(scan.noise);
+    const Vector<6> nu =
+        fixed_detection<6>(scan.detections[static_cast<std::size_t>(pair.detection)]) - prior.mean;
     const double nis = nu.dot(s.inverse() * nu);
     EXPECT_NEAR(pair.nis, nis, 1e-12);
     EXPECT_NEAR(pair.log_density,

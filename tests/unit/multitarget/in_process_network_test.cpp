@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <variant>
 #include <vector>
 
 #include "skyfuse/metrics/gospa.hpp"
@@ -26,9 +27,10 @@ using Model = ConstantVelocity3D;
 using TrackSensor = RangeAzimuthElevation<Model::kDim>;
 using TruthSensor = RangeAzimuthElevation<kKinematicsDim>;
 using PeerTracks = PeerModelTracks<Model, EkfIncrementRule>;
-using CenterTracks = CenterStackedTracks<Model, TrackSensor>;
-using Peer = PeerPicture<PeerTracks, TrackSensor>;
-using Center = CentralPicture<CenterTracks, TrackSensor>;
+using CenterTracks = CenterStackedTracks<Model>;
+using Peer = PeerPicture<PeerTracks>;
+using Center = CentralPicture<CenterTracks>;
+using Station = KnownStation<Model::kDim>;
 
 constexpr double kTimeStepS = 1.0;
 constexpr std::uint64_t kSeed = 2026;
@@ -60,13 +62,13 @@ std::vector<TargetTruth> straight_flights(int steps) {
   return truths;
 }
 
-std::vector<KnownStation<TrackSensor>> radars() {
+std::vector<Station> radars() {
   const std::vector<Vector3> sites = {
       {-6000, -6000, 30}, {6000, -6000, 45}, {6000, 6000, 20}, {-6000, 6000, 60}};
   Covariance<3> noise = Covariance<3>::Zero();
   noise.diagonal() << 5.0 * 5.0, std::pow(0.2 * std::numbers::pi / 180.0, 2),
       std::pow(0.2 * std::numbers::pi / 180.0, 2);
-  std::vector<KnownStation<TrackSensor>> stations;
+  std::vector<Station> stations;
   for (std::size_t i = 0; i < sites.size(); ++i) {
     stations.push_back({static_cast<int>(i + 1), TrackSensor(sites[i]), noise, 1.0, {}});
   }
@@ -99,7 +101,7 @@ void expect_same_bits(std::span<const Track<State>> a, std::span<const Track<Sta
 TEST(MultiTargetNetwork, PeersHoldOnePictureAndTheCenterAgrees) {
   constexpr int kSteps = 100;
   const std::vector<TargetTruth> truths = straight_flights(kSteps);
-  const std::vector<KnownStation<TrackSensor>> stations = radars();
+  const std::vector<Station> stations = radars();
   const Model motion(kTimeStepS, {0.5, 1.0});
   Vector<Model::kDim> initial_variance = Vector<Model::kDim>::Constant(100.0);
   const TrackerConfig config;
@@ -114,11 +116,12 @@ TEST(MultiTargetNetwork, PeersHoldOnePictureAndTheCenterAgrees) {
   Gospa last{};
   for (int k = 0; k < kSteps; ++k) {
     const auto step = static_cast<std::uint64_t>(k);
-    std::vector<Scan<3>> scans;
+    std::vector<Scan> scans;
     for (const auto& station : stations) {
       ScanOrigins origins;
-      scans.push_back(simulate_scan(station.id, TruthSensor(station.sensor.site()),
-                                    station.sensor.site(), station.noise, sees, truths, k, kSeed, 0,
+      const Vector3 site = std::get<TrackSensor>(station.sensor).site();
+      scans.push_back(simulate_scan(station.id, TruthSensor(site), site,
+                                    fixed_noise<3>(station.noise), sees, truths, k, kSeed, 0,
                                     &origins));
       for (const int o : origins.target) clutter_detections += o < 0 ? 1 : 0;
     }

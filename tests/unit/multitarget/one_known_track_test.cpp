@@ -11,6 +11,7 @@
 #include "skyfuse/models/constant_acceleration.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/picture_sensor.hpp"
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
@@ -31,7 +32,7 @@ using Sensor = RangeAzimuthElevation<Model::kDim>;
 template <typename Rule>
 void expect_the_single_target_bits(const std::string& filter_kind) {
   using Tracks = PeerModelTracks<Model, Rule>;
-  using Picture = PeerPicture<Tracks, Sensor>;
+  using Picture = PeerPicture<Tracks>;
   constexpr int kStations = 4;
   constexpr std::uint64_t kRun = 3;
   Scenario scenario = load_default_scenario();
@@ -52,12 +53,12 @@ void expect_the_single_target_bits(const std::string& filter_kind) {
   ASSERT_EQ(single.size(), static_cast<std::size_t>(scenario.steps));
 
   // The picture: the same stations, one track known from the start, nothing to start or end.
-  std::vector<KnownStation<Sensor>> stations;
+  std::vector<KnownStation<Model::kDim>> stations;
   for (int s = 0; s < kStations; ++s) {
     const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
     stations.push_back({station.id,
-                        make_sensor<Sensor>(station),
-                        station_noise_covariance<3>(scenario, station, kRun),
+                        PictureSensor<Model::kDim>(make_sensor<Sensor>(station)),
+                        DetectionNoise(station_noise_covariance<3>(scenario, station, kRun)),
                         station.weight,
                         {}});
   }
@@ -79,9 +80,9 @@ void expect_the_single_target_bits(const std::string& filter_kind) {
     std::vector<typename Picture::Report> reports;
     for (int s = 0; s < kStations; ++s) {
       const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
-      const Scan<3> scan =
-          simulate_scan(station.id, make_sensor<TruthSensorOf<Sensor>>(station), station.position_m,
-                        stations[s].noise, DetectionConfig{}, aircraft, k, scenario.seed, kRun);
+      const Scan scan = simulate_scan(station.id, make_sensor<TruthSensorOf<Sensor>>(station),
+                                      station.position_m, fixed_noise<3>(stations[s].noise),
+                                      DetectionConfig{}, aircraft, k, scenario.seed, kRun);
       reports.push_back(picture.report(stations[s], scan, work));
       ASSERT_EQ(reports.back().updates.size(), 1U) << "step " << k;
     }

@@ -16,10 +16,10 @@ namespace {
 using Model = ConstantVelocity3D;
 using Sensor = RangeAzimuthElevation<Model::kDim>;
 using Tracks = PeerModelTracks<Model, EkfIncrementRule>;
-using Picture = PeerPicture<Tracks, Sensor>;
+using Picture = PeerPicture<Tracks>;
 
 Picture empty_picture() {
-  const KnownStation<Sensor> station{
+  const KnownStation<Model::kDim> station{
       1, Sensor(Vector3(0.0, 0.0, 0.0)), Covariance<3>::Identity(), 1.0, {}};
   return Picture(Tracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0)), {station},
                  TrackerConfig{});

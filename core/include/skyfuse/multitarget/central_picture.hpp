@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <span>
+#include <variant>
 #include <vector>
 
 #include "skyfuse/fusion/station_observation.hpp"
@@ -27,32 +28,38 @@ struct Association {
   auto operator<=>(const Association&) const = default;
 };
 
-template <typename Tracks, typename Sensor>
-class CentralPicture : public TrackTable<Tracks, Sensor> {
-  using Table = TrackTable<Tracks, Sensor>;
+template <typename Tracks>
+class CentralPicture : public TrackTable<Tracks> {
+  using Table = TrackTable<Tracks>;
 
  public:
-  static constexpr int kMeasDim = Sensor::kMeasDim;
+  static constexpr int N = Table::kDim;
+  using Observation = PictureObservation<N>;
   using Table::Table;
 
   /// Updates the predicted picture with every station's scan (scans[s] belongs to
   /// stations()[s]) and closes the round.
-  RoundOutcome update(std::uint64_t step, std::span<const Scan<kMeasDim>> scans) {
+  RoundOutcome update(std::uint64_t step, std::span<const Scan> scans) {
     const std::size_t count = this->tracks().size();
     associations_.clear();
     clear_each(observations_, count);
     clear_each(weights_, count);
     clear_each(unassociated_, scans.size());
     for (std::size_t s = 0; s < scans.size(); ++s) {
-      const KnownStation<Sensor>& station = this->stations()[s];
+      const typename Table::Station& station = this->stations()[s];
       const ScanAssociation association = this->associate(station, scans[s], work_);
       for (const WeightedPair& pair : association.pairs) {
         const auto t = static_cast<std::size_t>(pair.track);
         associations_.push_back({station.id, pair.detection, this->tracks()[t].id});
-        observations_[t].push_back({station.id, station.sensor, scans[s].detections[pair.detection],
-                                    pair.weight == 1.0
-                                        ? station.noise
-                                        : Covariance<kMeasDim>(station.noise / pair.weight)});
+        std::visit(
+            [&]<typename Sensor>(const Sensor& sensor) {
+              constexpr int M = Sensor::kMeasDim;
+              const Covariance<M> noise = fixed_noise<M>(station.noise);
+              observations_[t].push_back(StationObservation<Sensor>{
+                  station.id, sensor, fixed_detection<M>(scans[s].detections[pair.detection]),
+                  pair.weight == 1.0 ? noise : Covariance<M>(noise / pair.weight)});
+            },
+            station.sensor);
         weights_[t].push_back(station.weight);
       }
       for (const std::uint32_t j : association.unassociated) {
@@ -64,20 +71,20 @@ class CentralPicture : public TrackTable<Tracks, Sensor> {
       auto& track = this->track(t);
       track.updated_by.clear();
       if (observations_[t].empty()) continue;
-      if (!this->filters().update(track.filter,
-                                  std::span<const StationObservation<Sensor>>(observations_[t]),
+      if (!this->filters().update(track.filter, std::span<const Observation>(observations_[t]),
                                   weights_[t])) {
         continue;
       }
       hit_[t] = 1;
-      for (const auto& o : observations_[t]) {
-        if (track.updated_by.empty() || track.updated_by.back() != o.station_id) {
-          track.updated_by.push_back(o.station_id);
+      for (const auto& observation : observations_[t]) {
+        const int id = std::visit([](const auto& o) { return o.station_id; }, observation);
+        if (track.updated_by.empty() || track.updated_by.back() != id) {
+          track.updated_by.push_back(id);
         }
       }
     }
     return this->close_round(step, hit_, [&](std::size_t s) {
-      return std::span<const UnassociatedDetection<kMeasDim>>(unassociated_[s]);
+      return std::span<const UnassociatedDetection>(unassociated_[s]);
     });
   }
 
@@ -95,9 +102,9 @@ class CentralPicture : public TrackTable<Tracks, Sensor> {
 
   AssociationWork work_;
   std::vector<Association> associations_;
-  std::vector<std::vector<StationObservation<Sensor>>> observations_;
+  std::vector<std::vector<Observation>> observations_;
   std::vector<std::vector<double>> weights_;
-  std::vector<std::vector<UnassociatedDetection<kMeasDim>>> unassociated_;
+  std::vector<std::vector<UnassociatedDetection>> unassociated_;
   std::vector<char> hit_;
 };
 

@@ -68,10 +68,11 @@ struct HypothesiserWork {
 /// only `with_densities` (an associator that reads them: GNN's costs need none). Written into
 /// `out`, whose storage is kept from round to round.
 template <typename Sensor, int N>
-void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
-                 const Scan<Sensor::kMeasDim>& scan, double gate, std::size_t max_detections,
-                 bool with_densities, HypothesiserWork& work, Hypotheses& out) {
+void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor, const Scan& scan,
+                 double gate, std::size_t max_detections, bool with_densities,
+                 HypothesiserWork& work, Hypotheses& out) {
   constexpr int M = Sensor::kMeasDim;
+  const Covariance<M> noise = fixed_noise<M>(scan.noise);
   const std::size_t taken = std::min(scan.detections.size(), max_detections);
   out.tracks = priors.size();
   out.detections = taken;
@@ -83,9 +84,10 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
   work.candidates.clear();
   double widest = 0.0;
   for (std::uint32_t j = 0; j < taken; ++j) {
-    const auto fix = fix_position(scan.station_id, j, sensor, scan.detections[j], scan.noise);
+    const Vector<M> z = fixed_detection<M>(scan.detections[j]);
+    const auto fix = fix_position(scan.station_id, j, sensor, z, noise);
     // A detection whose fix is degenerate is compared with every track.
-    const Vector3 position = fix ? fix->position : sensor.position_of(scan.detections[j]);
+    const Vector3 position = fix ? fix->position : sensor.position_of(z);
     const double std_m = fix ? std::sqrt(fix->covariance.trace()) : kDegenerateFixStdM;
     widest = std::max(widest, std_m);
     work.candidates.push_back({position.x(), std_m, position, j});
@@ -103,7 +105,7 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
     const double radius = reach * (track_std + widest);
     const Matrix<M, N> h = sensor.jacobian(prior.mean);
     const Vector<M> predicted = sensor.predict(prior.mean);
-    Covariance<M> s = h * prior.covariance * h.transpose() + scan.noise;
+    Covariance<M> s = h * prior.covariance * h.transpose() + noise;
     symmetrize(s);
     SmallCholesky<M> s_factor;
     if (!s_factor.compute(s)) continue;  // a track with no usable S takes nothing this round
@@ -113,7 +115,8 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
     bool normalised = false;
     for (auto c = from; c != work.candidates.end() && c->east <= p.x() + radius; ++c) {
       if ((c->position - p).norm() > reach * (track_std + c->std_m)) continue;
-      const Vector<M> nu = sensor.residual(scan.detections[c->index], predicted);
+      const Vector<M> nu =
+          sensor.residual(fixed_detection<M>(scan.detections[c->index]), predicted);
       const double nis = nu.dot(s_factor.solve(nu));
       if (nis <= gate) {
         if (with_densities && !normalised) {

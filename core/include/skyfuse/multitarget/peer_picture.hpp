@@ -17,6 +17,7 @@
 #include <span>
 #include <stdexcept>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "skyfuse/core/status.hpp"
@@ -35,7 +36,7 @@ struct ReportedPair {
 };
 
 /// What a station publishes of a round; `Contribution` is its filter part's for one track.
-template <typename Contribution, int M>
+template <typename Contribution>
 struct StationReport {
   struct Update {
     TrackId track = 0;
@@ -44,25 +45,25 @@ struct StationReport {
     Contribution contribution;
   };
   int station_id = 0;
-  std::vector<Update> updates;                         ///< ascending track id
-  std::vector<ReportedPair> pairs;                     ///< ascending track id, then detection
-  std::vector<UnassociatedDetection<M>> unassociated;  ///< ascending detection index
+  std::vector<Update> updates;                      ///< ascending track id
+  std::vector<ReportedPair> pairs;                  ///< ascending track id, then detection
+  std::vector<UnassociatedDetection> unassociated;  ///< ascending detection index
   std::size_t dropped = 0;  ///< detections beyond the assignment's bound, left out
 };
 
-template <typename Tracks, typename Sensor>
-class PeerPicture : public TrackTable<Tracks, Sensor> {
-  using Table = TrackTable<Tracks, Sensor>;
+template <typename Tracks>
+class PeerPicture : public TrackTable<Tracks> {
+  using Table = TrackTable<Tracks>;
 
  public:
   using Contribution = typename Tracks::Contribution;
-  using Report = StationReport<Contribution, Sensor::kMeasDim>;
+  using Report = StationReport<Contribution>;
+  using Station = typename Table::Station;
   using Table::Table;
 
   /// Station `station`'s report of `scan` against this (predicted) picture: its association,
   /// each associated track's contribution, its unassociated detections.
-  Report report(const KnownStation<Sensor>& station, const Scan<Sensor::kMeasDim>& scan,
-                AssociationWork& work) const {
+  Report report(const Station& station, const Scan& scan, AssociationWork& work) const {
     Report report;
     report.station_id = station.id;
     const ScanAssociation association = this->associate(station, scan, work);
@@ -75,8 +76,7 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
       std::size_t end = first;
       while (end < pairs.size() && pairs[end].track == pairs[first].track) ++end;
       add_update(report, station, tracks[static_cast<std::size_t>(pairs[first].track)],
-                 pairs.subspan(first, end - first),
-                 std::span<const Vector<Sensor::kMeasDim>>(scan.detections));
+                 pairs.subspan(first, end - first), std::span<const Detection>(scan.detections));
       first = end;
     }
     for (const std::uint32_t j : association.unassociated) {
@@ -92,8 +92,7 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
   /// picture is the station's. Nothing when a pair names a track this picture does not hold:
   /// this picture is not the station's. Every index is within `detections` (the receiver
   /// checked it: picture_scan_from_wire).
-  std::optional<Report> report_of(const KnownStation<Sensor>& station,
-                                  std::span<const Vector<Sensor::kMeasDim>> detections,
+  std::optional<Report> report_of(const Station& station, std::span<const Detection> detections,
                                   std::span<const ReportedPair> pairs,
                                   std::span<const std::uint32_t> unassociated,
                                   std::size_t dropped) const {
@@ -151,7 +150,7 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
       for (const Report& report : reports) {
         if (report.station_id == id) return std::span(report.unassociated);
       }
-      return std::span<const UnassociatedDetection<Sensor::kMeasDim>>();
+      return std::span<const UnassociatedDetection>();
     });
   }
 
@@ -164,14 +163,27 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
   // refuses an associator that weighs pairs for any other.
   // `Pair`: a WeightedPair (the station's own association) or a ReportedPair (a published one).
   template <typename Pair>
-  void add_update(Report& report, const KnownStation<Sensor>& station,
-                  const typename Table::TrackType& track, std::span<const Pair> pairs,
-                  std::span<const Vector<Sensor::kMeasDim>> detections) const {
+  void add_update(Report& report, const Station& station, const typename Table::TrackType& track,
+                  std::span<const Pair> pairs, std::span<const Detection> detections) const {
+    std::visit(
+        [&]<typename Sensor>(const Sensor& sensor) {
+          add_update_of(report, station.id, sensor, fixed_noise<Sensor::kMeasDim>(station.noise),
+                        track, pairs, detections);
+        },
+        station.sensor);
+  }
+  // add_update with the station's sensor, `Sensor`, and its noise as they are.
+  template <typename Pair, typename Sensor>
+  void add_update_of(Report& report, int station_id, const Sensor& sensor,
+                     const Covariance<Sensor::kMeasDim>& noise,
+                     const typename Table::TrackType& track, std::span<const Pair> pairs,
+                     std::span<const Detection> detections) const {
+    constexpr int M = Sensor::kMeasDim;
     typename Report::Update update;
     update.track = track.id;
     const auto contribute = [&](const Pair& pair, Contribution& out) {
-      const StationObservation<Sensor> observation{station.id, station.sensor,
-                                                   detections[pair.detection], station.noise};
+      const StationObservation<Sensor> observation{
+          station_id, sensor, fixed_detection<M>(detections[pair.detection]), noise};
       return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;
     };
     if (pairs.size() == 1 && pairs.front().weight == 1.0) {
@@ -185,7 +197,7 @@ class PeerPicture : public TrackTable<Tracks, Sensor> {
       Contribution one;
       for (const Pair& pair : pairs) {
         if (!contribute(pair, one)) continue;
-        if (!any) Tracks::start_sum(update.contribution, station.id);
+        if (!any) Tracks::start_sum(update.contribution, station_id);
         Tracks::add_weighted(update.contribution, one, pair.weight);
         report.pairs.push_back({track.id, pair.detection, pair.weight});
         any = true;

@@ -16,12 +16,16 @@
 /// (PeerModelTracks, CenterModelTracks); the IMM has its own (PeerImmTracks, CenterImmTracks).
 
 #include <span>
+#include <stdexcept>
+#include <variant>
 #include <vector>
 
 #include "skyfuse/core/indirect_view.hpp"
 #include "skyfuse/fusion/increment_fusion.hpp"
+#include "skyfuse/fusion/mixed_stacked_ekf.hpp"
 #include "skyfuse/fusion/stacked_ekf.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
+#include "skyfuse/multitarget/picture_sensor.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/tracking/network_imm.hpp"
@@ -87,35 +91,48 @@ class PeerModelTracks : public ModelTracks<Model> {
 
 /// The center's side for the EKF: one stacked update of a track's detections, the peers' sum
 /// for weights of 1, as the single-target center's.
-template <typename Model, typename Sensor>
+template <typename Model>
 class CenterStackedTracks : public ModelTracks<Model> {
  public:
+  static constexpr int kDim = Model::kDim;
   using ModelTracks<Model>::ModelTracks;
-  using State = GaussianState<Model::kDim>;
+  using State = GaussianState<kDim>;
 
-  bool update(State& state, std::span<const StationObservation<Sensor>> observations,
+  /// Stations of one sensor kind take the stacked update of that sensor's fixed-size blocks;
+  /// of several, the one assembled at run time.
+  bool update(State& state, std::span<const PictureObservation<kDim>> observations,
               std::span<const double> /*weights*/) {
     State updated = state;
-    if (stacked_.update(updated, observations).status != NumericalStatus::kOk) return false;
+    const UpdateReport report = by_sensor_kind<kDim>(
+        observations, buffers_,
+        [&]<typename Sensor>(std::span<const StationObservation<Sensor>> one_kind) {
+          return std::get<StackedEkf<kDim, Sensor>>(stacked_).update(updated, one_kind);
+        },
+        [&] { return mixed_.update(updated, observations); });
+    if (report.status != NumericalStatus::kOk) return false;
     state = updated;
     return true;
   }
 
  private:
-  StackedEkf<Model::kDim, Sensor> stacked_;
+  template <typename Sensor>
+  using StackedOf = StackedEkf<kDim, Sensor>;
+  PictureObservationBuffers<kDim> buffers_;
+  ForEachPictureSensor<kDim, StackedOf> stacked_;
+  MixedStackedEkf<kDim, PictureSensorPack<kDim>> mixed_;
 };
 
 /// The center's side for another part with an increment rule (the unscented filter): its own
 /// increments of the raw detections against its own prior, fused onto it, as the single-target
 /// center does (sim/increment_run_stepper.hpp).
-template <typename Model, typename Sensor, typename Rule>
+template <typename Model, typename Rule>
 class CenterIncrementTracks : public ModelTracks<Model> {
  public:
   using ModelTracks<Model>::ModelTracks;
   static constexpr int kDim = Model::kDim;
   using State = GaussianState<kDim>;
 
-  bool update(State& state, std::span<const StationObservation<Sensor>> observations,
+  bool update(State& state, std::span<const PictureObservation<kDim>> observations,
               std::span<const double> weights) {
     // One increment per station (ascending, as the observations come): a station with several
     // detections of the track (JPDA's, each with its noise already weighed) adds theirs up.
@@ -123,11 +140,15 @@ class CenterIncrementTracks : public ModelTracks<Model> {
     station_weights_.clear();
     InformationIncrement<kDim> one;
     for (std::size_t i = 0; i < observations.size(); ++i) {
-      if (PeerModelTracks<Model, Rule>::contribute(state, observations[i], one) !=
-          NumericalStatus::kOk) {
-        return false;
-      }
-      if (!increments_.empty() && increments_.back().station_id == observations[i].station_id) {
+      int station_id = 0;
+      const NumericalStatus contributed = std::visit(
+          [&](const auto& o) {
+            station_id = o.station_id;
+            return PeerModelTracks<Model, Rule>::contribute(state, o, one);
+          },
+          observations[i]);
+      if (contributed != NumericalStatus::kOk) return false;
+      if (!increments_.empty() && increments_.back().station_id == station_id) {
         PeerModelTracks<Model, Rule>::add_weighted(increments_.back(), one, 1.0);
       } else {
         increments_.push_back(one);
@@ -214,17 +235,29 @@ class PeerImmTracks : public ImmTracks<Set, typename NetworkImm<Set>::Peer> {
 
 /// The center's side of the IMM: every mode takes the stacked update of a track's detections,
 /// weighed by the stacked likelihood.
-template <typename Set, typename Sensor>
+template <typename Set>
 class CenterImmTracks : public ImmTracks<Set, typename NetworkImm<Set>::Central> {
  public:
   using Central = typename NetworkImm<Set>::Central;
   using ImmTracks<Set, Central>::ImmTracks;
   using State = Central;
+  static constexpr int kDim = KinematicState::kDim;
 
-  static bool update(State& state, std::span<const StationObservation<Sensor>> observations,
-                     std::span<const double> /*weights*/) {
-    return state.update(observations) == NumericalStatus::kOk;
+  bool update(State& state, std::span<const PictureObservation<kDim>> observations,
+              std::span<const double> /*weights*/) {
+    return by_sensor_kind<kDim>(
+        observations, buffers_,
+        [&]<typename Sensor>(std::span<const StationObservation<Sensor>> one_kind) {
+          return state.update(one_kind) == NumericalStatus::kOk;
+        },
+        []() -> bool {
+          // The IMM's stacked update is of one sensor kind's blocks (tracking/imm_network.hpp).
+          throw std::logic_error("the IMM's center takes stations of one sensor kind");
+        });
   }
+
+ private:
+  PictureObservationBuffers<kDim> buffers_;
 };
 
 }  // namespace skyfuse

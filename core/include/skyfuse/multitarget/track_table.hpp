@@ -12,11 +12,13 @@
 /// tracks go at the end and the order never needs sorting.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "skyfuse/metrics/chi_square.hpp"
@@ -24,6 +26,7 @@
 #include "skyfuse/multitarget/hypothesiser.hpp"
 #include "skyfuse/multitarget/initiation.hpp"
 #include "skyfuse/multitarget/picture_digest.hpp"
+#include "skyfuse/multitarget/picture_sensor.hpp"
 #include "skyfuse/multitarget/track.hpp"
 #include "skyfuse/multitarget/track_management.hpp"
 #include "skyfuse/multitarget/tracker_config.hpp"
@@ -31,14 +34,14 @@
 
 namespace skyfuse {
 
-/// A station as every node knows it: its id, its sensor (of the tracks' estimate), the noise
-/// of its detections, its fusion weight and what its associator knows of its detections.
-/// Ascending id in every list.
-template <typename Sensor>
+/// A station as every node knows it: its id, its sensor (of the tracks' N-entry estimate; a
+/// value, multitarget/picture_sensor.hpp), the noise of its detections, its fusion weight and
+/// what its associator knows of its detections. Ascending id in every list.
+template <int N>
 struct KnownStation {
   int id = 0;
-  Sensor sensor;
-  Covariance<Sensor::kMeasDim> noise;
+  PictureSensor<N> sensor;
+  DetectionNoise noise;
   double weight = 1.0;
   DetectionPrior prior;
 };
@@ -52,51 +55,57 @@ struct RoundOutcome {
 };
 
 /// One station's unassociated detection, as it publishes it: index in its scan and value.
-template <int M>
 struct UnassociatedDetection {
   std::uint32_t detection = 0;
-  Vector<M> z;
+  Detection z;
 };
 
-template <typename Tracks, typename Sensor>
+template <typename Tracks>
 class TrackTable {
  public:
   static constexpr int kDim = Tracks::kDim;
-  static constexpr int kMeasDim = Sensor::kMeasDim;
   using State = typename Tracks::State;
   using TrackType = Track<State>;
+  using Station = KnownStation<kDim>;
 
-  TrackTable(Tracks filters, std::vector<KnownStation<Sensor>> stations,
-             const TrackerConfig& config)
+  TrackTable(Tracks filters, std::vector<Station> stations, const TrackerConfig& config)
       : filters_(std::move(filters)),
         stations_(std::move(stations)),
         config_(config),
-        gate_(chi_square_quantile(config.association.gate_probability, kMeasDim)),
         associator_(find_associator(config.association.associator)) {
     if (associator_ == nullptr) {
       throw std::invalid_argument("tracker.associator: '" + config.association.associator +
                                   "' is none of " + associator_names());
+    }
+    for (int m = 1; m <= kMaxDetectionDim; ++m) {
+      gates_[static_cast<std::size_t>(m)] =
+          chi_square_quantile(config.association.gate_probability, m);
     }
   }
 
   std::span<const TrackType> tracks() const { return tracks_; }
   /// Each track's estimate (tracks()[i]'s), as of the last predict() or close_round().
   std::span<const GaussianState<kDim>> estimates() const { return estimates_; }
-  const std::vector<KnownStation<Sensor>>& stations() const { return stations_; }
+  const std::vector<Station>& stations() const { return stations_; }
   const TrackerConfig& config() const { return config_; }
   const Tracks& filters() const { return filters_; }
   Tracks& filters() { return filters_; }
-  /// The chi-square(M) gate of a pair.
-  double gate() const { return gate_; }
+  /// The chi-square(M) gate of a pair of a sensor of M values a detection.
+  double gate(int measurement_dim) const {
+    return gates_[static_cast<std::size_t>(measurement_dim)];
+  }
   const Associator& associator() const { return *associator_; }
 
   /// Station `station`'s association of its `scan` with this (predicted) picture: the
   /// hypotheses of its pairs, decided by the scenario's associator.
-  ScanAssociation associate(const KnownStation<Sensor>& station, const Scan<kMeasDim>& scan,
-                            AssociationWork& work) const {
-    hypothesise(estimates(), station.sensor, scan, gate_,
-                config_.association.max_detections_per_scan, associator_->reads_densities,
-                work.hypothesiser, work.hypotheses);
+  ScanAssociation associate(const Station& station, const Scan& scan, AssociationWork& work) const {
+    std::visit(
+        [&]<typename Sensor>(const Sensor& sensor) {
+          hypothesise(estimates(), sensor, scan, gate(Sensor::kMeasDim),
+                      config_.association.max_detections_per_scan, associator_->reads_densities,
+                      work.hypothesiser, work.hypotheses);
+        },
+        station.sensor);
     ScanAssociation decided;
     associator_->associate(work.hypotheses, station.prior, config_.association, work, decided);
     return decided;
@@ -166,13 +175,19 @@ class TrackTable {
 
     fixes_.clear();
     for (std::size_t s = 0; s < stations_.size(); ++s) {
-      const KnownStation<Sensor>& station = stations_[s];
-      for (const UnassociatedDetection<kMeasDim>& d : unassociated_of(s)) {
-        if (const auto fix =
-                fix_position(station.id, d.detection, station.sensor, d.z, station.noise)) {
-          fixes_.push_back(*fix);
-        }
-      }
+      const Station& station = stations_[s];
+      std::visit(
+          [&]<typename Sensor>(const Sensor& sensor) {
+            constexpr int M = Sensor::kMeasDim;
+            const Covariance<M> noise = fixed_noise<M>(station.noise);
+            for (const UnassociatedDetection& d : unassociated_of(s)) {
+              if (const auto fix = fix_position(station.id, d.detection, sensor,
+                                                fixed_detection<M>(d.z), noise)) {
+                fixes_.push_back(*fix);
+              }
+            }
+          },
+          station.sensor);
     }
     for (NewTrack& started : initiate_tracks(fixes_, step, config_.initiation)) {
       start_track(std::move(started));
@@ -209,9 +224,9 @@ class TrackTable {
   }
 
   Tracks filters_;
-  std::vector<KnownStation<Sensor>> stations_;
+  std::vector<Station> stations_;
   TrackerConfig config_;
-  double gate_;
+  std::array<double, kMaxDetectionDim + 1> gates_{};  // by a sensor's values a detection
   const Associator* associator_;
   std::vector<TrackType> tracks_;
   std::vector<GaussianState<kDim>> estimates_;

@@ -5,6 +5,7 @@
 /// run.
 
 #include <cstdint>
+#include <variant>
 #include <vector>
 
 #include "skyfuse/multitarget/detection_prior.hpp"
@@ -16,17 +17,21 @@
 
 namespace skyfuse {
 
-/// The first `stations` stations of `scenario` with sensors of type `Sensor`, their noise that
-/// of Monte-Carlo run `run`.
-template <typename Sensor>
-std::vector<KnownStation<Sensor>> known_stations(const Scenario& scenario, int stations,
-                                                 std::uint64_t run) {
-  std::vector<KnownStation<Sensor>> known;
+/// The first `stations` stations of `scenario`, each with its sensor for the tracks' N-entry
+/// state, their noise that of Monte-Carlo run `run`.
+template <int N>
+std::vector<KnownStation<N>> known_stations(const Scenario& scenario, int stations,
+                                            std::uint64_t run) {
+  std::vector<KnownStation<N>> known;
   for (int s = 0; s < stations; ++s) {
     const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
-    known.push_back({station.id, make_sensor<Sensor>(station),
-                     station_noise_covariance<Sensor::kMeasDim>(scenario, station, run),
-                     station.weight,
+    PictureSensor<N> sensor = make_picture_sensor<N>(station);
+    const DetectionNoise noise = std::visit(
+        [&]<typename Sensor>(const Sensor& /*sensor*/) {
+          return DetectionNoise(station_noise_covariance<Sensor::kMeasDim>(scenario, station, run));
+        },
+        sensor);
+    known.push_back({station.id, std::move(sensor), noise, station.weight,
                      detection_prior(station.detection.value(), station.sensor.kind,
                                      scenario.tracker.association)});
   }

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <span>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
@@ -33,17 +34,15 @@ struct ScanOrigins {
 /// target's from the one a one-target run uses, so that with P_D = 1 and no clutter its values
 /// are today's.
 template <typename Sensor>
-Scan<Sensor::kMeasDim> simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
-                                     const Covariance<Sensor::kMeasDim>& noise,
-                                     const DetectionConfig& detection,
-                                     std::span<const TargetTruth> truths, int step,
-                                     std::uint64_t seed, std::uint64_t run,
-                                     ScanOrigins* origins = nullptr) {
+Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
+                   const Covariance<Sensor::kMeasDim>& noise, const DetectionConfig& detection,
+                   std::span<const TargetTruth> truths, int step, std::uint64_t seed,
+                   std::uint64_t run, ScanOrigins* origins = nullptr) {
   static_assert(Sensor::kStateDim == kKinematicsDim, "scans are simulated from the kinematics");
   constexpr int M = Sensor::kMeasDim;
   const auto station = static_cast<std::uint64_t>(station_id);
   const auto at = static_cast<std::uint64_t>(step);
-  Scan<M> scan{station_id, noise, {}};
+  Scan scan{station_id, noise, {}};
   std::vector<int> origin;
   std::uint32_t missed = 0;
 
@@ -61,7 +60,7 @@ Scan<Sensor::kMeasDim> simulate_scan(int station_id, const Sensor& sensor, const
     CounterRng rng({seed, run, station, at, NoiseStream::kMeasurement, t});
     Vector<M> z = sensor.predict(x);
     for (int i = 0; i < M; ++i) z(i) += std::sqrt(noise(i, i)) * rng.normal();
-    scan.detections.push_back(Sensor::to_reported(z));
+    scan.detections.emplace_back(Sensor::to_reported(z));
     origin.push_back(static_cast<int>(t));
   }
 
@@ -76,7 +75,7 @@ Scan<Sensor::kMeasDim> simulate_scan(int station_id, const Sensor& sensor, const
           x(i) = detection.clutter_max_speed_mps * (2.0 * clutter.uniform() - 1.0);
         }
       }
-      scan.detections.push_back(Sensor::to_reported(sensor.predict(x)));
+      scan.detections.emplace_back(Sensor::to_reported(sensor.predict(x)));
       origin.push_back(-1);
     }
   }
@@ -90,6 +89,21 @@ Scan<Sensor::kMeasDim> simulate_scan(int station_id, const Sensor& sensor, const
   }
   if (origins != nullptr) *origins = {std::move(origin), missed};
   return scan;
+}
+
+/// The same, for a station whose sensor is one of several kinds (multitarget/picture_sensor.hpp
+/// on the true kinematics) and whose noise is of that sensor's size.
+template <typename... Sensors>
+Scan simulate_scan(int station_id, const std::variant<Sensors...>& sensor, const Vector3& site,
+                   const DetectionNoise& noise, const DetectionConfig& detection,
+                   std::span<const TargetTruth> truths, int step, std::uint64_t seed,
+                   std::uint64_t run, ScanOrigins* origins = nullptr) {
+  return std::visit(
+      [&]<typename Sensor>(const Sensor& one) {
+        return simulate_scan(station_id, one, site, fixed_noise<Sensor::kMeasDim>(noise), detection,
+                             truths, step, seed, run, origins);
+      },
+      sensor);
 }
 
 }  // namespace skyfuse

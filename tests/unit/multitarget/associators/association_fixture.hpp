@@ -9,6 +9,7 @@
 #include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/multitarget/associator.hpp"
 #include "skyfuse/multitarget/hypothesiser.hpp"
+#include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/multitarget/tracker_config.hpp"
 
 namespace skyfuse::testing {
@@ -29,15 +30,18 @@ inline Vector<6> detection_at(const Vector3& position) {
   return z;
 }
 
-inline Scan<6> scan_of(std::vector<Vector<6>> detections) {
-  return Scan<6>{3, Covariance<6>::Identity(), std::move(detections)};
+inline Scan scan_of(const std::vector<Vector<6>>& detections) {
+  Scan scan{3, Covariance<6>::Identity(), {}};
+  scan.detections.reserve(detections.size());
+  for (const Vector<6>& z : detections) scan.detections.emplace_back(z);
+  return scan;
 }
 
 inline const double kGate = chi_square_quantile(0.9999, 6.0);
 
 /// The hypotheses of `scan` against `tracks`, decided by the associator named `name`.
 inline ScanAssociation decide(const char* name, const std::vector<GaussianState<6>>& tracks,
-                              const Scan<6>& scan, std::size_t max_detections = 4096,
+                              const Scan& scan, std::size_t max_detections = 4096,
                               const DetectionPrior& prior = {}) {
   AssociationConfig config;
   config.associator = name;

@@ -24,7 +24,7 @@ using testing::track_at;
 std::vector<GaussianState<6>> three_tracks() {
   return {track_at({0, 0, 100}), track_at({3, 0, 100}), track_at({1.5, 2.5, 100})};
 }
-Scan<6> four_detections() {
+Scan four_detections() {
   return scan_of({detection_at({0.5, 0.3, 100}), detection_at({2.2, 0.4, 100}),
                   detection_at({1.6, 1.8, 100}), detection_at({4.0, 1.0, 100})});
 }
@@ -35,8 +35,8 @@ std::vector<GaussianState<6>> lone_and_three_tracks() {
   for (const auto& t : three_tracks()) tracks.push_back(t);
   return tracks;
 }
-Scan<6> lone_and_four_detections() {
-  Scan<6> scan = four_detections();
+Scan lone_and_four_detections() {
+  Scan scan = four_detections();
   scan.detections.push_back(detection_at({500.5, 0.2, 100}));
   return scan;
 }
@@ -46,16 +46,17 @@ Scan<6> lone_and_four_detections() {
 // prod P_D N(nu; 0, S) / lambda * prod (1 - P_D P_G), with N computed here by Eigen's
 // determinant and inverse.
 std::vector<std::vector<double>> brute_force(const std::vector<GaussianState<6>>& tracks,
-                                             const Scan<6>& scan, const DetectionPrior& prior) {
+                                             const Scan& scan, const DetectionPrior& prior) {
   const std::size_t n = tracks.size();
   const std::size_t m = scan.detections.size();
   std::vector<std::vector<double>> g(n, std::vector<double>(m, 0.0));  // 0: not gated
   const testing::PvSensor sensor;
   for (std::size_t t = 0; t < n; ++t) {
     const Eigen::Matrix<double, 6, 6> h = sensor.jacobian(tracks[t].mean);
-    const Eigen::Matrix<double, 6, 6> s = h * tracks[t].covariance * h.transpose() + scan.noise;
+    const Eigen::Matrix<double, 6, 6> s =
+        h * tracks[t].covariance * h.transpose() + fixed_noise<6>(scan.noise);
     for (std::size_t j = 0; j < m; ++j) {
-      const Vector<6> nu = scan.detections[j] - sensor.predict(tracks[t].mean);
+      const Vector<6> nu = fixed_detection<6>(scan.detections[j]) - sensor.predict(tracks[t].mean);
       const double d2 = nu.dot(s.inverse() * nu);
       if (d2 > kGate) continue;
       g[t][j] =
@@ -102,7 +103,7 @@ TEST(JpdaAssociator, ProbabilitiesOfASmallClusterAreTheEnumeratedJointEvents) {
   const DetectionPrior prior{
       .detection_probability = 0.9, .gate_probability = 0.9999, .clutter_density = 1e-5};
   const auto tracks = lone_and_three_tracks();
-  const Scan<6> scan = lone_and_four_detections();
+  const Scan scan = lone_and_four_detections();
   const ScanAssociation a = decide("jpda", tracks, scan, 4096, prior);
   const auto expected = brute_force(tracks, scan, prior);
 
@@ -147,7 +148,7 @@ TEST(JpdaAssociator, AClusterWithTooManyEventsIsDecidedByGnnAndCounted) {
   config.jpda_max_events = 10;  // the cluster's bound is 5^3 = 125
   AssociationWork work;
   const auto tracks = three_tracks();
-  const Scan<6> scan = four_detections();
+  const Scan scan = four_detections();
   hypothesise(std::span<const GaussianState<6>>(tracks), testing::PvSensor(), scan, kGate, 4096,
               true, work.hypothesiser, work.hypotheses);
   ScanAssociation jpda;

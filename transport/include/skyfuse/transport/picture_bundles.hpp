@@ -55,13 +55,14 @@ inline wire::PictureBundle member_bundle(const wire::PictureScan& scan, std::siz
 
 /// An aggregator's collection of its cluster's scans, the current step's and the next's: its
 /// own (keep()) and its members' (receive()), kept as they were sent.
-template <typename Sensor>
 class ClusterScans {
  public:
-  ClusterScans(const ClusterLayout& layout, std::size_t cluster, std::uint64_t run_id,
-               std::size_t max_detections)
+  /// The scans of `layout`'s cluster `cluster`, whose stations' sensors are of `kinds`.
+  ClusterScans(const ClusterLayout& layout, std::size_t cluster, StationSensorKinds kinds,
+               std::uint64_t run_id, std::size_t max_detections)
       : members_(layout.members(cluster).begin(), layout.members(cluster).end()),
         collector_(members_),
+        kinds_(std::move(kinds)),
         cluster_(cluster),
         run_id_(run_id),
         max_detections_(max_detections) {}
@@ -84,7 +85,7 @@ class ClusterScans {
     }
     if (scan.run_id() != run_id_) return DropKind::kWrongRun;
     if (scan.step() != bundle.step()) return DropKind::kOutOfRange;
-    if (const auto why = picture_scan_from_wire<Sensor>(scan, max_detections_).second) return why;
+    if (const auto why = picture_scan_from_wire(scan, kinds_, max_detections_).second) return why;
     return admit(collector_, sources_, scan.step(), scan.station_id(), writer, scan);
   }
 
@@ -118,6 +119,7 @@ class ClusterScans {
   std::vector<int> members_;
   StepCollector<wire::PictureScan> collector_;
   SourceBinding sources_;
+  StationSensorKinds kinds_;
   std::size_t cluster_;
   std::uint64_t run_id_;
   std::size_t max_detections_;
@@ -130,9 +132,8 @@ class ClusterBundleScreen {
       : layout_(std::move(layout)), run_id_(run_id) {}
 
   /// Keeps every scan of a cluster's bundle in `scans`, or none and says why.
-  template <typename Sensor>
   std::optional<DropKind> receive(const wire::PictureBundle& bundle, const WriterId& writer,
-                                  PictureScans<Sensor>& scans) {
+                                  PictureScans& scans) {
     if (bundle.run_id() != run_id_) return DropKind::kWrongRun;
     if (bundle.kind() != wire::CLUSTER_SCANS) return DropKind::kOutOfRange;
     const std::size_t cluster = bundle.cluster();

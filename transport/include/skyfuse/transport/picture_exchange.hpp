@@ -29,12 +29,12 @@
 
 namespace skyfuse::transport {
 
-template <typename Tracks, typename Sensor>
-class PictureExchange : public PictureRoundScans<Tracks, Sensor> {
+template <typename Tracks>
+class PictureExchange : public PictureRoundScans<Tracks> {
  public:
-  static constexpr int M = Sensor::kMeasDim;
   using Sample = wire::PictureScan;
-  using Report = typename PictureRoundScans<Tracks, Sensor>::Report;
+  using Report = typename PictureRoundScans<Tracks>::Report;
+  using Station = typename PictureRoundScans<Tracks>::Station;
 
   /// Where the station's reader of samples listens: the topic's default partition.
   static std::vector<std::string> input_partitions(const PicturePlan& /*plan*/, int /*id*/) {
@@ -43,14 +43,14 @@ class PictureExchange : public PictureRoundScans<Tracks, Sensor> {
 
   /// The exchange of `node` among `stations` (every participant of the run), for run `run_id`;
   /// a sample of more than `max_detections` is refused.
-  PictureExchange(DdsNode& node, std::span<const KnownStation<Sensor>> stations,
-                  std::uint64_t run_id, std::size_t max_detections)
-      : PictureRoundScans<Tracks, Sensor>(stations, run_id, max_detections),
+  PictureExchange(DdsNode& node, std::span<const Station> stations, std::uint64_t run_id,
+                  std::size_t max_detections)
+      : PictureRoundScans<Tracks>(stations, run_id, max_detections),
         stations_(static_cast<int>(stations.size())),
         run_id_(run_id),
         out_(node.make_writer<wire::PictureScan>()) {}
   /// The exchange of a station of `plan` (any id: every station does the same).
-  static PictureExchange of_station(DdsNode& node, std::span<const KnownStation<Sensor>> stations,
+  static PictureExchange of_station(DdsNode& node, std::span<const Station> stations,
                                     const PicturePlan& plan, int /*id*/,
                                     const options::NodeOptions& options,
                                     Reader<wire::PictureScan>& /*inputs*/) {
@@ -73,9 +73,10 @@ class PictureExchange : public PictureRoundScans<Tracks, Sensor> {
 
   /// Publishes this station's round `step`: `scan`, and `report` of it against the predicted
   /// picture whose digest is `picture_digest`.
-  void publish(std::uint32_t step, const Scan<M>& scan, const Report& report,
+  void publish(std::uint32_t step, const Scan& scan, const Report& report,
                std::uint64_t picture_digest) {
-    const wire::PictureScan sample = to_wire<Sensor>(scan, report, run_id_, step, picture_digest);
+    const wire::PictureScan sample = to_wire<Tracks::kDim>(
+        this->station(report.station_id).sensor, scan, report, run_id_, step, picture_digest);
     out_.write(sample);
     this->scans().receive(sample, out_.id());
   }

@@ -25,22 +25,27 @@
 
 namespace skyfuse::transport {
 
-template <typename Tracks, typename Sensor>
+template <typename Tracks>
 class PictureRoundScans {
  public:
-  static constexpr int M = Sensor::kMeasDim;
-  using Picture = PeerPicture<Tracks, Sensor>;
+  using Picture = PeerPicture<Tracks>;
   using Report = typename Picture::Report;
+  using Station = typename Picture::Station;
 
   /// The scans of `stations` (every participant of the run) in run `run_id`; a sample of more
   /// than `max_detections` is refused.
-  PictureRoundScans(std::span<const KnownStation<Sensor>> stations, std::uint64_t run_id,
+  PictureRoundScans(std::span<const Station> stations, std::uint64_t run_id,
                     std::size_t max_detections)
       : stations_(stations.begin(), stations.end()),
-        scans_(ids_of(stations), run_id, max_detections) {}
+        scans_(ids_of(stations), StationSensorKinds(stations), run_id, max_detections) {}
 
   /// The run's stations.
   std::size_t station_count() const { return stations_.size(); }
+  /// Station `id` of the run (one of them).
+  const Station& station(int id) const {
+    return *std::find_if(stations_.begin(), stations_.end(),
+                         [&](const Station& s) { return s.id == id; });
+  }
   /// Every station's sample of the current step is in.
   bool complete() const { return scans_.complete(); }
   /// The stations whose sample of the current step is still missing.
@@ -64,7 +69,7 @@ class PictureRoundScans {
     std::vector<Report> out;
     const std::uint64_t digest = picture_digest;
     for (const int id : scans_.station_ids()) {  // ascending, as fusing wants them
-      const ReceivedScan<M>* scan = scans_.scan_of(id);
+      const ReceivedScan* scan = scans_.scan_of(id);
       if (scan == nullptr) continue;
       const auto station = std::find_if(stations_.begin(), stations_.end(),
                                         [&](const auto& s) { return s.id == id; });
@@ -96,7 +101,7 @@ class PictureRoundScans {
   std::optional<std::pair<int, std::uint64_t>> lowest() const {
     std::optional<std::pair<int, std::uint64_t>> first;
     for (const int id : scans_.station_ids()) {
-      if (const ReceivedScan<M>* scan = scans_.scan_of(id)) {
+      if (const ReceivedScan* scan = scans_.scan_of(id)) {
         if (scan->picture_digest != empty_digest_) return std::pair(id, scan->picture_digest);
         if (!first) first = std::pair(id, scan->picture_digest);
       }
@@ -106,7 +111,7 @@ class PictureRoundScans {
   /// Whether a sample of the current step was made against a picture other than `digest`'s.
   bool any_other_picture(std::uint64_t digest) const {
     for (const int id : scans_.station_ids()) {
-      const ReceivedScan<M>* scan = scans_.scan_of(id);
+      const ReceivedScan* scan = scans_.scan_of(id);
       if (scan != nullptr && scan->picture_digest != digest) return true;
     }
     return false;
@@ -121,20 +126,20 @@ class PictureRoundScans {
   std::uint64_t other_pictures() const { return other_pictures_; }
 
  protected:
-  PictureScans<Sensor>& scans() { return scans_; }
+  PictureScans& scans() { return scans_; }
 
  private:
-  static std::vector<int> ids_of(std::span<const KnownStation<Sensor>> stations) {
+  static std::vector<int> ids_of(std::span<const Station> stations) {
     std::vector<int> ids;
     for (const auto& s : stations) ids.push_back(s.id);
     return ids;
   }
 
-  std::vector<KnownStation<Sensor>> stations_;
-  PictureScans<Sensor> scans_;
+  std::vector<Station> stations_;
+  PictureScans scans_;
   std::uint64_t empty_digest_ = empty_picture_digest();
   std::uint64_t other_pictures_ = 0;
-  Scan<M> reassigned_;  // a parted station's detections, assigned here
+  Scan reassigned_;  // a parted station's detections, assigned here
   AssociationWork work_;
 };
 

@@ -21,20 +21,21 @@
 
 namespace skyfuse::transport {
 
-template <typename Sensor>
 class PictureScans {
  public:
-  static constexpr int M = Sensor::kMeasDim;
-
-  /// The scans of stations `ids` (ascending) in run `run_id`; a sample of more than
-  /// `max_detections` is refused.
-  PictureScans(std::span<const int> ids, std::uint64_t run_id, std::size_t max_detections)
-      : collector_(ids), run_id_(run_id), max_detections_(max_detections) {}
+  /// The scans of stations `ids` (ascending), whose sensors are of `kinds`, in run `run_id`; a
+  /// sample of more than `max_detections` is refused.
+  PictureScans(std::span<const int> ids, StationSensorKinds kinds, std::uint64_t run_id,
+               std::size_t max_detections)
+      : collector_(ids),
+        kinds_(std::move(kinds)),
+        run_id_(run_id),
+        max_detections_(max_detections) {}
 
   /// Keeps a sample of the current step or the next, or says why not.
   std::optional<DropKind> receive(const wire::PictureScan& sample, const WriterId& writer) {
     if (sample.run_id() != run_id_) return DropKind::kWrongRun;
-    auto [scan, why] = picture_scan_from_wire<Sensor>(sample, max_detections_);
+    auto [scan, why] = picture_scan_from_wire(sample, kinds_, max_detections_);
     if (!scan) return why;
     return admit(collector_, sources_, scan->step, scan->station_id, writer, *scan);
   }
@@ -49,7 +50,7 @@ class PictureScans {
     relayed_.clear();
     for (const wire::PictureScan& sample : samples) {
       if (sample.run_id() != run_id_) return DropKind::kWrongRun;
-      auto [scan, why] = picture_scan_from_wire<Sensor>(sample, max_detections_);
+      auto [scan, why] = picture_scan_from_wire(sample, kinds_, max_detections_);
       if (!scan) return why;
       if (const auto late = collector_.check(scan->step, scan->station_id)) {
         if (*late == DropKind::kDuplicate && is_kept(*scan)) continue;
@@ -57,7 +58,7 @@ class PictureScans {
       }
       relayed_.push_back(std::move(*scan));
     }
-    for (const ReceivedScan<M>& scan : relayed_) {
+    for (const ReceivedScan& scan : relayed_) {
       collector_.offer(scan.step, scan.station_id, scan);
     }
     return std::nullopt;
@@ -72,7 +73,7 @@ class PictureScans {
   /// The stations, ascending id.
   std::span<const int> station_ids() const { return collector_.station_ids(); }
   /// Station `station_id`'s scan of the current step, or nullptr if it has not arrived.
-  const ReceivedScan<M>* scan_of(int station_id) const {
+  const ReceivedScan* scan_of(int station_id) const {
     const auto i = index_of(station_id);
     return i && collector_.filled(*i) ? &collector_.payloads()[*i] : nullptr;
   }
@@ -92,15 +93,16 @@ class PictureScans {
   }
   // Whether `scan` is the one kept for its station and step, bit for bit (the collector said
   // its slot is filled).
-  bool is_kept(const ReceivedScan<M>& scan) const {
+  bool is_kept(const ReceivedScan& scan) const {
     return collector_.payload_at(scan.step, *index_of(scan.station_id)) == scan;
   }
 
-  StepCollector<ReceivedScan<M>> collector_;
+  StepCollector<ReceivedScan> collector_;
   SourceBinding sources_;
+  StationSensorKinds kinds_;
   std::uint64_t run_id_;
   std::size_t max_detections_;
-  std::vector<ReceivedScan<M>> relayed_;  // a bundle's scans, checked before any is kept
+  std::vector<ReceivedScan> relayed_;  // a bundle's scans, checked before any is kept
 };
 
 }  // namespace skyfuse::transport

@@ -62,12 +62,11 @@ inline ClusterLayout picture_tree_layout(const PicturePlan& plan) {
                        static_cast<std::size_t>(plan.scenario.exchange.fanout));
 }
 
-template <typename Tracks, typename Sensor>
-class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
-  using Base = PictureRoundScans<Tracks, Sensor>;
+template <typename Tracks>
+class PictureTreeExchange : public PictureRoundScans<Tracks> {
+  using Base = PictureRoundScans<Tracks>;
 
  public:
-  static constexpr int M = Sensor::kMeasDim;
   using Sample = wire::PictureBundle;
   using Report = typename Base::Report;
   using SystemTime = std::chrono::system_clock::time_point;
@@ -93,7 +92,7 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
   /// refused, and an aggregator sends its cluster's scans `collect_span` after its own at the
   /// latest. `inputs`: the station's reader of bundles (made in input_partitions()), which a
   /// stand-in moves; none: this station stands in for nobody.
-  PictureTreeExchange(DdsNode& node, std::span<const KnownStation<Sensor>> stations,
+  PictureTreeExchange(DdsNode& node, std::span<const typename Base::Station> stations,
                       std::uint64_t run_id, std::size_t max_detections, ClusterLayout layout,
                       int id, std::chrono::microseconds collect_span,
                       Reader<wire::PictureBundle>* inputs)
@@ -108,14 +107,14 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
         run_id_(run_id),
         collect_span_(collect_span),
         screen_(layout_, run_id),
-        cluster_scans_(layout_, cluster_, run_id, max_detections),
+        cluster_scans_(layout_, cluster_, StationSensorKinds(stations), run_id, max_detections),
         out_(node.make_writer<wire::PictureBundle>({aggregating_
                                                         ? std::string(kPictureClustersPartition)
                                                         : cluster_up_partition(cluster_)})) {}
   /// Station `id`'s exchange in the run of `plan` and `options`: an aggregator's stage ends at
   /// half the round's deadline.
   static PictureTreeExchange of_station(DdsNode& node,
-                                        std::span<const KnownStation<Sensor>> stations,
+                                        std::span<const typename Base::Station> stations,
                                         const PicturePlan& plan, int id,
                                         const options::NodeOptions& options,
                                         Reader<wire::PictureBundle>& inputs) {
@@ -154,9 +153,10 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
 
   /// Sends this station's round `step` (`scan`, and `report` of it against the predicted picture
   /// whose digest is `picture_digest`) to its aggregator, or keeps it for its cluster's bundle.
-  void publish(std::uint32_t step, const Scan<M>& scan, const Report& report,
+  void publish(std::uint32_t step, const Scan& scan, const Report& report,
                std::uint64_t picture_digest) {
-    const wire::PictureScan sample = to_wire<Sensor>(scan, report, run_id_, step, picture_digest);
+    const wire::PictureScan sample = to_wire<Tracks::kDim>(
+        this->station(report.station_id).sensor, scan, report, run_id_, step, picture_digest);
     step_ = step;
     if (relaying()) {
       cluster_scans_.keep(sample);
@@ -252,7 +252,7 @@ class PictureTreeExchange : public PictureRoundScans<Tracks, Sensor> {
   std::uint64_t run_id_;
   std::chrono::microseconds collect_span_;
   ClusterBundleScreen screen_;
-  ClusterScans<Sensor> cluster_scans_;
+  ClusterScans cluster_scans_;
   Writer<wire::PictureBundle> out_;  // an aggregator's bundles, or a member's scans
   std::uint32_t step_ = 0;
   SystemTime collect_by_{};

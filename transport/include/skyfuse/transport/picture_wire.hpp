@@ -8,16 +8,20 @@
 /// A receiver takes a sample only whole: one problem anywhere refuses it, named by the first
 /// found, so that a peer never fuses part of a station's round.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "skyfuse/multitarget/peer_picture.hpp"
+#include "skyfuse/multitarget/picture_sensor.hpp"
 #include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
@@ -27,23 +31,24 @@
 
 namespace skyfuse::transport {
 
-/// The sample of station `report.station_id`'s round `step`: `scan`'s values, the report's
-/// associations (ascending track id, as the report keeps them) and unassociated detections.
-/// `picture_digest`: the digest of the predicted picture the report was made against.
-template <typename Sensor, typename Contribution>
-wire::PictureScan to_wire(const Scan<Sensor::kMeasDim>& scan,
-                          const StationReport<Contribution, Sensor::kMeasDim>& report,
-                          std::uint64_t run_id, std::uint32_t step, std::uint64_t picture_digest) {
-  constexpr int M = Sensor::kMeasDim;
+/// The sample of station `report.station_id`'s round `step`, whose sensor is `sensor`: `scan`'s
+/// values, the report's associations (ascending track id, as the report keeps them) and
+/// unassociated detections. `picture_digest`: the digest of the predicted picture the report
+/// was made against.
+template <int N, typename Contribution>
+wire::PictureScan to_wire(const PictureSensor<N>& sensor, const Scan& scan,
+                          const StationReport<Contribution>& report, std::uint64_t run_id,
+                          std::uint32_t step, std::uint64_t picture_digest) {
+  const int m = measurement_dim<N>(sensor);
   wire::PictureScan sample;
   sample.run_id(run_id);
   sample.step(step);
   sample.station_id(report.station_id);
-  sample.sensor(std::string(Sensor::kKind));
-  sample.measurement_dim(M);
+  sample.sensor(std::visit([](const auto& s) { return std::string(s.kKind); }, sensor));
+  sample.measurement_dim(static_cast<std::uint32_t>(m));
   std::vector<double>& values = sample.values();
-  values.reserve(scan.detections.size() * M);
-  for (const Vector<M>& z : scan.detections) values.insert(values.end(), z.data(), z.data() + M);
+  values.reserve(scan.detections.size() * static_cast<std::size_t>(m));
+  for (const Detection& z : scan.detections) values.insert(values.end(), z.data(), z.data() + m);
   std::vector<wire::Association>& associations = sample.associations();
   associations.reserve(report.pairs.size());
   for (const ReportedPair& pair : report.pairs) {
@@ -61,22 +66,76 @@ wire::PictureScan to_wire(const Scan<Sensor::kMeasDim>& scan,
   return sample;
 }
 
-/// What a PictureScan carries, for a sensor of M components per detection.
-template <int M>
+/// What a PictureScan carries.
 struct ReceivedScan {
   int station_id = 0;
   std::uint32_t step = 0;
   std::uint64_t picture_digest = 0;
-  std::vector<Vector<M>> detections;        ///< in scan order
+  std::vector<Detection> detections;        ///< in scan order, each of its sensor's size
   std::vector<ReportedPair> associations;   ///< ascending (track, detection index)
   std::vector<std::uint32_t> unassociated;  ///< ascending detection index
   std::uint32_t dropped = 0;
-
-  bool operator==(const ReceivedScan&) const = default;
+  /// The same scan, bit for bit.
+  bool operator==(const ReceivedScan& other) const {
+    return station_id == other.station_id && step == other.step &&
+           picture_digest == other.picture_digest && dropped == other.dropped &&
+           associations == other.associations && unassociated == other.unassociated &&
+           std::equal(detections.begin(), detections.end(), other.detections.begin(),
+                      other.detections.end(), same_detection);
+  }
 };
 
-/// The scan a sample carries for a station of `Sensor` with at most `max_detections` detections,
-/// or why it is refused:
+/// The sensor kind of each station of a run, by id, as a receiver checks its samples against.
+class StationSensorKinds {
+ public:
+  StationSensorKinds() = default;
+  template <int N>
+  explicit StationSensorKinds(std::span<const KnownStation<N>> stations) {
+    for (const KnownStation<N>& station : stations) {
+      kinds_.emplace_back(station.id, std::visit([](const auto& s) { return std::string(s.kKind); },
+                                                 station.sensor));
+    }
+  }
+  /// Station `station_id`'s kind; for a station not of the run, the kind its sample claims
+  /// (`claimed`), so that what a sample is is checked before who it claims to be.
+  std::string_view of(int station_id, std::string_view claimed) const {
+    for (const auto& [id, kind] : kinds_) {
+      if (id == station_id) return kind;
+    }
+    return claimed;
+  }
+
+ private:
+  std::vector<std::pair<int, std::string>> kinds_;
+};
+
+namespace detail {
+// The detections of `sample` for a station of `Sensor`, appended to `out`, or why not.
+template <typename Sensor>
+std::optional<DropKind> detections_from_wire(const wire::PictureScan& sample,
+                                             std::size_t max_detections,
+                                             std::vector<Detection>& out) {
+  constexpr int M = Sensor::kMeasDim;
+  if (std::string_view(sample.sensor().c_str()) != Sensor::kKind ||
+      sample.measurement_dim() != static_cast<std::uint32_t>(M) ||
+      sample.values().size() % M != 0) {
+    return DropKind::kOutOfRange;
+  }
+  const std::size_t count = sample.values().size() / M;
+  if (count > max_detections) return DropKind::kOutOfRange;
+  out.reserve(count);
+  for (std::size_t j = 0; j < count; ++j) {
+    const Vector<M> z = Eigen::Map<const Vector<M>>(sample.values().data() + j * M);
+    if (const auto why = Sensor::check_reported(z)) return why;  // kNonFinite too
+    out.emplace_back(z);
+  }
+  return std::nullopt;
+}
+}  // namespace detail
+
+/// The scan a sample carries for a station whose sensor is of kind `sensor_kind` (one a picture
+/// takes, multitarget/picture_sensor.hpp) with at most `max_detections` detections, or why it is
+/// refused:
 ///  - kOutOfRange: another sensor kind or measurement dimension, values not a whole number of
 ///    detections, more detections than the bound, an index beyond the scan, associations not in
 ///    strictly ascending (track id, detection) (a pair twice), a weight not in (0, 1], a
@@ -84,31 +143,25 @@ struct ReceivedScan {
 ///    detection both associated and unassociated, or a detection its sensor cannot report;
 ///  - kNonFinite: a value or a weight that is not finite.
 /// Whether each track id is one of the receiver's picture is the receiver's to check.
-template <typename Sensor>
-std::pair<std::optional<ReceivedScan<Sensor::kMeasDim>>, std::optional<DropKind>>
-picture_scan_from_wire(const wire::PictureScan& sample, std::size_t max_detections) {
-  constexpr int M = Sensor::kMeasDim;
+inline std::pair<std::optional<ReceivedScan>, std::optional<DropKind>> picture_scan_from_wire(
+    const wire::PictureScan& sample, std::string_view sensor_kind, std::size_t max_detections) {
   const auto refuse = [](DropKind why) {
-    return std::pair<std::optional<ReceivedScan<M>>, std::optional<DropKind>>(std::nullopt, why);
+    return std::pair<std::optional<ReceivedScan>, std::optional<DropKind>>(std::nullopt, why);
   };
-  if (std::string_view(sample.sensor().c_str()) != Sensor::kKind ||
-      sample.measurement_dim() != static_cast<std::uint32_t>(M) ||
-      sample.values().size() % M != 0) {
-    return refuse(DropKind::kOutOfRange);
-  }
-  const std::size_t count = sample.values().size() / M;
-  if (count > max_detections) return refuse(DropKind::kOutOfRange);
-  ReceivedScan<M> received;
+  ReceivedScan received;
+  std::optional<DropKind> why = DropKind::kOutOfRange;  // a kind no picture takes
+  for_each_alternative<PictureSensor<kKinematicsDim>>(
+      [&]<typename Sensor>(std::type_identity<Sensor>) {
+        if (Sensor::kKind == sensor_kind) {
+          why = detail::detections_from_wire<Sensor>(sample, max_detections, received.detections);
+        }
+      });
+  if (why) return refuse(*why);
+  const std::size_t count = received.detections.size();
   received.station_id = sample.station_id();
   received.step = sample.step();
   received.picture_digest = sample.picture_digest();
   received.dropped = sample.dropped();
-  received.detections.reserve(count);
-  for (std::size_t j = 0; j < count; ++j) {
-    const Vector<M> z = Eigen::Map<const Vector<M>>(sample.values().data() + j * M);
-    if (const auto why = Sensor::check_reported(z)) return refuse(*why);  // kNonFinite too
-    received.detections.push_back(z);
-  }
   // Each detection's weights over the tracks it went to sum to at most 1 (a probability; 1 for
   // GNN's one track), and an unassociated detection went to none.
   constexpr double kRoundingOfASum = 1e-9;
@@ -133,6 +186,14 @@ picture_scan_from_wire(const wire::PictureScan& sample, std::size_t max_detectio
     received.unassociated.push_back(j);
   }
   return {std::move(received), std::nullopt};
+}
+
+/// The scan a sample carries for a station of a run whose stations' kinds are `kinds`.
+inline std::pair<std::optional<ReceivedScan>, std::optional<DropKind>> picture_scan_from_wire(
+    const wire::PictureScan& sample, const StationSensorKinds& kinds, std::size_t max_detections) {
+  return picture_scan_from_wire(
+      sample, kinds.of(sample.station_id(), std::string_view(sample.sensor().c_str())),
+      max_detections);
 }
 
 /// Node `source_id`'s picture after round `step`: every track (id, status, estimate), the
