@@ -139,12 +139,18 @@ TEST(ScanSimulation, TheOrderSaysNothingOfTheOrigin) {
   EXPECT_LT(first_is_target_zero, 100);  // about 1 in 5 with ~6 detections a scan
 }
 
-TEST(ScanSimulation, TheSameKeyGivesTheSameScan) {
-  const auto truths = hovering({{1000, 0, 300}, {2000, 500, 300}}, 3);
+// Half the targets seen, three false alarms a scan, within 20 km.
+DetectionConfig half_seen_with_clutter() {
   DetectionConfig config;
   config.probability = 0.5;
   config.field_of_view.max_range_m = 20000.0;
   config.clutter_per_scan = 3.0;
+  return config;
+}
+
+TEST(ScanSimulation, TheSameKeyGivesTheSameScan) {
+  const auto truths = hovering({{1000, 0, 300}, {2000, 500, 300}}, 3);
+  const DetectionConfig config = half_seen_with_clutter();
   const Sensor sensor(kSite);
   const auto a = simulate_scan(2, sensor, kSite, radar_noise(), config, truths, 2, 5, 1);
   const auto b = simulate_scan(2, sensor, kSite, radar_noise(), config, truths, 2, 5, 1);
@@ -155,10 +161,7 @@ TEST(ScanSimulation, TheSameKeyGivesTheSameScan) {
 
 TEST(ScanSimulation, AStationsSensorAsAVariantGivesItsTypedScan) {
   const auto truths = hovering({{1000, 0, 300}, {2000, 500, 300}}, 3);
-  DetectionConfig config;
-  config.probability = 0.5;
-  config.field_of_view.max_range_m = 20000.0;
-  config.clutter_per_scan = 3.0;
+  const DetectionConfig config = half_seen_with_clutter();
   const Sensor sensor(kSite);
   const std::variant<PositionVelocity<kKinematicsDim>, Sensor> either = sensor;
   const Scan typed = simulate_scan(2, sensor, kSite, radar_noise(), config, truths, 2, 5, 1);
