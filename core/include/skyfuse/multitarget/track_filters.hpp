@@ -25,6 +25,7 @@
 #include "skyfuse/fusion/mixed_stacked_ekf.hpp"
 #include "skyfuse/fusion/stacked_ekf.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
+#include "skyfuse/multitarget/imm_picture_steps.hpp"
 #include "skyfuse/multitarget/picture_sensor.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/truth.hpp"
@@ -224,7 +225,7 @@ class PeerImmTracks : public ImmTracks<Set, typename NetworkImm<Set>::Peer> {
   template <typename Sensor>
   static NumericalStatus contribute(const State& state, const StationObservation<Sensor>& o,
                                     Contribution& out) {
-    const OwnContribution own = state.contribute(o, NisGate{}, out);
+    const OwnContribution own = ImmPictureSteps<Set, Sensor>::contribute(state, o, out);
     return own.refused ? NumericalStatus::kNotPositiveDefinite : own.status;
   }
   static NumericalStatus fuse(State& state, std::span<const Contribution* const> contributions,
@@ -248,7 +249,7 @@ class CenterImmTracks : public ImmTracks<Set, typename NetworkImm<Set>::Central>
     return by_sensor_kind<kDim>(
         observations, buffers_,
         [&]<typename Sensor>(std::span<const StationObservation<Sensor>> one_kind) {
-          return state.update(one_kind) == NumericalStatus::kOk;
+          return ImmPictureSteps<Set, Sensor>::update(state, one_kind) == NumericalStatus::kOk;
         },
         []() -> bool {
           // The IMM's stacked update is of one sensor kind's blocks (tracking/imm_network.hpp).
