@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <variant>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
 #include "skyfuse/traffic/scan_simulation.hpp"
+#include "unit/multitarget/picture_round.hpp"
 
 namespace skyfuse {
 namespace {
@@ -126,15 +128,8 @@ TEST(MultiTargetNetwork, PeersHoldOnePictureAndTheCenterAgrees) {
       for (const int o : origins.target) clutter_detections += o < 0 ? 1 : 0;
     }
     // Each station reports against its own peer's predicted picture.
-    for (Peer& peer : peers) peer.predict();
-    center.predict();
-    std::vector<Peer::Report> reports;
-    AssociationWork work;
-    for (std::size_t s = 0; s < stations.size(); ++s) {
-      reports.push_back(peers[s].report(stations[s], scans[s], work));
-    }
-    for (Peer& peer : peers) peer.fuse(step, reports);
-    center.update(step, scans);
+    const std::vector<Peer::Report> reports = test::play_picture_round(
+        step, peers, center, std::span<const Station>(stations), std::span<const Scan>(scans));
 
     for (std::size_t p = 1; p < peers.size(); ++p) {
       expect_same_bits(peers[0].tracks(), peers[p].tracks(), k);

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <variant>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
 #include "skyfuse/traffic/scan_simulation.hpp"
+#include "unit/multitarget/picture_round.hpp"
 
 namespace skyfuse {
 namespace {
@@ -112,15 +114,8 @@ TEST(MixedPicture, ARadarAndAPositionVelocityStationShareOnePicture) {
         ASSERT_EQ(z.size(), measurement_dim<N>(station.sensor)) << "station " << station.id;
       }
     }
-    for (Peer& peer : peers) peer.predict();
-    center.predict();
-    std::vector<Peer::Report> reports;
-    AssociationWork work;
-    for (std::size_t s = 0; s < stations.size(); ++s) {
-      reports.push_back(peers[s].report(stations[s], scans[s], work));
-    }
-    for (Peer& peer : peers) peer.fuse(step, reports);
-    center.update(step, scans);
+    const std::vector<Peer::Report> reports = test::play_picture_round(
+        step, peers, center, std::span<const Station>(stations), std::span<const Scan>(scans));
 
     ASSERT_EQ(peers[0].digest(), peers[1].digest()) << "round " << k;
     std::vector<Association> peer_associations;
