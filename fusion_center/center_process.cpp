@@ -5,17 +5,17 @@
 #include "picture_center.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/sensor_parts.hpp"
-#include "skyfuse/scenario/scenario_loader.hpp"
-#include "skyfuse/transport/node_setup.hpp"
+#include "skyfuse/transport/node_plan.hpp"
 
 namespace skyfuse::center {
 
 int run_center(const options::NodeOptions& options) {
-  if (Scenario scenario = load_scenario_or_default(options.scenario_path);
-      scenario.has_many_targets()) {
-    return run_picture_center(options, std::move(scenario));
+  // The run's kind is its plan's (sim/any_plan.hpp), which every node builds alike.
+  AnyPlan any_plan = transport::load_any_plan(options);
+  if (auto* picture = std::get_if<PicturePlan>(&any_plan)) {
+    return run_picture_center(options, std::move(*picture));
   }
-  const RunPlan plan = transport::load_plan(options);
+  const RunPlan& plan = std::get<RunPlan>(any_plan);
   // What updates the rounds is compiled by shard of the configuration groups, the endpoints once
   // (center_rounds.hpp).
   auto rounds = with_filter_shard(plan.scenario.filter, [&](auto shard) {

@@ -6,8 +6,7 @@
 
 namespace skyfuse::center {
 
-int run_picture_center(const options::NodeOptions& options, Scenario scenario) {
-  PicturePlan plan = make_picture_plan(std::move(scenario), options.overrides);
+int run_picture_center(const options::NodeOptions& options, PicturePlan plan) {
   return with_filter_shard(plan.scenario.filter, [&](auto shard) {
     return run_picture_center_in_shard<decltype(shard)::value>(options, std::move(plan));
   });

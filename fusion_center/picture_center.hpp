@@ -6,11 +6,11 @@
 // same inputs as the peers': the architectures are compared on identical data.
 
 #include "skyfuse/options/node_options.hpp"
-#include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/sim/picture_plan.hpp"
 
 namespace skyfuse::center {
 
-/// Runs the center of `scenario` (which has_many_targets()); returns an options::ExitCode.
-int run_picture_center(const options::NodeOptions& options, Scenario scenario);
+/// Runs the center of `plan`; returns an options::ExitCode.
+int run_picture_center(const options::NodeOptions& options, PicturePlan plan);
 
 }  // namespace skyfuse::center

@@ -20,11 +20,10 @@ namespace skyfuse::station {
 
 namespace {
 
-// The run's plan, once every id in `ids` is found to take part in it and the options suit a
+// Refuses a station of `ids` that does not take part in `plan`, and options that do not suit a
 // run of many aircraft.
-PicturePlan checked_plan(const StationOptions& options, Scenario scenario,
-                         const std::vector<int>& ids) {
-  PicturePlan plan = make_picture_plan(std::move(scenario), options.node.overrides);
+void check_plan(const StationOptions& options, const PicturePlan& plan,
+                const std::vector<int>& ids) {
   const std::vector<int> participants = plan.participant_ids();
   for (const int id : ids) {
     if (std::find(participants.begin(), participants.end(), id) == participants.end()) {
@@ -41,7 +40,6 @@ PicturePlan checked_plan(const StationOptions& options, Scenario scenario,
     throw std::invalid_argument(fmt::format("--rejoin-at-step: {} is past the run's last step {}",
                                             *options.rejoin_step, plan.scenario.steps - 1));
   }
-  return plan;
 }
 
 // The aircraft, kept for the life of the process: every station of it reads them.
@@ -60,8 +58,8 @@ int run_on(const StationOptions& options, const PicturePlan& plan,
 
 }  // namespace
 
-int run_picture_station(const StationOptions& options, Scenario scenario) {
-  const PicturePlan plan = checked_plan(options, std::move(scenario), {options.id});
+int run_picture_station(const StationOptions& options, const PicturePlan& plan) {
+  check_plan(options, plan, {options.id});
   const std::vector<TargetTruth>& truth = lifelong_truth(plan, options);
   auto& node = transport::make_lifelong<transport::DdsNode>(
       transport::node_config(options.node, fmt::format("skyfuse-station-{}", options.id)));
@@ -69,8 +67,8 @@ int run_picture_station(const StationOptions& options, Scenario scenario) {
 }
 
 int run_picture_stations(const StationOptions& options, const std::vector<int>& ids,
-                         Scenario scenario) {
-  const PicturePlan plan = checked_plan(options, std::move(scenario), ids);
+                         const PicturePlan& plan) {
+  check_plan(options, plan, ids);
   const std::vector<TargetTruth>& truth = lifelong_truth(plan, options);
   // Each station keeps a reference to its options.
   std::deque<StationOptions> each;

@@ -10,19 +10,18 @@
 
 #include <vector>
 
-#include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/sim/picture_plan.hpp"
 #include "station_process.hpp"
 
 namespace skyfuse::station {
 
-/// Runs station `options.id` of `scenario` (which has_many_targets()) to the end of the run;
-/// returns an options::ExitCode.
-int run_picture_station(const StationOptions& options, Scenario scenario);
+/// Runs station `options.id` of `plan` to the end of the run; returns an options::ExitCode.
+int run_picture_station(const StationOptions& options, const PicturePlan& plan);
 
-/// Runs stations `ids` of `scenario` in this process, each on a thread of its own and all on one
+/// Runs stations `ids` of `plan` in this process, each on a thread of its own and all on one
 /// participant (`skyfuse run --stations-per-process`); returns the first failure's
 /// options::ExitCode, or success.
 int run_picture_stations(const StationOptions& options, const std::vector<int>& ids,
-                         Scenario scenario);
+                         const PicturePlan& plan);
 
 }  // namespace skyfuse::station

@@ -11,8 +11,8 @@
 
 #include "picture_station.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
-#include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/node_plan.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 #include "station_rounds.hpp"
@@ -94,13 +94,13 @@ int run_station(const StationOptions& options) {
 
 int run_stations(const StationOptions& options, const std::vector<int>& ids) {
   if (ids.size() > 1) check_several_stations(options, ids);
-  // The run's kind, decided once for the process, from the scenario every node reads.
-  if (Scenario scenario = load_scenario_or_default(options.node.scenario_path);
-      scenario.has_many_targets()) {
-    return ids.size() == 1 ? run_picture_station(with_id(options, ids.front()), std::move(scenario))
-                           : run_picture_stations(options, ids, std::move(scenario));
+  // The run's kind is its plan's (sim/any_plan.hpp), which every node builds alike.
+  AnyPlan any_plan = transport::load_any_plan(options.node);
+  if (auto* picture = std::get_if<PicturePlan>(&any_plan)) {
+    return ids.size() == 1 ? run_picture_station(with_id(options, ids.front()), *picture)
+                           : run_picture_stations(options, ids, *picture);
   }
-  const RunPlan plan = transport::load_plan(options.node);
+  const RunPlan& plan = std::get<RunPlan>(any_plan);
   if (ids.size() == 1) {
     const StationOptions one = with_id(options, ids.front());
     const StationConfig& me = participant_of(plan, one.id);

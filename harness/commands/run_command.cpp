@@ -14,8 +14,9 @@
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
-#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/any_plan.hpp"
 #include "skyfuse/transport/node_config.hpp"
+#include "skyfuse/transport/node_plan.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -169,16 +170,15 @@ void add_run_command(CLI::App& app, RunOptions& o) {
 }
 
 int run_run(const RunOptions& given) {
-  const Scenario scenario = load_scenario_or_default(given.node.scenario_path);
+  // The run's kind is its plan's (sim/any_plan.hpp).
+  const AnyPlan any_plan = transport::load_any_plan(given.node);
   // How many stations share a process is the run's to pick, for both kinds, unless told.
   RunOptions o = given;
-  o.stations_per_process =
-      given.stations_per_process_given.value_or(Placement::auto_stations_per_process(
-          given, static_cast<std::size_t>(given.node.overrides.stations.value_or(
-                     static_cast<int>(scenario.stations.size())))));
-  if (scenario.has_many_targets()) {
+  o.stations_per_process = given.stations_per_process_given.value_or(
+      Placement::auto_stations_per_process(given, static_cast<std::size_t>(stations_of(any_plan))));
+  if (const auto* plan = std::get_if<PicturePlan>(&any_plan)) {
     const PictureRunSummary summary =
-        report_run(o, print_picture_run_table, [&] { return execute_picture_run(o, scenario); });
+        report_run(o, print_picture_run_table, [&] { return execute_picture_run(o, *plan); });
     // Without faults every picture is its in-process twin's; with loss, a kill or the wall
     // clock (a late scan) the peers must agree again by the end.
     const bool held = summary.faults || summary.realtime
@@ -187,11 +187,7 @@ int run_run(const RunOptions& given) {
                                 summary.center_equals_in_process;
     return held ? 0 : 1;
   }
-  if (!o.node.traffic_file.empty()) {
-    throw std::invalid_argument(
-        "--traffic-file: the scenario has one target; the option is for one with 'traffic'");
-  }
-  const RunPlan plan = load_run_plan(o);
+  const RunPlan& plan = std::get<RunPlan>(any_plan);
   warn_if_receive_buffers_too_small(plan.stations);
   report_run(o, print_run_table, [&] { return execute_run(o, plan); });
   return 0;

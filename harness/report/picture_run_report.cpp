@@ -75,8 +75,8 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
   row("tracks at the end", fmt::format("{} ({} confirmed)", s.tracks_at_end, s.confirmed_at_end));
   row("GOSPA, mean over rounds", fmt::format("{:.2f} (the in-process run, without faults: {:.2f})",
                                              s.gospa_mean, s.in_process_gospa_mean));
-  row("discovery", fmt::format("{:.2f} s, then {:.2f} s until quiet{}", s.discovery_s, s.settle_s,
-                               s.settled_quiet ? "" : " (not quiet)"));
+  row("discovery", fmt::format("{}: {:.2f} s, then {:.2f} s until quiet{}", s.discovery,
+                               s.discovery_s, s.settle_s, s.settled_quiet ? "" : " (not quiet)"));
   row("rounds per second", fmt::format("{:.0f}", s.rounds_per_s));
   row("datagrams received per round",
       s.datagrams_per_round
@@ -132,6 +132,7 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
       {"first_step_center_apart_from_in_process", summary.first_step_center_apart_from_in_process},
       {"max_state_gap_center_vs_p2p", summary.max_state_gap_center_vs_p2p},
       {"rounds_center_tracks_differ", summary.rounds_center_tracks_differ},
+      {"discovery", summary.discovery},
       {"discovery_s", summary.discovery_s},
       {"settle_s", summary.settle_s},
       {"settled_quiet", summary.settled_quiet},

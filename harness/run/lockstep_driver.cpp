@@ -331,7 +331,7 @@ LockstepDriver::LockstepDriver(const transport::NodeConfig& config, std::uint64_
 
 LockstepDriver::~LockstepDriver() = default;
 
-std::chrono::nanoseconds LockstepDriver::wait_until_joined(std::chrono::milliseconds timeout) {
+void LockstepDriver::wait_until_joined(std::chrono::milliseconds timeout) {
   Impl& d = *impl_;
   const int m = static_cast<int>(d.station_ids.size());
   const auto start = Clock::now();
@@ -347,7 +347,7 @@ std::chrono::nanoseconds LockstepDriver::wait_until_joined(std::chrono::millisec
         d.ticks.matched() >= m + 1 && d.tracks.matched() >= m + 1 && d.measurements.matched() >= m;
     if (matched && all_ready()) {
       for (int id : with_center(d.station_ids)) d.last_heard[id] = Clock::now();
-      return Clock::now() - start;
+      return;
     }
     if (Clock::now() - start >= timeout) {
       std::vector<std::string> missing;

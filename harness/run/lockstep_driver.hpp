@@ -17,6 +17,7 @@
 #include <string_view>
 #include <vector>
 
+#include "run/node_driver.hpp"
 #include "run/round_record.hpp"
 #include "run/run_aborted.hpp"
 #include "skyfuse/scenario/scenario.hpp"
@@ -59,18 +60,18 @@ struct TrackShape {
   std::size_t modes = 0;
 };
 
-class LockstepDriver {
+class LockstepDriver final : public NodeDriver {
  public:
   /// `check` is called at least every 50 ms while waiting; it throws RunAborted to end the run.
   /// A track of another `shape` is refused.
   LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
                  std::span<const StationConfig> participants, TrackShape shape,
                  std::function<void()> check);
-  ~LockstepDriver();
+  ~LockstepDriver() override;
 
   /// Waits until every station and the center have announced READY and the harness's own
-  /// endpoints match them. Returns the time it took.
-  std::chrono::nanoseconds wait_until_joined(std::chrono::milliseconds timeout);
+  /// endpoints match them.
+  void wait_until_joined(std::chrono::milliseconds timeout) override;
 
   /// Runs step k: publishes its tick and returns what the processes published for it, once
   /// every live one has or `close_after` has passed. A live node silent for `silence_limit`
@@ -80,9 +81,9 @@ class LockstepDriver {
 
   /// The harness killed station `id` (true) or started it again (false): a station that is
   /// down is not waited for.
-  void set_down(int id, bool down);
+  void set_down(int id, bool down) override;
   /// Waits until a restarted station `id` has announced READY again.
-  void wait_until_ready(int id, std::chrono::milliseconds timeout);
+  void wait_until_ready(int id, std::chrono::milliseconds timeout) override;
 
   /// Real-time mode: publishes the start tick (step 0 begins at `epoch`) and gathers every
   /// node's track of every step as the nodes publish them on their own clocks; `on_round` is

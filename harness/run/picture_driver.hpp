@@ -13,12 +13,13 @@
 #include <utility>
 #include <vector>
 
+#include "run/node_driver.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {
 
-class PictureDriver {
+class PictureDriver final : public NodeDriver {
  public:
   /// `ids`: the nodes, ascending (the center, 0, first). `stop_check` is called at least every
   /// 50 ms while waiting; it throws RunAborted to end the run (a signal, a failed node).
@@ -26,7 +27,7 @@ class PictureDriver {
                 std::function<void()> stop_check);
 
   /// Until every node announced READY and the harness's endpoints match them.
-  void wait_until_joined(std::chrono::milliseconds timeout);
+  void wait_until_joined(std::chrono::milliseconds timeout) override;
 
   /// Lock-step round k: its tick, then every node's picture of step k (node order), within
   /// `timeout` (RunAborted otherwise).
@@ -40,9 +41,9 @@ class PictureDriver {
                     const std::function<void(int, std::vector<wire::PictureRound>)>& on_round);
 
   /// The harness killed station `id` (true) or started it again (false).
-  void set_down(int id, bool down);
+  void set_down(int id, bool down) override;
   /// Until a restarted station has announced READY again.
-  void wait_until_ready(int id, std::chrono::milliseconds timeout);
+  void wait_until_ready(int id, std::chrono::milliseconds timeout) override;
 
   /// What a node reported when it finished.
   struct Finished {

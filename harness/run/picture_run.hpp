@@ -20,6 +20,7 @@
 #include "run/run_options.hpp"
 #include "run/run_stopped_early.hpp"
 #include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {
@@ -67,6 +68,8 @@ struct PictureRunSummary {
   /// (in real time: in time), and rounds no station's picture came for.
   int rounds_in_time = 0;
   int rounds_without_a_picture = 0;
+  /// How the processes discovered each other ("multicast", "server ADDRESS:PORT", "peers").
+  std::string discovery = "multicast";
   double discovery_s = 0.0;
   /// The wait for discovery to go quiet before the first round (run/discovery_quiet.hpp).
   double settle_s = 0.0;
@@ -85,10 +88,10 @@ struct PictureRunSummary {
   std::uint64_t digest_at_end = 0;
 };
 
-/// Runs `scenario` (which has_many_targets()) as `o` says, writing picture_rounds.csv and
+/// Runs `plan` as `o` says, writing picture_rounds.csv and
 /// summary.json into o.out_dir. Throws std::invalid_argument for an option it does not take,
 /// RunAborted when the run fails, StoppedEarlyWith<PictureRunSummary> when its rounds began
 /// but did not all complete (with the files of the rounds recorded).
-PictureRunSummary execute_picture_run(const RunOptions& o, const Scenario& scenario);
+PictureRunSummary execute_picture_run(const RunOptions& o, const PicturePlan& plan);
 
 }  // namespace skyfuse::harness

@@ -1,6 +1,7 @@
 #include "run/run_nodes.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include <algorithm>

@@ -7,7 +7,6 @@
 // to go quiet before the first round; and their end. What one kind of run does with its nodes,
 // the other does too, because both do it here.
 
-#include <spdlog/spdlog.h>
 #include <sys/types.h>
 
 #include <chrono>
@@ -125,26 +124,5 @@ class RunNodes {
   // kernel's UDP counters.
   std::map<int, pid_t> namespace_members_;
 };
-
-/// The kills and restarts `o` asks for before the round of `step`, told to `driver` (a
-/// LockstepDriver or a PictureDriver): a killed station is not waited for, a restarted one is
-/// once it is ready again.
-template <typename Driver>
-void apply_station_events(const RunOptions& o, std::uint64_t step, RunNodes& nodes, Driver& driver,
-                          std::chrono::milliseconds ready_timeout) {
-  for (const StationEvent& e : o.kills) {
-    if (e.step != step) continue;
-    nodes.kill_station(e.station_id);
-    driver.set_down(e.station_id, true);
-    spdlog::info("killed station {} before step {}", e.station_id, step);
-  }
-  for (const StationEvent& e : o.restarts) {
-    if (e.step != step) continue;
-    nodes.restart_station(e.station_id, step);
-    driver.wait_until_ready(e.station_id, ready_timeout);
-    driver.set_down(e.station_id, false);
-    spdlog::info("restarted station {} before step {}", e.station_id, step);
-  }
-}
 
 }  // namespace skyfuse::harness

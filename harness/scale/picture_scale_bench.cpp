@@ -11,21 +11,16 @@
 #include "report/json_values.hpp"
 #include "report/output_files.hpp"
 #include "run/bench_scenario.hpp"
-#include "run/execute_run.hpp"
 #include "run/picture_run.hpp"
-#include "skyfuse/transport/shutdown.hpp"
+#include "scale/scale_runs.hpp"
 
 namespace skyfuse::harness {
 namespace {
 
-struct PictureScaleRow {
+struct PictureScaleRow : ScaleRuns<PictureRunSummary> {
   int aircraft = 0;
   int stations = 0;
   std::string exchange;  ///< "flat" or "tree"
-  std::optional<PictureRunSummary> lockstep;
-  std::optional<PictureRunSummary> realtime;
-  std::string error;           ///< the lock-step run failed
-  std::string realtime_error;  ///< the real-time run failed
 };
 
 double share_in_time(const PictureRunSummary& s) {
@@ -97,22 +92,13 @@ void print_row(const PictureScaleRow& r) {
 PictureRunSummary measure(const ScaleBenchOptions& o, const BenchScenario& bench, int n, int m,
                           const std::string& exchange, bool realtime,
                           const std::filesystem::path& out) {
-  RunOptions run;
-  run.node.scenario_path = bench.path;
-  run.node.overrides.stations = m;
-  run.node.overrides.aircraft = n;
-  run.node.overrides.exchange = parse_exchange_kind(exchange);
-  run.node.overrides.fanout = o.fanout;
-  run.node.overrides.steps = realtime ? o.realtime_steps : o.rounds;
-  run.node.best_effort = o.best_effort;
-  run.node.domain = o.domain;
-  if (realtime) run.node.realtime_deadline_ms = o.realtime_deadline_ms;
-  run.out_dir =
+  RunOptions run = scale_run_options(
+      o, bench.path, m, exchange, realtime,
       (out / fmt::format("N{}-M{}-{}-{}", n, m, exchange, realtime ? "realtime" : "lockstep"))
-          .string();
-  run.round_timeout_s = 60.0;
-  run.stations_per_process = o.stations_per_process;
-  return execute_picture_run(run, bench.scenario);
+          .string(),
+      60.0);
+  run.node.overrides.aircraft = n;
+  return execute_picture_run(run, make_picture_plan(bench.scenario, run.node.overrides));
 }
 
 }  // namespace
@@ -160,21 +146,13 @@ int run_picture_scale_bench(const ScaleBenchOptions& o) {
   for (const int n : o.aircraft) {
     for (const int m : o.stations) {
       for (const std::string& exchange : o.exchanges) {
-        PictureScaleRow row{n, m, exchange, std::nullopt, std::nullopt, {}, {}};
-        const auto attempt = [&](bool realtime, std::optional<PictureRunSummary>& into,
-                                 std::string& error) {
-          try {
-            into = measure(o, bench, n, m, exchange, realtime, out);
-          } catch (const RunAborted& e) {
-            if (transport::shutdown_requested()) {
-              save();
-              throw;
-            }
-            error = e.what();
-          }
-        };
-        attempt(false, row.lockstep, row.error);
-        if (row.lockstep && o.realtime_steps > 0) attempt(true, row.realtime, row.realtime_error);
+        PictureScaleRow row;
+        row.aircraft = n;
+        row.stations = m;
+        row.exchange = exchange;
+        static_cast<ScaleRuns<PictureRunSummary>&>(row) = measure_scale_runs<PictureRunSummary>(
+            o, [&](bool realtime) { return measure(o, bench, n, m, exchange, realtime, out); },
+            save);
         print_row(row);
         rows.push_back(std::move(row));
         save();

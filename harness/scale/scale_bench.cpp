@@ -15,20 +15,16 @@
 #include "run/round_samples.hpp"
 #include "run/simulated_hosts.hpp"
 #include "scale/picture_scale_bench.hpp"
+#include "scale/scale_runs.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
-#include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
 namespace {
 
-struct ScaleRow {
+struct ScaleRow : ScaleRuns<RunSummary> {
   std::string exchange;
   int stations = 0;
   int hosts = 0;
-  RunSummary lockstep;
-  std::optional<RunSummary> realtime;
-  std::string error;           ///< the lock-step run failed: no figures at all
-  std::string realtime_error;  ///< the real-time run failed: the lock-step figures stand
 };
 
 nlohmann::json to_json(const ScaleRow& r, int fanout) {
@@ -40,7 +36,7 @@ nlohmann::json to_json(const ScaleRow& r, int fanout) {
     row["error"] = r.error;
     return row;
   }
-  const RunSummary& s = r.lockstep;
+  const RunSummary& s = *r.lockstep;
   row["lockstep"] = {{"rounds_per_s", s.rounds_per_s},
                      {"round_latency_ms_p50", s.round_latency_us_p50 / 1e3},
                      {"round_latency_ms_p99", s.round_latency_us_p99 / 1e3},
@@ -88,7 +84,7 @@ std::string csv_of(const std::vector<ScaleRow>& rows, int fanout) {
       "realtime_in_time,track_age_ms_p50,track_age_ms_p99,realtime_datagrams_per_round\n";
   for (const ScaleRow& r : rows) {
     if (!r.error.empty()) continue;
-    const RunSummary& s = r.lockstep;
+    const RunSummary& s = *r.lockstep;
     csv += fmt::format("{},{},{},{:.2f},{:.3f},{},{},{:.4f},{:.1f},{:.2f},{},{},{},{}\n",
                        r.exchange, r.stations, r.hosts, s.rounds_per_s,
                        s.round_latency_us_p50 / 1e3, maybe(s.datagrams_per_round, 1.0, 1),
@@ -113,7 +109,7 @@ void print_row(const ScaleRow& r, int fanout) {
     fmt::print("{:>5} {:>4} failed: {}\n", r.exchange, r.stations, r.error);
     return;
   }
-  const RunSummary& s = r.lockstep;
+  const RunSummary& s = *r.lockstep;
   const std::string in_time =
       r.realtime_error.empty()
           ? maybe(realtime_figure(r, &RunSummary::rounds_all_inputs_in_time), 100.0, 1, "-")
@@ -134,25 +130,34 @@ void print_row(const ScaleRow& r, int fanout) {
 RunSummary measure(const ScaleBenchOptions& o, const Scenario& scenario,
                    const std::string& scenario_path, const std::string& exchange, int m, int hosts,
                    bool realtime, const std::filesystem::path& out) {
-  RunOptions run;
-  run.node.scenario_path = scenario_path;
-  run.node.overrides.stations = m;
-  run.node.overrides.steps = realtime ? o.realtime_steps : o.rounds;
-  run.node.overrides.exchange = *parse_exchange_kind(exchange);
-  run.node.overrides.fanout = o.fanout;
-  run.node.best_effort = o.best_effort;
-  run.node.domain = o.domain;
-  if (realtime) run.node.realtime_deadline_ms = o.realtime_deadline_ms;
+  RunOptions run = scale_run_options(
+      o, scenario_path, m, exchange, realtime,
+      (out / fmt::format("{}-M{}-{}", exchange, m, realtime ? "realtime" : "lockstep")).string(),
+      30.0);
   run.hosts = hosts;
-  run.stations_per_process = o.stations_per_process;
   if (hosts > 0) run.discovery = o.host_discovery;
-  run.out_dir =
-      (out / fmt::format("{}-M{}-{}", exchange, m, realtime ? "realtime" : "lockstep")).string();
-  run.round_timeout_s = 30.0;
   return execute_run(run, make_run_plan(scenario, run.node.overrides));
 }
 
 }  // namespace
+
+RunOptions scale_run_options(const ScaleBenchOptions& o, const std::string& scenario_path,
+                             int stations, const std::string& exchange, bool realtime,
+                             std::string out_dir, double round_timeout_s) {
+  RunOptions run;
+  run.node.scenario_path = scenario_path;
+  run.node.overrides.stations = stations;
+  run.node.overrides.steps = realtime ? o.realtime_steps : o.rounds;
+  run.node.overrides.exchange = parse_exchange_kind(exchange);
+  run.node.overrides.fanout = o.fanout;
+  run.node.best_effort = o.best_effort;
+  run.node.domain = o.domain;
+  if (realtime) run.node.realtime_deadline_ms = o.realtime_deadline_ms;
+  run.stations_per_process = o.stations_per_process;
+  run.out_dir = std::move(out_dir);
+  run.round_timeout_s = round_timeout_s;
+  return run;
+}
 
 int run_scale_bench(const ScaleBenchOptions& o) {
   if (!o.aircraft.empty()) return run_picture_scale_bench(o);
@@ -201,28 +206,16 @@ int run_scale_bench(const ScaleBenchOptions& o) {
   };
   for (int m : o.stations) {
     for (const std::string& exchange : o.exchanges) {
-      ScaleRow row{exchange, m, hosts_for(m), {}, std::nullopt, {}, {}};
-      // One run failing (a machine too small for it) costs its own figures only; an interrupt
-      // ends the bench with the rows measured so far on disk.
-      const auto attempt = [&](bool realtime, auto&& keep, std::string& error) {
-        try {
-          keep(measure(o, scenario, scenario_path, exchange, m, row.hosts, realtime, out));
-          return true;
-        } catch (const RunAborted& e) {
-          if (transport::shutdown_requested()) {
-            save();
-            throw;
-          }
-          error = e.what();
-          return false;
-        }
-      };
-      const bool lockstep_ran = attempt(
-          false, [&](RunSummary s) { row.lockstep = std::move(s); }, row.error);
-      if (lockstep_ran && o.realtime_steps > 0) {
-        attempt(
-            true, [&](RunSummary s) { row.realtime = std::move(s); }, row.realtime_error);
-      }
+      ScaleRow row;
+      row.exchange = exchange;
+      row.stations = m;
+      row.hosts = hosts_for(m);
+      static_cast<ScaleRuns<RunSummary>&>(row) = measure_scale_runs<RunSummary>(
+          o,
+          [&](bool realtime) {
+            return measure(o, scenario, scenario_path, exchange, m, row.hosts, realtime, out);
+          },
+          save);
       print_row(row, o.fanout);
       rows.push_back(std::move(row));
       save();

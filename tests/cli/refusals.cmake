@@ -66,7 +66,7 @@ elseif(CASE STREQUAL "run_one_aircraft_aircraft")
 elseif(CASE STREQUAL "run_one_aircraft_traffic_file")
   file(WRITE ${WORK}/states.csv "time,icao24\n")
   set(args run --traffic-file ${WORK}/states.csv --out ${WORK}/one_traffic)
-  set(expect "--traffic-file: the scenario has one target")
+  set(expect "--traffic-file: scenario 'paper000' has one target")
   set(untouched ${WORK}/one_traffic)
 elseif(CASE STREQUAL "view_not_a_recording")
   # Refused before anything is served, whether or not the page is built.

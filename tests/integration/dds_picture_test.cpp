@@ -158,6 +158,7 @@ TEST(DdsPicture, EveryStationHoldsTheInProcessPictureBitForBitInEveryRound) {
   // discovery to go quiet, the nodes' memory and how each process left.
   EXPECT_EQ(summary.at("ended"), "complete");
   EXPECT_EQ(summary.at("steps_planned").get<int>(), kSteps);
+  EXPECT_EQ(summary.at("discovery").get<std::string>(), "multicast");
   EXPECT_GE(summary.at("settle_s").get<double>(), 0.0);
   EXPECT_TRUE(summary.contains("settled_quiet"));
   EXPECT_GT(summary.at("node_peak_resident_mib").get<double>(), 1.0);

@@ -1,9 +1,12 @@
 #include "skyfuse/transport/node_setup.hpp"
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 
 #include "skyfuse/options/filter_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/transport/node_plan.hpp"
 #include "skyfuse/transport/security_folder.hpp"
 
 namespace skyfuse::transport {
@@ -24,12 +27,34 @@ NodeConfig node_config(const options::NodeOptions& options, const std::string& n
   return config;
 }
 
-RunPlan load_plan(const options::NodeOptions& options) {
+namespace {
+
+void refuse_a_secure_discovery_server(const options::NodeOptions& options) {
   if (options.secure_dir && options.network.discovery_server) {
     throw std::invalid_argument(kSecureDiscoveryServerRefusal);
   }
+}
+
+}  // namespace
+
+RunPlan load_plan(const options::NodeOptions& options) {
+  refuse_a_secure_discovery_server(options);
   RunPlan plan = make_run_plan(load_scenario_or_default(options.scenario_path), options.overrides);
   options::settle_exchange(plan.scenario, options);
+  return plan;
+}
+
+AnyPlan load_any_plan(const options::NodeOptions& options) {
+  refuse_a_secure_discovery_server(options);
+  AnyPlan plan = make_plan(load_scenario_or_default(options.scenario_path), options.overrides);
+  if (auto* one = std::get_if<RunPlan>(&plan)) {
+    if (!options.traffic_file.empty()) {
+      throw std::invalid_argument(fmt::format(
+          "--traffic-file: scenario '{}' has one target; the option is for one with 'traffic'",
+          one->scenario.name));
+    }
+    options::settle_exchange(one->scenario, options);
+  }
   return plan;
 }
 
