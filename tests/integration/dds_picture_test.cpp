@@ -290,9 +290,9 @@ std::filesystem::path city_with(const std::filesystem::path& dir, const char* fr
   return path;
 }
 
-// The other filter parts a picture runs over DDS: uam-city with its filter changed, each run
-// checked against this test's own in-process run, every node in every round, and the center
-// against the peers.
+// The other filter parts and sensor mixes a picture runs over DDS: uam-city with its filter or a
+// station's sensor changed, each run checked against this test's own in-process run, every node
+// in every round, and the center against the peers.
 struct FilterVariant {
   const char* name;
   const char* from;  // uam-city's text, null for uam-city as it is
@@ -337,7 +337,17 @@ INSTANTIATE_TEST_SUITE_P(
         // JPDA: every gated pair weighed by its probability, which every peer rebuilds from the
         // wire's weights and the center applies as noise R / w (docs/multitarget.md, "JPDA").
         FilterVariant{"EkfWithJpda", "  gate_probability: 0.9999",
-                      "  associator: jpda\n  gate_probability: 0.9999", 224}),
+                      "  associator: jpda\n  gate_probability: 0.9999", 224},
+        // Sensors of two kinds in one picture: station 2 receives the aircraft's own
+        // position-velocity reports (what ADS-B gives a ground station: no false alarms) among
+        // the radars; each station's scan is checked against its own sensor on the wire, and
+        // the center stacks both kinds of a track's detections in one update.
+        FilterVariant{"EkfOfRadarsAndABroadcastReceiver",
+                      "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar}",
+                      "{id: 2, sensor: {kind: position_velocity, noise_std: [10.0, 10.0, 10.0, "
+                      "1.0, 1.0, 1.0]}, detection: {probability: 0.95, max_range_m: 20000.0, "
+                      "clutter_per_scan: 0.0}}",
+                      225}),
     [](const ::testing::TestParamInfo<FilterVariant>& param) { return param.param.name; });
 
 // The tree exchange: five stations in clusters of two ({1, 2}, {3, 4}, {5}), each aggregator

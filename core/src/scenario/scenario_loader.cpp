@@ -430,12 +430,6 @@ void check_many_targets(const Scenario& s, std::size_t i, const YamlField& item,
         "with 'traffic' takes sensors that fix one (range_azimuth_elevation, position_velocity)",
         sensor.kind));
   }
-  if (s.stations[i].sensor.kind != s.stations[0].sensor.kind) {
-    item.required("sensor").fail(fmt::format(
-        "a scenario with 'traffic' takes one sensor kind for every station so far; station {} "
-        "has {}, station {} has {}",
-        s.stations[0].id, s.stations[0].sensor.kind, s.stations[i].id, s.stations[i].sensor.kind));
-  }
   const DetectionConfig& detection = *s.stations[i].detection;
   if (detection.clutter_per_scan > 0.0 && !std::isfinite(detection.field_of_view.max_range_m)) {
     item.fail("clutter needs a field of view with a finite detection.max_range_m");

@@ -116,6 +116,34 @@ TEST(TrafficScenario, AStationMayDetectDifferently) {
   EXPECT_FALSE(s.stations[0].detection->field_of_view.azimuth_sector);
 }
 
+// Stations of different sensor kinds share one picture (a radar beside a receiver of the
+// aircraft's own position-velocity reports), except under a filter whose modes read one kind.
+TEST(TrafficScenario, TakesStationsOfDifferentSensorKinds) {
+  const std::string broadcast_station =
+      "{id: 2, sensor: {kind: position_velocity, noise_std: [10, 10, 10, 1, 1, 1]}, "
+      "detection: {clutter_per_scan: 0.0}}";
+  const std::string radar_station = "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar}";
+  const Scenario s = parse_scenario(uam_city_with(radar_station, broadcast_station), "test.yaml");
+  EXPECT_EQ(s.stations[0].sensor.kind, "range_azimuth_elevation");
+  EXPECT_EQ(s.stations[1].sensor.kind, "position_velocity");
+  ASSERT_TRUE(s.stations[1].detection);
+  EXPECT_DOUBLE_EQ(s.stations[1].detection->clutter_per_scan, 0.0);
+
+  std::string imm = uam_city_with(radar_station, broadcast_station);
+  imm.replace(imm.find("  kind: ekf"), std::string("  kind: ekf").size(), "  kind: imm");
+  imm.replace(imm.find("kind: constant_velocity_3d\n    process_noise_std: {position_m: 0.5, "
+                       "velocity_mps: 2.0}"),
+              std::string("kind: constant_velocity_3d\n    process_noise_std: {position_m: 0.5, "
+                          "velocity_mps: 2.0}")
+                  .size(),
+              "kind: constant_acceleration_3d\n    process_noise_std: {position_m: 0.5, "
+              "velocity_mps: 2.0, acceleration_mps2: 0.5}");
+  const std::string refused = rejection(imm);
+  EXPECT_NE(refused.find("filter 'imm' needs every station to have the same sensor kind"),
+            std::string::npos)
+      << refused;
+}
+
 TEST(TrafficScenario, RefusesWhatAPictureCannotTake) {
   EXPECT_NE(rejection(uam_city_with("traffic:",
                                     "target: {initial_position_m: [0, 0, 100], "
