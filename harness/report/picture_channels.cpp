@@ -27,26 +27,18 @@ constexpr double kDetectionSize = 15.0;
 constexpr double kStationSize = 60.0;
 
 std::string picture_schema() {
-  return titled(object_of({{"timestamp", time_schema()},
-                           {"step", typed("integer")},
-                           {"aircraft", typed("integer")},
-                           {"confirmed", typed("integer")},
-                           {"tentative", typed("integer")},
-                           {"gospa", typed("number")},
-                           {"localisation", typed("number")},
-                           {"missed", typed("number")},
-                           {"false", typed("number")},
-                           {"missed_aircraft", typed("integer")},
-                           {"false_tracks", typed("integer")},
-                           {"tracked", typed("integer")},
-                           {"completeness", typed("number")},
-                           {"spuriousness", typed("number")},
-                           {"spurious", typed("integer")},
-                           {"detections", typed("integer")},
-                           {"false_alarms", typed("integer")},
-                           {"peers_agree", typed("boolean")},
-                           {"digest", typed("string")}}),
-                "skyfuse.Picture")
+  return titled(
+             object_of({{"timestamp", time_schema()},          {"step", typed("integer")},
+                        {"aircraft", typed("integer")},        {"confirmed", typed("integer")},
+                        {"tentative", typed("integer")},       {"gospa", typed("number")},
+                        {"gospa_in_view", typed("number")},    {"localisation", typed("number")},
+                        {"missed", typed("number")},           {"false", typed("number")},
+                        {"missed_aircraft", typed("integer")}, {"false_tracks", typed("integer")},
+                        {"tracked", typed("integer")},         {"completeness", typed("number")},
+                        {"spuriousness", typed("number")},     {"spurious", typed("integer")},
+                        {"detections", typed("integer")},      {"false_alarms", typed("integer")},
+                        {"peers_agree", typed("boolean")},     {"digest", typed("string")}}),
+             "skyfuse.Picture")
       .dump();
 }
 
@@ -228,6 +220,8 @@ void PictureChannels::figure_messages(const PictureFrame& frame, std::uint64_t n
         {"confirmed", confirmed},
         {"tentative", frame.tracks.size() - confirmed},
         {"gospa", frame.score.gospa.distance},
+        // What the network can see: the aircraft in some station's view.
+        {"gospa_in_view", frame.score.gospa_in_view.distance},
         {"localisation", frame.score.gospa.localisation},
         {"missed", frame.score.gospa.missed},
         {"false", frame.score.gospa.false_tracks},

@@ -46,20 +46,21 @@ void print_picture_table(const PictureReport& report, std::FILE* out) {
                r.repeated_position_rows, r.single_sample_aircraft);
   }
   fmt::print(out,
-             "{:>4} {:>8} {:>8} {:>8} {:>8} {:>7} {:>7} {:>7} {:>6} {:>8} {:>7} {:>6} {:>6} "
+             "{:>4} {:>8} {:>8} {:>8} {:>8} {:>8} {:>7} {:>7} {:>7} {:>6} {:>8} {:>7} {:>6} {:>6} "
              "{:>9}\n",
-             "run", "GOSPA_m", "loc_m", "missed", "false", "compl", "ambig", "spur", "ids",
+             "run", "GOSPA_m", "all_m", "loc_m", "missed", "false", "compl", "ambig", "spur", "ids",
              "confirm_s", "ANEES", "peers", "flips", "gap");
   for (std::size_t r = 0; r < report.runs.size(); ++r) {
     const PictureRunResult& run = report.runs[r];
     const PictureSummary& s = run.score;
-    fmt::print(out,
-               "{:>4} {:>8.3f} {:>8.3f} {:>8.2f} {:>8.2f} {:>7.4f} {:>7.4f} {:>7.4f} {:>6} "
-               "{:>8.2f} {:>7.3f} {:>6} {:>6} {:>9.2e}\n",
-               r, s.gospa_mean, s.localisation_per_pair_m, s.missed_mean, s.false_mean,
-               s.completeness, s.ambiguity, s.spuriousness, s.track_number_changes,
-               s.mean_time_to_confirm_s, run.anees / run.nees_dof,
-               run.peers_identical ? "same" : "DIFF", run.association_flips, run.max_state_gap);
+    fmt::print(
+        out,
+        "{:>4} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.2f} {:>8.2f} {:>7.4f} {:>7.4f} {:>7.4f} {:>6} "
+        "{:>8.2f} {:>7.3f} {:>6} {:>6} {:>9.2e}\n",
+        r, s.in_view.distance, s.gospa_mean, s.localisation_per_pair_m, s.missed_mean, s.false_mean,
+        s.completeness, s.ambiguity, s.spuriousness, s.track_number_changes,
+        s.mean_time_to_confirm_s, run.anees / run.nees_dof, run.peers_identical ? "same" : "DIFF",
+        run.association_flips, run.max_state_gap);
   }
   std::size_t samples = 0;
   for (const auto& run : report.runs) samples += run.nees_samples;
@@ -73,8 +74,10 @@ void print_picture_table(const PictureReport& report, std::FILE* out) {
                band.lower / dof, band.upper / dof);
   }
   fmt::print(out,
-             "GOSPA: cut-off {} m, p = {}, alpha = 2, mean per step; loc_m: the localisation error "
-             "per assigned track (RMS for p = 2); missed/false: their parts, m^p per step\n",
+             "GOSPA: cut-off {} m, p = {}, alpha = 2, mean per step, over the aircraft in some "
+             "station's view (all_m: over every aircraft); loc_m: the localisation error per "
+             "assigned track (RMS for p = 2); missed/false: their parts over every aircraft, m^p "
+             "per step\n",
              traffic.gospa.cutoff_m, traffic.gospa.order);
   fmt::print(out,
              "peers: every peer's picture bit-identical every round ({}); flips: "
@@ -87,12 +90,14 @@ void write_picture_csv(const PictureReport& report, const std::filesystem::path&
   auto out = fmt::output_file(path.string());
   out.print(
       "run,step,aircraft,confirmed_tracks,gospa_m,localisation,missed,false_tracks,tracked,"
-      "spurious\n");
+      "spurious,gospa_in_view_m,localisation_in_view,missed_in_view,false_tracks_in_view\n");
   for (std::size_t r = 0; r < report.runs.size(); ++r) {
     for (const PictureStep& row : report.runs[r].steps) {
-      out.print("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{},{}\n", r, row.step, row.aircraft,
-                row.tracks, row.gospa.distance, row.gospa.localisation, row.gospa.missed,
-                row.gospa.false_tracks, row.tracked, row.spurious);
+      const Gospa& seen = row.gospa_in_view;
+      out.print("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{},{},{:.6f},{:.6f},{:.6f},{:.6f}\n", r,
+                row.step, row.aircraft, row.tracks, row.gospa.distance, row.gospa.localisation,
+                row.gospa.missed, row.gospa.false_tracks, row.tracked, row.spurious, seen.distance,
+                seen.localisation, seen.missed, seen.false_tracks);
     }
   }
 }
@@ -106,6 +111,11 @@ void write_picture_json(const PictureReport& report, const std::filesystem::path
                     {"localisation_per_pair_m", s.localisation_per_pair_m},
                     {"missed_mean", s.missed_mean},
                     {"false_mean", s.false_mean},
+                    {"in_view",
+                     {{"gospa_mean_m", s.in_view.distance},
+                      {"localisation_mean", s.in_view.localisation},
+                      {"missed_mean", s.in_view.missed},
+                      {"false_mean", s.in_view.false_tracks}}},
                     {"completeness", s.completeness},
                     {"ambiguity", s.ambiguity},
                     {"spuriousness", s.spuriousness},

@@ -34,8 +34,8 @@ class PictureRoundCheck {
 
   /// picture_rounds.csv: a row per node and round.
   std::string csv() const { return csv_.str(); }
-  /// GOSPA of the first station's confirmed tracks, mean over the rounds added.
-  double gospa_mean() const { return score_.summary().gospa_mean; }
+  /// The first station's confirmed tracks scored over the rounds added (GOSPA, SIAP).
+  PictureSummary score() const { return score_.summary(); }
 
  private:
   const PicturePlan& plan_;

@@ -225,8 +225,11 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
   summary.loss = o_.node.loss.enabled();
   summary.faults = summary.loss || !o_.kills.empty();
   summary.realtime = measured.realtime;
-  summary.gospa_mean = check_->gospa_mean();
+  const PictureSummary score = check_->score();
+  summary.gospa_mean = score.gospa_mean;
+  summary.gospa_in_view_mean = score.in_view.distance;
   summary.in_process_gospa_mean = twin_->score.gospa_mean;
+  summary.in_process_gospa_in_view_mean = twin_->score.in_view.distance;
   if (measured.stopped) {
     summary.stop_cause = measured.stopped->cause();
     summary.end_detail = measured.stopped->what();

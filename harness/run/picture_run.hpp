@@ -54,6 +54,9 @@ struct PictureRunSummary {
   /// GOSPA of the first station's confirmed tracks, mean over rounds, and the in-process run's.
   double gospa_mean = 0.0;
   double in_process_gospa_mean = 0.0;
+  /// The same over the aircraft in some station's view (metrics/picture_score.hpp).
+  double gospa_in_view_mean = 0.0;
+  double in_process_gospa_in_view_mean = 0.0;
   /// Every round's digest equal to the in-process run's.
   bool equals_in_process = true;
   int first_step_apart_from_in_process = -1;

@@ -82,7 +82,9 @@ class RunKind {
   virtual void run_lockstep_round(int k, std::chrono::milliseconds round_timeout,
                                   ConnectionCheck& connection) = 0;
   /// Real time: the start tick (step 0 begins at `epoch`) and every round, `round_done` called
-  /// after each is recorded.
+  /// after each is recorded. One aircraft's rounds stop (RunAborted) once they fall
+  /// `round_timeout` behind the schedule; a picture hands a late round over with the pictures
+  /// that came (run/picture_driver.hpp), so its rounds never fall behind.
   virtual void run_realtime(std::chrono::system_clock::time_point epoch,
                             std::chrono::milliseconds round_timeout,
                             const std::function<void()>& round_done) = 0;

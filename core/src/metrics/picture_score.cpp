@@ -31,6 +31,7 @@ const PictureStep& PictureScore::add_step(int step, std::span<const TruthPoint> 
 
   // Each track to its nearest aircraft within the cut-off.
   track_target_.assign(tracks.size(), std::nullopt);
+  std::vector<std::optional<std::size_t>> track_aircraft(tracks.size());  // index into `aircraft`
   std::vector<std::size_t> tracks_of(aircraft.size(), 0);
   std::vector<std::optional<std::size_t>> nearest_track(aircraft.size());
   std::vector<double> nearest_distance(aircraft.size(), std::numeric_limits<double>::infinity());
@@ -49,12 +50,27 @@ const PictureStep& PictureScore::add_step(int step, std::span<const TruthPoint> 
       continue;
     }
     track_target_[t] = aircraft[*best_aircraft].target;
+    track_aircraft[t] = best_aircraft;
     ++tracks_of[*best_aircraft];
     if (best < nearest_distance[*best_aircraft]) {
       nearest_distance[*best_aircraft] = best;
       nearest_track[*best_aircraft] = t;
     }
   }
+  // What the network can see: the aircraft in view, and every track but those on an aircraft
+  // out of view.
+  std::vector<Vector3> truths_in_view;
+  std::vector<Vector3> estimates_in_view;
+  for (const TruthPoint& a : aircraft) {
+    if (a.in_view) truths_in_view.push_back(a.position);
+  }
+  for (std::size_t t = 0; t < tracks.size(); ++t) {
+    if (!track_aircraft[t] || aircraft[*track_aircraft[t]].in_view) {
+      estimates_in_view.push_back(tracks[t].position);
+    }
+  }
+  row.gospa_in_view = gospa(truths_in_view, estimates_in_view, gospa_);
+
   for (std::size_t a = 0; a < aircraft.size(); ++a) {
     const std::size_t target = aircraft[a].target;
     const bool tracked = tracks_of[a] > 0;
@@ -90,12 +106,20 @@ PictureSummary PictureScore::summary() const {
       s.localisation_mean += row.gospa.localisation;
       s.missed_mean += row.gospa.missed;
       s.false_mean += row.gospa.false_tracks;
+      s.in_view.distance += row.gospa_in_view.distance;
+      s.in_view.localisation += row.gospa_in_view.localisation;
+      s.in_view.missed += row.gospa_in_view.missed;
+      s.in_view.false_tracks += row.gospa_in_view.false_tracks;
     }
     const auto n = static_cast<double>(steps_.size());
     s.gospa_mean /= n;
     s.localisation_mean /= n;
     s.missed_mean /= n;
     s.false_mean /= n;
+    s.in_view.distance /= n;
+    s.in_view.localisation /= n;
+    s.in_view.missed /= n;
+    s.in_view.false_tracks /= n;
     if (pairs > 0) {
       s.localisation_per_pair_m =
           std::pow(localisation / static_cast<double>(pairs), 1.0 / gospa_.order);
