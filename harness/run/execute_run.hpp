@@ -1,7 +1,9 @@
 #pragma once
-// One DDS run of the system: M station processes and the fusion center started (or, with
-// `external`, found), driven in lock-step or real time, recorded and reported. `skyfuse run`,
-// `skyfuse demo` and `skyfuse bench` all run the system through this.
+// One DDS run of one aircraft: M station processes and the fusion center started (or, with
+// `external`, found), driven in lock-step or real time, recorded and reported — the house
+// (run_over_dds.hpp) given one aircraft's kind: every node's track of each round recorded
+// (RunRecorder), streamed live and written as the per-step CSVs. `skyfuse run`, `skyfuse demo`
+// and `skyfuse bench` run one aircraft through this; picture_run.hpp runs many.
 
 #include <utility>
 #include <vector>
