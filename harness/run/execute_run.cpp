@@ -156,20 +156,14 @@ class OneAircraftRun final : public RunKind {
 void OneAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id) {
   RunSummary& summary = summary_;
   summary = recorder_.summarise(measured.discovery_s, measured.rounds_s);
+  record_process_measures(measured, summary);
   summary.realtime_deadline_ms = o_.node.realtime_deadline_ms;
-  if (measured.stopped) {
-    summary.stop_cause = measured.stopped->cause();
-    summary.end_detail = measured.stopped->what();
-  }
   if (measured.realtime) {
     const LockstepDriver::RealtimeProgress reached = driver_->realtime_progress();
     summary.realtime_steps_scheduled = reached.steps_scheduled;
     summary.realtime_steps_reached = reached.steps_reached;
     if (measured.stopped) summary.realtime_behind_s = reached.behind_s;
   }
-  summary.datagrams_per_round = measured.datagrams_per_round;
-  summary.cpu_ms_per_station_round = measured.cpu_ms_per_station_round;
-  summary.node_peak_resident_mib = measured.node_peak_resident_mib;
   summary.node_counts = driver_->finished_counts();
   recorder_.set_refusals_after_run(
       driver_->take_refusals(static_cast<std::uint64_t>(plan_.scenario.steps)));
@@ -181,10 +175,6 @@ void OneAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id) 
   summary.refusion_lag = o_.node.refusion_lag;
   recorder_.set_settled(driver_->settled_tracks());
   summary.settled = recorder_.summarise_settled();
-  summary.discovery = measured.discovery;
-  summary.settle_s = measured.settle_s;
-  summary.settled_quiet = measured.settled_quiet;
-  summary.node_exits = measured.node_exits;
   summary.host_verdict = host_verdict(summary, plan_.scenario.time_step_s, cpu_model(),
                                       std::thread::hardware_concurrency());
   const std::filesystem::path out(o_.out_dir);

@@ -213,14 +213,8 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
   }
   summary.steps_planned = plan_.scenario.steps;
   summary.stations_per_process = o_.stations_per_process;
-  summary.discovery = measured.discovery;
-  summary.discovery_s = measured.discovery_s;
-  summary.settle_s = measured.settle_s;
-  summary.settled_quiet = measured.settled_quiet;
-  summary.node_peak_resident_mib = measured.node_peak_resident_mib;
+  record_process_measures(measured, summary);
   summary.steps = rounds_taken_;
-  summary.datagrams_per_round = measured.datagrams_per_round;
-  summary.cpu_ms_per_station_round = measured.cpu_ms_per_station_round;
   summary.rounds_per_s = rounds_taken_ / measured.rounds_s;
   summary.loss = o_.node.loss.enabled();
   summary.faults = summary.loss || !o_.kills.empty();
@@ -230,11 +224,6 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
   summary.gospa_in_view_mean = score.in_view.distance;
   summary.in_process_gospa_mean = twin_->score.gospa_mean;
   summary.in_process_gospa_in_view_mean = twin_->score.in_view.distance;
-  if (measured.stopped) {
-    summary.stop_cause = measured.stopped->cause();
-    summary.end_detail = measured.stopped->what();
-  }
-  summary.node_exits = measured.node_exits;
 
   const std::filesystem::path out(o_.out_dir);
   write_file_atomically(out / "picture_rounds.csv", check_->csv());

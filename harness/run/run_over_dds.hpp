@@ -50,6 +50,24 @@ struct ProcessMeasures {
   bool realtime = false;
 };
 
+/// Copies what the house measured into a kind's summary (RunSummary, PictureRunSummary: both
+/// name these fields alike).
+template <typename Summary>
+void record_process_measures(const ProcessMeasures& measured, Summary& summary) {
+  if (measured.stopped) {
+    summary.stop_cause = measured.stopped->cause();
+    summary.end_detail = measured.stopped->what();
+  }
+  summary.discovery = measured.discovery;
+  summary.discovery_s = measured.discovery_s;
+  summary.settle_s = measured.settle_s;
+  summary.settled_quiet = measured.settled_quiet;
+  summary.datagrams_per_round = measured.datagrams_per_round;
+  summary.cpu_ms_per_station_round = measured.cpu_ms_per_station_round;
+  summary.node_peak_resident_mib = measured.node_peak_resident_mib;
+  summary.node_exits = measured.node_exits;
+}
+
 /// What differs between a run of one aircraft and a run of many, as the house sees it.
 class RunKind {
  public:
