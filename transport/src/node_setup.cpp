@@ -27,25 +27,10 @@ NodeConfig node_config(const options::NodeOptions& options, const std::string& n
   return config;
 }
 
-namespace {
-
-void refuse_a_secure_discovery_server(const options::NodeOptions& options) {
+AnyPlan load_any_plan(const options::NodeOptions& options) {
   if (options.secure_dir && options.network.discovery_server) {
     throw std::invalid_argument(kSecureDiscoveryServerRefusal);
   }
-}
-
-}  // namespace
-
-RunPlan load_plan(const options::NodeOptions& options) {
-  refuse_a_secure_discovery_server(options);
-  RunPlan plan = make_run_plan(load_scenario_or_default(options.scenario_path), options.overrides);
-  options::settle_exchange(plan.scenario, options);
-  return plan;
-}
-
-AnyPlan load_any_plan(const options::NodeOptions& options) {
-  refuse_a_secure_discovery_server(options);
   AnyPlan plan = make_plan(load_scenario_or_default(options.scenario_path), options.overrides);
   if (auto* one = std::get_if<RunPlan>(&plan)) {
     if (!options.traffic_file.empty()) {

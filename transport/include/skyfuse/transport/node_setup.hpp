@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// What a node process builds from its command-line options: its DDS participant's settings
-/// and its run plan (refusing a configuration the wire cannot carry yet).
+/// (its run plan: node_plan.hpp).
 
 #include <string>
 
@@ -22,9 +22,5 @@ inline constexpr const char* kSecureDiscoveryServerRefusal =
 /// The participant settings of the node called `name` (its security identity follows the
 /// name).
 NodeConfig node_config(const options::NodeOptions& options, const std::string& name);
-
-/// The run this node joins: the scenario with the options' overrides. Refuses what the nodes
-/// cannot run (the wire's models; a secure discovery server).
-RunPlan load_plan(const options::NodeOptions& options);
 
 }  // namespace skyfuse::transport
