@@ -30,7 +30,7 @@ class TypedCenterRounds final : public CenterRounds {
  public:
   using Observation = ObservationFor<Sensor>;
 
-  // (load_plan refuses a lag for a fusion that takes none.)
+  // (load_any_plan refuses a lag for a fusion that takes none.)
   TypedCenterRounds(const options::NodeOptions& options, const RunPlan& plan)
       : run_id_(options.run_id),
         plan_(plan),

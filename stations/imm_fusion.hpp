@@ -42,7 +42,7 @@ class ImmFusion {
       transport::ImmModeSample<std::tuple_element_t<I, typename Peers::Filter::ModeStates>::kDim,
                                kModes>;
 
-  /// No re-fusion lag for the IMM (load_plan refuses one).
+  /// No re-fusion lag for the IMM (load_any_plan refuses one).
   ImmFusion(const RunPlan& plan, std::size_t /*lag*/)
       : peers_(NetworkImm<ModeSet>::make(plan.scenario,
                                          plan.initial_estimate<ConstantAcceleration3D>()),

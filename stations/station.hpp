@@ -193,7 +193,7 @@ template <typename Fusion>
 int run_station_of(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
                    std::unique_ptr<typename Fusion::Sensing> sensing, transport::DdsNode& node) {
   if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
-    // load_plan refuses the tree for a filter whose fusion cannot sum partial sums yet.
+    // load_any_plan refuses the tree for a filter whose fusion cannot sum partial sums yet.
     if constexpr (requires { &Fusion::admit_contribution; }) {
       return transport::make_lifelong<Station<Fusion, TreeExchange<Fusion>>>(
                  options, plan, me, std::move(sensing), node)
