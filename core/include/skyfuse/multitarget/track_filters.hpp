@@ -100,20 +100,12 @@ class CenterStackedTracks : public ModelTracks<Model> {
   using State = GaussianState<kDim>;
 
   /// Stations of one sensor kind take the stacked update of that sensor's fixed-size blocks;
-  /// of several, the one assembled at run time.
+  /// of several, the one assembled at run time. Compiled once per motion model in core
+  /// (src/multitarget/center_stacked_tracks.cpp), not in every file of the picture that runs
+  /// the EKF: inline, each sensor's stacked update made the center's and the sweep's shards
+  /// the build's largest files (docs/testing.md).
   bool update(State& state, std::span<const PictureObservation<kDim>> observations,
-              std::span<const double> /*weights*/) {
-    State updated = state;
-    const UpdateReport report = by_sensor_kind<kDim>(
-        observations, buffers_,
-        [&]<typename Sensor>(std::span<const StationObservation<Sensor>> one_kind) {
-          return std::get<StackedEkf<kDim, Sensor>>(stacked_).update(updated, one_kind);
-        },
-        [&] { return mixed_.update(updated, observations); });
-    if (report.status != NumericalStatus::kOk) return false;
-    state = updated;
-    return true;
-  }
+              std::span<const double> weights);
 
  private:
   template <typename Sensor>
