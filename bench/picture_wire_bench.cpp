@@ -150,8 +150,8 @@ class DetectionEncoding {
     const auto [scan, why] = transport::picture_scan_from_wire(sample, round.kinds, 4096);
     const auto& station = *std::find_if(round.stations.begin(), round.stations.end(),
                                         [&](const auto& s) { return s.id == scan->station_id; });
-    report = *round.picture.report_of(station, scan->detections, scan->associations,
-                                      scan->unassociated, scan->dropped);
+    report = *round.picture.report_of(station, scan->detections, scan->addresses,
+                                      scan->associations, scan->unassociated, scan->dropped);
   }
 };
 

@@ -105,7 +105,11 @@ class PictureCenter {
       scans_[i].station_id = ids_[i];
       scans_[i].noise = picture_.stations()[i].noise;
       scans_[i].detections.clear();
-      if (const auto* scan = scans_in_.scan_of(ids_[i])) scans_[i].detections = scan->detections;
+      scans_[i].addresses.clear();
+      if (const auto* scan = scans_in_.scan_of(ids_[i])) {
+        scans_[i].detections = scan->detections;
+        scans_[i].addresses = scan->addresses;
+      }
     }
     picture_.predict();
     picture_.update(k, scans_);

@@ -30,6 +30,10 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
   cmd->add_option("--max-stations", options.max_stations,
                   "Largest M; runs M = 1..M_max using the first M stations (default: all)")
       ->check(options::whole_number_in(1, 100000));
+  cmd->add_option("--only-stations", options.only_stations,
+                  "Only the scenario's stations of these ids (e.g. 1,2,3): the same run seen by "
+                  "some of its sensors (default: every station)")
+      ->delimiter(',');
   cmd->add_option("--out", options.out_dir, "Folder for sweep.csv, sweep.json and sweep.png")
       ->capture_default_str();
   cmd->add_option("--seed", options.seed, "Override the scenario's seed");
@@ -47,6 +51,21 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
 }
 
 namespace {
+
+// Keeps the stations of `scenario` whose ids `ids` lists, in the scenario's order.
+void keep_only_stations(Scenario& scenario, const std::vector<int>& ids) {
+  for (const int id : ids) {
+    if (std::none_of(scenario.stations.begin(), scenario.stations.end(),
+                     [&](const StationConfig& s) { return s.id == id; })) {
+      throw std::invalid_argument(
+          fmt::format("--only-stations: scenario '{}' has no station {}", scenario.name, id));
+    }
+  }
+  std::erase_if(scenario.stations, [&](const StationConfig& s) {
+    return std::find(ids.begin(), ids.end(), s.id) == ids.end();
+  });
+  validate_scenario(scenario, "--only-stations");
+}
 
 // A scenario with many aircraft: its picture, run in-process --runs times with the first
 // --max-stations stations (all by default), on --threads workers.
@@ -74,6 +93,7 @@ int run_sweep(const SweepOptions& options) {
     scenario.steps = *options.steps;
     validate_scenario(scenario, "--steps");
   }
+  if (!options.only_stations.empty()) keep_only_stations(scenario, options.only_stations);
   const int available = static_cast<int>(scenario.stations.size());
   const int max_stations = options.max_stations == 0 ? available : options.max_stations;
   if (max_stations > available) {

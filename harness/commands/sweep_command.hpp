@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "skyfuse/scenario/scenario.hpp"
 
@@ -15,6 +16,8 @@ struct SweepOptions {
   std::string scenario_path;  ///< empty: the embedded paper000 scenario
   int runs = 50;
   int max_stations = 0;  ///< 0: every station of the scenario
+  /// Only the scenario's stations of these ids, in its order; empty: every one.
+  std::vector<int> only_stations;
   std::string out_dir = "results/sweep";
   std::optional<std::uint64_t> seed;
   std::optional<int> steps;

@@ -118,6 +118,8 @@ void write_picture_json(const PictureReport& report, const std::filesystem::path
                       {"false_mean", s.in_view.false_tracks}}},
                     {"completeness", s.completeness},
                     {"ambiguity", s.ambiguity},
+                    {"duplicate_track_steps", s.duplicate_track_steps},
+                    {"duplicate_track_steps_addressed", s.duplicate_track_steps_addressed},
                     {"spuriousness", s.spuriousness},
                     {"track_number_changes", s.track_number_changes},
                     {"aircraft_detected", s.aircraft_detected},
@@ -133,6 +135,7 @@ void write_picture_json(const PictureReport& report, const std::filesystem::path
                     {"detections", run.detections},
                     {"false_alarms", run.false_alarms},
                     {"dropped_detections", run.dropped},
+                    {"refused_addresses", run.refused_addresses},
                     {"confirmed_at_end", run.confirmed_at_end},
                     {"tentative_at_end", run.tentative_at_end}});
   }

@@ -347,7 +347,17 @@ INSTANTIATE_TEST_SUITE_P(
                       "{id: 2, sensor: {kind: position_velocity, noise_std: [10.0, 10.0, 10.0, "
                       "1.0, 1.0, 1.0]}, detection: {probability: 0.95, max_range_m: 20000.0, "
                       "clutter_per_scan: 0.0}}",
-                      225}),
+                      225},
+        // Identity: the receiver reports each aircraft's address; an address goes to its track
+        // without a gate search and starts a track by itself. The addresses travel with the
+        // scans and the pictures, and enter every node's digest (docs/multitarget.md,
+        // "Identity: addresses").
+        FilterVariant{"EkfWithAddresses",
+                      "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar}",
+                      "{id: 2, sensor: {kind: position_velocity, noise_std: [10.0, 10.0, 10.0, "
+                      "1.0, 1.0, 1.0]}, detection: {probability: 0.95, max_range_m: 20000.0, "
+                      "clutter_per_scan: 0.0, reports_address: true}}",
+                      229}),
     [](const ::testing::TestParamInfo<FilterVariant>& param) { return param.param.name; });
 
 // The tree exchange: five stations in clusters of two ({1, 2}, {3, 4}, {5}), each aggregator

@@ -92,6 +92,25 @@ TEST(PictureWire, ARoundArrivesAsSentThroughTheSerializer) {
   }
   EXPECT_EQ(received->associations, (std::vector<ReportedPair>{{5, 2, 1.0}, {9, 0, 1.0}}));
   EXPECT_EQ(received->unassociated, (std::vector<std::uint32_t>{1, 3}));
+  EXPECT_TRUE(received->addresses.empty()) << "a primary radar's scan has no addresses";
+}
+
+TEST(PictureWire, EachDetectionsAddressAndTheRefusedCountArriveAsSent) {
+  Sent sent = a_round();
+  sent.scan.addresses = {0xABCDEF, kNoAddress, 0x123456, 0xFFFFFFFF};
+  sent.report.refused_addresses = 2;
+  const wire::PictureScan sample =
+      through_cdr(to_wire<6>(radar(), sent.scan, sent.report, 1, 3, 0));
+  const auto [received, why] = picture_scan_from_wire(sample, Sensor::kKind, kBound);
+  ASSERT_TRUE(received.has_value());
+  EXPECT_EQ(received->addresses, sent.scan.addresses);
+  EXPECT_EQ(received->refused_addresses, 2U);
+
+  wire::PictureScan short_of_one = sample;
+  short_of_one.addresses().pop_back();
+  const auto [refused, refused_why] = picture_scan_from_wire(short_of_one, Sensor::kKind, kBound);
+  EXPECT_FALSE(refused.has_value()) << "addresses neither none nor one per detection";
+  EXPECT_EQ(refused_why, DropKind::kOutOfRange);
 }
 
 TEST(PictureWire, AnEmptyScanArrivesEmpty) {
@@ -228,8 +247,9 @@ TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBit
           kinds, kBound);
       ASSERT_TRUE(scan_back.has_value()) << "round " << k;
       EXPECT_EQ(scan_back->picture_digest, rebuilt.digest()) << "the same predicted picture";
-      auto report = rebuilt.report_of(station, scan_back->detections, scan_back->associations,
-                                      scan_back->unassociated, scan_back->dropped);
+      auto report =
+          rebuilt.report_of(station, scan_back->detections, scan_back->addresses,
+                            scan_back->associations, scan_back->unassociated, scan_back->dropped);
       ASSERT_TRUE(report.has_value()) << "round " << k;
       received.push_back(std::move(*report));
     }
@@ -299,6 +319,16 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   EXPECT_TRUE(
       refused([](auto& w) { w.tracks()[0].x()[0] = std::numeric_limits<double>::quiet_NaN(); }));
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].history_rounds(33); }));
+  // One address held by two tracks.
+  EXPECT_TRUE(refused([](auto& w) {
+    w.tracks()[0].address(0xABC);
+    w.tracks()[1].address(0xABC);
+  }));
+  wire::PictureState addressed = back;
+  addressed.tracks()[0].address(0xABC);
+  const auto with_address = picture_state_from_wire(addressed, test::PictureWorld::track_filters());
+  ASSERT_TRUE(with_address.has_value());
+  EXPECT_EQ((*with_address)[0].address, 0xABCU) << "a track's address travels with it";
   // An IMM's modes on a single-model track.
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].mode_probabilities({1.0}); }));
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].modes().resize(1); }));
@@ -385,8 +415,8 @@ TEST(PictureWire, AReportNamingATrackThePictureLacksIsNotRebuilt) {
   const std::vector<Detection> detections = {Detection(Vector3(1005.0, 0.0, 0.1))};
   const std::vector<ReportedPair> known_track = {{7, 0, 1.0}};
   const std::vector<ReportedPair> unknown_track = {{8, 0, 1.0}};
-  EXPECT_TRUE(picture.report_of(station, detections, known_track, {}, 0).has_value());
-  EXPECT_FALSE(picture.report_of(station, detections, unknown_track, {}, 0).has_value());
+  EXPECT_TRUE(picture.report_of(station, detections, {}, known_track, {}, 0).has_value());
+  EXPECT_FALSE(picture.report_of(station, detections, {}, unknown_track, {}, 0).has_value());
 }
 
 }  // namespace

@@ -84,6 +84,7 @@ const PictureStep& PictureScore::add_step(int step, std::span<const TruthPoint> 
     if (tracked) {
       ++row.tracked;
       associated_total_ += tracks_of[a];
+      if (aircraft[a].addressed) duplicates_addressed_ += tracks_of[a] - 1;
       if (!first_confirmed_[target]) first_confirmed_[target] = step;
       const std::uint64_t id = tracks[*nearest_track[a]].id;
       if (last_track_id_[target] && *last_track_id_[target] != id) ++number_changes_;
@@ -137,6 +138,8 @@ PictureSummary PictureScore::summary() const {
   };
   s.completeness = share(counted_tracked_, counted_);
   s.ambiguity = share(associated_total_, tracked_total_);
+  s.duplicate_track_steps = associated_total_ - tracked_total_;
+  s.duplicate_track_steps_addressed = duplicates_addressed_;
   s.spuriousness = share(spurious_total_, tracks_total_);
   s.track_number_changes = number_changes_;
   double confirm_steps = 0.0;

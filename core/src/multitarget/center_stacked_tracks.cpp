@@ -1,6 +1,7 @@
 // The EKF center's stacked update of a track's detections (multitarget/track_filters.hpp),
 // once for each motion model of the registry.
 #include <span>
+#include <type_traits>
 #include <variant>
 
 #include "skyfuse/multitarget/track_filters.hpp"

@@ -15,7 +15,14 @@ struct Group {
   Vector3 position = Vector3::Zero();
   Covariance<3> covariance = Covariance<3>::Zero();
   std::vector<int> stations;
+  Address address = kNoAddress;
+  const PositionFix* velocity_from = nullptr;  // its first fix that reports a velocity
 
+  // Whether `fix` may join: not of a station already in it, nor of another address.
+  bool admits(const PositionFix& fix) const {
+    if (has(fix.station_id)) return false;
+    return fix.address == kNoAddress || address == kNoAddress || fix.address == address;
+  }
   bool add(const PositionFix& fix) {
     Covariance<3> information_after = information + fix.information;
     symmetrize(information_after);
@@ -26,6 +33,8 @@ struct Group {
     covariance = factor.inverse();
     position = factor.solve(information_vector);
     stations.push_back(fix.station_id);
+    if (address == kNoAddress) address = fix.address;
+    if (velocity_from == nullptr && fix.velocity) velocity_from = &fix;
     return true;
   }
   bool has(int station_id) const {
@@ -55,21 +64,39 @@ std::vector<NewTrack> initiate_tracks(std::span<const PositionFix> fixes, std::u
   const double threshold = chi_square_quantile(config.gate_probability, 3.0);
   std::vector<char> used(fixes.size(), 0);
   std::vector<NewTrack> started;
+  std::vector<Address> started_addresses;  // an address starts one track
+  const auto already_started = [&](Address address) {
+    return address != kNoAddress && std::find(started_addresses.begin(), started_addresses.end(),
+                                              address) != started_addresses.end();
+  };
   for (std::size_t first = 0; first < fixes.size(); ++first) {
-    if (used[first]) continue;
+    if (used[first] || already_started(fixes[first].address)) continue;
     Group group;
     if (!group.add(fixes[first])) continue;
     std::vector<std::size_t> members = {first};
     for (std::size_t other = first + 1; other < fixes.size(); ++other) {
-      if (used[other] || group.has(fixes[other].station_id)) continue;
+      if (used[other] || !group.admits(fixes[other]) || already_started(fixes[other].address)) {
+        continue;
+      }
       if (agrees(group, fixes[other], threshold) && group.add(fixes[other])) {
         members.push_back(other);
       }
     }
-    if (static_cast<int>(group.stations.size()) < config.min_stations) continue;
+    // An addressed group is the aircraft's own report: one station is enough.
+    if (group.address == kNoAddress &&
+        static_cast<int>(group.stations.size()) < config.min_stations) {
+      continue;
+    }
     for (const std::size_t m : members) used[m] = 1;
-    started.push_back({make_track_id(step, fixes[first].station_id, fixes[first].detection),
-                       group.position, group.covariance, group.stations});
+    NewTrack track{make_track_id(step, fixes[first].station_id, fixes[first].detection),
+                   group.position, group.covariance, group.stations};
+    track.address = group.address;
+    if (group.address != kNoAddress && group.velocity_from != nullptr) {
+      track.velocity = group.velocity_from->velocity;
+      track.velocity_covariance = group.velocity_from->velocity_covariance;
+    }
+    if (group.address != kNoAddress) started_addresses.push_back(group.address);
+    started.push_back(std::move(track));
   }
   return started;
 }

@@ -84,7 +84,7 @@ double read_probability(const YamlField& field) {
 TrackerConfig read_tracker(const YamlField& field) {
   field.allow_only({"associator", "gate_probability", "max_detections_per_scan", "clutter_density",
                     "jpda_max_events", "confirm", "delete_after_misses", "max_position_std_m",
-                    "initiation"});
+                    "initiation", "identity"});
   TrackerConfig t;
   if (const auto f = field.optional("associator")) {
     const std::string name = f->string();
@@ -132,6 +132,13 @@ TrackerConfig read_tracker(const YamlField& field) {
   if (const auto f = field.optional("max_position_std_m")) {
     t.management.max_position_std_m = f->positive_number();
   }
+  if (const auto identity = field.optional("identity")) {
+    identity->allow_only({"sanity_gate_probability"});
+    if (const auto f = identity->optional("sanity_gate_probability")) {
+      t.identity.sanity_gate_probability = read_probability(*f);
+      if (t.identity.sanity_gate_probability >= 1.0) f->fail("must be < 1");
+    }
+  }
   if (const auto init = field.optional("initiation")) {
     init->allow_only({"min_stations", "gate_probability", "velocity_std_mps"});
     if (const auto f = init->optional("min_stations")) {
@@ -152,7 +159,7 @@ TrackerConfig read_tracker(const YamlField& field) {
 
 DetectionConfig read_detection(const YamlField& field, const DetectionConfig& defaults) {
   field.allow_only({"probability", "max_range_m", "min_elevation_deg", "azimuth_sector_deg",
-                    "clutter_per_scan", "clutter_max_speed_mps"});
+                    "clutter_per_scan", "clutter_max_speed_mps", "reports_address"});
   DetectionConfig d = defaults;
   if (const auto f = field.optional("probability")) d.probability = read_probability(*f);
   if (const auto f = field.optional("max_range_m"))
@@ -170,6 +177,7 @@ DetectionConfig read_detection(const YamlField& field, const DetectionConfig& de
     }
     d.field_of_view.azimuth_sector = AzimuthSector{sector(0) * kDegToRad, sector(1) * kDegToRad};
   }
+  if (const auto f = field.optional("reports_address")) d.reports_address = f->boolean();
   if (const auto f = field.optional("clutter_max_speed_mps")) {
     d.clutter_max_speed_mps = f->non_negative_number();
   }
@@ -185,7 +193,7 @@ DetectionConfig read_detection(const YamlField& field, const DetectionConfig& de
 
 TrafficConfig read_traffic(const YamlField& traffic, const std::optional<YamlField>& detection,
                            const std::optional<YamlField>& metrics) {
-  traffic.allow_only({"targets", "generator", "recorded"});
+  traffic.allow_only({"targets", "generator", "recorded", "equipped_share"});
   TrafficConfig config;
   if (const auto targets = traffic.optional("targets")) {
     for (const YamlField& item : targets->sequence()) {
@@ -197,6 +205,10 @@ TrafficConfig read_traffic(const YamlField& traffic, const std::optional<YamlFie
   }
   if (const auto recorded = traffic.optional("recorded"))
     config.recorded = read_recorded(*recorded);
+  if (const auto f = traffic.optional("equipped_share")) {
+    config.equipped_share = f->non_negative_number();
+    if (config.equipped_share > 1.0) f->fail(fmt::format("must be in [0, 1], got {}", f->text()));
+  }
   if (config.targets.empty() && !config.generator && !config.recorded) {
     traffic.fail("give at least one of 'targets', 'generator' or 'recorded'");
   }

@@ -94,6 +94,14 @@ std::int64_t YamlField::integer() const {
   return value;
 }
 
+bool YamlField::boolean() const {
+  bool value = false;
+  if (!node_.IsScalar() || !YAML::convert<bool>::decode(node_, value)) {
+    fail(fmt::format("expected true or false, got '{}'", text()));
+  }
+  return value;
+}
+
 std::string YamlField::string() const {
   if (!node_.IsScalar()) fail(fmt::format("expected a string, got '{}'", text()));
   return node_.Scalar();

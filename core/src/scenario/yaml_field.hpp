@@ -37,6 +37,7 @@ class YamlField {
   double positive_number() const;
   double non_negative_number() const;
   std::int64_t integer() const;
+  bool boolean() const;  ///< true or false, as YAML spells them
   std::string string() const;
   std::vector<YamlField> sequence() const;
   /// A sequence of exactly n finite numbers.

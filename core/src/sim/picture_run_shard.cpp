@@ -49,7 +49,8 @@ bool same_bits(std::span<const Track> a, std::span<const Track> b) {
   if (a.size() != b.size()) return false;
   for (std::size_t t = 0; t < a.size(); ++t) {
     if (a[t].id != b[t].id || a[t].status != b[t].status || !(a[t].history == b[t].history) ||
-        a[t].updated_by != b[t].updated_by || !same_bits(a[t].filter, b[t].filter)) {
+        a[t].updated_by != b[t].updated_by || a[t].address != b[t].address ||
+        !same_bits(a[t].filter, b[t].filter)) {
       return false;
     }
   }
@@ -126,6 +127,7 @@ class PictureRun {
     for (std::size_t s = 0; s < known_.size(); ++s) {
       reports_.push_back(peers_[s].report(known_[s], scans_[s], work_));
       result_.dropped += reports_.back().dropped;
+      result_.refused_addresses += reports_.back().refused_addresses;
     }
     for (Peer& peer : peers_) peer.fuse(step, reports_);
     center_->update(step, scans_);

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -57,6 +58,31 @@ TargetTruth generated_aircraft(const TrafficGeneratorConfig& g, std::uint64_t se
   return fly(fmt::format("G{}", index), path, time_step_s, first, steps + 1);
 }
 
+// The address aircraft `index` of the truth reports: a recorded aircraft's own ICAO 24-bit
+// address (its label's first six hex digits), a simulated one's from the block 0xF00000.
+Address own_address(const TargetTruth& target, std::size_t index) {
+  unsigned long icao24 = 0;
+  const std::string hex = target.label.substr(0, target.label.find('#'));
+  if (hex.size() == 6 &&
+      std::from_chars(hex.data(), hex.data() + hex.size(), icao24, 16).ptr == hex.data() + 6 &&
+      icao24 != 0) {
+    return static_cast<Address>(icao24);
+  }
+  return static_cast<Address>(0xF00000U + index);
+}
+
+// Gives each aircraft its address, with probability `share` (each drawn from its own stream
+// of `seed`, so that one aircraft's draw never shifts another's).
+void equip(std::vector<TargetTruth>& targets, double share, std::uint64_t seed) {
+  for (std::size_t t = 0; t < targets.size(); ++t) {
+    if (share < 1.0) {
+      CounterRng rng({seed, 0, 0, static_cast<std::uint64_t>(t), NoiseStream::kEquipage});
+      if (rng.uniform() >= share) continue;
+    }
+    targets[t].address = own_address(targets[t], t);
+  }
+}
+
 }  // namespace
 
 std::optional<std::filesystem::path> recorded_traffic_file(const Scenario& scenario,
@@ -101,6 +127,7 @@ TrafficTruth build_traffic_truth(const Scenario& scenario, const std::string& re
     truth.recorded = read_opensky_states(*file, scenario.anchor, options);
     for (const TargetTruth& flight : truth.recorded->targets) truth.targets.push_back(flight);
   }
+  equip(truth.targets, traffic.equipped_share, scenario.seed);
   return truth;
 }
 

@@ -59,5 +59,23 @@ TEST(PictureScore, TheSummaryAveragesBothOverTheSteps) {
   EXPECT_DOUBLE_EQ(s.in_view.false_tracks, 50.0 / 2.0);
 }
 
+TEST(PictureScore, ASecondTrackOnOneAircraftIsCountedAsADuplicateEachStep) {
+  PictureScore score(kGospa, kAircraft.size(), 1.0);
+  const std::vector<TrackPoint> twice = {{11, {3, 0, 0}}, {14, {0, 2, 0}}, {12, {0, 504, 0}}};
+  score.add_step(0, kAircraft, twice);
+  score.add_step(1, kAircraft, twice);
+  score.add_step(2, kAircraft, kTracks);  // one track each again
+  const PictureSummary s = score.summary();
+  EXPECT_EQ(s.duplicate_track_steps, 2U);
+  EXPECT_EQ(s.duplicate_track_steps_addressed, 0U);
+
+  std::vector<TruthPoint> addressed = kAircraft;
+  addressed[0].addressed = true;
+  PictureScore of_addressed(kGospa, kAircraft.size(), 1.0);
+  of_addressed.add_step(0, addressed, twice);
+  EXPECT_EQ(of_addressed.summary().duplicate_track_steps_addressed, 1U);
+  EXPECT_DOUBLE_EQ(s.ambiguity, 8.0 / 6.0);
+}
+
 }  // namespace
 }  // namespace skyfuse

@@ -25,7 +25,7 @@ TEST(Hypothesiser, EachGatedPairCarriesItsNisAndGaussianLogDensity) {
   HypothesiserWork work;
   Hypotheses h;
   hypothesise(std::span<const GaussianState<6>>(tracks), testing::PvSensor(), scan, kGate, 4096,
-              true, work, h);
+              true, IdentityMask{}, work, h);
   EXPECT_EQ(h.tracks, 2U);
   EXPECT_EQ(h.detections, 3U);
   EXPECT_EQ(h.gate, kGate);

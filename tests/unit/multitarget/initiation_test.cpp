@@ -46,6 +46,62 @@ TEST(Initiation, AGroupTakesOneDetectionPerStation) {
   EXPECT_EQ(started[0].stations, (std::vector<int>{1, 2}));
 }
 
+PositionFix addressed(PositionFix fix, Address address) {
+  fix.address = address;
+  return fix;
+}
+
+TEST(Initiation, AnAddressedDetectionStartsATrackByItself) {
+  const std::vector<PositionFix> fixes = {addressed(fix_at(2, 3, {100, 0, 50}, 10.0), 0xABC),
+                                          fix_at(3, 0, {900, 0, 50}, 5.0)};
+  const auto started = initiate_tracks(fixes, 4, InitiationConfig{});
+  ASSERT_EQ(started.size(), 1U) << "the unaddressed one alone starts nothing";
+  EXPECT_EQ(started[0].id, make_track_id(4, 2, 3));
+  EXPECT_EQ(started[0].address, 0xABCU);
+  EXPECT_FALSE(started[0].velocity.has_value()) << "the fix reported none";
+}
+
+TEST(Initiation, AnUnaddressedDetectionAndAnAddressedOneThatAgreeAreOneTrackWithTheAddress) {
+  const std::vector<PositionFix> fixes = {fix_at(1, 0, {100, 0, 50}, 5.0),
+                                          addressed(fix_at(2, 0, {104, 0, 50}, 10.0), 0xABC)};
+  const auto started = initiate_tracks(fixes, 0, InitiationConfig{});
+  ASSERT_EQ(started.size(), 1U);
+  EXPECT_EQ(started[0].stations, (std::vector<int>{1, 2}));
+  EXPECT_EQ(started[0].address, 0xABCU);
+}
+
+TEST(Initiation, DetectionsOfTwoAddressesNeverGroupAndAnAddressStartsOneTrack) {
+  const std::vector<PositionFix> fixes = {addressed(fix_at(1, 0, {100, 0, 50}, 5.0), 0xA),
+                                          addressed(fix_at(2, 0, {101, 0, 50}, 5.0), 0xB),
+                                          addressed(fix_at(3, 0, {9000, 0, 50}, 5.0), 0xA)};
+  const auto started = initiate_tracks(fixes, 0, InitiationConfig{});
+  ASSERT_EQ(started.size(), 2U) << "0xA's second report, 9 km away, starts no second track";
+  EXPECT_EQ(started[0].address, 0xAU);
+  EXPECT_EQ(started[0].stations, std::vector<int>{1});
+  EXPECT_EQ(started[1].address, 0xBU);
+  EXPECT_EQ(started[1].stations, std::vector<int>{2});
+}
+
+TEST(PositionFixes, APositionVelocityReportGivesItsVelocityWithItsNoise) {
+  const PositionVelocity<6> receiver;
+  Vector<6> z;
+  z << 1.0, 2.0, 3.0, 40.0, -5.0, 0.5;
+  Covariance<6> noise = Covariance<6>::Identity() * 100.0;
+  noise.bottomRightCorner<3, 3>() = Covariance<3>::Identity() * 0.25;
+  const auto fix = fix_position(2, 0, receiver, z, noise);
+  ASSERT_TRUE(fix.has_value());
+  ASSERT_TRUE(fix->velocity.has_value());
+  EXPECT_EQ(*fix->velocity, Vector3(40.0, -5.0, 0.5));
+  EXPECT_EQ(fix->velocity_covariance, Covariance<3>::Identity() * 0.25);
+
+  std::vector<PositionFix> fixes = {*fix};
+  fixes[0].address = 0x77;
+  const auto started = initiate_tracks(fixes, 0, InitiationConfig{});
+  ASSERT_EQ(started.size(), 1U);
+  ASSERT_TRUE(started[0].velocity.has_value());
+  EXPECT_EQ(*started[0].velocity, Vector3(40.0, -5.0, 0.5));
+}
+
 TEST(Initiation, RefusesFixesOutOfOrder) {
   const std::vector<PositionFix> fixes = {fix_at(2, 0, {0, 0, 0}, 5.0),
                                           fix_at(1, 0, {0, 0, 0}, 5.0)};

@@ -53,19 +53,6 @@ std::vector<Station> mixed_stations() {
           {2, Broadcast(), broadcast_noise, 1.0, {}}};
 }
 
-// The station's sensor as it measures the truth's kinematics.
-PictureSensor<kKinematicsDim> truth_sensor_of(const Station& station) {
-  return std::visit(
-      []<typename S>(const S& sensor) -> PictureSensor<kKinematicsDim> {
-        return TruthSensorOf<S>(sensor.site());
-      },
-      station.sensor);
-}
-
-Vector3 site_of(const Station& station) {
-  return std::visit([](const auto& sensor) -> Vector3 { return sensor.site(); }, station.sensor);
-}
-
 // One aircraft flying straight and level-ish for the whole run.
 std::vector<TargetTruth> one_aircraft() {
   TargetTruth truth{"T0", 0, {}};
@@ -108,8 +95,9 @@ TEST(MixedPicture, ARadarAndAPositionVelocityStationShareOnePicture) {
     const auto step = static_cast<std::uint64_t>(k);
     std::vector<Scan> scans;
     for (const Station& station : stations) {
-      scans.push_back(simulate_scan(station.id, truth_sensor_of(station), site_of(station),
-                                    station.noise, sees, truths, k, kSeed, 0));
+      scans.push_back(simulate_scan(station.id, test::truth_sensor_of(station),
+                                    test::site_of(station), station.noise, sees, truths, k, kSeed,
+                                    0));
       for (const Detection& z : scans.back().detections) {
         ASSERT_EQ(z.size(), measurement_dim<N>(station.sensor)) << "station " << station.id;
       }
@@ -167,8 +155,9 @@ TEST(MixedPicture, EachStationIsGatedByItsOwnMeasurementDimension) {
   const std::vector<TargetTruth> truths = one_aircraft();
   AssociationWork work;
   for (const Station& station : stations) {
-    const Scan scan = simulate_scan(station.id, truth_sensor_of(station), site_of(station),
-                                    station.noise, DetectionConfig{}, truths, 0, kSeed, 0);
+    const Scan scan =
+        simulate_scan(station.id, test::truth_sensor_of(station), test::site_of(station),
+                      station.noise, DetectionConfig{}, truths, 0, kSeed, 0);
     peer.associate(station, scan, work);
     const int m = measurement_dim<N>(station.sensor);
     EXPECT_EQ(work.hypotheses.gate, chi_square_quantile(0.999, m)) << "station " << station.id;

@@ -8,9 +8,28 @@
 #include <vector>
 
 #include "skyfuse/multitarget/associator.hpp"
+#include "skyfuse/multitarget/picture_sensor.hpp"
 #include "skyfuse/multitarget/scan.hpp"
+#include "skyfuse/multitarget/track_table.hpp"
+#include "skyfuse/registry/make_parts.hpp"
 
 namespace skyfuse::test {
+
+/// A station's sensor as it measures the truth's kinematics (what simulate_scan takes).
+template <int N>
+PictureSensor<kKinematicsDim> truth_sensor_of(const KnownStation<N>& station) {
+  return std::visit(
+      []<typename S>(const S& sensor) -> PictureSensor<kKinematicsDim> {
+        return TruthSensorOf<S>(sensor.site());
+      },
+      station.sensor);
+}
+
+/// Where a station's sensor stands (the origin for one that rides on the aircraft).
+template <int N>
+Vector3 site_of(const KnownStation<N>& station) {
+  return std::visit([](const auto& sensor) -> Vector3 { return sensor.site(); }, station.sensor);
+}
 
 template <typename Peer, typename Center>
 std::vector<typename Peer::Report> play_picture_round(

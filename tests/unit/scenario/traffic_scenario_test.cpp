@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -11,6 +12,7 @@
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
+#include "skyfuse/sim/picture_truth.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 
@@ -142,6 +144,69 @@ TEST(TrafficScenario, TakesStationsOfDifferentSensorKinds) {
   EXPECT_NE(refused.find("filter 'imm' needs every station to have the same sensor kind"),
             std::string::npos)
       << refused;
+}
+
+// Identity: a station whose sensor reports addresses, the share of aircraft that carry one, and
+// the tracker's sanity gate; each aircraft's address drawn from the seed.
+TEST(TrafficScenario, TakesCooperativeSensorsAndTheShareOfAircraftWithAnAddress) {
+  std::string yaml =
+      uam_city_with("{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar}",
+                    "{id: 2, sensor: {kind: position_velocity, noise_std: [10, 10, 10, 1, 1, 1]}, "
+                    "detection: {clutter_per_scan: 0.0, reports_address: true}}");
+  yaml = yaml.replace(yaml.find("traffic:\n"), 9, "traffic:\n  equipped_share: 0.6\n");
+  yaml = yaml.replace(yaml.find("tracker:\n"), 9,
+                      "tracker:\n  identity: {sanity_gate_probability: 0.99999}\n");
+  const Scenario s = parse_scenario(yaml, "test.yaml");
+  EXPECT_TRUE(s.stations[1].detection->reports_address);
+  EXPECT_FALSE(s.stations[0].detection->reports_address);
+  EXPECT_DOUBLE_EQ(s.traffic->equipped_share, 0.6);
+  EXPECT_DOUBLE_EQ(s.tracker.identity.sanity_gate_probability, 0.99999);
+
+  const TrafficTruth truth = build_traffic_truth(s);
+  std::size_t equipped = 0;
+  std::vector<Address> addresses;
+  for (const TargetTruth& t : truth.targets) {
+    if (t.address == kNoAddress) continue;
+    ++equipped;
+    addresses.push_back(t.address);
+  }
+  EXPECT_GT(equipped, 0U);
+  EXPECT_LT(equipped, truth.targets.size());
+  std::sort(addresses.begin(), addresses.end());
+  EXPECT_EQ(std::adjacent_find(addresses.begin(), addresses.end()), addresses.end())
+      << "no two aircraft share an address";
+  const TrafficTruth again = build_traffic_truth(s);
+  for (std::size_t t = 0; t < truth.targets.size(); ++t) {
+    EXPECT_EQ(truth.targets[t].address, again.targets[t].address) << "a function of the seed";
+  }
+
+  EXPECT_NE(rejection(uam_city_with("traffic:\n", "traffic:\n  equipped_share: 1.5\n"))
+                .find("must be in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(rejection(uam_city_with("clutter_per_scan: 5.0",
+                                    "clutter_per_scan: 5.0\n  reports_address: maybe"))
+                .find("expected true or false"),
+            std::string::npos);
+}
+
+// What the network can see: a cooperative station sees only the aircraft with an address.
+TEST(TrafficScenario, ACooperativeStationSeesOnlyTheAircraftWithAnAddress) {
+  Scenario s = load_scenario_file(std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/uam-mixed.yaml");
+  std::erase_if(s.stations, [](const StationConfig& station) { return station.id != 9; });
+  ASSERT_EQ(s.stations.size(), 1U);
+  ASSERT_TRUE(s.stations[0].detection->reports_address);
+  const TrafficTruth truth = build_traffic_truth(s);
+  std::vector<TruthPoint> aircraft;
+  aircraft_at_step(s, 1, truth.targets, 100, aircraft);
+  ASSERT_EQ(aircraft.size(), 100U);
+  std::size_t addressed = 0;
+  for (const TruthPoint& a : aircraft) {
+    EXPECT_EQ(a.addressed, truth.targets[a.target].address != kNoAddress);
+    EXPECT_EQ(a.in_view, a.addressed) << "every aircraft is within the receiver's range";
+    if (a.addressed) ++addressed;
+  }
+  EXPECT_GT(addressed, 40U);
+  EXPECT_LT(addressed, 80U) << "uam-mixed equips 60 %";
 }
 
 TEST(TrafficScenario, RefusesWhatAPictureCannotTake) {

@@ -33,6 +33,8 @@ struct TruthPoint {
   std::size_t target = 0;
   Vector3 position = Vector3::Zero();
   bool in_view = false;  ///< within at least one station's field of view
+  /// It reports an address to cooperative sensors (multitarget/identity.hpp).
+  bool addressed = false;
 };
 
 /// A confirmed track at a step.
@@ -72,6 +74,12 @@ struct PictureSummary {
   double localisation_per_pair_m = 0.0;
   double completeness = 0.0;
   double ambiguity = 0.0;
+  /// Confirmed tracks on an aircraft beyond its first, summed over the steps: ambiguity's
+  /// excess as a count (a duplicate track of one aircraft for 10 steps counts 10).
+  std::size_t duplicate_track_steps = 0;
+  /// The same, of the aircraft with an address: a primary radar's track and the aircraft's own
+  /// broadcast that should have been one (identity.hpp).
+  std::size_t duplicate_track_steps_addressed = 0;
   double spuriousness = 0.0;
   std::size_t track_number_changes = 0;
   std::size_t aircraft_detected = 0;    ///< detected at least once
@@ -104,10 +112,11 @@ class PictureScore {
   std::vector<std::optional<int>> first_detected_;
   std::vector<std::optional<int>> first_confirmed_;
   std::vector<std::optional<std::uint64_t>> last_track_id_;
-  std::size_t counted_ = 0;           // aircraft-steps counted for completeness
-  std::size_t counted_tracked_ = 0;   // of those, tracked
-  std::size_t tracked_total_ = 0;     // aircraft-steps tracked (all in view)
-  std::size_t associated_total_ = 0;  // tracks associated, summed over steps
+  std::size_t counted_ = 0;               // aircraft-steps counted for completeness
+  std::size_t counted_tracked_ = 0;       // of those, tracked
+  std::size_t tracked_total_ = 0;         // aircraft-steps tracked (all in view)
+  std::size_t associated_total_ = 0;      // tracks associated, summed over steps
+  std::size_t duplicates_addressed_ = 0;  // tracks beyond the first on addressed aircraft
   std::size_t tracks_total_ = 0;
   std::size_t spurious_total_ = 0;
   std::size_t number_changes_ = 0;

@@ -47,6 +47,9 @@ class PositionVelocity {
   Measurement predict(const State& x) const { return x.template head<kMeasDim>(); }
   /// The position a measurement puts the target at (multitarget/initiation.hpp).
   static Vector3 position_of(const Measurement& z) { return z.template head<3>(); }
+  /// The velocity a measurement reports (multitarget/initiation.hpp), entries 3-5.
+  static constexpr int kVelocityEntries = 3;
+  static Vector3 velocity_of(const Measurement& z) { return z.template segment<3>(3); }
 
   Jacobian<kMeasDim, StateDim> jacobian(const State& /*x*/) const {
     Jacobian<kMeasDim, StateDim> h = Jacobian<kMeasDim, StateDim>::Zero();

@@ -45,11 +45,17 @@ class CentralPicture : public TrackTable<Tracks> {
     clear_each(observations_, count);
     clear_each(weights_, count);
     clear_each(unassociated_, scans.size());
+    offered_.assign(count, kNoAddress);
+    refused_addresses_ = 0;
     for (std::size_t s = 0; s < scans.size(); ++s) {
       const typename Table::Station& station = this->stations()[s];
       const ScanAssociation association = this->associate(station, scans[s], work_);
+      refused_addresses_ += association.refused_addresses;
       for (const WeightedPair& pair : association.pairs) {
         const auto t = static_cast<std::size_t>(pair.track);
+        // As a peer's report offers it (peer_picture.hpp): the first station's, ascending.
+        const Address address = address_of(scans[s].addresses, pair.detection);
+        if (pair.weight > 0.5 && offered_[t] == kNoAddress) offered_[t] = address;
         associations_.push_back({station.id, pair.detection, this->tracks()[t].id});
         std::visit(
             [&]<typename Sensor>(const Sensor& sensor) {
@@ -63,7 +69,7 @@ class CentralPicture : public TrackTable<Tracks> {
         weights_[t].push_back(station.weight);
       }
       for (const std::uint32_t j : association.unassociated) {
-        unassociated_[s].push_back({j, scans[s].detections[j]});
+        unassociated_[s].push_back({j, scans[s].detections[j], address_of(scans[s].addresses, j)});
       }
     }
     hit_.assign(count, 0);
@@ -76,6 +82,7 @@ class CentralPicture : public TrackTable<Tracks> {
         continue;
       }
       hit_[t] = 1;
+      this->offer_address(t, offered_[t]);
       for (const auto& observation : observations_[t]) {
         const int id = std::visit([](const auto& o) { return o.station_id; }, observation);
         if (track.updated_by.empty() || track.updated_by.back() != id) {
@@ -90,6 +97,8 @@ class CentralPicture : public TrackTable<Tracks> {
 
   /// The last round's associations, by station, then track.
   const std::vector<Association>& associations() const { return associations_; }
+  /// The last round's addressed detections refused as possible spoofs, every station's.
+  std::size_t refused_addresses() const { return refused_addresses_; }
 
  private:
   // `count` empty lists, keeping the storage of those the last round had: no allocation per
@@ -106,6 +115,8 @@ class CentralPicture : public TrackTable<Tracks> {
   std::vector<std::vector<double>> weights_;
   std::vector<std::vector<UnassociatedDetection>> unassociated_;
   std::vector<char> hit_;
+  std::vector<Address> offered_;  // per track: the address its pairs offer this round
+  std::size_t refused_addresses_ = 0;
 };
 
 }  // namespace skyfuse

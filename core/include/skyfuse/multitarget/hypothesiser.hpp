@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "skyfuse/core/small_cholesky.hpp"
+#include "skyfuse/multitarget/address.hpp"
 #include "skyfuse/multitarget/initiation.hpp"
 #include "skyfuse/multitarget/scan.hpp"
 
@@ -65,12 +66,13 @@ struct HypothesiserWork {
 /// The hypotheses of `scan` (the station's detections; `sensor` its sensor, of the tracks'
 /// state dimension N) against the tracks' `priors`, within the gate `gate` (chi-square(M)
 /// quantile), taking at most `max_detections` detections, each pair's log-density computed
-/// only `with_densities` (an associator that reads them: GNN's costs need none). Written into
-/// `out`, whose storage is kept from round to round.
+/// only `with_densities` (an associator that reads them: GNN's costs need none), leaving out
+/// the tracks, detections and pairs identity decided (`mask`, multitarget/identity.hpp).
+/// Written into `out`, whose storage is kept from round to round.
 template <typename Sensor, int N>
 void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor, const Scan& scan,
                  double gate, std::size_t max_detections, bool with_densities,
-                 HypothesiserWork& work, Hypotheses& out) {
+                 const IdentityMask& mask, HypothesiserWork& work, Hypotheses& out) {
   constexpr int M = Sensor::kMeasDim;
   const Covariance<M> noise = fixed_noise<M>(scan.noise);
   const std::size_t taken = std::min(scan.detections.size(), max_detections);
@@ -84,6 +86,7 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
   work.candidates.clear();
   double widest = 0.0;
   for (std::uint32_t j = 0; j < taken; ++j) {
+    if (mask.skips_detection(j)) continue;
     const Vector<M> z = fixed_detection<M>(scan.detections[j]);
     const auto fix = fix_position(scan.station_id, j, sensor, z, noise);
     // A detection whose fix is degenerate is compared with every track.
@@ -99,6 +102,7 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
   const double reach = std::sqrt(gate);
   const double log_2pi_m = M * std::log(2.0 * std::numbers::pi);
   for (std::size_t t = 0; t < priors.size(); ++t) {
+    if (mask.skips_track(t)) continue;
     const GaussianState<N>& prior = priors[t];
     const Vector3 p = prior.mean.template head<3>();
     const double track_std = std::sqrt(prior.covariance.template topLeftCorner<3, 3>().trace());
@@ -115,6 +119,7 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
     bool normalised = false;
     for (auto c = from; c != work.candidates.end() && c->east <= p.x() + radius; ++c) {
       if ((c->position - p).norm() > reach * (track_std + c->std_m)) continue;
+      if (mask.skips_pair(t, c->index)) continue;
       const Vector<M> nu =
           sensor.residual(fixed_detection<M>(scan.detections[c->index]), predicted);
       const double nis = nu.dot(s_factor.solve(nu));

@@ -10,6 +10,11 @@
 /// agrees with the group's fused position (a chi-square test of the difference against the sum
 /// of their covariances); a group of at least `min_stations` detections becomes a tentative
 /// track at its fused position, named after the detection that opened it.
+///
+/// Identity (identity.hpp): a group holds at most one address, and a detection of another
+/// address does not join it; a group with an address is a cooperative report of the aircraft
+/// itself and starts a track from one station, with the velocity of its first detection that
+/// reports one; an address starts one track a round.
 
 #include <cstdint>
 #include <optional>
@@ -30,6 +35,17 @@ struct PositionFix {
   Vector3 position = Vector3::Zero();
   Covariance<3> covariance = Covariance<3>::Identity();
   Covariance<3> information = Covariance<3>::Identity();  ///< covariance^-1 = H^T R^-1 H
+  Address address = kNoAddress;  ///< the detection's (multitarget/address.hpp)
+  /// The velocity the detection reports, with its covariance, for a sensor that reports one.
+  std::optional<Vector3> velocity{};
+  Covariance<3> velocity_covariance = Covariance<3>::Identity();
+};
+
+/// A sensor whose detection reports the target's velocity as well as its position.
+template <typename Sensor>
+concept ReportsVelocity = requires(const typename Sensor::Measurement& z) {
+  { Sensor::velocity_of(z) } -> std::convertible_to<Vector3>;
+  { Sensor::kVelocityEntries } -> std::convertible_to<int>;
 };
 
 /// The fix of detection `z` (noise R) of a sensor one of whose detections fixes a position:
@@ -55,6 +71,11 @@ std::optional<PositionFix> fix_position(int station_id, std::uint32_t detection,
   if (!info_factor.compute(information)) return std::nullopt;
   fix.covariance = info_factor.inverse();
   fix.information = information;
+  if constexpr (ReportsVelocity<Sensor>) {
+    fix.velocity = Sensor::velocity_of(z);
+    fix.velocity_covariance =
+        noise.template block<3, 3>(Sensor::kVelocityEntries, Sensor::kVelocityEntries);
+  }
   return fix;
 }
 
@@ -64,6 +85,11 @@ struct NewTrack {
   Vector3 position = Vector3::Zero();
   Covariance<3> covariance = Covariance<3>::Identity();
   std::vector<int> stations;  ///< whose detections started it, ascending
+  Address address = kNoAddress;
+  /// For a track started by an addressed detection of a sensor that reports a velocity: that
+  /// velocity and its covariance; none otherwise (the initiation's velocity spread).
+  std::optional<Vector3> velocity{};
+  Covariance<3> velocity_covariance = Covariance<3>::Identity();
 };
 
 /// The tracks `fixes` (in (station id, detection index) order) start at `step`.

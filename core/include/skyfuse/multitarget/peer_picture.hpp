@@ -43,12 +43,16 @@ struct StationReport {
     /// The station's contribution to the track: its one detection's, or the sum of its
     /// detections' weighed by their pairs' weights.
     Contribution contribution;
+    /// The address the station's pairs offer the track (multitarget/identity.hpp): that of its
+    /// detection of weight above 1/2, if it has one; kNoAddress otherwise.
+    Address address = kNoAddress;
   };
   int station_id = 0;
   std::vector<Update> updates;                      ///< ascending track id
   std::vector<ReportedPair> pairs;                  ///< ascending track id, then detection
   std::vector<UnassociatedDetection> unassociated;  ///< ascending detection index
-  std::size_t dropped = 0;  ///< detections beyond the assignment's bound, left out
+  std::size_t dropped = 0;            ///< detections beyond the assignment's bound, left out
+  std::size_t refused_addresses = 0;  ///< addressed detections refused as possible spoofs
 };
 
 template <typename Tracks>
@@ -68,6 +72,7 @@ class PeerPicture : public TrackTable<Tracks> {
     report.station_id = station.id;
     const ScanAssociation association = this->associate(station, scan, work);
     report.dropped = association.dropped;
+    report.refused_addresses = association.refused_addresses;
     const auto tracks = this->tracks();
     const std::span<const WeightedPair> pairs(association.pairs);
     report.updates.reserve(pairs.size());
@@ -76,23 +81,25 @@ class PeerPicture : public TrackTable<Tracks> {
       std::size_t end = first;
       while (end < pairs.size() && pairs[end].track == pairs[first].track) ++end;
       add_update(report, station, tracks[static_cast<std::size_t>(pairs[first].track)],
-                 pairs.subspan(first, end - first), std::span<const Detection>(scan.detections));
+                 pairs.subspan(first, end - first), std::span<const Detection>(scan.detections),
+                 std::span<const Address>(scan.addresses));
       first = end;
     }
     for (const std::uint32_t j : association.unassociated) {
-      report.unassociated.push_back({j, scan.detections[j]});
+      report.unassociated.push_back({j, scan.detections[j], address_of(scan.addresses, j)});
     }
     return report;
   }
 
   /// Station `station`'s report rebuilt from what it published (transport/picture_wire.hpp):
-  /// its detections, its pairs (ascending track id, then detection) and its unassociated
-  /// detections' indices, each track's contribution computed here against this (predicted)
-  /// picture's track — the station's own arithmetic on the same inputs, so its bits when this
-  /// picture is the station's. Nothing when a pair names a track this picture does not hold:
-  /// this picture is not the station's. Every index is within `detections` (the receiver
-  /// checked it: picture_scan_from_wire).
+  /// its detections and their addresses (empty: none has one), its pairs (ascending track id, then
+  /// detection) and its unassociated detections' indices, each track's contribution computed here
+  /// against this (predicted) picture's track — the station's own arithmetic on the same inputs, so
+  /// its bits when this picture is the station's. Nothing when a pair names a track this picture
+  /// does not hold: this picture is not the station's. Every index is within `detections` (the
+  /// receiver checked it: picture_scan_from_wire).
   std::optional<Report> report_of(const Station& station, std::span<const Detection> detections,
+                                  std::span<const Address> addresses,
                                   std::span<const ReportedPair> pairs,
                                   std::span<const std::uint32_t> unassociated,
                                   std::size_t dropped) const {
@@ -107,10 +114,13 @@ class PeerPicture : public TrackTable<Tracks> {
       next = std::lower_bound(next, tracks.end(), pair->track,
                               [](const auto& track, TrackId wanted) { return track.id < wanted; });
       if (next == tracks.end() || next->id != pair->track) return std::nullopt;
-      add_update(report, station, *next, std::span<const ReportedPair>(pair, end), detections);
+      add_update(report, station, *next, std::span<const ReportedPair>(pair, end), detections,
+                 addresses);
       pair = end;
     }
-    for (const std::uint32_t j : unassociated) report.unassociated.push_back({j, detections[j]});
+    for (const std::uint32_t j : unassociated) {
+      report.unassociated.push_back({j, detections[j], address_of(addresses, j)});
+    }
     return report;
   }
 
@@ -127,6 +137,7 @@ class PeerPicture : public TrackTable<Tracks> {
       auto& track = this->track(t);
       contributions_.clear();
       weights_.clear();
+      offered_.clear();
       track.updated_by.clear();
       for (std::size_t r = 0; r < reports.size(); ++r) {
         const auto& updates = reports[r].updates;
@@ -135,12 +146,14 @@ class PeerPicture : public TrackTable<Tracks> {
         if (at < updates.size() && updates[at].track == track.id) {
           contributions_.push_back(&updates[at].contribution);
           weights_.push_back(report_weights_[r]);
+          offered_.push_back(updates[at].address);
           track.updated_by.push_back(reports[r].station_id);
         }
       }
       if (contributions_.empty()) continue;
       if (Tracks::fuse(track.filter, contributions_, weights_) == NumericalStatus::kOk) {
         hit_[t] = 1;
+        for (const Address address : offered_) this->offer_address(t, address);
       } else {
         track.updated_by.clear();
       }
@@ -164,13 +177,19 @@ class PeerPicture : public TrackTable<Tracks> {
   // `Pair`: a WeightedPair (the station's own association) or a ReportedPair (a published one).
   template <typename Pair>
   void add_update(Report& report, const Station& station, const typename Table::TrackType& track,
-                  std::span<const Pair> pairs, std::span<const Detection> detections) const {
+                  std::span<const Pair> pairs, std::span<const Detection> detections,
+                  std::span<const Address> addresses) const {
+    const std::size_t updates = report.updates.size();
     std::visit(
         [&]<typename Sensor>(const Sensor& sensor) {
           add_update_of(report, station.id, sensor, fixed_noise<Sensor::kMeasDim>(station.noise),
                         track, pairs, detections);
         },
         station.sensor);
+    if (addresses.empty() || report.updates.size() == updates) return;
+    for (const Pair& pair : pairs) {
+      if (pair.weight > 0.5) report.updates.back().address = address_of(addresses, pair.detection);
+    }
   }
   // add_update with the station's sensor, `Sensor`, and its noise as they are.
   template <typename Pair, typename Sensor>
@@ -220,6 +239,7 @@ class PeerPicture : public TrackTable<Tracks> {
   std::vector<double> report_weights_;  // reports[r]'s station's weight
   std::vector<const Contribution*> contributions_;
   std::vector<double> weights_;
+  std::vector<Address> offered_;  // the addresses the track's updates offer, by station
 };
 
 }  // namespace skyfuse

@@ -26,6 +26,9 @@ class PictureDigest {
     digest_.add(covariance);
   }
 
+  /// The address of the track added last, for a track that holds one: a picture without
+  /// addresses digests as it did before there were any.
+  void add_address(std::uint32_t address) { digest_.add(static_cast<std::uint64_t>(address)); }
   std::uint64_t value() const { return digest_.value(); }
 
  private:

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/multitarget/address.hpp"
 
 namespace skyfuse {
 
@@ -41,6 +42,9 @@ struct Scan {
   int station_id = 0;
   DetectionNoise noise;  ///< R of every detection of the station
   std::vector<Detection> detections;
+  /// Each detection's address (multitarget/address.hpp), in detection order; empty when none
+  /// has one (a primary radar's scan).
+  std::vector<Address> addresses{};
 };
 
 /// Whether two detections hold the same values, bit for bit (any sizes).

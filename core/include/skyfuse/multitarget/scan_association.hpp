@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "skyfuse/association/assignment.hpp"
+#include "skyfuse/multitarget/address.hpp"
 #include "skyfuse/multitarget/hypothesiser.hpp"
 
 namespace skyfuse {
@@ -29,6 +30,8 @@ struct ScanAssociation {
   std::size_t largest_cluster = 0;  ///< tracks of the largest cluster of competing pairs
   /// JPDA: clusters whose joint events exceeded the bound, decided by GNN instead.
   std::size_t fallback_clusters = 0;
+  /// Addressed detections refused as possible spoofs (multitarget/identity.hpp).
+  std::size_t refused_addresses = 0;
 };
 
 /// What a station's associator knows of its sensor as a sensor (its detection settings, as
@@ -40,8 +43,31 @@ struct DetectionPrior {
   double clutter_density = 1e-12;
 };
 
+/// What identity (multitarget/identity.hpp) decided of one station's scan before the gate
+/// search: the addressed detections that went to the track of their address, and those refused.
+struct AddressRouting {
+  std::vector<WeightedPair> routed;     ///< ascending detection; weight 1
+  std::size_t refused = 0;              ///< addressed detections that failed the sanity gate
+  std::vector<char> detection_decided;  ///< per detection: routed or refused; empty: none
+  std::vector<char> track_taken;        ///< per track: took a routed detection; empty: none
+
+  void clear() {
+    routed.clear();
+    refused = 0;
+    detection_decided.clear();
+    track_taken.clear();
+  }
+  /// The mask the gate search takes from this routing, with the tracks' and detections'
+  /// addresses (each empty when none has one).
+  IdentityMask mask(std::span<const Address> track_addresses,
+                    std::span<const Address> detection_addresses) const {
+    return {track_addresses, detection_addresses, track_taken, detection_decided};
+  }
+};
+
 /// Reusable buffers of a station's association: a round allocates only when the picture grows.
 struct AssociationWork {
+  AddressRouting routing;
   HypothesiserWork hypothesiser;
   Hypotheses hypotheses;
   std::vector<association::GatedPair> gated;
@@ -59,6 +85,7 @@ inline void start_association(const Hypotheses& hypotheses, AssociationWork& wor
   out.gated_pairs = hypotheses.pairs.size();
   out.largest_cluster = 0;
   out.fallback_clusters = 0;
+  out.refused_addresses = 0;
   work.gated.clear();
   for (const Hypothesis& h : hypotheses.pairs) work.gated.push_back({h.track, h.detection, h.nis});
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/multitarget/address.hpp"
 
 namespace skyfuse {
 
@@ -79,6 +80,9 @@ struct Track {
   State filter;
   /// The stations whose detections updated it in the last round, ascending.
   std::vector<int> updated_by;
+  /// The aircraft's address, once an addressed detection was assigned to the track
+  /// (multitarget/identity.hpp); kNoAddress until then.
+  Address address = kNoAddress;
 };
 
 }  // namespace skyfuse

@@ -8,6 +8,10 @@
 /// contributions; the center: one update of its detections) is the caller's, between the two.
 /// `Tracks` says what a track's filter is (multitarget/track_filters.hpp).
 ///
+/// Identity (identity.hpp) is the table's too: it routes a station's addressed detections before
+/// the gate search, and a round's close gives an unaddressed track the address its detections
+/// offered and starts tracks from addressed detections.
+///
 /// Tracks are kept in ascending id; a new track's id holds its round in the high bits, so new
 /// tracks go at the end and the order never needs sorting.
 
@@ -24,6 +28,7 @@
 #include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/multitarget/associator.hpp"
 #include "skyfuse/multitarget/hypothesiser.hpp"
+#include "skyfuse/multitarget/identity.hpp"
 #include "skyfuse/multitarget/initiation.hpp"
 #include "skyfuse/multitarget/picture_digest.hpp"
 #include "skyfuse/multitarget/picture_sensor.hpp"
@@ -54,10 +59,11 @@ struct RoundOutcome {
   std::size_t started = 0;
 };
 
-/// One station's unassociated detection, as it publishes it: index in its scan and value.
+/// One station's unassociated detection, as it publishes it: index in its scan, value, address.
 struct UnassociatedDetection {
   std::uint32_t detection = 0;
   Detection z;
+  Address address = kNoAddress;
 };
 
 template <typename Tracks>
@@ -80,6 +86,8 @@ class TrackTable {
     for (int m = 1; m <= kMaxDetectionDim; ++m) {
       gates_[static_cast<std::size_t>(m)] =
           chi_square_quantile(config.association.gate_probability, m);
+      sanity_gates_[static_cast<std::size_t>(m)] =
+          chi_square_quantile(config.identity.sanity_gate_probability, m);
     }
   }
 
@@ -96,19 +104,36 @@ class TrackTable {
   }
   const Associator& associator() const { return *associator_; }
 
-  /// Station `station`'s association of its `scan` with this (predicted) picture: the
-  /// hypotheses of its pairs, decided by the scenario's associator.
+  /// Station `station`'s association of its `scan` with this (predicted) picture: its
+  /// addressed detections routed to the tracks of their addresses, then the hypotheses of the
+  /// other pairs, decided by the scenario's associator.
   ScanAssociation associate(const Station& station, const Scan& scan, AssociationWork& work) const {
     std::visit(
         [&]<typename Sensor>(const Sensor& sensor) {
-          hypothesise(estimates(), sensor, scan, gate(Sensor::kMeasDim),
+          constexpr std::size_t M = Sensor::kMeasDim;
+          const std::size_t taken =
+              std::min(scan.detections.size(), config_.association.max_detections_per_scan);
+          route_addressed(estimates(), book_, sensor, scan, taken, sanity_gates_[M], work.routing);
+          const std::span<const Address> held =
+              book_.empty() ? std::span<const Address>() : std::span<const Address>(addresses_);
+          hypothesise(estimates(), sensor, scan, gates_[M],
                       config_.association.max_detections_per_scan, associator_->reads_densities,
-                      work.hypothesiser, work.hypotheses);
+                      work.routing.mask(held, scan.addresses), work.hypothesiser, work.hypotheses);
         },
         station.sensor);
     ScanAssociation decided;
     associator_->associate(work.hypotheses, station.prior, config_.association, work, decided);
+    merge_routing(work.routing, decided);
     return decided;
+  }
+
+  /// Offers track i the address of a detection assigned to it this round: the round's close
+  /// gives an unaddressed track the first address offered (callers offer in ascending station
+  /// id), if no track holds it already.
+  void offer_address(std::size_t i, Address address) {
+    if (address == kNoAddress) return;
+    if (offered_.size() != tracks_.size()) offered_.assign(tracks_.size(), kNoAddress);
+    if (offered_[i] == kNoAddress) offered_[i] = address;
   }
 
   /// A track known before the run (the one aircraft of a single-target scenario), confirmed.
@@ -116,6 +141,7 @@ class TrackTable {
     TrackType track{id, TrackStatus::kConfirmed, {}, filters_.start(estimate), {}};
     tracks_.push_back(std::move(track));
     estimates_.push_back(estimate);
+    refresh_addresses();
   }
 
   void predict() {
@@ -127,6 +153,7 @@ class TrackTable {
   /// one's has parted from it.
   void restore(std::vector<TrackType> tracks) {
     tracks_ = std::move(tracks);
+    offered_.clear();
     refresh_estimates();
   }
 
@@ -137,6 +164,7 @@ class TrackTable {
     PictureDigest digest(tracks_.size());
     for (std::size_t i = 0; i < tracks_.size(); ++i) {
       digest.add(tracks_[i].id, tracks_[i].status, estimates_[i].mean, estimates_[i].covariance);
+      if (tracks_[i].address != kNoAddress) digest.add_address(tracks_[i].address);
     }
     return digest.value();
   }
@@ -149,6 +177,7 @@ class TrackTable {
   template <typename UnassociatedOf>
   RoundOutcome close_round(std::uint64_t step, const std::vector<char>& hit,
                            UnassociatedOf unassociated_of) {
+    learn_addresses();
     refresh_estimates();
     RoundOutcome outcome;
     std::size_t kept = 0;
@@ -172,6 +201,7 @@ class TrackTable {
     }
     tracks_.erase(tracks_.begin() + static_cast<std::ptrdiff_t>(kept), tracks_.end());
     estimates_.resize(kept);
+    refresh_addresses();
 
     fixes_.clear();
     for (std::size_t s = 0; s < stations_.size(); ++s) {
@@ -181,8 +211,11 @@ class TrackTable {
             constexpr int M = Sensor::kMeasDim;
             const Covariance<M> noise = fixed_noise<M>(station.noise);
             for (const UnassociatedDetection& d : unassociated_of(s)) {
-              if (const auto fix = fix_position(station.id, d.detection, sensor,
-                                                fixed_detection<M>(d.z), noise)) {
+              // A track that took this address this round has the aircraft already.
+              if (d.address != kNoAddress && book_.track_of(d.address)) continue;
+              if (auto fix = fix_position(station.id, d.detection, sensor, fixed_detection<M>(d.z),
+                                          noise)) {
+                fix->address = d.address;
                 fixes_.push_back(*fix);
               }
             }
@@ -193,6 +226,7 @@ class TrackTable {
       start_track(std::move(started));
       ++outcome.started;
     }
+    refresh_addresses();
     return outcome;
   }
 
@@ -202,6 +236,30 @@ class TrackTable {
     for (std::size_t i = 0; i < tracks_.size(); ++i) {
       estimates_[i] = filters_.estimate(tracks_[i].filter);
     }
+    refresh_addresses();
+  }
+  void refresh_addresses() {
+    addresses_.resize(tracks_.size());
+    for (std::size_t i = 0; i < tracks_.size(); ++i) addresses_[i] = tracks_[i].address;
+    book_.rebuild(addresses_);
+  }
+
+  // Gives each unaddressed track the address offered to it this round, in picture order, unless
+  // a track holds it already (one taken earlier in this loop included).
+  void learn_addresses() {
+    if (offered_.size() != tracks_.size()) {
+      offered_.clear();
+      return;
+    }
+    for (std::size_t i = 0; i < tracks_.size(); ++i) {
+      const Address address = offered_[i];
+      if (address == kNoAddress || tracks_[i].address != kNoAddress) continue;
+      if (book_.track_of(address)) continue;
+      tracks_[i].address = address;
+      addresses_[i] = address;
+      book_.rebuild(addresses_);
+    }
+    offered_.clear();
   }
 
   void start_track(NewTrack&& started) {
@@ -213,12 +271,17 @@ class TrackTable {
     initial.covariance.template topLeftCorner<3, 3>() = started.covariance;
     const double v = config_.initiation.velocity_std_mps;
     initial.covariance.template block<3, 3>(3, 3) = v * v * Covariance<3>::Identity();
+    if (started.velocity) {  // an aircraft's own report of its velocity (initiation.hpp)
+      initial.mean.template segment<3>(3) = *started.velocity;
+      initial.covariance.template block<3, 3>(3, 3) = started.velocity_covariance;
+    }
     TrackType track{started.id,
                     TrackStatus::kTentative,
                     {},
                     filters_.start(initial),
                     std::move(started.stations)};
     track.history.record(true);
+    track.address = started.address;
     tracks_.push_back(std::move(track));
     estimates_.push_back(filters_.estimate(tracks_.back().filter));
   }
@@ -226,11 +289,15 @@ class TrackTable {
   Tracks filters_;
   std::vector<Station> stations_;
   TrackerConfig config_;
-  std::array<double, kMaxDetectionDim + 1> gates_{};  // by a sensor's values a detection
+  std::array<double, kMaxDetectionDim + 1> gates_{};         // by a sensor's values a detection
+  std::array<double, kMaxDetectionDim + 1> sanity_gates_{};  // identity's, likewise
   const Associator* associator_;
   std::vector<TrackType> tracks_;
   std::vector<GaussianState<kDim>> estimates_;
   std::vector<PositionFix> fixes_;
+  std::vector<Address> addresses_;  // tracks_[i].address, for the gate search's mask
+  AddressBook book_;                // the tracks that hold an address, by address
+  std::vector<Address> offered_;    // per track: the address offered this round, or empty
 };
 
 }  // namespace skyfuse

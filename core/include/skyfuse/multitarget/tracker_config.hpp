@@ -25,6 +25,14 @@ struct AssociationConfig {
   std::optional<double> clutter_density;
 };
 
+/// Identity (multitarget/identity.hpp).
+struct IdentityConfig {
+  /// Of the chi-square(M) sanity gate an addressed detection must pass against the track of
+  /// its address, or be refused as a possible spoof: far wider than the association's gate,
+  /// so that only a report that cannot be the track's aircraft fails it.
+  double sanity_gate_probability = 1.0 - 1e-6;
+};
+
 struct InitiationConfig {
   double gate_probability = 0.999;  ///< of the chi-square(3) test that joins two detections
   int min_stations = 2;             ///< detections of this many stations start a track
@@ -44,6 +52,7 @@ struct ManagementConfig {
 
 struct TrackerConfig {
   AssociationConfig association;
+  IdentityConfig identity;
   InitiationConfig initiation;
   ManagementConfig management;
 };

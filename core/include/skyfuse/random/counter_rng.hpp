@@ -21,6 +21,7 @@ enum class NoiseStream : std::uint64_t {
   kClutter = 8,       ///< a scan's false alarms: how many, and where
   kScanOrder = 9,     ///< the order a scan lists its detections in
   kTraffic = 10,      ///< the traffic generator's aircraft (station 0, step = aircraft index)
+  kEquipage = 11,     ///< whether an aircraft is cooperative (station 0, step = target index)
 };
 
 struct NoiseKey {

@@ -54,6 +54,9 @@ struct TrafficConfig {
   /// Every station's, unless the station gives its own (the loader resolves each station's
   /// into StationConfig::detection).
   DetectionConfig detection;
+  /// The share of aircraft that carry a transponder or a broadcast (an address), each drawn
+  /// from the scenario's seed; a recorded aircraft's address is its ICAO 24-bit address.
+  double equipped_share = 1.0;
   GospaParameters gospa{.cutoff_m = 50.0, .order = 2.0};
 };
 

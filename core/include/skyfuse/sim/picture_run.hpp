@@ -39,6 +39,8 @@ struct PictureRunResult {
   std::size_t detections = 0;
   std::size_t false_alarms = 0;
   std::size_t dropped = 0;  ///< detections beyond the assignment's bound
+  /// Addressed detections refused as possible spoofs (multitarget/identity.hpp).
+  std::size_t refused_addresses = 0;
   /// NEES of the confirmed tracks associated with an aircraft, averaged; dof per sample.
   double anees = 0.0;
   int nees_dof = 0;

@@ -1,7 +1,8 @@
 #pragma once
 /// \file
 /// The aircraft a picture is scored against at a step: those present, each marked whether at
-/// least one of the run's stations could see it. Shared by the in-process run and the harness
+/// least one of the run's stations could see it (a cooperative station only one with an
+/// address) and whether it has an address. Shared by the in-process run and the harness
 /// of a run over DDS, so that both score the same way.
 
 #include <vector>

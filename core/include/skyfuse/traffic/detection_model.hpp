@@ -42,6 +42,9 @@ struct DetectionConfig {
   /// A false alarm's velocity, for a sensor that measures one (position_velocity): each
   /// component uniform in [-this, this], m/s.
   double clutter_max_speed_mps = 100.0;
+  /// A cooperative sensor (a Mode S radar, an ADS-B or Remote ID receiver): it hears only
+  /// aircraft with an address, and reports each one's address with its detection.
+  bool reports_address = false;
 
   /// The largest clutter mean a scenario may ask for: beyond it a scan's work is no longer
   /// bounded by the aircraft.

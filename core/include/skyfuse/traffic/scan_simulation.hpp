@@ -30,7 +30,9 @@ struct ScanOrigins {
 /// The scan of the station `station_id`, whose sensor `sensor` (of the true kinematics, a
 /// 9-entry state) stands at `site`, at `step`: each target present and in the field of view
 /// detected with probability P_D (its value h(x) + nu, nu ~ N(0, R)), then the false alarms,
-/// then all of them shuffled. A target's noise is drawn from its own stream, the first
+/// then all of them shuffled. A cooperative sensor (`detection.reports_address`) hears only the
+/// targets with an address and lists each detection's address (a false alarm's is none). A
+/// target's noise is drawn from its own stream, the first
 /// target's from the one a one-target run uses, so that with P_D = 1 and no clutter its values
 /// are today's.
 template <typename Sensor>
@@ -47,8 +49,10 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
   std::uint32_t missed = 0;
 
   CounterRng detect({seed, run, station, at, NoiseStream::kDetection});
+  const bool cooperative = detection.reports_address;
   for (std::size_t t = 0; t < truths.size(); ++t) {
     if (!truths[t].present_at(step)) continue;
+    if (cooperative && truths[t].address == kNoAddress) continue;
     const Vector<kKinematicsDim>& x = truths[t].at(step);
     if (!detection.field_of_view.contains(site, x.head<3>())) continue;
     // Drawn for every target in view, so one target's draw never shifts another's.
@@ -61,6 +65,7 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
     Vector<M> z = sensor.predict(x);
     for (int i = 0; i < M; ++i) z(i) += std::sqrt(noise(i, i)) * rng.normal();
     scan.detections.emplace_back(Sensor::to_reported(z));
+    if (cooperative) scan.addresses.push_back(truths[t].address);
     origin.push_back(static_cast<int>(t));
   }
 
@@ -76,6 +81,7 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
         }
       }
       scan.detections.emplace_back(Sensor::to_reported(sensor.predict(x)));
+      if (cooperative) scan.addresses.push_back(kNoAddress);
       origin.push_back(-1);
     }
   }
@@ -85,6 +91,7 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
   for (std::size_t i = scan.detections.size(); i > 1; --i) {
     const auto j = static_cast<std::size_t>(order.next_u64() % i);
     std::swap(scan.detections[i - 1], scan.detections[j]);
+    if (cooperative) std::swap(scan.addresses[i - 1], scan.addresses[j]);
     std::swap(origin[i - 1], origin[j]);
   }
   if (origins != nullptr) *origins = {std::move(origin), missed};

@@ -48,7 +48,7 @@ inline ScanAssociation decide(const char* name, const std::vector<GaussianState<
   config.max_detections_per_scan = max_detections;
   AssociationWork work;
   hypothesise(std::span<const GaussianState<6>>(tracks), PvSensor(), scan, kGate, max_detections,
-              true, work.hypothesiser, work.hypotheses);
+              true, IdentityMask{}, work.hypothesiser, work.hypotheses);
   ScanAssociation out;
   find_associator(name)->associate(work.hypotheses, prior, config, work, out);
   return out;

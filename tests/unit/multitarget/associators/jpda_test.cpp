@@ -150,7 +150,7 @@ TEST(JpdaAssociator, AClusterWithTooManyEventsIsDecidedByGnnAndCounted) {
   const auto tracks = three_tracks();
   const Scan scan = four_detections();
   hypothesise(std::span<const GaussianState<6>>(tracks), testing::PvSensor(), scan, kGate, 4096,
-              true, work.hypothesiser, work.hypotheses);
+              true, IdentityMask{}, work.hypothesiser, work.hypotheses);
   ScanAssociation jpda;
   associate_jpda(work.hypotheses, DetectionPrior{}, config, work, jpda);
   const ScanAssociation gnn = decide("gnn", tracks, scan);

@@ -78,11 +78,12 @@ class PictureRoundScans {
         reassigned_.station_id = id;
         reassigned_.noise = station->noise;
         reassigned_.detections = scan->detections;
+        reassigned_.addresses = scan->addresses;
         out.push_back(picture.report(*station, reassigned_, work_));
         continue;
       }
-      auto report = picture.report_of(*station, scan->detections, scan->associations,
-                                      scan->unassociated, scan->dropped);
+      auto report = picture.report_of(*station, scan->detections, scan->addresses,
+                                      scan->associations, scan->unassociated, scan->dropped);
       if (report) {
         out.push_back(std::move(*report));
       } else {

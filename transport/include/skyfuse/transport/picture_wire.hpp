@@ -63,6 +63,8 @@ wire::PictureScan to_wire(const PictureSensor<N>& sensor, const Scan& scan,
   for (const auto& d : report.unassociated) unassociated.push_back(d.detection);
   sample.dropped(static_cast<std::uint32_t>(report.dropped));
   sample.picture_digest(picture_digest);
+  sample.addresses(scan.addresses);
+  sample.refused_addresses(static_cast<std::uint32_t>(report.refused_addresses));
   return sample;
 }
 
@@ -75,10 +77,13 @@ struct ReceivedScan {
   std::vector<ReportedPair> associations;   ///< ascending (track, detection index)
   std::vector<std::uint32_t> unassociated;  ///< ascending detection index
   std::uint32_t dropped = 0;
+  std::vector<Address> addresses;  ///< per detection, in scan order; empty: none has one
+  std::uint32_t refused_addresses = 0;
   /// The same scan, bit for bit.
   bool operator==(const ReceivedScan& other) const {
     return station_id == other.station_id && step == other.step &&
            picture_digest == other.picture_digest && dropped == other.dropped &&
+           addresses == other.addresses && refused_addresses == other.refused_addresses &&
            associations == other.associations && unassociated == other.unassociated &&
            std::equal(detections.begin(), detections.end(), other.detections.begin(),
                       other.detections.end(), same_detection);
@@ -137,10 +142,11 @@ std::optional<DropKind> detections_from_wire(const wire::PictureScan& sample,
 /// takes, multitarget/picture_sensor.hpp) with at most `max_detections` detections, or why it is
 /// refused:
 ///  - kOutOfRange: another sensor kind or measurement dimension, values not a whole number of
-///    detections, more detections than the bound, an index beyond the scan, associations not in
-///    strictly ascending (track id, detection) (a pair twice), a weight not in (0, 1], a
-///    detection whose weights sum past 1, unassociated indices not strictly ascending, a
-///    detection both associated and unassociated, or a detection its sensor cannot report;
+///    detections, more detections than the bound, addresses neither none nor one per detection, an
+///    index beyond the scan, associations not in strictly ascending (track id, detection) (a pair
+///    twice), a weight not in (0, 1], a detection whose weights sum past 1, unassociated indices
+///    not strictly ascending, a detection both associated and unassociated, or a detection its
+///    sensor cannot report;
 ///  - kNonFinite: a value or a weight that is not finite.
 /// Whether each track id is one of the receiver's picture is the receiver's to check.
 inline std::pair<std::optional<ReceivedScan>, std::optional<DropKind>> picture_scan_from_wire(
@@ -162,6 +168,11 @@ inline std::pair<std::optional<ReceivedScan>, std::optional<DropKind>> picture_s
   received.step = sample.step();
   received.picture_digest = sample.picture_digest();
   received.dropped = sample.dropped();
+  if (!sample.addresses().empty() && sample.addresses().size() != count) {
+    return refuse(DropKind::kOutOfRange);
+  }
+  received.addresses = sample.addresses();
+  received.refused_addresses = sample.refused_addresses();
   // Each detection's weights over the tracks it went to sum to at most 1 (a probability; 1 for
   // GNN's one track), and an unassociated detection went to none.
   constexpr double kRoundingOfASum = 1e-9;
@@ -220,6 +231,7 @@ wire::PictureRound picture_round_to_wire(const Table& table, std::uint64_t run_i
     track.confirmed(tracks[t].status == TrackStatus::kConfirmed);
     track.x(pack_vector<N>(estimate.mean));
     track.covariance(pack_upper<N>(estimate.covariance));
+    track.address(tracks[t].address);
     out.push_back(std::move(track));
   }
   return sample;
@@ -306,6 +318,7 @@ wire::PictureState picture_state_to_wire(const Table& table, std::uint64_t run_i
       t.covariance(pack_upper<N>(track.filter.covariance));
     }
     t.updated_by(track.updated_by);
+    t.address(track.address);
     out.push_back(std::move(t));
   }
   return sample;
@@ -314,7 +327,7 @@ wire::PictureState picture_state_to_wire(const Table& table, std::uint64_t run_i
 /// The tracks of a PictureState for a table of `filters`' tracks (a single model's Gaussian of
 /// Tracks::kDim entries, or an IMM's modes), or nothing if anything in it is wrong: a dimension,
 /// a number of modes, a value that is not finite, mode probabilities that are not, track ids
-/// not strictly ascending, a history no track has.
+/// not strictly ascending, a history no track has, an address held by two tracks.
 template <typename Tracks>
 std::optional<std::vector<Track<typename Tracks::State>>> picture_state_from_wire(
     const wire::PictureState& sample, const Tracks& filters) {
@@ -345,8 +358,15 @@ std::optional<std::vector<Track<typename Tracks::State>>> picture_state_from_wir
                        *history,
                        std::move(*filter),
                        {t.updated_by().begin(), t.updated_by().end()}};
+    track.address = t.address();
     tracks.push_back(std::move(track));
   }
+  std::vector<Address> held;
+  for (const auto& track : tracks) {
+    if (track.address != kNoAddress) held.push_back(track.address);
+  }
+  std::sort(held.begin(), held.end());
+  if (std::adjacent_find(held.begin(), held.end()) != held.end()) return std::nullopt;
   return tracks;
 }
 
