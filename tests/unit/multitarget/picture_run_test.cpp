@@ -45,6 +45,27 @@ TEST(PictureRun, UamCityKeepsOnePictureAndTracksEveryAircraft) {
   EXPECT_LT(run.score.mean_time_to_confirm_s, 5.0);
 }
 
+// Every sensor in one picture (uam-mixed.yaml): six primary radars, then two Mode S radars and
+// two Remote ID receivers that report the 60 % of vehicles with an address. The mix keeps the
+// guarantees, tracks the aircraft better than the radars alone (its first six stations), and
+// holds one track per aircraft with an address.
+TEST(PictureRun, UamMixedTracksBetterThanItsRadarsAloneWithOneTrackPerAddress) {
+  Scenario scenario = load_scenario_file(kScenarios + "uam-mixed.yaml");
+  scenario.steps = 100;
+  const TrafficTruth truth = build_traffic_truth(scenario);
+  const PictureRunResult mixed = run_picture(scenario, truth.targets, 10, 0);
+  expect_guarantees(mixed);
+  const PictureRunResult radars = run_picture(scenario, truth.targets, 6, 0);
+  expect_guarantees(radars);
+  EXPECT_LT(mixed.score.gospa_mean, 0.9 * radars.score.gospa_mean);
+  EXPECT_EQ(mixed.score.duplicate_track_steps_addressed, 0U);
+  EXPECT_EQ(mixed.score.aircraft_confirmed, 100U);
+  // One confirmed track per aircraft at the end, and (but for the sanity gate's 1e-6) no
+  // honest report refused.
+  EXPECT_EQ(mixed.confirmed_at_end, 100U);
+  EXPECT_LE(mixed.refused_addresses, 1U);
+}
+
 TEST(PictureRun, FewerStationsKeepTheGuaranteesToo) {
   Scenario scenario = load_scenario_file(kScenarios + "uam-city.yaml");
   scenario.steps = 60;
