@@ -102,6 +102,28 @@ const PictureStep& PictureScore::add_step(int step, std::span<const TruthPoint> 
   return steps_.back();
 }
 
+namespace {
+
+// The mean over `steps` of one of each step's GOSPAs (`which`: over every aircraft, or in view).
+GospaMeans mean_of(std::span<const PictureStep> steps, Gospa PictureStep::*which) {
+  GospaMeans m;
+  for (const PictureStep& row : steps) {
+    const Gospa& g = row.*which;
+    m.distance += g.distance;
+    m.localisation += g.localisation;
+    m.missed += g.missed;
+    m.false_tracks += g.false_tracks;
+  }
+  const auto n = static_cast<double>(steps.size());
+  m.distance /= n;
+  m.localisation /= n;
+  m.missed /= n;
+  m.false_tracks /= n;
+  return m;
+}
+
+}  // namespace
+
 PictureSummary PictureScore::summary() const {
   PictureSummary s;
   if (!steps_.empty()) {
@@ -110,24 +132,13 @@ PictureSummary PictureScore::summary() const {
     for (const PictureStep& row : steps_) {
       localisation += row.gospa.localisation;
       pairs += row.gospa.assigned;
-      s.gospa_mean += row.gospa.distance;
-      s.localisation_mean += row.gospa.localisation;
-      s.missed_mean += row.gospa.missed;
-      s.false_mean += row.gospa.false_tracks;
-      s.in_view.distance += row.gospa_in_view.distance;
-      s.in_view.localisation += row.gospa_in_view.localisation;
-      s.in_view.missed += row.gospa_in_view.missed;
-      s.in_view.false_tracks += row.gospa_in_view.false_tracks;
     }
-    const auto n = static_cast<double>(steps_.size());
-    s.gospa_mean /= n;
-    s.localisation_mean /= n;
-    s.missed_mean /= n;
-    s.false_mean /= n;
-    s.in_view.distance /= n;
-    s.in_view.localisation /= n;
-    s.in_view.missed /= n;
-    s.in_view.false_tracks /= n;
+    const GospaMeans all = mean_of(steps_, &PictureStep::gospa);
+    s.gospa_mean = all.distance;
+    s.localisation_mean = all.localisation;
+    s.missed_mean = all.missed;
+    s.false_mean = all.false_tracks;
+    s.in_view = mean_of(steps_, &PictureStep::gospa_in_view);
     if (pairs > 0) {
       s.localisation_per_pair_m =
           std::pow(localisation / static_cast<double>(pairs), 1.0 / gospa_.order);

@@ -8,9 +8,10 @@
 ///   h(x) = [ |d|, atan2(d_y, d_x), p_z ]
 ///   dh/dp = [ d^T / |d| ;  [-d_y, d_x, 0] / rho^2 ;  [0, 0, 1] ]
 ///
-/// and dh/dx is zero outside the position block. The altitude is the scenario frame's height
-/// (m), reported in whole steps of 25 ft (kAltitudeStepM): its noise should hold the step's
-/// uniform error (kAltitudeStepM / sqrt(12) = 2.2 m) as well as the altimeter's.
+/// and dh/dx is zero outside the position block: the range and azimuth rows are the 3-D radar's
+/// (range_azimuth_elevation.hpp), which this sensor computes them with. The altitude is the
+/// scenario frame's height (m), reported in whole steps of 25 ft (kAltitudeStepM): its noise should
+/// hold the step's uniform error (kAltitudeStepM / sqrt(12) = 2.2 m) as well as the altimeter's.
 ///
 /// What it can report: range in (0, kMaxRangeM], azimuth in [-pi, pi], altitude within
 /// kMaxRangeM of the frame's origin; anything else on the wire is refused as out of range.
@@ -24,6 +25,7 @@
 
 #include "skyfuse/core/angles.hpp"
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 #include "skyfuse/validation/physical_bounds.hpp"
 
@@ -45,23 +47,23 @@ class RangeAzimuthAltitude {
   using State = Vector<StateDim>;
   using Measurement = Vector<3>;
 
-  static constexpr int kRange = 0;
-  static constexpr int kAzimuth = 1;
+  static constexpr int kRange = RangeAzimuthElevation<StateDim>::kRange;
+  static constexpr int kAzimuth = RangeAzimuthElevation<StateDim>::kAzimuth;
   static constexpr int kAltitude = 2;
   /// Mode S reports its altitude in steps of 25 ft.
   static constexpr double kAltitudeStepM = 25.0 * 0.3048;
 
   RangeAzimuthAltitude() = default;
-  explicit RangeAzimuthAltitude(const Vector3& station_position)
-      : station_position_(station_position) {}
+  explicit RangeAzimuthAltitude(const Vector3& station_position) : radar_(station_position) {}
 
   /// Where the station stands (world frame, m).
-  const Vector3& site() const { return station_position_; }
+  const Vector3& site() const { return radar_.site(); }
 
   /// Noise-free measurement of a target at position p (world frame, m), its altitude unrounded.
   Measurement measure_position(const Vector3& p) const {
-    const Vector3 d = p - station_position_;
-    return Measurement(d.norm(), std::atan2(d.y(), d.x()), p.z());
+    Measurement z = radar_.measure_position(p);
+    z(kAltitude) = p.z();
+    return z;
   }
 
   Measurement predict(const State& x) const { return measure_position(x.template head<3>()); }
@@ -70,33 +72,25 @@ class RangeAzimuthAltitude {
   /// range and azimuth the rest. A range shorter than the height difference (noise near the
   /// zenith) puts it straight above the station.
   Vector3 position_of(const Measurement& z) const {
-    const double dz = z(kAltitude) - station_position_.z();
+    const Vector3& site = radar_.site();
+    const double dz = z(kAltitude) - site.z();
     const double horizontal = std::sqrt(std::max(z(kRange) * z(kRange) - dz * dz, 0.0));
-    return Vector3(station_position_.x() + horizontal * std::cos(z(kAzimuth)),
-                   station_position_.y() + horizontal * std::sin(z(kAzimuth)), z(kAltitude));
+    return Vector3(site.x() + horizontal * std::cos(z(kAzimuth)),
+                   site.y() + horizontal * std::sin(z(kAzimuth)), z(kAltitude));
   }
 
-  /// Analytic dh/dx. Directly above the station (rho = 0) the azimuth is undefined: its row is
-  /// left zero instead of dividing by zero.
+  /// Analytic dh/dx: the 3-D radar's range and azimuth rows (zero azimuth row directly above
+  /// the station), and the altitude's, which reads p_z.
   Jacobian<3, StateDim> jacobian(const State& x) const {
-    const Vector3 d = x.template head<3>() - station_position_;
-    const double rho_sq = d.x() * d.x() + d.y() * d.y();
-    const double range = d.norm();
-    Jacobian<3, StateDim> h = Jacobian<3, StateDim>::Zero();
-    if (range > 0.0) h.template block<1, 3>(kRange, 0) = d.transpose() / range;
-    if (rho_sq > 0.0) {
-      h(kAzimuth, 0) = -d.y() / rho_sq;
-      h(kAzimuth, 1) = d.x() / rho_sq;
-    }
+    Jacobian<3, StateDim> h = radar_.jacobian(x);
+    h.row(kAltitude).setZero();
     h(kAltitude, 2) = 1.0;
     return h;
   }
 
-  /// z - z_pred with the azimuth taken the short way round the +-pi cut.
+  /// z - z_pred with the azimuth taken the short way round the +-pi cut, as the 3-D radar's.
   static Measurement residual(const Measurement& z, const Measurement& z_pred) {
-    Measurement nu = z - z_pred;
-    nu(kAzimuth) = wrap_angle(nu(kAzimuth));
-    return nu;
+    return Radar::residual(z, z_pred);
   }
 
   /// A noisy value as the radar reports it: azimuth wrapped into (-pi, pi], altitude rounded
@@ -119,7 +113,8 @@ class RangeAzimuthAltitude {
   }
 
  private:
-  Vector3 station_position_ = Vector3::Zero();
+  using Radar = RangeAzimuthElevation<StateDim>;
+  Radar radar_;
 };
 
 }  // namespace skyfuse

@@ -33,9 +33,10 @@ struct IdentityMask {
   bool skips_detection(std::size_t j) const {
     return !detection_decided.empty() && detection_decided[j] != 0;
   }
-  bool skips_pair(std::size_t t, std::size_t j) const {
-    return address_of(track_addresses, t) != kNoAddress &&
-           address_of(detection_addresses, j) != kNoAddress;
+  /// A pair is skipped when both of these hold: track t holds an address, detection j has one.
+  bool holds_address(std::size_t t) const { return address_of(track_addresses, t) != kNoAddress; }
+  bool is_addressed(std::size_t j) const {
+    return address_of(detection_addresses, j) != kNoAddress;
   }
 };
 

@@ -79,10 +79,10 @@ class CentralPicture : public TrackTable<Tracks> {
       if (observations_[t].empty()) continue;
       if (!this->filters().update(track.filter, std::span<const Observation>(observations_[t]),
                                   weights_[t])) {
+        offered_[t] = kNoAddress;  // a miss offers nothing
         continue;
       }
       hit_[t] = 1;
-      this->offer_address(t, offered_[t]);
       for (const auto& observation : observations_[t]) {
         const int id = std::visit([](const auto& o) { return o.station_id; }, observation);
         if (track.updated_by.empty() || track.updated_by.back() != id) {
@@ -90,7 +90,7 @@ class CentralPicture : public TrackTable<Tracks> {
         }
       }
     }
-    return this->close_round(step, hit_, [&](std::size_t s) {
+    return this->close_round(step, hit_, offered_, [&](std::size_t s) {
       return std::span<const UnassociatedDetection>(unassociated_[s]);
     });
   }

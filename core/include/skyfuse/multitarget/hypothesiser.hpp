@@ -103,6 +103,7 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
   const double log_2pi_m = M * std::log(2.0 * std::numbers::pi);
   for (std::size_t t = 0; t < priors.size(); ++t) {
     if (mask.skips_track(t)) continue;
+    const bool track_holds_address = mask.holds_address(t);
     const GaussianState<N>& prior = priors[t];
     const Vector3 p = prior.mean.template head<3>();
     const double track_std = std::sqrt(prior.covariance.template topLeftCorner<3, 3>().trace());
@@ -119,7 +120,7 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
     bool normalised = false;
     for (auto c = from; c != work.candidates.end() && c->east <= p.x() + radius; ++c) {
       if ((c->position - p).norm() > reach * (track_std + c->std_m)) continue;
-      if (mask.skips_pair(t, c->index)) continue;
+      if (track_holds_address && mask.is_addressed(c->index)) continue;
       const Vector<M> nu =
           sensor.residual(fixed_detection<M>(scan.detections[c->index]), predicted);
       const double nis = nu.dot(s_factor.solve(nu));

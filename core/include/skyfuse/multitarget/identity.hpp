@@ -42,6 +42,11 @@ class AddressBook {
     }
     std::sort(entries_.begin(), entries_.end());
   }
+  /// Track `track` holds `address` from now on (no track holds it yet).
+  void insert(Address address, int track) {
+    const std::pair entry{address, track};
+    entries_.insert(std::lower_bound(entries_.begin(), entries_.end(), entry), entry);
+  }
   /// The track holding `address`, if any.
   std::optional<int> track_of(Address address) const {
     const auto at = std::lower_bound(entries_.begin(), entries_.end(), std::pair{address, 0});

@@ -133,11 +133,11 @@ class PeerPicture : public TrackTable<Tracks> {
     cursor_.assign(reports.size(), 0);
     report_weights_.clear();
     for (const Report& report : reports) report_weights_.push_back(weight_of(report.station_id));
+    offered_.assign(count, kNoAddress);
     for (std::size_t t = 0; t < count; ++t) {
       auto& track = this->track(t);
       contributions_.clear();
       weights_.clear();
-      offered_.clear();
       track.updated_by.clear();
       for (std::size_t r = 0; r < reports.size(); ++r) {
         const auto& updates = reports[r].updates;
@@ -146,19 +146,19 @@ class PeerPicture : public TrackTable<Tracks> {
         if (at < updates.size() && updates[at].track == track.id) {
           contributions_.push_back(&updates[at].contribution);
           weights_.push_back(report_weights_[r]);
-          offered_.push_back(updates[at].address);
+          if (offered_[t] == kNoAddress) offered_[t] = updates[at].address;
           track.updated_by.push_back(reports[r].station_id);
         }
       }
       if (contributions_.empty()) continue;
       if (Tracks::fuse(track.filter, contributions_, weights_) == NumericalStatus::kOk) {
         hit_[t] = 1;
-        for (const Address address : offered_) this->offer_address(t, address);
       } else {
         track.updated_by.clear();
+        offered_[t] = kNoAddress;  // a miss offers nothing
       }
     }
-    return this->close_round(step, hit_, [&](std::size_t s) {
+    return this->close_round(step, hit_, offered_, [&](std::size_t s) {
       const int id = this->stations()[s].id;
       for (const Report& report : reports) {
         if (report.station_id == id) return std::span(report.unassociated);
@@ -239,7 +239,7 @@ class PeerPicture : public TrackTable<Tracks> {
   std::vector<double> report_weights_;  // reports[r]'s station's weight
   std::vector<const Contribution*> contributions_;
   std::vector<double> weights_;
-  std::vector<Address> offered_;  // the addresses the track's updates offer, by station
+  std::vector<Address> offered_;  // per track: the address its hit offers (close_round)
 };
 
 }  // namespace skyfuse

@@ -127,15 +127,6 @@ class TrackTable {
     return decided;
   }
 
-  /// Offers track i the address of a detection assigned to it this round: the round's close
-  /// gives an unaddressed track the first address offered (callers offer in ascending station
-  /// id), if no track holds it already.
-  void offer_address(std::size_t i, Address address) {
-    if (address == kNoAddress) return;
-    if (offered_.size() != tracks_.size()) offered_.assign(tracks_.size(), kNoAddress);
-    if (offered_[i] == kNoAddress) offered_[i] = address;
-  }
-
   /// A track known before the run (the one aircraft of a single-target scenario), confirmed.
   void add_known_track(TrackId id, const GaussianState<kDim>& estimate) {
     TrackType track{id, TrackStatus::kConfirmed, {}, filters_.start(estimate), {}};
@@ -153,7 +144,6 @@ class TrackTable {
   /// one's has parted from it.
   void restore(std::vector<TrackType> tracks) {
     tracks_ = std::move(tracks);
-    offered_.clear();
     refresh_estimates();
   }
 
@@ -172,12 +162,14 @@ class TrackTable {
   /// Track i, for the caller's update between predict() and close_round().
   TrackType& track(std::size_t i) { return tracks_[i]; }
 
-  /// Manages every track (hit[i]: whether track i was updated this round), then starts tracks
-  /// from `unassociated` (per station, ascending station id as stations(); each ascending).
+  /// Gives each unaddressed track the address its hit offered (offered[i], kNoAddress for
+  /// none: the first station's of weight above 1/2, identity.hpp), manages every track (hit[i]:
+  /// whether track i was updated this round), then starts tracks from `unassociated` (per
+  /// station, ascending station id as stations(); each ascending).
   template <typename UnassociatedOf>
   RoundOutcome close_round(std::uint64_t step, const std::vector<char>& hit,
-                           UnassociatedOf unassociated_of) {
-    learn_addresses();
+                           std::span<const Address> offered, UnassociatedOf unassociated_of) {
+    learn_addresses(offered);
     refresh_estimates();
     RoundOutcome outcome;
     std::size_t kept = 0;
@@ -246,20 +238,15 @@ class TrackTable {
 
   // Gives each unaddressed track the address offered to it this round, in picture order, unless
   // a track holds it already (one taken earlier in this loop included).
-  void learn_addresses() {
-    if (offered_.size() != tracks_.size()) {
-      offered_.clear();
-      return;
-    }
-    for (std::size_t i = 0; i < tracks_.size(); ++i) {
-      const Address address = offered_[i];
+  void learn_addresses(std::span<const Address> offered) {
+    for (std::size_t i = 0; i < offered.size(); ++i) {
+      const Address address = offered[i];
       if (address == kNoAddress || tracks_[i].address != kNoAddress) continue;
       if (book_.track_of(address)) continue;
       tracks_[i].address = address;
       addresses_[i] = address;
-      book_.rebuild(addresses_);
+      book_.insert(address, static_cast<int>(i));
     }
-    offered_.clear();
   }
 
   void start_track(NewTrack&& started) {
@@ -297,7 +284,6 @@ class TrackTable {
   std::vector<PositionFix> fixes_;
   std::vector<Address> addresses_;  // tracks_[i].address, for the gate search's mask
   AddressBook book_;                // the tracks that hold an address, by address
-  std::vector<Address> offered_;    // per track: the address offered this round, or empty
 };
 
 }  // namespace skyfuse
