@@ -39,11 +39,11 @@ class TypedCenterRounds final : public CenterRounds {
 
   std::optional<DropKind> receive(const wire::Measurement& sample,
                                   const transport::WriterId& writer) override {
-    const auto received = transport::observation_for<Sensor>(sample);
-    if (!received) return DropKind::kOutOfRange;  // another sensor kind, or other lengths
-    const Observation& observation = *received;
     // An unknown id is left to admit(), which says so.
     const StationConfig* station = plan_.participant(sample.station_id());
+    const auto received = transport::observation_for<Sensor>(sample, station);
+    if (!received) return DropKind::kOutOfRange;  // another sensor kind, or other lengths
+    const Observation& observation = *received;
     if (const auto why = with_observation(
             observation, [&](const auto& o) { return check_station_measurement(o, station); })) {
       return why;

@@ -84,10 +84,10 @@ std::optional<DropKind> measurement_content_refusal(const wire::Measurement& m,
                                                     const std::map<int, StationConfig>& stations,
                                                     Eigen::VectorXd& z) {
   if (m.run_id() != run_id) return DropKind::kWrongRun;
-  const auto observation = transport::observation_for<AnyWireSensor>(m);
-  if (!observation) return DropKind::kOutOfRange;    // no registered sensor, or other lengths
   const auto found = stations.find(m.station_id());  // an unknown id: admit() says so
   const StationConfig* station = found == stations.end() ? nullptr : &found->second;
+  const auto observation = transport::observation_for<AnyWireSensor>(m, station);
+  if (!observation) return DropKind::kOutOfRange;  // no registered sensor, or other lengths
   return with_observation(*observation, [&](const auto& o) {
     z = o.z;
     return check_station_measurement(o, station);

@@ -357,7 +357,18 @@ INSTANTIATE_TEST_SUITE_P(
                       "{id: 2, sensor: {kind: position_velocity, noise_std: [10.0, 10.0, 10.0, "
                       "1.0, 1.0, 1.0]}, detection: {probability: 0.95, max_range_m: 20000.0, "
                       "clutter_per_scan: 0.0, reports_address: true}}",
-                      229}),
+                      229},
+        // A multilateration group among the radars: each reply's five range differences
+        // travel as the station's detection, fix a position for initiation and update the
+        // track of its address (docs/multitarget.md, "Multilateration").
+        FilterVariant{"EkfWithMultilateration",
+                      "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar}",
+                      "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: {kind: multilateration, "
+                      "noise_std: [10.0, 10.0, 10.0, 10.0, 10.0], receivers_m: [[6000.0, 0.0, "
+                      "60.0], [3000.0, 5500.0, 25.0], [-3000.0, 5500.0, 110.0], [-6000.0, 0.0, "
+                      "40.0], [0.0, 1000.0, 80.0]]}, detection: {probability: 0.95, max_range_m: "
+                      "20000.0, clutter_per_scan: 0.0, reports_address: true}}",
+                      230}),
     [](const ::testing::TestParamInfo<FilterVariant>& param) { return param.param.name; });
 
 // The tree exchange: five stations in clusters of two ({1, 2}, {3, 4}, {5}), each aggregator

@@ -55,11 +55,15 @@ using ImmPictureSensor = PictureSensor<KinematicState::kDim>;
 // a new picture sensor its line below.
 static_assert(std::tuple_size_v<detail::ImmSets> == 3,
               "every IMM mode set of the registry has its imm_picture_steps_<n>.cpp");
-static_assert(std::variant_size_v<detail::ImmPictureSensor> == 2,
+static_assert(std::variant_size_v<detail::ImmPictureSensor> == 4,
               "every picture sensor has its line below");
 template struct ImmPictureSteps<std::tuple_element_t<SKYFUSE_IMM_SET, detail::ImmSets>,
                                 std::variant_alternative_t<0, detail::ImmPictureSensor>>;
 template struct ImmPictureSteps<std::tuple_element_t<SKYFUSE_IMM_SET, detail::ImmSets>,
                                 std::variant_alternative_t<1, detail::ImmPictureSensor>>;
+template struct ImmPictureSteps<std::tuple_element_t<SKYFUSE_IMM_SET, detail::ImmSets>,
+                                std::variant_alternative_t<2, detail::ImmPictureSensor>>;
+template struct ImmPictureSteps<std::tuple_element_t<SKYFUSE_IMM_SET, detail::ImmSets>,
+                                std::variant_alternative_t<3, detail::ImmPictureSensor>>;
 
 }  // namespace skyfuse

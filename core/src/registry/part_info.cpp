@@ -25,13 +25,24 @@ std::vector<MotionModelInfo> describe(ModelList<Models...> /*list*/) {
 // Sensor<N> for an N large enough for any sensor: the constants do not depend on N.
 constexpr int kAnyStateDim = 64;
 
+template <typename Sensor>
+constexpr int other_receivers_of() {
+  if constexpr (requires { Sensor::kReceivers; }) {
+    return Sensor::kReceivers - 1;
+  } else {
+    return 0;
+  }
+}
+
 template <template <int> class... Sensors>
 std::vector<SensorInfo> describe(SensorList<Sensors...> /*list*/) {
   return {SensorInfo{Sensors<kAnyStateDim>::kKind, Sensors<kAnyStateDim>::kMeasDim,
                      Sensors<kAnyStateDim>::kJacobianCols, Sensors<kAnyStateDim>::kNeedsSite,
                      std::vector<std::string_view>(Sensors<kAnyStateDim>::kComponents.begin(),
                                                    Sensors<kAnyStateDim>::kComponents.end()),
-                     FixesPosition<Sensors<kAnyStateDim>>}...};
+                     FixesPosition<Sensors<kAnyStateDim>>,
+                     other_receivers_of<Sensors<kAnyStateDim>>(),
+                     sensor_position_dim<Sensors<kAnyStateDim>>()}...};
 }
 
 // Whether a filter part's station turns one detection into one increment by an increment rule.

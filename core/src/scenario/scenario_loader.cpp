@@ -139,8 +139,20 @@ Eigen::VectorXd read_noise_std(const YamlField& noise, const SensorInfo& sensor)
   return out;
 }
 
+// The sites of a sensor's receivers beside the station's own, as many as it has.
+std::vector<Vector3> read_receivers(const YamlField& field, const SensorInfo& sensor) {
+  const auto items = field.sequence();
+  if (items.size() != static_cast<std::size_t>(sensor.other_receivers)) {
+    field.fail(fmt::format("a {} sensor has {} receivers beside the station's position; got {}",
+                           sensor.kind, sensor.other_receivers, items.size()));
+  }
+  std::vector<Vector3> sites;
+  for (const YamlField& item : items) sites.push_back(read_vector3(item));
+  return sites;
+}
+
 SensorConfig read_sensor(const YamlField& field) {
-  field.allow_only({"kind", "noise_std"});
+  field.allow_only({"kind", "noise_std", "receivers_m"});
   SensorConfig sensor;
   const YamlField kind = field.required("kind");
   sensor.kind = kind.string();
@@ -150,6 +162,13 @@ SensorConfig read_sensor(const YamlField& field) {
         fmt::format("unknown sensor kind '{}' (registered: {})", sensor.kind, sensor_kinds()));
   }
   sensor.noise_std = read_noise_std(field.required("noise_std"), *info);
+  const auto receivers = field.optional("receivers_m");
+  if (info->other_receivers > 0) {
+    sensor.receivers_m = read_receivers(field.required("receivers_m"), *info);
+  } else if (receivers) {
+    receivers->fail(
+        fmt::format("a {} sensor has one receiver, at the station; remove it", sensor.kind));
+  }
   return sensor;
 }
 
@@ -425,10 +444,14 @@ void check_many_targets(const Scenario& s, std::size_t i, const YamlField& item,
                     filter.kind, fmt::join(taken, " or ")));
   }
   if (!sensor.fixes_position) {
+    std::vector<std::string_view> fixing;
+    for (const SensorInfo& other : sensor_infos()) {
+      if (other.fixes_position) fixing.push_back(other.kind);
+    }
     item.required("sensor").fail(fmt::format(
         "a {} sensor's detection fixes no position, so no track can start from it; a scenario "
-        "with 'traffic' takes sensors that fix one (range_azimuth_elevation, position_velocity)",
-        sensor.kind));
+        "with 'traffic' takes sensors that fix one ({})",
+        sensor.kind, fmt::join(fixing, ", ")));
   }
   const DetectionConfig& detection = *s.stations[i].detection;
   if (detection.clutter_per_scan > 0.0 && !std::isfinite(detection.field_of_view.max_range_m)) {
@@ -520,6 +543,11 @@ Scenario read_scenario(const YamlField& root) {
       s.stations[i].detection = s.traffic->detection;
     }
     if (s.traffic) check_many_targets(s, i, station_items[i], filter, filter_info, sensor);
+    if (sensor.position_dim > model.position_dim) {
+      station_items[i].fail(
+          fmt::format("a {} sensor reads a {}-D position; motion model {} keeps a {}-D one",
+                      sensor.kind, sensor.position_dim, model.kind, model.position_dim));
+    }
     if (sensor.state_entries > model.state_dim) {
       station_items[i].fail(
           fmt::format("a {} sensor reads {} state entries; motion model {} has only {}",

@@ -16,13 +16,13 @@ std::vector<ScanPositions> scan_positions_at(const Scenario& scenario,
                                              std::uint64_t run, int step) {
   if (!scenario.traffic) throw std::logic_error("scan_positions_at: a scenario with one target");
   std::vector<ScanPositions> scans;
-  const bool known = visit_sensor_kind<Sensors, kKinematicsDim>(
-      scenario.stations.front().sensor.kind,
-      [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
-        using Sensor = SensorOf<kKinematicsDim>;
-        if constexpr (FixesPosition<Sensor>) {
-          for (int s = 0; s < stations; ++s) {
-            const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
+  // Each station by its own sensor: a picture may mix kinds.
+  for (int s = 0; s < stations; ++s) {
+    const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
+    const bool known = visit_sensor_kind<Sensors, kKinematicsDim>(
+        station.sensor.kind, [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
+          using Sensor = SensorOf<kKinematicsDim>;
+          if constexpr (FixesPosition<Sensor>) {
             const Sensor sensor = make_sensor<Sensor>(station);
             ScanOrigins origins;
             const auto scan =
@@ -36,12 +36,12 @@ std::vector<ScanPositions> scan_positions_at(const Scenario& scenario,
               out.positions.push_back(
                   sensor.position_of(fixed_detection<Sensor::kMeasDim>(detection)));
             }
+          } else {
+            throw std::logic_error("scan_positions_at: a sensor that does not fix a position");
           }
-        } else {
-          throw std::logic_error("scan_positions_at: a sensor that does not fix a position");
-        }
-      });
-  if (!known) throw std::logic_error("scan_positions_at: an unregistered sensor");
+        });
+    if (!known) throw std::logic_error("scan_positions_at: an unregistered sensor");
+  }
   return scans;
 }
 

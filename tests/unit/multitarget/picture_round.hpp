@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "skyfuse/multitarget/associator.hpp"
@@ -20,7 +21,11 @@ template <int N>
 PictureSensor<kKinematicsDim> truth_sensor_of(const KnownStation<N>& station) {
   return std::visit(
       []<typename S>(const S& sensor) -> PictureSensor<kKinematicsDim> {
-        return TruthSensorOf<S>(sensor.site());
+        if constexpr (std::is_constructible_v<TruthSensorOf<S>, const S&>) {
+          return TruthSensorOf<S>(sensor);  // more than a site (multilateration's receivers)
+        } else {
+          return TruthSensorOf<S>(sensor.site());
+        }
       },
       station.sensor);
 }

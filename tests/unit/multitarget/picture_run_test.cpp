@@ -45,15 +45,16 @@ TEST(PictureRun, UamCityKeepsOnePictureAndTracksEveryAircraft) {
   EXPECT_LT(run.score.mean_time_to_confirm_s, 5.0);
 }
 
-// Every sensor in one picture (uam-mixed.yaml): six primary radars, then two Mode S radars and
-// two Remote ID receivers that report the 60 % of vehicles with an address. The mix keeps the
-// guarantees, tracks the aircraft better than the radars alone (its first six stations), and
-// holds one track per aircraft with an address.
+// Every sensor in one picture (uam-mixed.yaml): six primary radars, then two Mode S radars, two
+// Remote ID receivers and a multilateration group that report the 60 % of vehicles with an
+// address. The mix keeps the guarantees, tracks the aircraft better than the radars alone (its
+// first six stations), and holds one track per aircraft with an address.
 TEST(PictureRun, UamMixedTracksBetterThanItsRadarsAloneWithOneTrackPerAddress) {
   Scenario scenario = load_scenario_file(kScenarios + "uam-mixed.yaml");
   scenario.steps = 100;
   const TrafficTruth truth = build_traffic_truth(scenario);
-  const PictureRunResult mixed = run_picture(scenario, truth.targets, 10, 0);
+  ASSERT_EQ(scenario.stations.size(), 11U);
+  const PictureRunResult mixed = run_picture(scenario, truth.targets, 11, 0);
   expect_guarantees(mixed);
   const PictureRunResult radars = run_picture(scenario, truth.targets, 6, 0);
   expect_guarantees(radars);
@@ -64,6 +65,27 @@ TEST(PictureRun, UamMixedTracksBetterThanItsRadarsAloneWithOneTrackPerAddress) {
   // honest report refused.
   EXPECT_EQ(mixed.confirmed_at_end, 100U);
   EXPECT_LE(mixed.refused_addresses, 1U);
+}
+
+// A multilateration group alone (uam-mixed's station 11): each reply's time differences fix a
+// position, so one reply starts the track of its address, and the group's five differences
+// update it — every aircraft with an address tracked, one track each, the guarantees kept. (Its
+// receivers on the ground fix heights poorly: alone, about half the track-steps lie beyond
+// GOSPA's 50 m cut-off, docs/multitarget.md, "Multilateration".)
+TEST(PictureRun, AMultilaterationGroupAloneTracksEveryAircraftWithAnAddress) {
+  Scenario scenario = load_scenario_file(kScenarios + "uam-mixed.yaml");
+  scenario.steps = 100;
+  std::erase_if(scenario.stations, [](const StationConfig& s) { return s.id != 11; });
+  ASSERT_EQ(scenario.stations.size(), 1U);
+  ASSERT_EQ(scenario.stations[0].sensor.kind, "multilateration");
+  const TrafficTruth truth = build_traffic_truth(scenario);
+  std::size_t addressed = 0;
+  for (const TargetTruth& t : truth.targets) addressed += t.address != kNoAddress ? 1 : 0;
+  const PictureRunResult run = run_picture(scenario, truth.targets, 1, 0);
+  expect_guarantees(run);
+  EXPECT_EQ(run.confirmed_at_end, addressed);
+  EXPECT_EQ(run.score.duplicate_track_steps_addressed, 0U);
+  EXPECT_EQ(run.false_alarms, 0U);
 }
 
 TEST(PictureRun, FewerStationsKeepTheGuaranteesToo) {

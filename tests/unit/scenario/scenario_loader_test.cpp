@@ -412,6 +412,41 @@ TEST(ScenarioLoader, ReadsPaper002sTdoaReceivers) {
                        "sensor: &radar {kind: tdoa_range_difference, noise_std: [0.1, 0.2]}")),
       "test.yaml: stations[0].sensor.noise_std: expected [range_difference_m], got '[0.1, 0.2]' "
       "(line 38)");
+  // A horizontal receiver on a 3-D model reads its first two entries (paper002-ekf.yaml).
+  EXPECT_NO_THROW(parse_scenario(
+      default_with("sensor: &radar {kind: range_azimuth_elevation, noise_std: [0.1, 0.01, 0.01]}",
+                   "sensor: &radar {kind: tdoa_range_difference, noise_std: [0.1]}"),
+      "test.yaml"));
+}
+
+// A multilateration group stands at its reference receiver and lists its five others.
+TEST(ScenarioLoader, ReadsAMultilaterationGroupsReceivers) {
+  const std::string radar =
+      "sensor: &radar {kind: range_azimuth_elevation, noise_std: [0.1, 0.01, 0.01]}";
+  const std::string group =
+      "sensor: &radar {kind: multilateration, noise_std: [5, 5, 5, 5, 5], receivers_m: "
+      "[[1000, 0, 10], [0, 1000, 20], [-1000, 0, 30], [0, -1000, 40], [700, 700, 50]]}";
+  const Scenario s = parse_scenario(default_with(radar, group), "test.yaml");
+  EXPECT_EQ(s.stations[0].sensor.kind, "multilateration");
+  ASSERT_EQ(s.stations[0].sensor.receivers_m.size(), 5U);
+  EXPECT_EQ(s.stations[0].sensor.receivers_m[4], Vector3(700.0, 700.0, 50.0));
+
+  std::string four = group;
+  four.replace(four.find(", [700, 700, 50]"), 16, "");
+  EXPECT_EQ(rejection(default_with(radar, four)),
+            "test.yaml: stations[0].sensor.receivers_m: a multilateration sensor has 5 receivers "
+            "beside the station's position; got 4 (line 38)");
+  std::string none = group;
+  none.erase(none.find(", receivers_m"));
+  none += "}";
+  EXPECT_EQ(rejection(default_with(radar, none)),
+            "test.yaml: stations[0].sensor: missing field 'receivers_m' (line 38)");
+  EXPECT_EQ(rejection(default_with(
+                radar,
+                "sensor: &radar {kind: range_azimuth_elevation, noise_std: [0.1, 0.01, "
+                "0.01], receivers_m: [[1, 2, 3]]}")),
+            "test.yaml: stations[0].sensor.receivers_m: a range_azimuth_elevation sensor has one "
+            "receiver, at the station; remove it (line 38)");
 }
 
 TEST(ScenarioLoader, TheNcrkfNeedsItsModelAndTdoaReceivers) {
@@ -433,6 +468,13 @@ TEST(ScenarioLoader, TheNcrkfNeedsItsModelAndTdoaReceivers) {
   EXPECT_EQ(rejection(radars),
             "test.yaml: stations[0]: filter 'ncrkf' needs tdoa_range_difference receivers; "
             "station 1 has range_azimuth_elevation (line 36)");
+  // The EKF runs on either model, with the sensors that read a position it keeps: a radar
+  // reads nothing meaningful from paper 002's [dx, dy, d_t1, ...] (nor is it compiled).
+  std::string ekf = radars;
+  ekf.replace(ekf.find("  kind: ncrkf\n"), 14, "  kind: ekf\n");
+  EXPECT_EQ(rejection(ekf),
+            "test.yaml: stations[0]: a range_azimuth_elevation sensor reads a 3-D position; motion "
+            "model tdoa_relative_constant_acceleration keeps a 2-D one (line 36)");
 }
 
 }  // namespace

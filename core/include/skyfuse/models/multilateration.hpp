@@ -70,6 +70,11 @@ class Multilateration {
     }
   }
 
+  /// The same group for a state of another dimension (an IMM's modes).
+  template <int OtherDim>
+  explicit Multilateration(const Multilateration<OtherDim>& other)
+      : receivers_(other.receivers_), variances_(other.variances_) {}
+
   /// The reference receiver's site (world frame, m).
   const Vector3& site() const { return receivers_[0]; }
   const Receivers& receivers() const { return receivers_; }
@@ -118,6 +123,9 @@ class Multilateration {
   }
 
  private:
+  template <int>
+  friend class Multilateration;
+
   // (p - s) / |p - s|, or zero at s itself.
   static Vector3 unit_from(const Vector3& s, const Vector3& p) {
     const Vector3 d = p - s;

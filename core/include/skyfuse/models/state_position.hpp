@@ -18,6 +18,19 @@ constexpr int position_dim() {
   }
 }
 
+/// How many leading state entries `Sensor` reads as the target's position: 3 unless it says
+/// otherwise (paper 002's TDOA receiver reads the horizontal 2). A sensor runs on a model whose
+/// position_dim is at least its own: a radar reads nothing meaningful from paper 002's
+/// [dx, dy, d_t1, ...].
+template <typename Sensor>
+constexpr int sensor_position_dim() {
+  if constexpr (requires { Sensor::kPositionDim; }) {
+    return Sensor::kPositionDim;
+  } else {
+    return 3;
+  }
+}
+
 /// The position in a state of `Model`.
 template <typename Model, typename Derived>
 Vector3 state_position(const Eigen::MatrixBase<Derived>& x) {

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "skyfuse/models/state_position.hpp"
 #include "skyfuse/multitarget/track_filters.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/make_parts.hpp"
@@ -56,8 +57,10 @@ bool visit_picture_parts_in_shard(const Scenario& scenario, F&& f) {
           typename Filter::IncrementRule;
         };
         constexpr bool kImm = !Filter::kModeNames.empty();
+        // A picture's sensors read a 3-D position (fixes_position.hpp): no model that keeps
+        // another is compiled for it.
         if constexpr ((kIncrements || kImm) && Filter::kSensor.empty() &&
-                      filter_runs_on_model<Filter, Model>()) {
+                      filter_runs_on_model<Filter, Model>() && position_dim<Model>() == 3) {
           f(std::type_identity<PictureParts<Filter, Model>>{});
           called = true;
         }

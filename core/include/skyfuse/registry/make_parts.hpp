@@ -4,6 +4,7 @@
 /// station's sensor at its site.
 
 #include <algorithm>
+#include <span>
 #include <stdexcept>
 
 #include "skyfuse/scenario/scenario.hpp"
@@ -37,9 +38,25 @@ struct AtStateDim<Sensor<N>, M> {
 template <typename Sensor>
 using TruthSensorOf = typename detail::AtStateDim<Sensor, kKinematicsDim>::type;
 
+/// Station `station`'s sensor standing at `site`: for a sensor of several receivers, with the
+/// others' sites and its components' nominal noise from the scenario
+/// (models/multilateration.hpp).
+template <typename Sensor>
+Sensor make_sensor_at(const Vector3& site, const StationConfig& station) {
+  if constexpr (requires { Sensor::kReceivers; }) {
+    const Eigen::VectorXd& noise_std = station.sensor.noise_std;
+    return Sensor(site, station.sensor.receivers_m,
+                  std::span<const double>(noise_std.data(),
+                                          static_cast<std::size_t>(noise_std.size())));
+  } else {
+    return Sensor(site);
+  }
+}
+
+/// A station's sensor, at its site.
 template <typename Sensor>
 Sensor make_sensor(const StationConfig& station) {
-  return Sensor(station.position_m);
+  return make_sensor_at<Sensor>(station.position_m, station);
 }
 
 }  // namespace skyfuse

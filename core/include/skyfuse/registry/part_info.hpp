@@ -32,6 +32,12 @@ struct SensorInfo {
   /// Whether one detection fixes a position (multitarget/fixes_position.hpp): a run with many
   /// aircraft takes only such sensors.
   bool fixes_position = false;
+  /// Receivers beside the one at the station's position (`sensor.receivers_m`); 0 for a
+  /// sensor of one receiver.
+  int other_receivers = 0;
+  /// Leading state entries it reads as the position (models/state_position.hpp): a model
+  /// must keep a position of at least that many.
+  int position_dim = 3;
 };
 
 std::vector<MotionModelInfo> motion_model_infos();

@@ -19,8 +19,11 @@
 #include "skyfuse/filters/parts/ukf_part.hpp"
 #include "skyfuse/models/constant_acceleration.hpp"
 #include "skyfuse/models/constant_velocity.hpp"
+#include "skyfuse/models/multilateration.hpp"
 #include "skyfuse/models/position_velocity.hpp"
+#include "skyfuse/models/range_azimuth_altitude.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/models/state_position.hpp"
 #include "skyfuse/models/tdoa/range_difference_sensor.hpp"
 #include "skyfuse/models/tdoa/tdoa_relative_motion.hpp"
 #include "skyfuse/registry/part_lists.hpp"
@@ -30,7 +33,8 @@
 namespace skyfuse {
 
 using MotionModels = ModelList<ConstantAcceleration3D, ConstantVelocity3D, TdoaRelativeMotion>;
-using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity, RangeDifferenceSensor>;
+using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity, RangeDifferenceSensor,
+                           Multilateration, RangeAzimuthAltitude>;
 
 /// The IMM is one part per set of modes it is compiled for (tracking/imm_modes.hpp); a scenario
 /// picks one by its filter.imm.modes.
@@ -52,13 +56,17 @@ constexpr bool filter_runs_on_model() {
 
 /// Whether filter part `Filter` runs on `Model` with stations of `Sensor` (one sensor type, or a
 /// SensorPack when their kinds differ), by what the part states of itself.
+/// Only the combinations where the model keeps the position the sensor reads are compiled: a
+/// 3-D radar on paper 002's [dx, dy, d_t1, ...] is not (a horizontal TDOA receiver on a 3-D
+/// model is: it reads the first two entries). Mixed stations may hold any sensor, so a 3-D model.
 template <typename Filter, typename Model, typename Sensor>
 constexpr bool filter_runs_on() {
   if (!filter_runs_on_model<Filter, Model>()) return false;
   if constexpr (IsSensorPack<Sensor>::value) {
-    return !Filter::kOneSensorKind && Filter::kSensor.empty();
+    return !Filter::kOneSensorKind && Filter::kSensor.empty() && position_dim<Model>() == 3;
   } else {
-    return Filter::kSensor.empty() || Filter::kSensor == Sensor::kKind;
+    return (Filter::kSensor.empty() || Filter::kSensor == Sensor::kKind) &&
+           sensor_position_dim<Sensor>() <= position_dim<Model>();
   }
 }
 

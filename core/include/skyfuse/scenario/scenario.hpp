@@ -24,6 +24,9 @@ struct SensorConfig {
   /// units the sensor names them (range_azimuth_elevation: [range m, azimuth rad, elevation
   /// rad]).
   Eigen::VectorXd noise_std;
+  /// A sensor of several receivers (multilateration): the sites of those beside the one at the
+  /// station's position, world frame (m); empty for every other sensor.
+  std::vector<Vector3> receivers_m;
 };
 
 struct StationConfig {

@@ -24,6 +24,7 @@
 #include <optional>
 #include <span>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -47,7 +48,9 @@ namespace skyfuse {
 /// position first, which is all a station's sensor reads.
 template <int M, template <int> class SensorT, int N>
 SensorT<M> sensor_for_dimension(const SensorT<N>& sensor) {
-  if constexpr (SensorT<N>::kNeedsSite) {
+  if constexpr (std::is_constructible_v<SensorT<M>, const SensorT<N>&>) {
+    return SensorT<M>(sensor);  // a sensor with more than a site converts itself
+  } else if constexpr (SensorT<N>::kNeedsSite) {
     return SensorT<M>(sensor.site());
   } else {
     return SensorT<M>{};

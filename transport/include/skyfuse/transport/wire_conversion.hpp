@@ -78,27 +78,37 @@ wire::Measurement to_wire(const StationObservation<Sensor>& observation, std::ui
 }
 
 /// The observation of a `Sensor` a measurement carries; nothing if it names another sensor kind
-/// or its lengths are not that sensor's.
+/// or its lengths are not that sensor's. The wire carries the sensor's site; a sensor of several
+/// receivers (multilateration) takes the others from `station`, the sending station as the
+/// scenario every node loaded describes it, and without it is nothing.
 template <typename Sensor>
-std::optional<StationObservation<Sensor>> observation_from_wire(const wire::Measurement& sample) {
+std::optional<StationObservation<Sensor>> observation_from_wire(
+    const wire::Measurement& sample, const StationConfig* station = nullptr) {
   if (std::string_view(sample.sensor().c_str()) != Sensor::kKind) return std::nullopt;
   const auto z = unpack_vector<Sensor::kMeasDim>(sample.z());
   const auto noise = unpack_upper<Sensor::kMeasDim>(sample.noise());
   if (!z || !noise) return std::nullopt;
   const auto& p = sample.station_position();
-  return StationObservation<Sensor>{sample.station_id(), Sensor(Vector3(p[0], p[1], p[2])), *z,
-                                    *noise};
+  const Vector3 site(p[0], p[1], p[2]);
+  if constexpr (requires { Sensor::kReceivers; }) {
+    if (station == nullptr || station->sensor.kind != Sensor::kKind) return std::nullopt;
+    return StationObservation<Sensor>{sample.station_id(), make_sensor_at<Sensor>(site, *station),
+                                      *z, *noise};
+  } else {
+    return StationObservation<Sensor>{sample.station_id(), Sensor(site), *z, *noise};
+  }
 }
 
 /// The observation a measurement carries for stations of `Sensor`: one sensor type, or a
 /// SensorPack (then the alternative of the kind the sample names); nothing if it fits none.
 template <typename Sensor>
-std::optional<ObservationFor<Sensor>> observation_for(const wire::Measurement& sample) {
+std::optional<ObservationFor<Sensor>> observation_for(const wire::Measurement& sample,
+                                                      const StationConfig* station = nullptr) {
   if constexpr (IsSensorPack<Sensor>::value) {
     return [&]<int N, template <int> class... S>(std::type_identity<SensorPack<N, S...>>) {
       std::optional<ObservationFor<Sensor>> out;
       ((!out ? [&] {
-         if (auto o = observation_from_wire<S<N>>(sample)) out = std::move(*o);
+         if (auto o = observation_from_wire<S<N>>(sample, station)) out = std::move(*o);
        }()
              : void()),
        ...);
@@ -106,7 +116,7 @@ std::optional<ObservationFor<Sensor>> observation_for(const wire::Measurement& s
     }
     (std::type_identity<Sensor>{});
   } else {
-    return observation_from_wire<Sensor>(sample);
+    return observation_from_wire<Sensor>(sample, station);
   }
 }
 

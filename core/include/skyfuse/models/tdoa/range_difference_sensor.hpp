@@ -26,6 +26,9 @@ class RangeDifferenceSensor {
   static constexpr int kMeasDim = 1;
   /// Only the horizontal position's columns of the Jacobian are non-zero.
   static constexpr int kJacobianCols = 2;
+  /// It reads a horizontal position (models/state_position.hpp): paper 002's relative state's,
+  /// or a 3-D model's first two entries.
+  static constexpr int kPositionDim = 2;
   static constexpr bool kNeedsSite = true;
   static constexpr std::array<std::string_view, kMeasDim> kComponents = {"range_difference_m"};
   using State = Vector<N>;
