@@ -45,9 +45,9 @@ template <typename Sensor>
 Sensor make_sensor_at(const Vector3& site, const StationConfig& station) {
   if constexpr (requires { Sensor::kReceivers; }) {
     const Eigen::VectorXd& noise_std = station.sensor.noise_std;
-    return Sensor(site, station.sensor.receivers_m,
-                  std::span<const double>(noise_std.data(),
-                                          static_cast<std::size_t>(noise_std.size())));
+    return Sensor(
+        site, station.sensor.receivers_m,
+        std::span<const double>(noise_std.data(), static_cast<std::size_t>(noise_std.size())));
   } else {
     return Sensor(site);
   }
