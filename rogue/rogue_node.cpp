@@ -143,7 +143,10 @@ int main(int argc, char** argv) {
   app.add_option("--stations", stations, "Station readers to reach before attacking")
       ->check(skyfuse::options::whole_number_at_least(1));
   app.add_option("--victim", victim, "A real station id to impersonate");
-  app.add_option("--at-steps", steps, "Steps (>= 1) at which to attack")->capture_default_str();
+  app.add_option("--at-steps", steps,
+                 "Steps (>= 1) at which to attack; an attack waits for the first tick after its "
+                 "step if not every reader has matched by then")
+      ->capture_default_str();
   app.add_option("--timeout", timeout_s, "Seconds to wait for the run's ticks");
   int tree_fanout = 0;
   app.add_option("--tree", tree_fanout,
@@ -219,6 +222,12 @@ int main(int argc, char** argv) {
       }
       return true;
     };
+    // What all_matched() counts, for the log.
+    auto matched_readers = [&] {
+      if (scans) return fmt::format("{} of {} scan readers", scans->matched(), stations + 1);
+      return fmt::format("{} measurement readers, {} increment readers", measurements.matched(),
+                         increments.matched());
+    };
     transport::ReaderWaitSet wait_set;
     wait_set.attach(ticks);
     DropCounts sent_increments{};
@@ -244,13 +253,19 @@ int main(int argc, char** argv) {
           newest = std::max(newest.value_or(0), tick.step());
       }
       if (newest && !left.empty() && *left.begin() <= *newest) {
-        left.erase(left.begin());
         // Every reader must be matched, or a sample could miss one and the counts not add up.
+        // On a loaded machine the run may reach the step before discovery has matched them all:
+        // the attack waits for the first tick after that (a later step, one attack a tick), so
+        // that every attack asked for is sent; the run must last long enough for it.
         if (!all_matched()) {
-          spdlog::warn("step {}: not every reader matched yet ({} measurement readers); skipped",
-                       *newest, measurements.matched());
+          spdlog::warn(
+              "step {}: not every reader matched yet ({}); the attack planned for step "
+              "{} waits",
+              *newest, matched_readers(), *left.begin());
+          wait_set.wait(std::chrono::milliseconds(20));
           continue;
         }
+        left.erase(left.begin());
         if (scans) {
           for (const rogue::ScanAttack& a : rogue::scan_attacks_at(run_id, *newest, victim)) {
             scans->write(a.sample);
