@@ -147,7 +147,10 @@ class DetectionEncoding {
   static void decode(Cdr& cdr, const Round& round, Report& report) {
     wire::PictureScan sample;
     sample.deserialize(cdr);
-    const auto [scan, why] = transport::picture_scan_from_wire(sample, round.kinds, 4096);
+    // Not a structured binding: the lambda below captures the scan (clang 14 cannot capture a
+    // binding).
+    const auto checked = transport::picture_scan_from_wire(sample, round.kinds, 4096);
+    const auto& scan = checked.first;
     const auto& station = *std::find_if(round.stations.begin(), round.stations.end(),
                                         [&](const auto& s) { return s.id == scan->station_id; });
     report = *round.picture.report_of(station, scan->detections, scan->addresses,

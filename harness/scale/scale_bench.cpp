@@ -161,8 +161,11 @@ RunOptions scale_run_options(const ScaleBenchOptions& o, const std::string& scen
 
 int run_scale_bench(const ScaleBenchOptions& o) {
   if (!o.aircraft.empty()) return run_picture_scale_bench(o);
-  const auto [scenario_path, scenario] =
-      load_bench_scenario(o.scenario_path, "ring256.yaml", o.stations);
+  // Named variables, not a structured binding: the lambdas below capture them (clang 14 cannot
+  // capture a binding).
+  const BenchScenario bench = load_bench_scenario(o.scenario_path, "ring256.yaml", o.stations);
+  const std::string& scenario_path = bench.path;
+  const Scenario& scenario = bench.scenario;
   // Refused before anything runs, as the station counts are.
   for (int m : o.stations) {
     if (const int hosts = hosts_for(m); hosts > 0) {

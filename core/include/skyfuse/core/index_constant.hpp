@@ -17,7 +17,8 @@ auto with_index_constant(std::size_t index, F&& f) {
   using Result = decltype(f(std::integral_constant<std::size_t, 0>{}));
   Result result{};
   [&]<std::size_t... I>(std::index_sequence<I...>) {
-    ((I == index ? (result = f(std::integral_constant<std::size_t, I>{}), true) : false) || ...);
+    (void)((I == index ? (result = f(std::integral_constant<std::size_t, I>{}), true) : false) ||
+           ...);
   }
   (std::make_index_sequence<Count>{});
   return result;
