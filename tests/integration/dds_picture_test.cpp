@@ -655,7 +655,8 @@ TEST(DdsPicture, ARealTimeRunRecordsEveryRoundAndItsShareInTime) {
 // in-process run's (the run's exit status says so too). The rogue starts first, so that the run's
 // nodes discover it while they discover each other, before the first round: one that joined the
 // running lock-step run (a few seconds) on a loaded machine had 4 of the 5 scan readers matched
-// until the run ended, a lost discovery message waiting for the next announcement (every 3 s).
+// until the run ended (which discovery message was late was not found; the announcements repeat
+// every 3 s, about the run's length).
 TEST(DdsPicture, ARoguesScansAreRefusedByEveryNodeAndCountedByKind) {
   constexpr int kStations = 4;
   constexpr int kAttackSteps = 3;

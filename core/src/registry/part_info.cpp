@@ -42,7 +42,7 @@ std::vector<SensorInfo> describe(SensorList<Sensors...> /*list*/) {
                                                    Sensors<kAnyStateDim>::kComponents.end()),
                      FixesPosition<Sensors<kAnyStateDim>>,
                      other_receivers_of<Sensors<kAnyStateDim>>(),
-                     sensor_position_dim<Sensors<kAnyStateDim>>()}...};
+                     position_dim<Sensors<kAnyStateDim>>()}...};
 }
 
 // Whether a filter part's station turns one detection into one increment by an increment rule.

@@ -9,23 +9,15 @@
 
 namespace skyfuse {
 
-template <typename Model>
+/// How many leading state entries hold the target's position, for a motion model (what it
+/// keeps), or for a sensor (what it reads): its kPositionDim, 3 unless it says otherwise (a
+/// planar model keeps 2; paper 002's TDOA receiver reads the horizontal 2). A sensor runs on a
+/// model whose position_dim is at least its own: a radar reads nothing meaningful from paper
+/// 002's [dx, dy, d_t1, ...].
+template <typename ModelOrSensor>
 constexpr int position_dim() {
-  if constexpr (requires { Model::kPositionDim; }) {
-    return Model::kPositionDim;
-  } else {
-    return 3;
-  }
-}
-
-/// How many leading state entries `Sensor` reads as the target's position: 3 unless it says
-/// otherwise (paper 002's TDOA receiver reads the horizontal 2). A sensor runs on a model whose
-/// position_dim is at least its own: a radar reads nothing meaningful from paper 002's
-/// [dx, dy, d_t1, ...].
-template <typename Sensor>
-constexpr int sensor_position_dim() {
-  if constexpr (requires { Sensor::kPositionDim; }) {
-    return Sensor::kPositionDim;
+  if constexpr (requires { ModelOrSensor::kPositionDim; }) {
+    return ModelOrSensor::kPositionDim;
   } else {
     return 3;
   }

@@ -66,7 +66,7 @@ constexpr bool filter_runs_on() {
     return !Filter::kOneSensorKind && Filter::kSensor.empty() && position_dim<Model>() == 3;
   } else {
     return (Filter::kSensor.empty() || Filter::kSensor == Sensor::kKind) &&
-           sensor_position_dim<Sensor>() <= position_dim<Model>();
+           position_dim<Sensor>() <= position_dim<Model>();
   }
 }
 
