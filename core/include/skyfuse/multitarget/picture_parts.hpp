@@ -44,28 +44,60 @@ struct PictureParts<ImmFilterPart<Set>, Model> {
   static Center center(const Scenario& s) { return Center(s); }
 };
 
+/// Whether a picture runs filter part `Filter` on `Model`: a part with an increment rule or the
+/// IMM, that names no sensor of its own, on a model that keeps a 3-D position (a picture's sensors
+/// read one: fixes_position.hpp). No other pair is compiled for a picture.
+template <typename Filter, typename Model>
+constexpr bool picture_runs() {
+  constexpr bool kIncrements = requires {
+    typename Filter::IncrementRule;
+  };
+  constexpr bool kImm = !Filter::kModeNames.empty();
+  return (kIncrements || kImm) && Filter::kSensor.empty() &&
+         filter_runs_on_model<Filter, Model>() && position_dim<Model>() == 3;
+}
+
 /// Calls f(std::type_identity<PictureParts<...>>{}) for `scenario`'s filter part on its motion
-/// model, if that group lies in shard `Shard` and a picture runs it: a part with an increment
-/// rule or the IMM, that names no sensor of its own. Returns whether it called f.
+/// model, if that group lies in shard `Shard` and a picture runs it (picture_runs). Returns
+/// whether it called f.
 template <std::size_t Shard, typename F>
 bool visit_picture_parts_in_shard(const Scenario& scenario, F&& f) {
   bool called = false;
   visit_group_in_shard<Shard>(
       scenario.filter,
       [&]<typename Filter, typename Model>(std::type_identity<Filter>, std::type_identity<Model>) {
-        constexpr bool kIncrements = requires {
-          typename Filter::IncrementRule;
-        };
-        constexpr bool kImm = !Filter::kModeNames.empty();
-        // A picture's sensors read a 3-D position (fixes_position.hpp): no model that keeps
-        // another is compiled for it.
-        if constexpr ((kIncrements || kImm) && Filter::kSensor.empty() &&
-                      filter_runs_on_model<Filter, Model>() && position_dim<Model>() == 3) {
+        if constexpr (picture_runs<Filter, Model>()) {
           f(std::type_identity<PictureParts<Filter, Model>>{});
           called = true;
         }
       });
   return called;
+}
+
+namespace detail {
+template <std::size_t Shard, typename F, typename... Filters, typename... Models>
+void for_each_picture_parts_in(FilterList<Filters...> /*parts*/, ModelList<Models...> /*models*/,
+                               F& f) {
+  const auto each_part = [&]<typename Filter>(std::type_identity<Filter>) {
+    const auto each_model = [&]<typename Model>(std::type_identity<Model>) {
+      if constexpr (picture_runs<Filter, Model>() && filter_part_compiled(Filter::kKind)) {
+        if constexpr (*kConfigurationGroup<Filter, Model> % kFilterShards == Shard) {
+          f(std::type_identity<PictureParts<Filter, Model>>{});
+        }
+      }
+    };
+    (each_model(std::type_identity<Models>{}), ...);
+  };
+  (each_part(std::type_identity<Filters>{}), ...);
+}
+}  // namespace detail
+
+/// Calls f(std::type_identity<PictureParts<...>>{}) for every group of shard `Shard` that a
+/// picture runs: what the shard compiles the pictures for.
+template <std::size_t Shard, typename F>
+void for_each_picture_parts_in_shard(F&& f) {
+  static_assert(Shard < kFilterShards);
+  detail::for_each_picture_parts_in<Shard>(FilterParts{}, MotionModels{}, f);
 }
 
 }  // namespace skyfuse

@@ -14,6 +14,9 @@
 ///
 /// Tracks are kept in ascending id; a new track's id holds its round in the high bits, so new
 /// tracks go at the end and the order never needs sorting.
+///
+/// The rounds are defined in track_table_impl.hpp and compiled once per filter part and motion
+/// model in skyfuse_core (core/src/multitarget/pictures_shard.cpp); this header declares them.
 
 #include <algorithm>
 #include <array>
@@ -107,171 +110,42 @@ class TrackTable {
   /// Station `station`'s association of its `scan` with this (predicted) picture: its
   /// addressed detections routed to the tracks of their addresses, then the hypotheses of the
   /// other pairs, decided by the scenario's associator.
-  ScanAssociation associate(const Station& station, const Scan& scan, AssociationWork& work) const {
-    std::visit(
-        [&]<typename Sensor>(const Sensor& sensor) {
-          constexpr std::size_t M = Sensor::kMeasDim;
-          const std::size_t taken =
-              std::min(scan.detections.size(), config_.association.max_detections_per_scan);
-          route_addressed(estimates(), book_, sensor, scan, taken, sanity_gates_[M], work.routing);
-          const std::span<const Address> held =
-              book_.empty() ? std::span<const Address>() : std::span<const Address>(addresses_);
-          hypothesise(estimates(), sensor, scan, gates_[M],
-                      config_.association.max_detections_per_scan, associator_->reads_densities,
-                      work.routing.mask(held, scan.addresses), work.hypothesiser, work.hypotheses);
-        },
-        station.sensor);
-    ScanAssociation decided;
-    associator_->associate(work.hypotheses, station.prior, config_.association, work, decided);
-    merge_routing(work.routing, decided);
-    return decided;
-  }
+  ScanAssociation associate(const Station& station, const Scan& scan, AssociationWork& work) const;
 
   /// A track known before the run (the one aircraft of a single-target scenario), confirmed.
-  void add_known_track(TrackId id, const GaussianState<kDim>& estimate) {
-    TrackType track{id, TrackStatus::kConfirmed, {}, filters_.start(estimate), {}};
-    tracks_.push_back(std::move(track));
-    estimates_.push_back(estimate);
-    refresh_addresses();
-  }
+  void add_known_track(TrackId id, const GaussianState<kDim>& estimate);
 
-  void predict() {
-    for (TrackType& track : tracks_) filters_.predict(track.filter);
-    refresh_estimates();
-  }
+  void predict();
 
   /// Replaces the whole picture with `tracks` (ascending id): another peer's, taken when this
   /// one's has parted from it.
-  void restore(std::vector<TrackType> tracks) {
-    tracks_ = std::move(tracks);
-    refresh_estimates();
-  }
+  void restore(std::vector<TrackType> tracks);
 
   /// A digest of the picture as it stands (every track's id, status and estimate, bit for
   /// bit): equal at two nodes that hold the same picture, and different, but for a chance of
   /// 2^-64, where they do not. A station publishes its predicted picture's with its scan.
-  std::uint64_t digest() const {
-    PictureDigest digest(tracks_.size());
-    for (std::size_t i = 0; i < tracks_.size(); ++i) {
-      digest.add(tracks_[i].id, tracks_[i].status, estimates_[i].mean, estimates_[i].covariance);
-      if (tracks_[i].address != kNoAddress) digest.add_address(tracks_[i].address);
-    }
-    return digest.value();
-  }
+  std::uint64_t digest() const;
 
   /// Track i, for the caller's update between predict() and close_round().
   TrackType& track(std::size_t i) { return tracks_[i]; }
 
+ protected:
   /// Gives each unaddressed track the address its hit offered (offered[i], kNoAddress for
   /// none: the first station's of weight above 1/2, identity.hpp), manages every track (hit[i]:
   /// whether track i was updated this round), then starts tracks from `unassociated` (per
-  /// station, ascending station id as stations(); each ascending).
+  /// station, ascending station id as stations(); each ascending). For the pictures' own
+  /// rounds (peer_picture.hpp, central_picture.hpp), compiled with them.
   template <typename UnassociatedOf>
   RoundOutcome close_round(std::uint64_t step, const std::vector<char>& hit,
-                           std::span<const Address> offered, UnassociatedOf unassociated_of) {
-    learn_addresses(offered);
-    refresh_estimates();
-    RoundOutcome outcome;
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < tracks_.size(); ++i) {
-      if (hit[i]) ++outcome.hit;
-      TrackType& track = tracks_[i];
-      const double position_variance =
-          estimates_[i].covariance.template topLeftCorner<3, 3>().trace();
-      const TrackFate fate = manage_track(track.history, track.status, position_variance,
-                                          hit[i] != 0, config_.management);
-      if (fate == TrackFate::kDeleted) {
-        ++outcome.deleted;
-        continue;
-      }
-      if (fate == TrackFate::kConfirmed) ++outcome.confirmed;
-      if (kept != i) {
-        tracks_[kept] = std::move(tracks_[i]);
-        estimates_[kept] = estimates_[i];
-      }
-      ++kept;
-    }
-    tracks_.erase(tracks_.begin() + static_cast<std::ptrdiff_t>(kept), tracks_.end());
-    estimates_.resize(kept);
-    refresh_addresses();
-
-    fixes_.clear();
-    for (std::size_t s = 0; s < stations_.size(); ++s) {
-      const Station& station = stations_[s];
-      std::visit(
-          [&]<typename Sensor>(const Sensor& sensor) {
-            constexpr int M = Sensor::kMeasDim;
-            const Covariance<M> noise = fixed_noise<M>(station.noise);
-            for (const UnassociatedDetection& d : unassociated_of(s)) {
-              // A track that took this address this round has the aircraft already.
-              if (d.address != kNoAddress && book_.track_of(d.address)) continue;
-              if (auto fix = fix_position(station.id, d.detection, sensor, fixed_detection<M>(d.z),
-                                          noise)) {
-                fix->address = d.address;
-                fixes_.push_back(*fix);
-              }
-            }
-          },
-          station.sensor);
-    }
-    for (NewTrack& started : initiate_tracks(fixes_, step, config_.initiation)) {
-      start_track(std::move(started));
-      ++outcome.started;
-    }
-    refresh_addresses();
-    return outcome;
-  }
+                           std::span<const Address> offered, UnassociatedOf unassociated_of);
 
  private:
-  void refresh_estimates() {
-    estimates_.resize(tracks_.size());
-    for (std::size_t i = 0; i < tracks_.size(); ++i) {
-      estimates_[i] = filters_.estimate(tracks_[i].filter);
-    }
-    refresh_addresses();
-  }
-  void refresh_addresses() {
-    addresses_.resize(tracks_.size());
-    for (std::size_t i = 0; i < tracks_.size(); ++i) addresses_[i] = tracks_[i].address;
-    book_.rebuild(addresses_);
-  }
-
+  void refresh_estimates();
+  void refresh_addresses();
   // Gives each unaddressed track the address offered to it this round, in picture order, unless
   // a track holds it already (one taken earlier in this loop included).
-  void learn_addresses(std::span<const Address> offered) {
-    for (std::size_t i = 0; i < offered.size(); ++i) {
-      const Address address = offered[i];
-      if (address == kNoAddress || tracks_[i].address != kNoAddress) continue;
-      if (book_.track_of(address)) continue;
-      tracks_[i].address = address;
-      addresses_[i] = address;
-      book_.insert(address, static_cast<int>(i));
-    }
-  }
-
-  void start_track(NewTrack&& started) {
-    Vector<kKinematicsDim> kinematics = Vector<kKinematicsDim>::Zero();
-    kinematics.template head<3>() = started.position;
-    GaussianState<kDim> initial;
-    initial.mean = Tracks::from_kinematics(kinematics);
-    initial.covariance = filters_.initial_variance().asDiagonal();
-    initial.covariance.template topLeftCorner<3, 3>() = started.covariance;
-    const double v = config_.initiation.velocity_std_mps;
-    initial.covariance.template block<3, 3>(3, 3) = v * v * Covariance<3>::Identity();
-    if (started.velocity) {  // an aircraft's own report of its velocity (initiation.hpp)
-      initial.mean.template segment<3>(3) = *started.velocity;
-      initial.covariance.template block<3, 3>(3, 3) = started.velocity_covariance;
-    }
-    TrackType track{started.id,
-                    TrackStatus::kTentative,
-                    {},
-                    filters_.start(initial),
-                    std::move(started.stations)};
-    track.history.record(true);
-    track.address = started.address;
-    tracks_.push_back(std::move(track));
-    estimates_.push_back(filters_.estimate(tracks_.back().filter));
-  }
+  void learn_addresses(std::span<const Address> offered);
+  void start_track(NewTrack&& started);
 
   Tracks filters_;
   std::vector<Station> stations_;
