@@ -2,7 +2,6 @@
 // Random but reproducible test problems: SPD covariances, priors near a target, stations
 // around it. Each test seeds its own std::mt19937 so that failures replay.
 
-#include <Eigen/QR>
 #include <random>
 
 #include "skyfuse/core/types.hpp"
@@ -15,22 +14,10 @@ inline Vector3 random_vector3(std::mt19937& rng, double lo, double hi) {
 }
 
 /// SPD matrix with eigenvalues in [lo, hi]: a random rotation of a random positive diagonal.
+/// Compiled once, in random_problems.cpp, for the sizes the tests draw (3, 6 and 9): a
+/// fixed-size Householder QR cost every test file that drew one seconds of compiling a size.
 template <int N>
-Covariance<N> random_spd(std::mt19937& rng, double lo, double hi) {
-  std::normal_distribution<double> n(0.0, 1.0);
-  Covariance<N> a;
-  for (int i = 0; i < N; ++i) {
-    for (int j = 0; j < N; ++j) a(i, j) = n(rng);
-  }
-  const Eigen::HouseholderQR<Covariance<N>> qr(a);
-  const Covariance<N> q = qr.householderQ();
-  std::uniform_real_distribution<double> u(lo, hi);
-  Vector<N> eig;
-  for (int i = 0; i < N; ++i) eig(i) = u(rng);
-  Covariance<N> spd = q * eig.asDiagonal() * q.transpose();
-  symmetrize(spd);
-  return spd;
-}
+Covariance<N> random_spd(std::mt19937& rng, double lo, double hi);
 
 /// An N-state estimate: mean entries of spread 100, covariance eigenvalues in [0.01, 50].
 template <int N>
