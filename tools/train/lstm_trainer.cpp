@@ -69,22 +69,6 @@ void restore_parameters(torch::nn::Module& module, const std::vector<torch::Tens
 
 }  // namespace
 
-std::string mode_name(Mode mode) {
-  switch (mode) {
-    case Mode::kSmoke:
-      return "smoke";
-    case Mode::kReduced:
-      return "reduced";
-    case Mode::kFull:
-      return "full";
-  }
-  throw std::logic_error("skyfuse-train: unknown mode");
-}
-
-std::string network_name(Network network) {
-  return network == Network::kErrorCompensation ? "ec" : "se";
-}
-
 TrainConfig preset(Network network, Mode mode) {
   TrainConfig c;
   c.network = network;

@@ -37,13 +37,9 @@
 
 #include "skyfuse/experiments/paper001/dataset.hpp"
 #include "skyfuse/learning/lstm_weights.hpp"
+#include "train_mode.hpp"
 
 namespace skyfuse::train {
-
-enum class Mode { kSmoke, kReduced, kFull };
-
-std::string mode_name(Mode mode);
-std::string network_name(paper001::Network network);
 
 /// What one training run does. preset() gives each mode's values; the command line may
 /// override paths, epochs, patience, seed and threads.

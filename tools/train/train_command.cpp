@@ -8,6 +8,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "lstm_trainer.hpp"
+
 namespace skyfuse::train {
 namespace {
 

@@ -8,7 +8,8 @@
 #include <ostream>
 #include <string>
 
-#include "lstm_trainer.hpp"
+#include "skyfuse/experiments/paper001/dataset.hpp"
+#include "train_mode.hpp"
 
 namespace skyfuse::train {
 
