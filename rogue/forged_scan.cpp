@@ -10,6 +10,8 @@
 namespace skyfuse::rogue {
 namespace {
 
+constexpr std::uint32_t kFarAhead = 1000;  // steps
+
 wire::PictureScan plausible_scan(std::uint64_t run, std::uint32_t step, int station) {
   wire::PictureScan s;
   s.run_id(run);
@@ -35,7 +37,10 @@ std::vector<ScanAttack> scan_attacks_at(std::uint64_t run, std::uint32_t k, int 
   add(DropKind::kDuplicate, run, k + 1, victim);
   add(DropKind::kWrongRun, run ^ 0x5a5a5a5aULL, k, victim);
   add(DropKind::kStaleStep, run, k - 1, victim);
-  add(DropKind::kFutureStep, run, k + 5, victim);
+  // Far enough ahead that a rogue that wakes late, on a loaded machine, still names a step no
+  // receiver has reached: at k + 5 a run of 158 rounds/s caught up with it in 30 ms, and the
+  // scan counted as a duplicate.
+  add(DropKind::kFutureStep, run, k + kFarAhead, victim);
   add(DropKind::kUnknownStation, run, k, 999);
   add(DropKind::kNonFinite, run, k, victim)->values()[1] = std::numeric_limits<double>::quiet_NaN();
   add(DropKind::kOutOfRange, run, k, victim)->values()[0] = -5.0;
