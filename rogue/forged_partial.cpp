@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "fault_step.hpp"
 #include "skyfuse/transport/tree_partitions.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 
@@ -31,16 +32,11 @@ wire::PartialSum plausible_partial(std::uint64_t run, std::uint32_t step, int se
   return s;
 }
 
-// The kinds every channel is attacked with, and the step each is sent for.
-struct Fault {
-  DropKind kind;
-  std::int64_t step_offset;
-};
-constexpr Fault kEveryChannel[] = {
-    // The one whose kind depends on timing goes first, as in rogue_node.cpp.
-    {DropKind::kDuplicate, 1},   {DropKind::kWrongRun, 0},  {DropKind::kStaleStep, -1},
-    {DropKind::kFutureStep, 5},  {DropKind::kNonFinite, 0}, {DropKind::kNotPositive, 0},
-    {DropKind::kWrongCluster, 0}};
+// The kinds every channel is attacked with (the step each names: fault_step.hpp). The one whose
+// kind depends on timing goes first, as in rogue_node.cpp.
+constexpr DropKind kEveryChannel[] = {
+    DropKind::kDuplicate, DropKind::kWrongRun,    DropKind::kStaleStep,   DropKind::kFutureStep,
+    DropKind::kNonFinite, DropKind::kNotPositive, DropKind::kWrongCluster};
 
 // What a channel's forged sample looks like when well formed, and its wrong-cluster variant.
 struct Channel {
@@ -85,7 +81,7 @@ std::vector<PartialAttack> partial_attacks_at(std::uint64_t run, std::uint32_t k
                                               const ClusterLayout& layout, int state_dim) {
   std::vector<PartialAttack> attacks;
   for (const Channel& c : channels(layout)) {
-    auto forge = [&](DropKind kind, std::int64_t offset) {
+    auto forge = [&](DropKind kind) {
       const bool wrong = kind == DropKind::kWrongCluster;
       const int sender = wrong ? c.wrong_sender : c.sender;
       std::vector<std::int32_t> contributors = c.contributors;
@@ -95,15 +91,15 @@ std::vector<PartialAttack> partial_attacks_at(std::uint64_t run, std::uint32_t k
       }
       if (kind == DropKind::kOverlap) contributors = {c.contributors[0], c.contributors[0]};
       const std::uint64_t run_id = kind == DropKind::kWrongRun ? run ^ 0x5a5a5a5aULL : run;
-      const auto step = static_cast<std::uint32_t>(static_cast<std::int64_t>(k) + offset);
+      const std::uint32_t step = fault_step(kind, k);
       wire::PartialSum s =
           plausible_partial(run_id, step, sender, c.kind, c.cluster, contributors, state_dim);
       if (kind == DropKind::kNonFinite) s.delta_information()[1] = std::nan("");
       if (kind == DropKind::kNotPositive) s.delta_information()[0] = -1.0;
       attacks.push_back({c.partition, kind, std::move(s)});
     };
-    for (const Fault& f : kEveryChannel) forge(f.kind, f.step_offset);
-    if (c.takes_overlap) forge(DropKind::kOverlap, 0);
+    for (const DropKind kind : kEveryChannel) forge(kind);
+    if (c.takes_overlap) forge(DropKind::kOverlap);
   }
   return attacks;
 }

@@ -4,13 +4,12 @@
 #include <limits>
 #include <string>
 
+#include "fault_step.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse::rogue {
 namespace {
-
-constexpr std::uint32_t kFarAhead = 1000;  // steps
 
 wire::PictureScan plausible_scan(std::uint64_t run, std::uint32_t step, int station) {
   wire::PictureScan s;
@@ -28,22 +27,18 @@ wire::PictureScan plausible_scan(std::uint64_t run, std::uint32_t step, int stat
 
 std::vector<ScanAttack> scan_attacks_at(std::uint64_t run, std::uint32_t k, int victim) {
   std::vector<ScanAttack> attacks;
-  const auto add = [&](DropKind kind, std::uint64_t r, std::uint32_t step, int station) {
-    attacks.push_back({kind, plausible_scan(r, step, station)});
+  const auto add = [&](DropKind kind, std::uint64_t r, int station) {
+    attacks.push_back({kind, plausible_scan(r, fault_step(kind, k), station)});
     return &attacks.back().sample;
   };
-  // As for increments: the impersonation first, its step k + 1 in every receiver's window
-  // whether it has closed step k yet or not.
-  add(DropKind::kDuplicate, run, k + 1, victim);
-  add(DropKind::kWrongRun, run ^ 0x5a5a5a5aULL, k, victim);
-  add(DropKind::kStaleStep, run, k - 1, victim);
-  // Far enough ahead that a rogue that wakes late, on a loaded machine, still names a step no
-  // receiver has reached: at k + 5 a run of 158 rounds/s caught up with it in 30 ms, and the
-  // scan counted as a duplicate.
-  add(DropKind::kFutureStep, run, k + kFarAhead, victim);
-  add(DropKind::kUnknownStation, run, k, 999);
-  add(DropKind::kNonFinite, run, k, victim)->values()[1] = std::numeric_limits<double>::quiet_NaN();
-  add(DropKind::kOutOfRange, run, k, victim)->values()[0] = -5.0;
+  // As for increments: the impersonation first (fault_step.hpp).
+  add(DropKind::kDuplicate, run, victim);
+  add(DropKind::kWrongRun, run ^ 0x5a5a5a5aULL, victim);
+  add(DropKind::kStaleStep, run, victim);
+  add(DropKind::kFutureStep, run, victim);
+  add(DropKind::kUnknownStation, run, 999);
+  add(DropKind::kNonFinite, run, victim)->values()[1] = std::numeric_limits<double>::quiet_NaN();
+  add(DropKind::kOutOfRange, run, victim)->values()[0] = -5.0;
   return attacks;
 }
 

@@ -3,7 +3,7 @@
 // measurement topics, one sample of every malformed kind a receiver checks for:
 //   wrong_run     another run's id
 //   stale_step    the step before the current one
-//   future_step   five steps ahead
+//   future_step   1000 steps ahead (fault_step.hpp)
 //   unknown_station  station id 999
 //   duplicate     a well-formed sample for a real station, from the wrong writer
 //   non_finite    a NaN in dQ / in z
@@ -33,6 +33,7 @@
 #include <optional>
 #include <set>
 
+#include "fault_step.hpp"
 #include "forged_increment.hpp"
 #include "forged_partial.hpp"
 #include "forged_scan.hpp"
@@ -65,17 +66,16 @@ struct Attack {
 
 // The malformed variants to send when the harness ticks step k of run `run`.
 std::vector<Attack> attacks_at(std::uint64_t run, std::uint32_t k, int victim) {
-  // The one whose kind depends on timing goes first: k + 1 is in every receiver's window
-  // whether it has closed step k yet or not, but not once it has closed k + 1 as well.
-  return {{DropKind::kDuplicate, run, k + 1, victim},
-          {DropKind::kWrongRun, run ^ 0x5a5a5a5aULL, k, victim},
-          {DropKind::kStaleStep, run, k - 1, victim},
-          {DropKind::kFutureStep, run, k + 5, victim},
-          {DropKind::kUnknownStation, run, k, 999},
-          {DropKind::kNonFinite, run, k, victim},
-          {DropKind::kNotPositive, run, k, victim},
-          {DropKind::kOutOfRange, run, k, victim},
-          {DropKind::kWrongSite, run, k, victim}};
+  // The impersonation first: its kind depends on timing (fault_step.hpp).
+  const auto at = [&](DropKind kind, std::uint64_t r, int station) {
+    return Attack{kind, r, rogue::fault_step(kind, k), station};
+  };
+  return {
+      at(DropKind::kDuplicate, run, victim),   at(DropKind::kWrongRun, run ^ 0x5a5a5a5aULL, victim),
+      at(DropKind::kStaleStep, run, victim),   at(DropKind::kFutureStep, run, victim),
+      at(DropKind::kUnknownStation, run, 999), at(DropKind::kNonFinite, run, victim),
+      at(DropKind::kNotPositive, run, victim), at(DropKind::kOutOfRange, run, victim),
+      at(DropKind::kWrongSite, run, victim)};
 }
 
 // The victim as the scenario has it: where it stands, whether it is a TDOA receiver, and the
