@@ -18,7 +18,7 @@
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/truth.hpp"
-#include "skyfuse/tracking/increment_rules.hpp"
+#include "skyfuse/tracking/increment_rules_impl.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
 

@@ -28,7 +28,7 @@ if(NOT SKYFUSE_FILTER_SHARDS MATCHES "^[1-9][0-9]*$")
 endif()
 
 # Sensor parts: the sources that instantiate the peers and the center for every sensor kind
-# (the Monte Carlo's, the in-process picture's and the center's rounds) split each shard again by
+# (the Monte Carlo's, the center's rounds and core's filter rounds) split each shard again by
 # the stations' sensor. 2 keeps every file at most 1.39 GB (the largest five were 1.52-1.66 GB)
 # but each half compiles again what the sensors share: those sources took 765 s of CPU instead
 # of 508 s, 14 % more for the whole build, and a build with one file per program would pay the

@@ -11,6 +11,7 @@
 #include "skyfuse/multitarget/imm_picture_steps.hpp"
 #include "skyfuse/multitarget/picture_sensor.hpp"
 #include "skyfuse/registry/registry.hpp"
+#include "skyfuse/tracking/imm_network_impl.hpp"
 #include "skyfuse/validation/nis_gate.hpp"
 
 namespace skyfuse {

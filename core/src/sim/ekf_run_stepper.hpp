@@ -14,6 +14,7 @@
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/tracking/central_tracker.hpp"
+#include "skyfuse/tracking/ekf_increment_rule.hpp"
 #include "skyfuse/tracking/peer_tracker.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 
@@ -58,7 +59,8 @@ class EkfRunStepper {
       with_observation(observations_[j], [&](auto& obs) {
         constexpr int kMeasDim = std::decay_t<decltype(obs.z)>::RowsAtCompileTime;
         obs.z = z[order_[j]].template head<kMeasDim>();
-        const OwnContribution own = contribute(peers_.estimate(), obs, gate_, increments_[j]);
+        const OwnContribution own =
+            EkfIncrementRule::contribute(peers_.estimate(), obs, gate_, increments_[j]);
         if (own.status != NumericalStatus::kOk) {
           throw NumericalError(fmt::format("p2p: step {}, station {}: increment failed: {}", k,
                                            obs.station_id, to_string(own.status)));

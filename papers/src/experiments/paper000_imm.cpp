@@ -10,6 +10,9 @@
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
+// Its own IMMs (one mode, and the paper's sets) run with its radars: compiled here, since no
+// configuration group of the registry holds the one-mode IMM.
+#include "skyfuse/tracking/imm_network_impl.hpp"
 
 namespace skyfuse {
 namespace {

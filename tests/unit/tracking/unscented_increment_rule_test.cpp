@@ -1,7 +1,5 @@
 // The unscented rule: its NIS gate on P_zz + R, and its reference, the covariance-form UKF on
 // the stacked measurement, against the information form the network sums.
-#include "skyfuse/tracking/unscented_increment_rule.hpp"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>  // inverse(), for the covariance-form reference
@@ -10,6 +8,7 @@
 
 #include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/tracking/unscented_increment_rule_impl.hpp"
 #include "support/random_problems.hpp"
 
 namespace skyfuse {

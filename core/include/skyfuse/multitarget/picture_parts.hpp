@@ -74,30 +74,16 @@ bool visit_picture_parts_in_shard(const Scenario& scenario, F&& f) {
   return called;
 }
 
-namespace detail {
-template <std::size_t Shard, typename F, typename... Filters, typename... Models>
-void for_each_picture_parts_in(FilterList<Filters...> /*parts*/, ModelList<Models...> /*models*/,
-                               F& f) {
-  const auto each_part = [&]<typename Filter>(std::type_identity<Filter>) {
-    const auto each_model = [&]<typename Model>(std::type_identity<Model>) {
-      if constexpr (picture_runs<Filter, Model>() && filter_part_compiled(Filter::kKind)) {
-        if constexpr (*kConfigurationGroup<Filter, Model> % kFilterShards == Shard) {
-          f(std::type_identity<PictureParts<Filter, Model>>{});
-        }
-      }
-    };
-    (each_model(std::type_identity<Models>{}), ...);
-  };
-  (each_part(std::type_identity<Filters>{}), ...);
-}
-}  // namespace detail
-
 /// Calls f(std::type_identity<PictureParts<...>>{}) for every group of shard `Shard` that a
 /// picture runs: what the shard compiles the pictures for.
 template <std::size_t Shard, typename F>
 void for_each_picture_parts_in_shard(F&& f) {
-  static_assert(Shard < kFilterShards);
-  detail::for_each_picture_parts_in<Shard>(FilterParts{}, MotionModels{}, f);
+  for_each_group_in_shard<Shard>(
+      [&]<typename Filter, typename Model>(std::type_identity<Filter>, std::type_identity<Model>) {
+        if constexpr (picture_runs<Filter, Model>()) {
+          f(std::type_identity<PictureParts<Filter, Model>>{});
+        }
+      });
 }
 
 }  // namespace skyfuse

@@ -29,6 +29,7 @@
 #include "skyfuse/multitarget/picture_sensor.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/truth.hpp"
+#include "skyfuse/tracking/increment_rules_impl.hpp"
 #include "skyfuse/tracking/network_imm.hpp"
 #include "skyfuse/tracking/round_rule.hpp"
 #include "skyfuse/validation/nis_gate.hpp"

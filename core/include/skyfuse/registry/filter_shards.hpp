@@ -40,6 +40,40 @@ namespace skyfuse {
 /// The number of shards; set by cmake/FilterShards.cmake.
 inline constexpr std::size_t kFilterShards = SKYFUSE_FILTER_SHARDS;
 
+/// Whether shard `Shard` compiles the group of filter part `Filter` on `Model`: a registered
+/// group of a part in this build whose number modulo the shard count is `Shard`.
+template <typename Filter, typename Model, std::size_t Shard>
+constexpr bool in_shard() {
+  constexpr auto group = kConfigurationGroup<Filter, Model>;
+  if constexpr (group.has_value()) {
+    return *group % kFilterShards == Shard && filter_part_compiled(Filter::kKind);
+  } else {
+    return false;
+  }
+}
+
+namespace detail {
+template <std::size_t Shard, typename F, typename... Filters, typename... Models>
+void for_each_group_in(FilterList<Filters...> /*parts*/, ModelList<Models...> /*models*/, F& f) {
+  const auto each_part = [&]<typename Filter>(std::type_identity<Filter> part) {
+    const auto each_model = [&]<typename Model>(std::type_identity<Model> model) {
+      if constexpr (in_shard<Filter, Model, Shard>()) f(part, model);
+    };
+    (each_model(std::type_identity<Models>{}), ...);
+  };
+  (each_part(std::type_identity<Filters>{}), ...);
+}
+}  // namespace detail
+
+/// Calls f(std::type_identity<Filter>{}, std::type_identity<Model>{}) for every group of shard
+/// `Shard`, at compile time: what a shard compiles code for whatever the run (the tables and
+/// filter rounds that other files only link).
+template <std::size_t Shard, typename F>
+void for_each_group_in_shard(F&& f) {
+  static_assert(Shard < kFilterShards);
+  detail::for_each_group_in<Shard>(FilterParts{}, MotionModels{}, f);
+}
+
 /// Calls f(std::type_identity<Filter>{}, std::type_identity<Model>{}) for the filter part that
 /// runs `filter` and its motion model, compiled for the groups of shard `Shard` only. The
 /// caller chose the shard by with_filter_shard, so a group in another shard, like a part that
@@ -51,9 +85,7 @@ void visit_group_in_shard(const FilterConfig& filter, F&& f) {
   visit_filter(filter, [&]<typename Filter>(std::type_identity<Filter> part) {
     visit_model_kind<MotionModels>(filter.motion_model.kind,
                                    [&]<typename Model>(std::type_identity<Model> model) {
-                                     constexpr auto group = kConfigurationGroup<Filter, Model>;
-                                     if constexpr (group && *group % kFilterShards == Shard &&
-                                                   filter_part_compiled(Filter::kKind)) {
+                                     if constexpr (in_shard<Filter, Model, Shard>()) {
                                        f(part, model);
                                        ran = true;
                                      }

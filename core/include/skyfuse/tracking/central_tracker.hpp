@@ -34,6 +34,11 @@ class CentralTracker {
   UpdateReport update(const Observations& observations) {
     return stacked_.update(estimate_, observations);
   }
+  /// The stacked update of the observations `stacked` points to, as update() makes it: what a
+  /// round stacks (round_rule.hpp). Defined in central_tracker_impl.hpp and compiled once per
+  /// configuration group and sensor in core (src/tracking/filter_rounds_shard.cpp), so that the
+  /// Monte Carlo and the center process link it.
+  UpdateReport update_stacked(std::span<const Observation* const> stacked);
   void predict() { skyfuse::predict(estimate_, motion_); }
   const State& estimate() const { return estimate_; }
   /// Replaces the estimate: a fixed-lag re-fusion going back to a round's prior.

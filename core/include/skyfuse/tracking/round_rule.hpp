@@ -205,7 +205,7 @@ class CentralRound {
       contributors_.push_back(station_id);
     }
     if (stacked_.empty()) return {NumericalStatus::kOk, 0.0};
-    return tracker.update(IndirectView<Observation>(stacked_));
+    return tracker.update_stacked(stacked_);
   }
 
   /// The stations stacked in the last update(), ascending.

@@ -27,28 +27,12 @@ struct UnscentedIncrementRule {
       return sigma_.compute(prior, UnscentedParameters{});
     }
 
-    /// One station's increment against the prepared prior, into `out`.
+    /// One station's increment against the prepared prior, into `out` (defined in
+    /// unscented_increment_rule_impl.hpp, compiled once per configuration group and sensor in
+    /// core: src/tracking/filter_rounds_shard.cpp).
     template <typename Sensor>
     OwnContribution contribute(const StationObservation<Sensor>& observation, const NisGate& gate,
-                               InformationIncrement<N>& out) const {
-      constexpr int M = Sensor::kMeasDim;
-      if (const auto why = Sensor::check_reported(observation.z)) {
-        out.set_zero(observation.station_id);
-        return {why, NumericalStatus::kOk};
-      }
-      const StatisticalLinearisation<M, N> lin =
-          linearise(sigma_, observation.sensor, gate.enabled() ? Spread::kForm : Spread::kLeaveOut);
-      if (gate.enabled()) {
-        const auto nis = unscented_nis(lin, observation.sensor, observation.z, observation.noise);
-        if (!nis || *nis > gate.threshold(M)) {
-          out.set_zero(observation.station_id);
-          return {DropKind::kNisGate, NumericalStatus::kOk};
-        }
-      }
-      return {std::nullopt,
-              compute_unscented_increment<N, Sensor>(observation.station_id, sigma_, lin,
-                                                     observation.z, observation.noise, out)};
-    }
+                               InformationIncrement<N>& out) const;
 
     static constexpr std::string_view kReferenceName = "the covariance-form UKF";
     /// The covariance-form UKF's update of `prior` (the prepared one) with the stacked
