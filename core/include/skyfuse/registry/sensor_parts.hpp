@@ -2,7 +2,8 @@
 /// \file
 /// A second split of sharded code (filter_shards.hpp), by the stations' sensor, for the
 /// sources that run both the peers and the center for every sensor (the Monte Carlo's steppers,
-/// the center's rounds; a picture's sensors are values): they made the largest files, the IMM's
+/// the center's rounds, core's filter rounds; a picture's sensors are values): they made the
+/// largest files, the IMM's
 /// up to 1.66 GB. Such a source is compiled once per shard and sensor part: part p of P holds the
 /// sensor slots whose number modulo P is p, a slot being a registered sensor's place in `Sensors`
 /// or, after them, the mixed stations' AnySensor.
