@@ -60,13 +60,6 @@ void keep_imm_sensor() {
                  static_cast<StackedUpdate>(&Central::template update<SensorOf, N>)};
 }
 
-template <typename Filter>
-struct IsImmPart : std::false_type {};
-template <typename Set>
-struct IsImmPart<ImmFilterPart<Set>> : std::true_type {
-  using ModeSet = Set;
-};
-
 // Every round of filter part `Filter` on `Model` for the sensors of sensor part `Part` of
 // `Parts` it runs on: each registered sensor the model can carry (as visit_sensor_kind offers
 // them) and, where the part takes stations of different kinds, their pack. What does not depend
@@ -74,15 +67,17 @@ struct IsImmPart<ImmFilterPart<Set>> : std::true_type {
 template <typename Filter, typename Model, std::size_t Part, std::size_t Parts>
 void keep_group_rounds() {
   constexpr int N = Model::kDim;
-  if constexpr (IsImmPart<Filter>::value && Part == 0) {
-    keep_imm_fusion<typename IsImmPart<Filter>::ModeSet>();
+  // An IMM part names its modes (ImmFilterPart::ModeSet); every other part has none.
+  constexpr bool kImm = !Filter::kModeNames.empty();
+  if constexpr (kImm && Part == 0) {
+    keep_imm_fusion<typename Filter::ModeSet>();
   }
   const auto each_sensor = [&]<template <int> class SensorOf>(SensorTemplate<SensorOf>) {
     using Sensor = SensorOf<N>;
     if constexpr (in_sensor_part<SensorOf, Part, Parts> && Sensor::kJacobianCols <= N &&
                   filter_runs_on<Filter, Model, Sensor>()) {
-      if constexpr (IsImmPart<Filter>::value) {
-        keep_imm_sensor<typename IsImmPart<Filter>::ModeSet, SensorOf, N>();
+      if constexpr (kImm) {
+        keep_imm_sensor<typename Filter::ModeSet, SensorOf, N>();
       } else if constexpr (requires { typename Filter::IncrementRule; }) {
         keep_increment_rule<typename Filter::IncrementRule, N, Sensor>();
         if constexpr (std::is_same_v<Filter, EkfFilterPart>) keep_stacked_center<Model, Sensor>();
