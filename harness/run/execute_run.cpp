@@ -91,7 +91,7 @@ class OneAircraftRun final : public RunKind {
       announce_live(*o_.live, live_->port());
     }
   }
-  NodeDriver& driver() override { return *driver_; }
+  NodeRoster& roster() override { return driver_->roster(); }
 
   void begin_rounds(std::uint64_t epoch_ns) override {
     epoch_ns_ = epoch_ns;
@@ -125,15 +125,7 @@ class OneAircraftRun final : public RunKind {
     }
     return rounds;
   }
-  void release(bool stopped) override {
-    // Nodes announce FINISHED after their last track; anything else is worth a word.
-    if (!stopped && !driver_->wait_until_finished(std::chrono::seconds(5))) {
-      spdlog::warn("not every node announced FINISHED within 5 s of the last step");
-    }
-    driver_->stop();
-  }
   void end(const ProcessMeasures& measured, std::uint64_t run_id) override;
-  void abandon() override { driver_->stop(); }
 
   RunSummary& summary() { return summary_; }
 

@@ -8,7 +8,6 @@
 #include <map>
 #include <optional>
 #include <random>
-#include <set>
 #include <utility>
 
 #include "run/realtime_rounds.hpp"
@@ -18,7 +17,6 @@
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/drop_log.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"
-#include "skyfuse/transport/refusal_reports.hpp"
 #include "skyfuse/transport/source_binding.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
@@ -118,10 +116,6 @@ std::string_view to_string(StopCause cause) {
   return "error";
 }
 
-std::string node_name(int id) {
-  return id == kCenterNodeId ? "center" : fmt::format("station {}", id);
-}
-
 std::string process_name(std::span<const int> station_ids) {
   return station_ids.size() == 1
              ? node_name(station_ids.front())
@@ -147,85 +141,26 @@ struct LockstepDriver::Impl {
         state_dim(shape.state_dim),
         modes(shape.modes),
         station_ids(ids_of(participants)),
-        check(std::move(check_fn)),
-        node(config),
-        ticks(node.make_writer<wire::Tick>()),
-        tracks(node.make_reader<wire::TrackEstimate>()),
-        measurements(node.make_reader<wire::Measurement>()),
-        statuses(node.make_reader<wire::StationStatus>()),
-        refusal_reports(
-            node.make_reader<wire::StationStatus>({transport::kRefusalReportsPartition})),
+        roster(config, run, with_center(station_ids), std::move(check_fn)),
+        tracks(roster.node().make_reader<wire::TrackEstimate>()),
+        measurements(roster.node().make_reader<wire::Measurement>()),
         track_collector(with_center(station_ids)),
         measurement_collector(station_ids) {
     std::sort(station_ids.begin(), station_ids.end());
     for (const StationConfig& s : participants) stations.emplace(s.id, s);
-    wait_set.attach(tracks);
-    wait_set.attach(measurements);
-    wait_set.attach(statuses);
-    wait_set.attach(refusal_reports);
-  }
-
-  // Reads statuses; a node that failed ends the run with its own words. Then the nodes'
-  // reports of what they refused while the run goes on.
-  void read_statuses() {
-    wire::StationStatus s;
-    while (refusal_reports.take(s)) {
-      if (s.run_id() != run_id || s.state() != wire::READY) continue;
-      DropCounts dropped{};
-      std::copy(s.dropped().begin(), s.dropped().end(), dropped.begin());
-      note_refusals(s.station_id(), s.instance(), s.step(), dropped);
-    }
-    while (statuses.take(s)) {
-      if (s.run_id() != run_id) continue;
-      if (s.state() == wire::FAILED) {
-        throw RunAborted(fmt::format("{} failed at step {}: {}", node_name(s.station_id()),
-                                     s.step(), s.detail()),
-                         StopCause::kNodeFailed);
-      }
-      // A killed process's own READY must not count for its replacement.
-      const auto killed = killed_instance.find(s.station_id());
-      if (s.state() == wire::READY &&
-          (killed == killed_instance.end() || killed->second != s.instance())) {
-        ready[s.station_id()] = s.instance();
-      }
-      DropCounts dropped{};
-      std::copy(s.dropped().begin(), s.dropped().end(), dropped.begin());
-      if (s.state() == wire::FINISHED) {
-        note_refusals(s.station_id(), s.instance(), s.step(), dropped);
-        NodeCounts& counts = finished[s.station_id()];
-        counts.dropped = dropped;
-        counts.lost = s.lost();
-        counts.resyncs = s.resyncs();
-        counts.late_used = s.late_used();
-        counts.participants_known = s.participants_known();
-      }
-    }
-  }
-
-  // A node's counts so far, against those it reported before: what it refused in between.
-  void note_refusals(int node_id, std::uint64_t instance, std::uint64_t step,
-                     const DropCounts& counts) {
-    auto& [seen_instance, before] = reported[node_id];
-    if (seen_instance != instance) {  // a new process counts from zero
-      seen_instance = instance;
-      before = {};
-    }
-    // Counts only grow; a report that comes after a later status (two writers: the reports and
-    // the node's last status) adds nothing.
-    for (std::size_t i = 0; i < kDropKinds; ++i) {
-      if (counts[i] > before[i]) {
-        refusals.push_back({node_id, step, static_cast<DropKind>(i), counts[i] - before[i]});
-        before[i] = counts[i];
-      }
-    }
+    roster.wait_set().attach(tracks);
+    roster.wait_set().attach(measurements);
+    const int m = static_cast<int>(station_ids.size());
+    roster.expect_matched(
+        "track writers", [this] { return tracks.matched(); }, m + 1);
+    roster.expect_matched(
+        "measurement writers", [this] { return measurements.matched(); }, m);
+    roster.while_waiting([this] { drain_samples(); });
   }
 
   // The refusals reported since the last call, the harness's own (as of round k) with them.
   std::vector<Refusal> take_refusals(std::uint64_t k) {
-    read_statuses();
-    const DropCounts own = own_drops.counts();
-    note_refusals(kHarnessNodeId, 0, k, own);
-    return std::exchange(refusals, {});
+    return roster.take_refusals(k, own_drops.counts());
   }
 
   void drain_samples() {
@@ -285,42 +220,30 @@ struct LockstepDriver::Impl {
   std::size_t modes;  // mode probabilities every track carries
   std::vector<int> station_ids;
   std::map<int, StationConfig> stations;  // by id: where each measurement must come from
-  std::function<void()> check;
-  transport::DdsNode node;
-  transport::Writer<wire::Tick> ticks;
+  NodeRoster roster;
   transport::Reader<wire::TrackEstimate> tracks;
   transport::Reader<wire::Measurement> measurements;
-  transport::Reader<wire::StationStatus> statuses;
-  transport::Reader<wire::StationStatus> refusal_reports;  // kRefusalReportsPartition
-  transport::ReaderWaitSet wait_set;
   // Whether every node that is up has delivered its track (and every station its measurement)
   // for the current step.
   bool all_in() const {
     const auto track_ids = track_collector.station_ids();  // ascending: the center (0) first
     for (std::size_t i = 0; i < track_ids.size(); ++i) {
-      if (!down.contains(track_ids[i]) && !track_collector.filled(i)) return false;
+      if (!roster.is_down(track_ids[i]) && !track_collector.filled(i)) return false;
     }
     const auto ids = measurement_collector.station_ids();
     for (std::size_t i = 0; i < ids.size(); ++i) {
-      if (!down.contains(ids[i]) && !measurement_collector.filled(i)) return false;
+      if (!roster.is_down(ids[i]) && !measurement_collector.filled(i)) return false;
     }
     return true;
   }
 
   StepCollector<ReceivedTrack> track_collector;
   StepCollector<Eigen::VectorXd> measurement_collector;
-  std::map<int, std::uint64_t> ready;  // node id -> the instance that announced READY
-  std::map<int, std::uint64_t> killed_instance;
-  std::set<int> down;                           // stations the harness killed and has not restarted
   std::map<int, Clock::time_point> last_heard;  // per node: when its last track arrived
-  std::map<int, NodeCounts> finished;           // from FINISHED statuses
   transport::SourceBinding track_sources;
   transport::SourceBinding measurement_sources;
   std::map<std::pair<std::uint64_t, int>, ReceivedTrack> settled;  // by (step, source)
   DropTally own_drops;
-  // node -> (the process that reported, its counts then): for the refusals in between.
-  std::map<int, std::pair<std::uint64_t, DropCounts>> reported;
-  std::vector<Refusal> refusals;              // reported since the last round's record
   LockstepDriver::RealtimeProgress realtime;  // a real-time run's, as of its last check
 };
 
@@ -331,63 +254,29 @@ LockstepDriver::LockstepDriver(const transport::NodeConfig& config, std::uint64_
 
 LockstepDriver::~LockstepDriver() = default;
 
-void LockstepDriver::wait_until_joined(std::chrono::milliseconds timeout) {
-  Impl& d = *impl_;
-  const int m = static_cast<int>(d.station_ids.size());
-  const auto start = Clock::now();
-  const auto all_ready = [&] {
-    if (!d.ready.contains(kCenterNodeId)) return false;
-    return std::all_of(d.station_ids.begin(), d.station_ids.end(),
-                       [&](int id) { return d.ready.contains(id); });
-  };
-  while (true) {
-    d.check();
-    d.read_statuses();
-    const bool matched =
-        d.ticks.matched() >= m + 1 && d.tracks.matched() >= m + 1 && d.measurements.matched() >= m;
-    if (matched && all_ready()) {
-      for (int id : with_center(d.station_ids)) d.last_heard[id] = Clock::now();
-      return;
-    }
-    if (Clock::now() - start >= timeout) {
-      std::vector<std::string> missing;
-      for (int id : with_center(d.station_ids)) {
-        if (!d.ready.contains(id)) missing.push_back(node_name(id));
-      }
-      throw RunAborted(fmt::format(
-          "discovery timed out after {:.1f} s; not ready: {}; tick readers {}/{}, track "
-          "writers {}/{}, measurement writers {}/{}",
-          std::chrono::duration<double>(timeout).count(),
-          missing.empty() ? "none" : fmt::format("{}", fmt::join(missing, ", ")), d.ticks.matched(),
-          m + 1, d.tracks.matched(), m + 1, d.measurements.matched(), m));
-    }
-    d.wait_set.wait(std::chrono::milliseconds(10));
-  }
+NodeRoster& LockstepDriver::roster() {
+  return impl_->roster;
 }
 
 RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds close_after,
                                       std::chrono::milliseconds silence_limit) {
   Impl& d = *impl_;
-  wire::Tick tick;
-  tick.run_id(d.run_id);
-  tick.step(static_cast<std::uint32_t>(k));
-  tick.stop(false);
+  const auto step = static_cast<std::uint32_t>(k);
   const auto sent = Clock::now();
-  d.ticks.write(tick);
+  d.roster.send_tick(step);
   auto last_sent = sent;
 
   while (true) {
     d.drain_samples();
     if (d.all_in()) break;
-    d.check();
-    d.read_statuses();
+    d.roster.check();
     const auto now = Clock::now();
     if (now - sent >= close_after) break;  // close with what has arrived
     if (now - last_sent >= kTickRepeat) {
-      d.ticks.write(tick);
+      d.roster.send_tick(step);
       last_sent = now;
     }
-    d.wait_set.wait(kPollSlice);
+    d.roster.wait(kPollSlice);
   }
 
   RoundRecord record;
@@ -401,7 +290,8 @@ RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds
     if (d.track_collector.filled(i)) {
       track = tracks[i];
       d.last_heard[id] = Clock::now();
-    } else if (!d.down.contains(id) && Clock::now() - d.last_heard[id] > silence_limit) {
+    } else if (!d.roster.is_down(id) &&
+               Clock::now() - std::max(d.last_heard[id], d.roster.up_since(id)) > silence_limit) {
       throw RunAborted(
           fmt::format("{} is running but sent no track for {:.1f} s (step {})", node_name(id),
                       std::chrono::duration<double>(silence_limit).count(), k),
@@ -424,34 +314,6 @@ RoundRecord LockstepDriver::run_round(std::uint64_t k, std::chrono::milliseconds
   return record;
 }
 
-void LockstepDriver::set_down(int id, bool down) {
-  if (down) {
-    impl_->down.insert(id);
-    if (const auto it = impl_->ready.find(id); it != impl_->ready.end()) {
-      impl_->killed_instance[id] = it->second;
-      impl_->ready.erase(it);
-    }
-  } else {
-    impl_->down.erase(id);
-    impl_->last_heard[id] = Clock::now();
-  }
-}
-
-void LockstepDriver::wait_until_ready(int id, std::chrono::milliseconds timeout) {
-  Impl& d = *impl_;
-  const auto start = Clock::now();
-  while (!d.ready.contains(id)) {
-    d.check();
-    d.read_statuses();
-    d.drain_samples();  // keep the readers' queues short meanwhile
-    if (Clock::now() - start >= timeout) {
-      throw RunAborted(fmt::format("restarted {} not ready after {:.1f} s", node_name(id),
-                                   std::chrono::duration<double>(timeout).count()));
-    }
-    d.wait_set.wait(std::chrono::milliseconds(10));
-  }
-}
-
 void LockstepDriver::run_realtime(int steps, double time_step_s,
                                   std::chrono::system_clock::time_point epoch,
                                   std::chrono::milliseconds timeout,
@@ -459,12 +321,7 @@ void LockstepDriver::run_realtime(int steps, double time_step_s,
   Impl& d = *impl_;
   const auto epoch_ns = static_cast<std::uint64_t>(
       std::chrono::duration_cast<std::chrono::nanoseconds>(epoch.time_since_epoch()).count());
-  wire::Tick tick;
-  tick.run_id(d.run_id);
-  tick.step(0);
-  tick.stop(false);
-  tick.epoch_ns(epoch_ns);
-  d.ticks.write(tick);
+  d.roster.send_start(epoch_ns);
 
   const auto total = static_cast<std::uint64_t>(steps);
   RealtimeRounds rounds(d.station_ids, total);
@@ -524,8 +381,7 @@ void LockstepDriver::run_realtime(int steps, double time_step_s,
     done.clear();
     note_progress();
     if (handed_over == total) break;
-    d.check();
-    d.read_statuses();
+    d.roster.check();
     // The first step not yet complete was due longer ago than the limit (the schedule's end
     // included): the nodes are not catching up on this host.
     if (d.realtime.behind_s > limit_s) {
@@ -539,7 +395,7 @@ void LockstepDriver::run_realtime(int steps, double time_step_s,
                       handed_over, steps, d.realtime.behind_s, limit_s, d.realtime.steps_reached),
           StopCause::kFellBehind);
     }
-    d.wait_set.wait(kPollSlice);
+    d.roster.wait(kPollSlice);
   }
   if (rounds.tracks_lost() + rounds.measurements_lost() > 0) {
     spdlog::warn(
@@ -558,43 +414,14 @@ std::vector<Refusal> LockstepDriver::take_refusals(std::uint64_t step) {
 }
 
 std::map<int, NodeCounts> LockstepDriver::finished_counts() {
-  impl_->read_statuses();
-  std::map<int, NodeCounts> all = impl_->finished;
+  std::map<int, NodeCounts> all = impl_->roster.finished();
   all[kHarnessNodeId].dropped = impl_->own_drops.counts();
   return all;
-}
-
-bool LockstepDriver::wait_until_finished(std::chrono::milliseconds timeout) {
-  Impl& d = *impl_;
-  const auto give_up = Clock::now() + timeout;
-  while (true) {
-    d.read_statuses();
-    d.drain_samples();
-    const bool all = std::all_of(d.station_ids.begin(), d.station_ids.end(), [&](int id) {
-      return d.down.contains(id) || d.finished.contains(id);
-    });
-    if (all && d.finished.contains(kCenterNodeId)) return true;
-    if (Clock::now() >= give_up) return false;
-    d.wait_set.wait(std::chrono::milliseconds(10));
-  }
 }
 
 const std::map<std::pair<std::uint64_t, int>, ReceivedTrack>& LockstepDriver::settled_tracks()
     const {
   return impl_->settled;
-}
-
-void LockstepDriver::stop() {
-  wire::Tick tick;
-  tick.run_id(impl_->run_id);
-  tick.step(0);
-  tick.stop(true);
-  try {
-    impl_->ticks.write(tick);
-    impl_->ticks.wait_acknowledged(std::chrono::milliseconds(500));
-  } catch (const transport::DdsError&) {
-    // Best effort: the children are terminated by signal right after.
-  }
 }
 
 }  // namespace skyfuse::harness

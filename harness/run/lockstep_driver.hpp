@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-#include "run/node_driver.hpp"
+#include "run/node_roster.hpp"
 #include "run/round_record.hpp"
 #include "run/run_aborted.hpp"
 #include "skyfuse/scenario/scenario.hpp"
@@ -25,10 +25,6 @@
 #include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {
-
-/// How messages name node `id`: "center" (id 0) or "station <id>"; also the name its process
-/// is started under, so that a message about either points at the same node.
-std::string node_name(int id);
 
 /// The name a station process is started under: its station's node_name, or "stations A-B" for
 /// several (ascending ids).
@@ -41,18 +37,6 @@ std::uint64_t fresh_run_id();
 /// node from 16 nodes up - at 64 stations on 2 cores discovery took 12-44 s.
 double default_discovery_timeout_s(int nodes);
 
-/// The harness's key among node ids in drop counts.
-inline constexpr int kHarnessNodeId = -1;
-
-/// What a node reported when it finished.
-struct NodeCounts {
-  DropCounts dropped{};
-  std::uint64_t lost = 0;                ///< received samples removed by the simulated loss
-  std::uint32_t resyncs = 0;             ///< rounds fused onto another station's prior
-  std::uint64_t late_used = 0;           ///< samples kept after their round closed, and re-fused
-  std::uint32_t participants_known = 0;  ///< other DDS participants it had discovered
-};
-
 /// What every track of a run carries: an estimate of the run's state dimension, and as many
 /// mode probabilities as its filter has modes (0 for one model).
 struct TrackShape {
@@ -60,30 +44,23 @@ struct TrackShape {
   std::size_t modes = 0;
 };
 
-class LockstepDriver final : public NodeDriver {
+class LockstepDriver final {
  public:
   /// `check` is called at least every 50 ms while waiting; it throws RunAborted to end the run.
   /// A track of another `shape` is refused.
   LockstepDriver(const transport::NodeConfig& config, std::uint64_t run_id,
                  std::span<const StationConfig> participants, TrackShape shape,
                  std::function<void()> check);
-  ~LockstepDriver() override;
+  ~LockstepDriver();
 
-  /// Waits until every station and the center have announced READY and the harness's own
-  /// endpoints match them.
-  void wait_until_joined(std::chrono::milliseconds timeout) override;
+  /// The nodes' statuses, the ticks, joining, kills and restarts.
+  NodeRoster& roster();
 
   /// Runs step k: publishes its tick and returns what the processes published for it, once
   /// every live one has or `close_after` has passed. A live node silent for `silence_limit`
   /// (over consecutive rounds) ends the run.
   RoundRecord run_round(std::uint64_t k, std::chrono::milliseconds close_after,
                         std::chrono::milliseconds silence_limit);
-
-  /// The harness killed station `id` (true) or started it again (false): a station that is
-  /// down is not waited for.
-  void set_down(int id, bool down) override;
-  /// Waits until a restarted station `id` has announced READY again.
-  void wait_until_ready(int id, std::chrono::milliseconds timeout) override;
 
   /// Real-time mode: publishes the start tick (step 0 begins at `epoch`) and gathers every
   /// node's track of every step as the nodes publish them on their own clocks; `on_round` is
@@ -111,16 +88,9 @@ class LockstepDriver final : public NodeDriver {
   std::vector<Refusal> take_refusals(std::uint64_t step);
   std::map<int, NodeCounts> finished_counts();
 
-  /// Waits until every node that is up has announced FINISHED; false if `timeout` passed first.
-  bool wait_until_finished(std::chrono::milliseconds timeout);
-
   /// The settled tracks received (fixed-lag re-fusion: each round's final estimate), by
   /// (step, source id).
   const std::map<std::pair<std::uint64_t, int>, ReceivedTrack>& settled_tracks() const;
-
-  /// Tells every process to stop (a Tick with stop = true); after the last round, this
-  /// releases the nodes waiting to exit.
-  void stop();
 
  private:
   struct Impl;

@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-#include "run/lockstep_driver.hpp"
+#include "run/run_aborted.hpp"
 #include "skyfuse/transport/realtime_schedule.hpp"
 
 namespace skyfuse::harness {
@@ -22,63 +22,36 @@ PictureDriver::PictureDriver(const transport::NodeConfig& config, std::uint64_t 
                              std::vector<int> ids, std::function<void()> stop_check)
     : run_id_(run_id),
       ids_(std::move(ids)),
-      stop_check_(std::move(stop_check)),
-      node_(config),
-      ticks_(node_.make_writer<wire::Tick>()),
-      rounds_(node_.make_reader<wire::PictureRound>()),
-      statuses_(node_.make_reader<wire::StationStatus>()) {
-  wait_set_.attach(rounds_);
-  wait_set_.attach(statuses_);
-}
-
-void PictureDriver::wait_until_joined(std::chrono::milliseconds timeout) {
-  const auto m = static_cast<int>(ids_.size());
-  const auto start = Clock::now();
-  while (true) {
-    check();
-    if (ready_.size() == ids_.size() && ticks_.matched() >= m && rounds_.matched() >= m) return;
-    if (Clock::now() - start >= timeout) {
-      std::vector<int> missing;
-      for (int id : ids_) {
-        if (!ready_.contains(id)) missing.push_back(id);
-      }
-      throw RunAborted(
-          fmt::format("discovery timed out after {:.1f} s; stations not ready: "
-                      "{}; tick readers {}/{}, picture writers {}/{}",
-                      std::chrono::duration<double>(timeout).count(), fmt::join(missing, ", "),
-                      ticks_.matched(), m, rounds_.matched(), m));
-    }
-    wait_set_.wait(std::chrono::milliseconds(10));
-  }
+      roster_(config, run_id, ids_, std::move(stop_check)),
+      rounds_(roster_.node().make_reader<wire::PictureRound>()) {
+  roster_.wait_set().attach(rounds_);
+  roster_.expect_matched(
+      "picture writers", [this] { return rounds_.matched(); }, static_cast<int>(ids_.size()));
 }
 
 std::vector<wire::PictureRound> PictureDriver::run_round(std::uint32_t k,
                                                          std::chrono::milliseconds timeout) {
-  wire::Tick tick;
-  tick.run_id(run_id_);
-  tick.step(k);
-  tick.stop(false);
   const auto sent = Clock::now();
-  ticks_.write(tick);
+  roster_.send_tick(k);
   auto last_sent = sent;
   std::map<int, wire::PictureRound> got;
-  const std::size_t up = ids_.size() - down_.size();
+  const std::size_t up = roster_.nodes_up();
   while (got.size() < up) {
     wire::PictureRound round;
     while (rounds_.take(round)) {
       const bool ours = round.run_id() == run_id_ && round.step() == k &&
                         std::binary_search(ids_.begin(), ids_.end(), round.source_id());
-      if (ours && !down_.contains(round.source_id())) {
+      if (ours && !roster_.is_down(round.source_id())) {
         got.insert_or_assign(round.source_id(), std::move(round));
       }
     }
     if (got.size() == up) break;
-    check();
+    roster_.check();
     const auto now = Clock::now();
     if (now - sent >= timeout) {
       std::vector<int> missing;
       for (int id : ids_) {
-        if (!got.contains(id) && !down_.contains(id)) missing.push_back(id);
+        if (!got.contains(id) && !roster_.is_down(id)) missing.push_back(id);
       }
       throw RunAborted(
           fmt::format("step {}: no picture from node(s) {} within {:.1f} s", k,
@@ -86,10 +59,10 @@ std::vector<wire::PictureRound> PictureDriver::run_round(std::uint32_t k,
           StopCause::kRoundTimeout);
     }
     if (now - last_sent >= kTickRepeat) {
-      ticks_.write(tick);
+      roster_.send_tick(k);
       last_sent = now;
     }
-    wait_set_.wait(kPollSlice);
+    roster_.wait(kPollSlice);
   }
   std::vector<wire::PictureRound> out;  // node order: the center, then the stations up
   for (auto& [id, round] : got) out.push_back(std::move(round));
@@ -102,12 +75,7 @@ void PictureDriver::run_realtime(
     const std::function<void(int, std::vector<wire::PictureRound>)>& on_round) {
   const auto epoch_ns = static_cast<std::uint64_t>(
       std::chrono::duration_cast<std::chrono::nanoseconds>(epoch.time_since_epoch()).count());
-  wire::Tick tick;
-  tick.run_id(run_id_);
-  tick.step(0);
-  tick.stop(false);
-  tick.epoch_ns(epoch_ns);
-  ticks_.write(tick);
+  roster_.send_start(epoch_ns);
   // The rounds not handed over yet, by step; each holds the pictures that came, by node.
   std::map<int, std::map<int, wire::PictureRound>> open;
   int next = 0;  // the next round to hand over
@@ -132,74 +100,8 @@ void PictureDriver::run_realtime(
       on_round(next, std::move(handed));
       ++next;
     }
-    check();
-    wait_set_.wait(std::chrono::milliseconds(5));
-  }
-}
-
-void PictureDriver::set_down(int id, bool down) {
-  if (down) {
-    down_.insert(id);
-    if (const auto it = ready_.find(id); it != ready_.end()) {
-      killed_instance_[id] = it->second;
-      ready_.erase(it);
-    }
-  } else {
-    down_.erase(id);
-  }
-}
-
-void PictureDriver::wait_until_ready(int id, std::chrono::milliseconds timeout) {
-  const auto start = Clock::now();
-  while (!ready_.contains(id)) {
-    check();
-    if (Clock::now() - start >= timeout) {
-      throw RunAborted(fmt::format("restarted {} not ready after {:.1f} s", node_name(id),
-                                   std::chrono::duration<double>(timeout).count()));
-    }
-    wait_set_.wait(std::chrono::milliseconds(10));
-  }
-}
-
-std::map<int, PictureDriver::Finished> PictureDriver::wait_finished(
-    std::chrono::milliseconds timeout) {
-  const auto start = Clock::now();
-  while (finished_.size() < ids_.size() - down_.size() && Clock::now() - start < timeout) {
-    check();
-    wait_set_.wait(std::chrono::milliseconds(10));
-  }
-  return finished_;
-}
-
-void PictureDriver::release() {
-  wire::Tick stop;
-  stop.run_id(run_id_);
-  stop.stop(true);
-  ticks_.write(stop);
-}
-
-void PictureDriver::check() {
-  stop_check_();
-  wire::StationStatus s;
-  while (statuses_.take(s)) {
-    if (s.run_id() != run_id_) continue;
-    if (s.state() == wire::FAILED) {
-      throw RunAborted(
-          fmt::format("{} failed at step {}: {}", node_name(s.station_id()), s.step(), s.detail()),
-          StopCause::kNodeFailed);
-    }
-    // A killed process's own READY (durable) must not count for its replacement.
-    const auto killed = killed_instance_.find(s.station_id());
-    if (s.state() == wire::READY &&
-        (killed == killed_instance_.end() || killed->second != s.instance())) {
-      ready_[s.station_id()] = s.instance();
-    }
-    if (s.state() == wire::FINISHED) {
-      Finished& f = finished_[s.station_id()];
-      f.resyncs = s.resyncs();
-      f.lost = s.lost();
-      std::copy(s.dropped().begin(), s.dropped().end(), f.dropped.begin());
-    }
+    roster_.check();
+    roster_.wait(std::chrono::milliseconds(5));
   }
 }
 

@@ -131,7 +131,7 @@ class ManyAircraftRun final : public RunKind {
     }
     driver_.emplace(config, run_id, node_ids_, std::move(check));
   }
-  NodeDriver& driver() override { return *driver_; }
+  NodeRoster& roster() override { return driver_->roster(); }
 
   void begin_rounds(std::uint64_t epoch_ns) override {
     check_.emplace(plan_, truth_->targets, *twin_, summary_);
@@ -158,15 +158,6 @@ class ManyAircraftRun final : public RunKind {
         });
   }
   double rounds_worked() const override { return rounds_taken_; }
-  void release(bool stopped) override {
-    const auto finish_wait = stopped ? std::chrono::milliseconds(0) : std::chrono::seconds(5);
-    for (const auto& [id, finished] : driver_->wait_finished(finish_wait)) {
-      if (id != kCenterNodeId) summary_.resyncs += finished.resyncs;
-      summary_.lost += finished.lost;
-      summary_.dropped_by_node[id] = finished.dropped;
-    }
-    driver_->release();
-  }
   void end(const ProcessMeasures& measured, std::uint64_t run_id) override;
 
   PictureRunSummary& summary() { return summary_; }
@@ -213,6 +204,11 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
   }
   summary.steps_planned = plan_.scenario.steps;
   summary.stations_per_process = o_.stations_per_process;
+  for (const auto& [id, finished] : driver_->roster().finished()) {
+    if (id != kCenterNodeId) summary.resyncs += finished.resyncs;
+    summary.lost += finished.lost;
+    summary.dropped_by_node[id] = finished.dropped;
+  }
   record_process_measures(measured, summary);
   summary.steps = rounds_taken_;
   summary.rounds_per_s = rounds_taken_ / measured.rounds_s;

@@ -21,6 +21,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// How long after the last round every node's FINISHED is waited for before it is worth a word.
+constexpr std::chrono::seconds kFinishedWithin{5};
+
 std::chrono::milliseconds seconds_to_ms(double s) {
   return std::chrono::milliseconds(std::llround(s * 1000.0));
 }
@@ -48,21 +51,21 @@ transport::NodeConfig harness_node_config(const RunOptions& o, const Placement& 
   return config;
 }
 
-// The kills and restarts `o` asks for before the round of `step`, told to `driver`: a killed
+// The kills and restarts `o` asks for before the round of `step`, told to `roster`: a killed
 // station is not waited for, a restarted one is once it is ready again.
 void apply_station_events(const RunOptions& o, std::uint64_t step, RunNodes& nodes,
-                          NodeDriver& driver, std::chrono::milliseconds ready_timeout) {
+                          NodeRoster& roster, std::chrono::milliseconds ready_timeout) {
   for (const StationEvent& e : o.kills) {
     if (e.step != step) continue;
     nodes.kill_station(e.station_id);
-    driver.set_down(e.station_id, true);
+    roster.set_down(e.station_id, true);
     spdlog::info("killed station {} before step {}", e.station_id, step);
   }
   for (const StationEvent& e : o.restarts) {
     if (e.step != step) continue;
     nodes.restart_station(e.station_id, step);
-    driver.wait_until_ready(e.station_id, ready_timeout);
-    driver.set_down(e.station_id, false);
+    roster.wait_until_ready(e.station_id, ready_timeout);
+    roster.set_down(e.station_id, false);
     spdlog::info("restarted station {} before step {}", e.station_id, step);
   }
 }
@@ -81,7 +84,7 @@ std::optional<RunAborted> drive_rounds(const RunOptions& o, RunKind& kind, RunNo
     // Without loss, the first rounds of a connected network are complete.
     ConnectionCheck connection(!o.node.loss.enabled(), o.node.best_effort);
     for (int k = 0; k < kind.steps(); ++k) {
-      apply_station_events(o, static_cast<std::uint64_t>(k), nodes, kind.driver(), ready_timeout);
+      apply_station_events(o, static_cast<std::uint64_t>(k), nodes, kind.roster(), ready_timeout);
       kind.run_lockstep_round(k, round_timeout, connection);
       progress.advance();
     }
@@ -123,7 +126,7 @@ void run_over_dds(const RunOptions& o, RunKind& kind) {
     measured.discovery = placement.discovery();
     nodes.start();
     const auto discovery_start = Clock::now();
-    kind.driver().wait_until_joined(ready_timeout);
+    kind.roster().wait_until_joined(ready_timeout);
     measured.discovery_s = std::chrono::duration<double>(Clock::now() - discovery_start).count();
     // Endpoint discovery may go on after every node is ready (run/discovery_quiet.hpp).
     const QuietWait settled = nodes.wait_until_quiet();
@@ -156,12 +159,16 @@ void run_over_dds(const RunOptions& o, RunKind& kind) {
                                         (static_cast<double>(kind.stations()) * rounds);
     // Nodes announce FINISHED after their last round and wait to be released; a run that
     // stopped early releases them at once.
-    kind.release(measured.stopped.has_value());
+    if (!measured.stopped && !kind.roster().wait_until_finished(kFinishedWithin)) {
+      spdlog::warn("not every node announced FINISHED within {} s of the last round",
+                   kFinishedWithin.count());
+    }
+    kind.roster().send_stop();
     nodes.finish(std::chrono::seconds(10), measured.stopped.has_value());
     measured.node_exits = nodes.exits();
     kind.end(measured, run_id);
   } catch (...) {
-    kind.abandon();
+    kind.roster().send_stop();
     nodes.terminate();
     throw;
   }

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "run/connection_check.hpp"
-#include "run/node_driver.hpp"
+#include "run/node_roster.hpp"
 #include "run/run_aborted.hpp"
 #include "run/run_options.hpp"
 #include "skyfuse/options/node_options.hpp"
@@ -91,8 +91,9 @@ class RunKind {
   /// 50 ms while waiting; it throws RunAborted to end the run (a failed node, a signal).
   virtual void open(const transport::NodeConfig& config, std::uint64_t run_id,
                     std::function<void()> check) = 0;
-  /// The driver open() made: the nodes' joining, and kills and restarts between rounds.
-  virtual NodeDriver& driver() = 0;
+  /// The nodes of the driver open() made: their joining, and kills and restarts between
+  /// rounds.
+  virtual NodeRoster& roster() = 0;
 
   /// The rounds begin; step 0 at `epoch_ns` (their recording's and live stream's time base).
   virtual void begin_rounds(std::uint64_t epoch_ns) = 0;
@@ -108,14 +109,9 @@ class RunKind {
                             const std::function<void()>& round_done) = 0;
   /// The rounds the nodes worked on (at least those recorded): what is measured per round.
   virtual double rounds_worked() const = 0;
-  /// After the rounds: waits for every node's FINISHED (at once when `stopped`) and releases
-  /// the nodes.
-  virtual void release(bool stopped) = 0;
   /// Writes the summary and the files with the house's measures; when the rounds stopped
   /// early, throws StoppedEarlyWith<its summary> after writing them.
   virtual void end(const ProcessMeasures& measured, std::uint64_t run_id) = 0;
-  /// The run failed before its end: stops the driver (the house ends the processes).
-  virtual void abandon() {}
 };
 
 /// One start of every process of the run `kind` describes, as `o` says. Throws
