@@ -87,6 +87,7 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
           : std::string("unknown"));
   row("CPU per station-round",
       fmt::format("{:.2f} ms  (stations, center and harness)", s.cpu_ms_per_station_round));
+  if (!s.host_verdict.empty()) fmt::print(out, "  {}\n", s.host_verdict);
 }
 
 std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run_id,
@@ -157,6 +158,7 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
   nlohmann::json full = json;
   if (!summary.end_detail.empty()) full["end_detail"] = summary.end_detail;
   if (!summary.node_exits.empty()) full["node_exits"] = summary.node_exits;
+  if (!summary.host_verdict.empty()) full["host_verdict"] = summary.host_verdict;
   return full.dump(2);
 }
 

@@ -148,7 +148,7 @@ class OneAircraftRun final : public RunKind {
 void OneAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id) {
   RunSummary& summary = summary_;
   summary = recorder_.summarise(measured.discovery_s, measured.rounds_s);
-  record_process_measures(measured, summary);
+  summary.take(measured);
   summary.realtime_deadline_ms = o_.node.realtime_deadline_ms;
   if (measured.realtime) {
     const LockstepDriver::RealtimeProgress reached = driver_->realtime_progress();
@@ -167,7 +167,10 @@ void OneAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id) 
   summary.refusion_lag = o_.node.refusion_lag;
   recorder_.set_settled(driver_->settled_tracks());
   summary.settled = recorder_.summarise_settled();
-  summary.host_verdict = host_verdict(summary, plan_.scenario.time_step_s, cpu_model(),
+  const RealtimeLoad load{o_.node.realtime_deadline_ms, summary.rounds_all_inputs_in_time,
+                          summary.steps - summary.rounds_closed_incomplete,
+                          summary.realtime_behind_s};
+  summary.host_verdict = host_verdict(summary, load, plan_.scenario.time_step_s, cpu_model(),
                                       std::thread::hardware_concurrency());
   const std::filesystem::path out(o_.out_dir);
   recorder_.write(out, summary, run_id);

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <thread>
 #include <vector>
 
 #include "report/live_serving.hpp"
@@ -17,6 +18,7 @@
 #include "report/picture_live_source.hpp"
 #include "report/picture_recording.hpp"
 #include "report/picture_run_report.hpp"
+#include "run/kernel_counters.hpp"
 #include "run/lockstep_driver.hpp"
 #include "run/picture_driver.hpp"
 #include "run/picture_frame.hpp"
@@ -209,7 +211,7 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
     summary.lost += finished.lost;
     summary.dropped_by_node[id] = finished.dropped;
   }
-  record_process_measures(measured, summary);
+  summary.take(measured);
   summary.steps = rounds_taken_;
   summary.rounds_per_s = rounds_taken_ / measured.rounds_s;
   summary.loss = o_.node.loss.enabled();
@@ -220,6 +222,12 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
   summary.gospa_in_view_mean = score.in_view.distance;
   summary.in_process_gospa_mean = twin_->score.gospa_mean;
   summary.in_process_gospa_in_view_mean = twin_->score.in_view.distance;
+  const RealtimeLoad load{
+      measured.realtime ? o_.node.realtime_deadline_ms : 0.0,
+      static_cast<double>(summary.rounds_in_time) / std::max(summary.steps, 1), summary.steps,
+      0.0};  // a picture's rounds never fall behind: a late one is handed over as it is
+  summary.host_verdict = host_verdict(summary, load, plan_.scenario.time_step_s, cpu_model(),
+                                      std::thread::hardware_concurrency());
 
   const std::filesystem::path out(o_.out_dir);
   write_file_atomically(out / "picture_rounds.csv", check_->csv());
@@ -227,7 +235,9 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
   write_file_atomically(out / "summary.json", summary_json + "\n");
   if (recording_) recording_->finish(summary_json, rounds_taken_);
   if (live_) finish_live(*live_, summary_json);
-  if (measured.stopped) throw StoppedEarlyWith<PictureRunSummary>(*measured.stopped, summary);
+  if (measured.stopped) {
+    throw StoppedEarlyWith<PictureRunSummary>(*measured.stopped, summary, summary.host_verdict);
+  }
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "run/lockstep_driver.hpp"
+#include "run/run_figures.hpp"
 #include "run/run_options.hpp"
 #include "run/run_stopped_early.hpp"
 #include "skyfuse/scenario/scenario.hpp"
@@ -25,19 +26,9 @@
 
 namespace skyfuse::harness {
 
-struct PictureRunSummary {
+/// Many aircraft's figures beside the house's (run/run_figures.hpp).
+struct PictureRunSummary : RunFigures {
   std::string scenario;
-  int stations = 0;
-  /// Rounds recorded, and the run's rounds: fewer recorded when it stopped early.
-  int steps = 0;
-  int steps_planned = 0;
-  /// Why the run stopped before its last round (none: it completed), in words.
-  std::optional<StopCause> stop_cause;
-  std::string end_detail;
-  /// How the stations exchanged their scans: "flat", or "tree" with clusters of `fanout`.
-  std::string exchange = "flat";
-  int fanout = 0;
-  int stations_per_process = 1;  ///< stations sharing a process (run/station_groups.hpp)
   /// Every station's picture digest equal in every round.
   bool peers_identical = true;
   int first_divergent_step = -1;
@@ -71,21 +62,6 @@ struct PictureRunSummary {
   /// (in real time: in time), and rounds no station's picture came for.
   int rounds_in_time = 0;
   int rounds_without_a_picture = 0;
-  /// How the processes discovered each other ("multicast", "server ADDRESS:PORT", "peers").
-  std::string discovery = "multicast";
-  double discovery_s = 0.0;
-  /// The wait for discovery to go quiet before the first round (run/discovery_quiet.hpp).
-  double settle_s = 0.0;
-  bool settled_quiet = false;
-  /// The largest resident memory of any node at the end of the rounds, MiB.
-  double node_peak_resident_mib = 0.0;
-  /// How each node process ended, by its name.
-  std::map<std::string, std::string> node_exits;
-  /// UDP datagrams the kernel delivered to the run's sockets per round (none if unreadable),
-  /// and CPU per station and round of every process (stations, center, harness), ms.
-  std::optional<double> datagrams_per_round;
-  double cpu_ms_per_station_round = 0.0;
-  double rounds_per_s = 0.0;
   std::size_t tracks_at_end = 0;
   std::size_t confirmed_at_end = 0;
   std::uint64_t digest_at_end = 0;

@@ -20,53 +20,13 @@
 #include "run/connection_check.hpp"
 #include "run/node_roster.hpp"
 #include "run/run_aborted.hpp"
+#include "run/run_figures.hpp"
 #include "run/run_options.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/transport/node_config.hpp"
 
 namespace skyfuse::harness {
-
-/// What the house measured of one start of the processes, for the kind's summary.
-struct ProcessMeasures {
-  /// How the processes discovered each other ("multicast", "server ADDRESS:PORT", "peers"),
-  /// and how long it took from their start until every node joined.
-  std::string discovery;
-  double discovery_s = 0.0;
-  /// The wait for discovery to go quiet before the first round (run/discovery_quiet.hpp).
-  double settle_s = 0.0;
-  bool settled_quiet = false;
-  double rounds_s = 0.0;  ///< wall time of the rounds
-  /// UDP datagrams the kernel delivered to the run's sockets per round (none if unreadable),
-  /// and CPU of every process (stations, center, harness) per station and round, ms.
-  std::optional<double> datagrams_per_round;
-  double cpu_ms_per_station_round = 0.0;
-  double node_peak_resident_mib = 0.0;  ///< the largest of any node at the end of the rounds
-  std::map<std::string, std::string> node_exits;  ///< how each node process ended, by name
-  /// Why the rounds stopped before the last, if they did.
-  std::optional<RunAborted> stopped;
-  /// The rounds' time base: when step 0 began, ns since the Unix epoch.
-  std::uint64_t epoch_ns = 0;
-  bool realtime = false;
-};
-
-/// Copies what the house measured into a kind's summary (RunSummary, PictureRunSummary: both
-/// name these fields alike).
-template <typename Summary>
-void record_process_measures(const ProcessMeasures& measured, Summary& summary) {
-  if (measured.stopped) {
-    summary.stop_cause = measured.stopped->cause();
-    summary.end_detail = measured.stopped->what();
-  }
-  summary.discovery = measured.discovery;
-  summary.discovery_s = measured.discovery_s;
-  summary.settle_s = measured.settle_s;
-  summary.settled_quiet = measured.settled_quiet;
-  summary.datagrams_per_round = measured.datagrams_per_round;
-  summary.cpu_ms_per_station_round = measured.cpu_ms_per_station_round;
-  summary.node_peak_resident_mib = measured.node_peak_resident_mib;
-  summary.node_exits = measured.node_exits;
-}
 
 /// What differs between a run of one aircraft and a run of many, as the house sees it.
 class RunKind {

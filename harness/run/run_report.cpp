@@ -539,30 +539,4 @@ void print_run_table(const RunSummary& s, std::FILE* out) {
   if (!s.host_verdict.empty()) fmt::print(out, "  {}\n", s.host_verdict);
 }
 
-std::string host_verdict(const RunSummary& s, double time_step_s, const std::string& cpu,
-                         unsigned cores) {
-  if (s.realtime_deadline_ms <= 0.0) return {};
-  const bool fell_behind = s.stop_cause == StopCause::kFellBehind;
-  if (!fell_behind && s.rounds_all_inputs_in_time >= 0.99) return {};
-  const double rate_hz = 1.0 / time_step_s;
-  // CPU per station-round times the stations a step, over a step's time: cores kept busy.
-  const double cores_needed = s.cpu_ms_per_station_round * s.stations / (1e3 * time_step_s);
-  const std::string host = fmt::format("this host ({}, {} cores)", cpu, cores);
-  const std::string rate = fmt::format("{} stations at {:.0f} Hz with a {:g} ms deadline",
-                                       s.stations, rate_hz, s.realtime_deadline_ms);
-  const std::string cost = fmt::format(
-      "the run used {:.2f} ms of CPU per station-round, {:.1f} cores' worth at that rate",
-      s.cpu_ms_per_station_round, cores_needed);
-  if (fell_behind) {
-    return fmt::format(
-        "{} could not carry {}: {} of {} steps complete ({} recorded), {:.1f} s behind the "
-        "schedule when the run stopped; {}",
-        host, rate, s.steps - s.rounds_closed_incomplete, s.steps_planned, s.steps,
-        s.realtime_behind_s, cost);
-  }
-  return fmt::format(
-      "{} carried {} only in part: {:.1f} % of the rounds had every input in time; {}", host, rate,
-      100.0 * s.rounds_all_inputs_in_time, cost);
-}
-
 }  // namespace skyfuse::harness

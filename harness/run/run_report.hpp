@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "run/lockstep_driver.hpp"
+#include "run/run_figures.hpp"
 #include "skyfuse/random/link_loss.hpp"
 #include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/sim/run_plan.hpp"
@@ -37,16 +38,8 @@ struct SettledFigures {
   double peer_spread_end = 0.0;  ///< at the last settled round
 };
 
-struct RunSummary {
-  int stations = 0;
-  int steps = 0;          ///< steps recorded
-  int steps_planned = 0;  ///< the run's steps; more than `steps` when it stopped early
-  /// Why the run stopped before its last step, and the message that said so; none for a run
-  /// that completed (summary.json's `ended`: "complete" or to_string(cause)).
-  std::optional<StopCause> stop_cause;
-  std::string end_detail;
-  std::string exchange;  ///< "flat" or "tree", as the run's plan chose it
-  int fanout = 0;        ///< the tree's stations per cluster; 0 for flat
+/// One aircraft's figures beside the house's (run/run_figures.hpp).
+struct RunSummary : RunFigures {
   double speed_kmh = 0.0;
   double rmse_central_m = 0.0;
   double rmse_p2p_m = 0.0;
@@ -66,11 +59,9 @@ struct RunSummary {
   /// Rounds in which some node's track was missing, for whatever reason (a station the run
   /// killed on purpose included).
   int rounds_closed_incomplete = 0;
-  double rounds_per_s = 0.0;
   double round_latency_us_p50 = 0.0;
   double round_latency_us_p99 = 0.0;
   double round_latency_us_max = 0.0;
-  double discovery_s = 0.0;
   /// Real-time mode (deadline > 0): the share of rounds in which every node fused all M inputs
   /// by the deadline, and the age of the tracks on arrival at the harness (scheduled start of
   /// the step -> received).
@@ -88,19 +79,6 @@ struct RunSummary {
   std::uint64_t realtime_steps_scheduled = 0;
   std::uint64_t realtime_steps_reached = 0;
   double realtime_behind_s = 0.0;
-  /// What this host could not carry, in one line (empty when it carried the run): printed at
-  /// the end and kept in summary.json.
-  std::string host_verdict;
-  /// How each node process the harness started ended, by name ("station 3": "exit 0", "signal
-  /// 9 (Killed)"); a station killed on purpose (--kill) is not listed.
-  std::map<std::string, std::string> node_exits;
-  /// Counted by the kernel over the rounds (run/kernel_counters.hpp): UDP datagrams received
-  /// per round by every process of the run (none when a count could not be read), CPU time
-  /// per station and round (stations, center and harness together), and the largest peak
-  /// resident memory of one node.
-  std::optional<double> datagrams_per_round;
-  double cpu_ms_per_station_round = 0.0;
-  double node_peak_resident_mib = 0.0;
   /// What each node reported when it finished (0: the center): samples refused by kind,
   /// samples lost to the simulated loss, rounds resynchronised.
   std::map<int, NodeCounts> node_counts;
@@ -108,15 +86,7 @@ struct RunSummary {
   double round_deadline_ms = 0.0;
   LinkLoss loss;
   bool best_effort = false;
-  /// Where the processes ran and how they found each other: simulated hosts (0: this host),
-  /// and their discovery ("multicast", "server ADDRESS:PORT", "peers").
-  int hosts = 0;
-  std::string discovery = "multicast";
-  int stations_per_process = 1;  ///< stations sharing a process (run/station_groups.hpp)
-  /// Seconds from every node's READY to the first round, waiting for discovery to go quiet
-  /// (run/discovery_quiet.hpp), and whether it did within the limit.
-  double settle_s = 0.0;
-  bool settled_quiet = true;
+  int hosts = 0;  ///< simulated hosts the processes ran on (0: this host)
   std::size_t refusion_lag = 0;
   std::optional<SettledFigures> settled;  ///< none: no station re-fused
 };
@@ -180,11 +150,5 @@ class RunRecorder {
 };
 
 void print_run_table(const RunSummary& s, std::FILE* out);
-
-/// One line on what this host could not carry: for a real-time run that fell behind, or that
-/// kept fewer than 99 % of its rounds' inputs in time; empty otherwise. `cpu` and `cores` name
-/// the host; the CPU per station-round says how many cores the rate would take.
-std::string host_verdict(const RunSummary& s, double time_step_s, const std::string& cpu,
-                         unsigned cores);
 
 }  // namespace skyfuse::harness
