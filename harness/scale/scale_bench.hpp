@@ -1,11 +1,17 @@
 #pragma once
 // `skyfuse bench --scale`: what a round costs as the station count grows, for the flat and the
-// tree exchange side by side. For each M and exchange, a lock-step run (rounds/s, latency, UDP
-// datagrams received per round as the kernel counts them against the data samples a round
-// must deliver, CPU per station-round, peak memory of a node, discovery time) and a real-time
-// run at the scenario's step (share of rounds with every input in time, track age). Counts
-// past what one host's ports hold run on simulated hosts (`skyfuse run --hosts`, root only).
-// Writes scale.json, scale.csv and scale.png.
+// tree exchange side by side, for either kind of run. For each configuration, a lock-step run
+// and a real-time run at the scenario's step, with what the house measures of both (rounds/s,
+// UDP datagrams received per round as the kernel counts them, CPU per station-round, peak
+// memory of a node, discovery time) and the kind's own columns:
+// - one aircraft (for each M and exchange): latency, the data samples a round must deliver
+//   against the datagrams, the share of real-time rounds with every input in time and the
+//   track age; counts past what one host's ports hold run on simulated hosts (`skyfuse run
+//   --hosts`, root only). Writes scale.json, scale.csv and scale.png.
+// - many aircraft (`--aircraft N...`, for each N, M and exchange): the pictures' agreement and
+//   the share of real-time rounds with every scan fused in time. Writes picture_scale.json and
+//   picture_scale.csv.
+// The rows are rewritten after each run, so a stopped bench keeps what it measured.
 
 #include <string>
 #include <vector>
@@ -31,7 +37,7 @@ struct ScaleBenchOptions {
   int domain = 0;
   /// Stations per station process (`skyfuse run --stations-per-process`); 1: one process each.
   int stations_per_process = 1;
-  /// Numbers of aircraft: the picture's scale benchmark instead (picture_scale_bench.hpp).
+  /// Numbers of aircraft: the bench of a picture (a scenario with traffic) instead.
   std::vector<int> aircraft;
 };
 
