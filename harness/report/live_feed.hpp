@@ -45,6 +45,22 @@ struct LiveWake {
   bool wanted = false;       ///< a client is subscribed: without one, nothing is built
   /// Rounds of figures that may go out (a token bucket): a round of figures takes one.
   double figure_tokens = 0.0;
+
+  /// What the wake-up sends of the `i`-th of its `n` rounds, either kind's (`last`: the run's
+  /// last round): nothing (the source only follows the round), its figures, or its figures and
+  /// the scene, which goes with the newest round of the wake-up and with the run's last, so a
+  /// viewer ends on it; the trails with the scene when due.
+  struct Send {
+    bool figures = false;
+    bool scene = false;
+    bool trails = false;
+  };
+  Send send(std::size_t i, std::size_t n, bool last) {
+    const bool scene = every_round || last || (scene_due && i + 1 == n);
+    if (!wanted || (!scene && figure_tokens < 1.0)) return {};
+    figure_tokens = std::max(0.0, figure_tokens - 1.0);
+    return {true, scene, scene && (every_round || last || trails_due)};
+  }
 };
 
 namespace live_rates {
