@@ -23,6 +23,7 @@
 #include "run/picture_driver.hpp"
 #include "run/picture_frame.hpp"
 #include "run/picture_round_check.hpp"
+#include "run/refusal_rows.hpp"
 #include "run/run_over_dds.hpp"
 #include "run/secure_start.hpp"
 #include "skyfuse/core/sorted_ids.hpp"
@@ -171,6 +172,10 @@ class ManyAircraftRun final : public RunKind {
             std::chrono::duration<double, std::milli> latency) {
     const PictureStep* scored = check_->add(k, rounds);
     ++rounds_taken_;
+    // What the nodes reported refusing while the round was collected (the harness refuses
+    // nothing of its own here: a picture of another run or step is passed over, not counted).
+    append_refusal_rows(refusals_, static_cast<std::uint64_t>(k),
+                        driver_->roster().take_refusals(static_cast<std::uint64_t>(k), {}));
     if ((recording_ || live_) && scored != nullptr) {
       PictureFrame frame = picture_frame(k, rounds, node_ids_, *scored);
       frame.latency_ms = latency.count();
@@ -193,6 +198,7 @@ class ManyAircraftRun final : public RunKind {
   std::optional<PictureRoundCheck> check_;
   std::optional<PictureRecording> recording_;
   int rounds_taken_ = 0;
+  std::string refusals_{kRefusalsHeader};  // refusals.csv (run/refusal_rows.hpp)
   PictureRunSummary summary_;
 };
 
@@ -231,6 +237,10 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
 
   const std::filesystem::path out(o_.out_dir);
   write_file_atomically(out / "picture_rounds.csv", check_->csv());
+  // The nodes' last statuses, as one aircraft's run lists them: reported in round `steps`.
+  const auto steps = static_cast<std::uint64_t>(plan_.scenario.steps);
+  append_refusal_rows(refusals_, steps, driver_->roster().take_refusals(steps, {}));
+  write_file_atomically(out / "refusals.csv", refusals_);
   const std::string summary_json = picture_run_json(summary, run_id, *twin_);
   write_file_atomically(out / "summary.json", summary_json + "\n");
   if (recording_) recording_->finish(summary_json, rounds_taken_);

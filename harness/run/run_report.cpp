@@ -11,6 +11,7 @@
 #include "report/json_values.hpp"
 #include "report/output_files.hpp"
 #include "report/statistics.hpp"
+#include "run/refusal_rows.hpp"
 #include "skyfuse/models/state_position.hpp"
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/part_info.hpp"
@@ -280,15 +281,7 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
   };
   std::string measurements = measurements_header();
   std::string rounds = "step,latency_us\n";
-  // refusals.csv: each refusal as reported in round `reported` (node -1: the harness); they
-  // add up to summary.json's dropped_by_node.
-  std::string refusals = "reported,node,step,kind,count\n";
-  const auto refusal_rows = [&](std::uint64_t reported, const std::vector<Refusal>& refused) {
-    for (const Refusal& x : refused) {
-      refusals +=
-          fmt::format("{},{},{},{},{}\n", reported, x.node, x.step, to_string(x.kind), x.count);
-    }
-  };
+  std::string refusals(kRefusalsHeader);  // run/refusal_rows.hpp
   const bool imm = !mode_names_.empty();
   std::string modes = fmt::format("step,source,{}\n", fmt::join(mode_names_, ","));
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -324,9 +317,10 @@ void RunRecorder::write(const std::filesystem::path& dir, const RunSummary& summ
     }
     rounds += fmt::format("{},{:.1f}\n", r.step,
                           std::chrono::duration<double, std::micro>(r.latency).count());
-    refusal_rows(r.step, r.refused);
+    append_refusal_rows(refusals, r.step, r.refused);
   }
-  refusal_rows(static_cast<std::uint64_t>(plan_.scenario.steps), refusals_after_run_);
+  append_refusal_rows(refusals, static_cast<std::uint64_t>(plan_.scenario.steps),
+                      refusals_after_run_);
   for (const auto& [key, track] : settled_) track_row(key.first, key.second, track, true);
   write_file_atomically(dir / "steps.csv", steps);
   write_file_atomically(dir / "tracks.csv", tracks);

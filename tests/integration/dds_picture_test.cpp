@@ -696,6 +696,8 @@ TEST(DdsPicture, ARoguesScansAreRefusedByEveryNodeAndCountedByKind) {
         << node;
     EXPECT_EQ(counts["nis_gate"].get<int>(), 0) << node;
   }
+  // As one aircraft's run: every refusal listed in refusals.csv as the rounds reported it.
+  expect_refusals_listed_as_reported(dir / "out", summary, 600);
 }
 
 // skyfuse bench --scale --aircraft: a row per number of aircraft, station count and exchange

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -159,6 +161,38 @@ std::unique_ptr<Process> start_long_run(int domain, int stations, const std::fil
       eventually([&] { return run->output().find("%]") != std::string::npos; }, started_within);
   EXPECT_TRUE(started) << run->output();
   return run;
+}
+
+void expect_refusals_listed_as_reported(const std::filesystem::path& out,
+                                        const nlohmann::json& summary, int steps) {
+  std::istringstream csv(read_file(out / "refusals.csv"));
+  std::string line;
+  std::getline(csv, line);
+  ASSERT_EQ(line, "reported,node,step,kind,count");
+  std::map<std::string, std::map<std::string, int>> listed;
+  std::set<std::string> reported_during_run;
+  while (std::getline(csv, line)) {
+    std::istringstream row(line);
+    std::string reported, node, step, kind, count;
+    std::getline(row, reported, ',');
+    std::getline(row, node, ',');
+    std::getline(row, step, ',');
+    std::getline(row, kind, ',');
+    std::getline(row, count, ',');
+    const std::string name = node == "0" ? "center" : node == "-1" ? "harness" : node;
+    listed[name][kind] += std::stoi(count);
+    if (std::stoi(reported) < steps) reported_during_run.insert(name);
+  }
+  std::map<std::string, std::map<std::string, int>> expected;
+  for (const auto& [node, counts] : summary["dropped_by_node"].items()) {
+    for (const auto& [kind, count] : counts.items()) {
+      if (count.get<int>() > 0) expected[node][kind] = count.get<int>();
+    }
+  }
+  EXPECT_EQ(listed, expected);
+  for (const auto& [node, counts] : expected) {
+    EXPECT_TRUE(reported_during_run.contains(node)) << node;
+  }
 }
 
 }  // namespace skyfuse::test

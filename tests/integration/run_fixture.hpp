@@ -81,4 +81,10 @@ std::unique_ptr<Process> start_long_run(
     const std::vector<std::string>& extra = {},
     std::chrono::seconds started_within = std::chrono::seconds(30));
 
+/// refusals.csv of a run of either kind in `out` lists what each node refused as the run went
+/// on: its rows add up to `summary`'s counts, node by node and kind by kind, and every node's
+/// first ones were reported in a round of the run's `steps`, not only in its last status.
+void expect_refusals_listed_as_reported(const std::filesystem::path& out,
+                                        const nlohmann::json& summary, int steps);
+
 }  // namespace skyfuse::test
