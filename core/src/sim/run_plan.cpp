@@ -13,14 +13,14 @@ Vector<kKinematicsDim> RunPlan::true_initial_state() const {
   return generate_truth(scenario.target, speed_mps, scenario.time_step_s, 1).states.front();
 }
 
-const StationConfig* RunPlan::participant(int station_id) const {
+const StationConfig* CommonPlan::participant(int station_id) const {
   for (const StationConfig& s : participants()) {
     if (s.id == station_id) return &s;
   }
   return nullptr;
 }
 
-std::vector<int> RunPlan::participant_ids() const {
+std::vector<int> CommonPlan::participant_ids() const {
   std::vector<int> ids;
   for (const StationConfig& s : participants()) ids.push_back(s.id);
   return ids;

@@ -25,7 +25,7 @@ inline AnyPlan make_plan(Scenario scenario, const RunOverrides& overrides) {
 
 /// How many stations take part in `plan`.
 inline int stations_of(const AnyPlan& plan) {
-  return std::visit([](const auto& p) { return p.stations; }, plan);
+  return std::visit([](const CommonPlan& p) { return p.stations; }, plan);
 }
 
 }  // namespace skyfuse

@@ -15,21 +15,9 @@
 
 namespace skyfuse {
 
-struct PicturePlan {
-  Scenario scenario;
-  int stations = 0;
-  std::uint64_t mc_run = 0;
-
-  std::span<const StationConfig> participants() const {
-    return std::span(scenario.stations).first(static_cast<std::size_t>(stations));
-  }
-  /// The participants' ids, in scenario order.
-  std::vector<int> participant_ids() const {
-    std::vector<int> ids;
-    for (const StationConfig& s : participants()) ids.push_back(s.id);
-    return ids;
-  }
-};
+/// Many aircraft's plan: each aircraft flies its own path and speeds (the scenario's traffic),
+/// so it holds nothing beside what every plan holds.
+struct PicturePlan : CommonPlan {};
 
 /// Applies the overrides to `scenario` (which has_many_targets()); throws
 /// std::invalid_argument naming an option a run of many aircraft does not take (a speed: each

@@ -19,10 +19,13 @@
 
 namespace skyfuse {
 
-struct RunPlan {
+/// What a plan of either kind holds (one aircraft: RunPlan; many: PicturePlan,
+/// sim/picture_plan.hpp; sim/any_plan.hpp decides which): the scenario after the overrides, how
+/// many of its stations take part (the first `stations`), and the Monte-Carlo run index that
+/// selects the noise.
+struct CommonPlan {
   Scenario scenario;
   int stations = 0;
-  double speed_mps = 0.0;
   std::uint64_t mc_run = 0;
 
   std::span<const StationConfig> participants() const {
@@ -32,6 +35,12 @@ struct RunPlan {
   std::vector<int> participant_ids() const;
   /// The participant with this id, or nullptr.
   const StationConfig* participant(int station_id) const;
+};
+
+/// One aircraft's plan: the speed it flies at, and where the filters start.
+struct RunPlan : CommonPlan {
+  double speed_mps = 0.0;
+
   /// The fusion weights of the participants `ids`, in that order.
   std::vector<double> weights_of(std::span<const int> ids) const;
   TruthTrajectory truth() const {
