@@ -1,9 +1,9 @@
 #pragma once
 // The harness's side of a run of many aircraft over DDS: every node's picture
-// (wire::PictureRound) in, the ticks and statuses through its NodeRoster. Lock-step: one tick per round, the round handed over
-// once every node that is up has published its picture. Real time: one start tick, the nodes
-// run on their own clocks, and each round is handed over once every node's picture is in or
-// it is late.
+// (wire::PictureRound) in, the ticks and statuses through its NodeRoster. Lock-step: one tick per
+// round, the round handed over once every node that is up has published its picture. Real time: one
+// start tick, the nodes run on their own clocks, and each round is handed over once every node's
+// picture is in or it is late.
 
 #include <chrono>
 #include <cstdint>
