@@ -284,8 +284,8 @@ void measure_rows(const ScaleBenchOptions& o, const Kind& kind, const BenchScena
     write_file_atomically(out / fmt::format("{}.json", Kind::kFiles), doc.dump(2) + "\n");
     write_file_atomically(out / fmt::format("{}.csv", Kind::kFiles), csv);
   };
-  const auto attempt = [&](Row& row, bool realtime, std::optional<typename Kind::Summary>& into,
-                           std::string& error) {
+  const auto attempt = [&](const Row& row, bool realtime,
+                           std::optional<typename Kind::Summary>& into, std::string& error) {
     try {
       const std::string dir = (out / Kind::run_dir(row, realtime)).string();
       into = Kind::execute(run_options(o, bench.path, row, realtime, dir, Kind::kRoundTimeoutS),
