@@ -1,5 +1,5 @@
-// Two ways to put a station's round of the multi-target picture on the wire, measured side by
-// side before either goes on DDS (docs/multitarget.md#on-the-wire quotes the numbers with the
+// Two ways to put a station's round of the picture on the wire, measured side by
+// side before either goes on DDS (docs/picture.md#on-the-wire quotes the numbers with the
 // command that re-measures them: `skyfuse_picture_wire_bench`):
 //
 //  - increments: per track the station updated, (track id, detection index, dQ as its upper
@@ -28,7 +28,7 @@
 #include <utility>
 #include <vector>
 
-#include "multitarget_setup.hpp"
+#include "picture_setup.hpp"
 #include "skyfuse/transport/picture_wire.hpp"
 
 namespace skyfuse {

@@ -1,6 +1,6 @@
 #pragma once
 // The center process of a run with many aircraft (picture_center.hpp) for one filter part on
-// one motion model (multitarget/picture_parts.hpp; the stations' sensors are values), compiled by
+// one motion model (picture/picture_parts.hpp; the stations' sensors are values), compiled by
 // shard of the configuration groups (registry/filter_shards.hpp, picture_center_shard.cpp). It
 // hears each station's scan (`Sample` wire::PictureScan: the flat exchange) or each cluster's scans
 // as its aggregator relays them (wire::PictureBundle: the tree,
@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "center_process.hpp"
-#include "skyfuse/multitarget/central_picture.hpp"
-#include "skyfuse/multitarget/picture_parts.hpp"
+#include "skyfuse/picture/central_picture.hpp"
+#include "skyfuse/picture/picture_parts.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_stations.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// One ground station of a run with many aircraft, as a process (docs/multitarget.md):
+// One ground station of a run with many aircraft, as a process (docs/picture.md):
 //   tick k -> predict every track of the common picture -> scan k (misses, clutter)
 //          -> assign the scan's detections to the predicted tracks -> publish PictureScan
 //          -> collect every station's PictureScan of step k (its own from the wire too)

@@ -1,6 +1,6 @@
 #pragma once
 // The station process of a run with many aircraft (picture_station.hpp) for one filter part on
-// one motion model (multitarget/picture_parts.hpp; the stations' sensors are values) and one
+// one motion model (picture/picture_parts.hpp; the stations' sensors are values) and one
 // exchange (flat: transport/picture_exchange.hpp; tree: transport/picture_tree_exchange.hpp),
 // compiled by shard of the configuration groups (registry/filter_shards.hpp,
 // picture_station_shard.cpp).
@@ -14,9 +14,9 @@
 #include <thread>
 #include <vector>
 
-#include "skyfuse/multitarget/peer_picture.hpp"
-#include "skyfuse/multitarget/picture_digest.hpp"
-#include "skyfuse/multitarget/picture_parts.hpp"
+#include "skyfuse/picture/peer_picture.hpp"
+#include "skyfuse/picture/picture_digest.hpp"
+#include "skyfuse/picture/picture_parts.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_stations.hpp"

@@ -48,7 +48,7 @@ constexpr std::chrono::milliseconds kLateAfter{2000};
 void refuse_what_a_picture_run_lacks(const RunOptions& o) {
   const auto refuse = [](const char* option, const char* why) {
     throw std::invalid_argument(
-        fmt::format("{}: not for a run of many aircraft yet: {} (docs/multitarget.md says what "
+        fmt::format("{}: not for a run of many aircraft yet: {} (docs/picture.md says what "
                     "runs over DDS so far)",
                     option, why));
   };

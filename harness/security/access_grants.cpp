@@ -24,7 +24,7 @@ AccessGrant access_grant(const std::string& identity) {
   const std::string partial = topic<wire::PartialSum>();
   const std::string track = topic<wire::TrackEstimate>();
   const std::string status = topic<wire::StationStatus>();
-  // A run of many aircraft (docs/multitarget.md): scans, pictures, a whole picture to take.
+  // A run of many aircraft (docs/picture.md): scans, pictures, a whole picture to take.
   const std::string scan = topic<wire::PictureScan>();
   const std::string bundle = topic<wire::PictureBundle>();  // the tree's scans
   const std::string picture = topic<wire::PictureRound>();

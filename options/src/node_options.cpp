@@ -12,9 +12,9 @@
 #include <tuple>
 #include <vector>
 
-#include "skyfuse/multitarget/associator.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
+#include "skyfuse/picture/associator.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 
 namespace skyfuse::options {

@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "integration/run_fixture.hpp"
-#include "skyfuse/multitarget/picture_digest.hpp"
+#include "skyfuse/picture/picture_digest.hpp"
 
 namespace skyfuse::test {
 namespace {

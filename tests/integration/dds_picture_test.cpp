@@ -15,7 +15,7 @@
 #include <sstream>
 
 #include "integration/run_fixture.hpp"
-#include "skyfuse/multitarget/picture_digest.hpp"
+#include "skyfuse/picture/picture_digest.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_run.hpp"
@@ -335,7 +335,7 @@ INSTANTIATE_TEST_SUITE_P(
                       213},
         FilterVariant{"ImmOfCvAndCt", kCityFilter, kCityImmFilter, 214},
         // JPDA: every gated pair weighed by its probability, which every peer rebuilds from the
-        // wire's weights and the center applies as noise R / w (docs/multitarget.md, "JPDA").
+        // wire's weights and the center applies as noise R / w (docs/picture.md, "JPDA").
         FilterVariant{"EkfWithJpda", "  gate_probability: 0.9999",
                       "  associator: jpda\n  gate_probability: 0.9999", 224},
         // Sensors of two kinds in one picture: station 2 receives the aircraft's own
@@ -350,7 +350,7 @@ INSTANTIATE_TEST_SUITE_P(
                       225},
         // Identity: the receiver reports each aircraft's address; an address goes to its track
         // without a gate search and starts a track by itself. The addresses travel with the
-        // scans and the pictures, and enter every node's digest (docs/multitarget.md,
+        // scans and the pictures, and enter every node's digest (docs/picture.md,
         // "Identity: addresses").
         FilterVariant{"EkfWithAddresses",
                       "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar}",
@@ -360,7 +360,7 @@ INSTANTIATE_TEST_SUITE_P(
                       229},
         // A multilateration group among the radars: each reply's five range differences
         // travel as the station's detection, fix a position for initiation and update the
-        // track of its address (docs/multitarget.md, "Multilateration").
+        // track of its address (docs/picture.md, "Multilateration").
         FilterVariant{"EkfWithMultilateration",
                       "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar}",
                       "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: {kind: multilateration, "

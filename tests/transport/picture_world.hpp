@@ -1,5 +1,5 @@
 #pragma once
-// A small multi-target world for the picture's wire and exchange tests: five aircraft flying
+// A small world of many aircraft for the picture's wire and exchange tests: five aircraft flying
 // east in parallel lanes, three radars around them, misses and clutter.
 
 #include <cmath>
@@ -10,8 +10,8 @@
 
 #include "skyfuse/models/constant_velocity.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
-#include "skyfuse/multitarget/peer_picture.hpp"
-#include "skyfuse/multitarget/track_filters.hpp"
+#include "skyfuse/picture/peer_picture.hpp"
+#include "skyfuse/picture/track_filters.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
 #include "skyfuse/traffic/scan_simulation.hpp"

@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "skyfuse/models/state_position.hpp"
-#include "skyfuse/multitarget/fixes_position.hpp"
+#include "skyfuse/picture/fixes_position.hpp"
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/scenario/scenario.hpp"

@@ -5,8 +5,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include "skyfuse/multitarget/associator.hpp"
-#include "skyfuse/multitarget/detection_prior.hpp"
+#include "skyfuse/picture/associator.hpp"
+#include "skyfuse/picture/detection_prior.hpp"
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 

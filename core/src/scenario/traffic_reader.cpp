@@ -6,7 +6,7 @@
 #include <numbers>
 #include <string>
 
-#include "skyfuse/multitarget/associator.hpp"
+#include "skyfuse/picture/associator.hpp"
 
 namespace skyfuse::detail {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-#include "skyfuse/multitarget/fixes_position.hpp"
+#include "skyfuse/picture/fixes_position.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"

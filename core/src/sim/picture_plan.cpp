@@ -22,7 +22,7 @@ PicturePlan make_picture_plan(Scenario scenario, const RunOverrides& overrides) 
   plan.stations = apply_stations_and_steps(scenario, overrides);
   apply_exchange_overrides(scenario, overrides.exchange, overrides.fanout);
   // The tree only when asked for: it relays the scans rather than summing them, so what it
-  // saves is receptions, not a station's arithmetic (docs/multitarget.md, "The tree").
+  // saves is receptions, not a station's arithmetic (docs/picture.md, "The tree").
   if (scenario.exchange.kind == ExchangeConfig::Kind::kAuto) {
     scenario.exchange.kind = ExchangeConfig::Kind::kFlat;
   }

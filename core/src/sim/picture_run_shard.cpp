@@ -8,10 +8,10 @@
 #include <type_traits>
 
 #include "sim/picture_shards.hpp"
-#include "skyfuse/multitarget/central_picture.hpp"
-#include "skyfuse/multitarget/peer_picture.hpp"
-#include "skyfuse/multitarget/picture_parts.hpp"
-#include "skyfuse/multitarget/track_filters.hpp"
+#include "skyfuse/picture/central_picture.hpp"
+#include "skyfuse/picture/peer_picture.hpp"
+#include "skyfuse/picture/picture_parts.hpp"
+#include "skyfuse/picture/track_filters.hpp"
 #include "skyfuse/registry/dispatch.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/make_parts.hpp"

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "skyfuse/multitarget/detection_prior.hpp"
+#include "skyfuse/picture/detection_prior.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"

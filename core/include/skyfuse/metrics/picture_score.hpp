@@ -33,7 +33,7 @@ struct TruthPoint {
   std::size_t target = 0;
   Vector3 position = Vector3::Zero();
   bool in_view = false;  ///< within at least one station's field of view
-  /// It reports an address to cooperative sensors (multitarget/identity.hpp).
+  /// It reports an address to cooperative sensors (picture/identity.hpp).
   bool addressed = false;
 };
 

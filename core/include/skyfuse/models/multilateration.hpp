@@ -13,12 +13,12 @@
 /// scenario gives one standard deviation per receiver pair); correlated arrival-time errors
 /// would need a full R, which the simulation does not draw.
 ///
-/// One reply fixes a position (multitarget/fixes_position.hpp): position_of solves the
+/// One reply fixes a position (picture/fixes_position.hpp): position_of solves the
 /// weighted least squares from a closed-form start (models/multilateration_fix.hpp), weighting
 /// the differences by the scenario's nominal standard deviations (a station's run scale
 /// multiplies every variance alike and moves no minimum). Receivers on the ground stand almost
 /// in a plane, so the height is the fix's weakest coordinate and the solution is taken above
-/// the reference receiver; the fix's covariance (multitarget/initiation.hpp) says how weak.
+/// the reference receiver; the fix's covariance (picture/initiation.hpp) says how weak.
 ///
 /// The station's position is the reference receiver; `sensor.receivers_m` in the scenario
 /// lists the other five. What it can report: every difference finite and no larger than

@@ -27,7 +27,7 @@
 /// step that would leave holds the height at the floor and moves along it).
 ///
 /// Exact data (no noise, at least four receivers not all in a line) gives the position back;
-/// the fix's covariance is (H^T R^-1 H)^-1 at it, which multitarget/initiation.hpp computes
+/// the fix's covariance is (H^T R^-1 H)^-1 at it, which picture/initiation.hpp computes
 /// from the sensor's Jacobian.
 
 #include <span>

@@ -45,9 +45,9 @@ class PositionVelocity {
   Vector3 site() const { return Vector3::Zero(); }
 
   Measurement predict(const State& x) const { return x.template head<kMeasDim>(); }
-  /// The position a measurement puts the target at (multitarget/initiation.hpp).
+  /// The position a measurement puts the target at (picture/initiation.hpp).
   static Vector3 position_of(const Measurement& z) { return z.template head<3>(); }
-  /// The velocity a measurement reports (multitarget/initiation.hpp), entries 3-5.
+  /// The velocity a measurement reports (picture/initiation.hpp), entries 3-5.
   static constexpr int kVelocityEntries = 3;
   static Vector3 velocity_of(const Measurement& z) { return z.template segment<3>(3); }
 

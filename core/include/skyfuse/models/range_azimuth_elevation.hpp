@@ -68,7 +68,7 @@ class RangeAzimuthElevation {
   Measurement predict(const State& x) const { return measure_position(x.template head<3>()); }
 
   /// The position a measurement puts the target at: one detection fixes a position, which is
-  /// what a multi-target tracker starts a track from (multitarget/initiation.hpp).
+  /// what a tracker of many aircraft starts a track from (picture/initiation.hpp).
   Vector3 position_of(const Measurement& z) const {
     const double horizontal = z(kRange) * std::cos(z(kElevation));
     return station_position_ + Vector3(horizontal * std::cos(z(kAzimuth)),

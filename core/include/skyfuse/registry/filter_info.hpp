@@ -37,7 +37,7 @@ struct FilterInfo {
   /// Degrees of freedom of its NEES: the leading state entries every estimate of it shares
   /// (0: the motion model's whole state).
   int nees_dof = 0;
-  /// Whether it keeps a picture of many aircraft (multitarget/track_filters.hpp): a part whose
+  /// Whether it keeps a picture of many aircraft (picture/track_filters.hpp): a part whose
   /// station turns one detection into one increment per track by its increment rule does (the
   /// EKF, the unscented filter), and the IMM; the NCRKF's TDOA receivers fix no position.
   bool tracks_many = false;

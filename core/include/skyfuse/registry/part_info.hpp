@@ -29,7 +29,7 @@ struct SensorInfo {
   bool needs_site = false;
   /// Names of the measured components, in order (noise_std gives one value for each).
   std::vector<std::string_view> components;
-  /// Whether one detection fixes a position (multitarget/fixes_position.hpp): a run with many
+  /// Whether one detection fixes a position (picture/fixes_position.hpp): a run with many
   /// aircraft takes only such sensors.
   bool fixes_position = false;
   /// Receivers beside the one at the station's position (`sensor.receivers_m`); 0 for a

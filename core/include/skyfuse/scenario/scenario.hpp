@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
-#include "skyfuse/multitarget/tracker_config.hpp"
+#include "skyfuse/picture/tracker_config.hpp"
 #include "skyfuse/traffic/detection_model.hpp"
 
 namespace skyfuse {

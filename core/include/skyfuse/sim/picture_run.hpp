@@ -2,8 +2,8 @@
 /// \file
 /// One in-process run of a scenario with many aircraft: every station's scan simulated, M peers
 /// that each assign only their own station's scan and fuse everyone's reports
-/// (multitarget/peer_picture.hpp), and the center on the raw scans
-/// (multitarget/central_picture.hpp), all in one process, with the filter part, motion model
+/// (picture/peer_picture.hpp), and the center on the raw scans
+/// (picture/central_picture.hpp), all in one process, with the filter part, motion model
 /// and sensor the scenario names. It checks as it goes that every peer holds the same picture
 /// bit for bit and how far the center's is from it, and scores the peers' picture against the
 /// truth (metrics/picture_score.hpp).
@@ -39,7 +39,7 @@ struct PictureRunResult {
   std::size_t detections = 0;
   std::size_t false_alarms = 0;
   std::size_t dropped = 0;  ///< detections beyond the assignment's bound
-  /// Addressed detections refused as possible spoofs (multitarget/identity.hpp).
+  /// Addressed detections refused as possible spoofs (picture/identity.hpp).
   std::size_t refused_addresses = 0;
   /// NEES of the confirmed tracks associated with an aircraft, averaged; dof per sample.
   double anees = 0.0;

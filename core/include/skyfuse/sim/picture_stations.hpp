@@ -8,8 +8,8 @@
 #include <variant>
 #include <vector>
 
-#include "skyfuse/multitarget/detection_prior.hpp"
-#include "skyfuse/multitarget/track_table.hpp"
+#include "skyfuse/picture/detection_prior.hpp"
+#include "skyfuse/picture/track_table.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/scenario/scenario.hpp"

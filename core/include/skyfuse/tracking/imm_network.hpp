@@ -98,7 +98,7 @@ class PeerImm {
   void predict() { imm_.predict(); }
 
   /// Takes `states` and `probabilities` as its own: a peer taking another's whole picture after
-  /// they parted (multitarget pictures over DDS). `probabilities` must sum to 1.
+  /// they parted (pictures of many aircraft over DDS). `probabilities` must sum to 1.
   void restore(const typename Filter::ModeStates& states, const Vector<kModes>& probabilities) {
     imm_.restore(states, probabilities);
   }

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The scan simulator, beside the truth it sees: a station's scan (multitarget/scan.hpp) made
+/// The scan simulator, beside the truth it sees: a station's scan (picture/scan.hpp) made
 /// from the aircraft's true kinematics, its sensor and its detection settings
 /// (detection_model.hpp), as a pure function of (seed, run, station, step), so any process
 /// order gives the same bits.
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
-#include "skyfuse/multitarget/scan.hpp"
+#include "skyfuse/picture/scan.hpp"
 #include "skyfuse/random/counter_rng.hpp"
 #include "skyfuse/traffic/detection_model.hpp"
 #include "skyfuse/traffic/target_truth.hpp"
@@ -98,7 +98,7 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
   return scan;
 }
 
-/// The same, for a station whose sensor is one of several kinds (multitarget/picture_sensor.hpp
+/// The same, for a station whose sensor is one of several kinds (picture/picture_sensor.hpp
 /// on the true kinematics) and whose noise is of that sensor's size.
 template <typename... Sensors>
 Scan simulate_scan(int station_id, const std::variant<Sensors...>& sensor, const Vector3& site,

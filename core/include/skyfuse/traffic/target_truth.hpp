@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
-#include "skyfuse/multitarget/address.hpp"
+#include "skyfuse/picture/address.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse {
@@ -23,7 +23,7 @@ struct TargetTruth {
   int first_step = 0;
   /// [p; v; a] (m, m/s, m/s^2, the scenario's east-north-up frame) at each step it is present.
   std::vector<Vector<kKinematicsDim>> states;
-  /// The address it reports to cooperative sensors (multitarget/address.hpp); kNoAddress for
+  /// The address it reports to cooperative sensors (picture/address.hpp); kNoAddress for
   /// an aircraft that carries no transponder nor broadcast, which only primary radars see.
   Address address = kNoAddress;
 

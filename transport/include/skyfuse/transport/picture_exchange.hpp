@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// A station's side of the multi-target picture's flat exchange over DDS. Each round it
+/// A station's side of the picture's flat exchange over DDS. Each round it
 /// publishes its scan with its associations against the common predicted picture
 /// (wire::PictureScan, transport/picture_wire.hpp), sent once to a multicast group, and collects
 /// every station's sample of the round that its reader of the topic hears, its own included
@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/options/node_options.hpp"
+#include "skyfuse/picture/scan.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/transport/dds_node.hpp"

@@ -17,9 +17,9 @@
 #include <utility>
 #include <vector>
 
-#include "skyfuse/multitarget/peer_picture.hpp"
-#include "skyfuse/multitarget/picture_digest.hpp"
-#include "skyfuse/multitarget/scan.hpp"
+#include "skyfuse/picture/peer_picture.hpp"
+#include "skyfuse/picture/picture_digest.hpp"
+#include "skyfuse/picture/scan.hpp"
 #include "skyfuse/transport/picture_scans.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 

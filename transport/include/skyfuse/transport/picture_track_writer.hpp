@@ -7,7 +7,7 @@
 /// its instance disposed. The run itself reads the whole picture from wire::PictureRound.
 ///
 /// Only while a reader is matched: a write costs the node about 2.5 us a track even with no
-/// reader (N = 1 000, M = 8: 2.3-2.6 -> 3.2-3.5 ms of CPU a station-round, docs/multitarget.md),
+/// reader (N = 1 000, M = 8: 2.3-2.6 -> 3.2-3.5 ms of CPU a station-round, docs/picture.md),
 /// which a run nobody watches this way should not pay. A reader that joins gets every track
 /// at the next round; when the last reader leaves, every track written is unregistered, so
 /// that the next reader is not handed stale ones from the writer's history.
@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "skyfuse/multitarget/track.hpp"
-#include "skyfuse/multitarget/track_filters.hpp"
+#include "skyfuse/picture/track.hpp"
+#include "skyfuse/picture/track_filters.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// A station's side of the multi-target picture's tree exchange (scenario `network: {exchange:
+/// A station's side of the picture's tree exchange (scenario `network: {exchange:
 /// tree, fanout: k}`). Stations are cut in ascending id into clusters of k, as the one-target
 /// tree cuts them (tracking/cluster_layout.hpp); the lowest id of each cluster aggregates it. A
 /// round:
@@ -14,7 +14,7 @@
 ///    flat peer does (picture_round_scans.hpp).
 ///
 /// Nothing is summed on the way: the increments are every peer's own arithmetic on the relayed
-/// detections (docs/multitarget.md, "The tree", measured why), so the tree changes how many
+/// detections (docs/picture.md, "The tree", measured why), so the tree changes how many
 /// samples a station receives (the C clusters' instead of M stations') and not one bit of what
 /// it fuses; the in-process run needs no tree of its own. A member's scan lost on its way up is
 /// missing at every peer alike, and the peers stay together; a cluster's bundle lost on its
@@ -41,8 +41,8 @@
 #include <vector>
 
 #include "skyfuse/core/sorted_ids.hpp"
-#include "skyfuse/multitarget/scan.hpp"
 #include "skyfuse/options/node_options.hpp"
+#include "skyfuse/picture/scan.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/tracking/cluster_layout.hpp"

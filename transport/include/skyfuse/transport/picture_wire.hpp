@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// A station's round of the multi-target picture on the wire (wire::PictureScan,
+/// A station's round of the picture on the wire (wire::PictureScan,
 /// idl/skyfuse_picture.idl) and back: its scan, its associations against the common predicted
 /// picture and its unassociated detections. Values are copied bit for bit, so a peer that
 /// computes an association's increment from a received detection computes the station's own.
@@ -20,10 +20,10 @@
 #include <variant>
 #include <vector>
 
-#include "skyfuse/multitarget/peer_picture.hpp"
-#include "skyfuse/multitarget/picture_sensor.hpp"
-#include "skyfuse/multitarget/scan.hpp"
-#include "skyfuse/multitarget/track_filters.hpp"
+#include "skyfuse/picture/peer_picture.hpp"
+#include "skyfuse/picture/picture_sensor.hpp"
+#include "skyfuse/picture/scan.hpp"
+#include "skyfuse/picture/track_filters.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 #include "skyfuse/validation/sample_checks.hpp"
@@ -139,7 +139,7 @@ std::optional<DropKind> detections_from_wire(const wire::PictureScan& sample,
 }  // namespace detail
 
 /// The scan a sample carries for a station whose sensor is of kind `sensor_kind` (one a picture
-/// takes, multitarget/picture_sensor.hpp) with at most `max_detections` detections, or why it is
+/// takes, picture/picture_sensor.hpp) with at most `max_detections` detections, or why it is
 /// refused:
 ///  - kOutOfRange: another sensor kind or measurement dimension, values not a whole number of
 ///    detections, more detections than the bound, addresses neither none nor one per detection, an

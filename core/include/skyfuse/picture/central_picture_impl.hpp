@@ -1,0 +1,72 @@
+#pragma once
+/// \file
+/// The definition of CentralPicture's round (central_picture.hpp). Only the file that compiles
+/// the center's pictures once per filter part and motion model includes it (core/src/
+/// picture/pictures_shard.cpp): every other file calls the compiled code.
+
+#include <span>
+#include <variant>
+
+#include "skyfuse/picture/central_picture.hpp"
+#include "skyfuse/picture/track_table_impl.hpp"
+
+namespace skyfuse {
+
+template <typename Tracks>
+RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const Scan> scans) {
+  const std::size_t count = this->tracks().size();
+  associations_.clear();
+  clear_each(observations_, count);
+  clear_each(weights_, count);
+  clear_each(unassociated_, scans.size());
+  offered_.assign(count, kNoAddress);
+  refused_addresses_ = 0;
+  for (std::size_t s = 0; s < scans.size(); ++s) {
+    const typename Table::Station& station = this->stations()[s];
+    const ScanAssociation association = this->associate(station, scans[s], work_);
+    refused_addresses_ += association.refused_addresses;
+    for (const WeightedPair& pair : association.pairs) {
+      const auto t = static_cast<std::size_t>(pair.track);
+      // As a peer's report offers it (peer_picture.hpp): the first station's, ascending.
+      const Address address = address_of(scans[s].addresses, pair.detection);
+      if (pair.weight > 0.5 && offered_[t] == kNoAddress) offered_[t] = address;
+      associations_.push_back({station.id, pair.detection, this->tracks()[t].id});
+      std::visit(
+          [&]<typename Sensor>(const Sensor& sensor) {
+            constexpr int M = Sensor::kMeasDim;
+            const Covariance<M> noise = fixed_noise<M>(station.noise);
+            observations_[t].push_back(StationObservation<Sensor>{
+                station.id, sensor, fixed_detection<M>(scans[s].detections[pair.detection]),
+                pair.weight == 1.0 ? noise : Covariance<M>(noise / pair.weight)});
+          },
+          station.sensor);
+      weights_[t].push_back(station.weight);
+    }
+    for (const std::uint32_t j : association.unassociated) {
+      unassociated_[s].push_back({j, scans[s].detections[j], address_of(scans[s].addresses, j)});
+    }
+  }
+  hit_.assign(count, 0);
+  for (std::size_t t = 0; t < count; ++t) {
+    auto& track = this->track(t);
+    track.updated_by.clear();
+    if (observations_[t].empty()) continue;
+    if (!this->filters().update(track.filter, std::span<const Observation>(observations_[t]),
+                                weights_[t])) {
+      offered_[t] = kNoAddress;  // a miss offers nothing
+      continue;
+    }
+    hit_[t] = 1;
+    for (const auto& observation : observations_[t]) {
+      const int id = std::visit([](const auto& o) { return o.station_id; }, observation);
+      if (track.updated_by.empty() || track.updated_by.back() != id) {
+        track.updated_by.push_back(id);
+      }
+    }
+  }
+  return this->close_round(step, hit_, offered_, [&](std::size_t s) {
+    return std::span<const UnassociatedDetection>(unassociated_[s]);
+  });
+}
+
+}  // namespace skyfuse

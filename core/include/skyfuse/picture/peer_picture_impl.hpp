@@ -1,0 +1,183 @@
+#pragma once
+/// \file
+/// The definitions of PeerPicture's rounds (peer_picture.hpp). Only the file that compiles the
+/// peers' pictures once per filter part and motion model includes it (core/src/picture/
+/// pictures_shard.cpp): every other file calls the compiled code.
+
+#include <algorithm>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <utility>
+#include <variant>
+
+#include "skyfuse/picture/peer_picture.hpp"
+#include "skyfuse/picture/track_table_impl.hpp"
+
+namespace skyfuse {
+
+template <typename Tracks>
+auto PeerPicture<Tracks>::report(const Station& station, const Scan& scan,
+                                 AssociationWork& work) const -> Report {
+  Report report;
+  report.station_id = station.id;
+  const ScanAssociation association = this->associate(station, scan, work);
+  report.dropped = association.dropped;
+  report.refused_addresses = association.refused_addresses;
+  const auto tracks = this->tracks();
+  const std::span<const WeightedPair> pairs(association.pairs);
+  report.updates.reserve(pairs.size());
+  report.pairs.reserve(pairs.size());
+  for (std::size_t first = 0; first < pairs.size();) {
+    std::size_t end = first;
+    while (end < pairs.size() && pairs[end].track == pairs[first].track) ++end;
+    add_update(report, station, tracks[static_cast<std::size_t>(pairs[first].track)],
+               pairs.subspan(first, end - first), std::span<const Detection>(scan.detections),
+               std::span<const Address>(scan.addresses));
+    first = end;
+  }
+  for (const std::uint32_t j : association.unassociated) {
+    report.unassociated.push_back({j, scan.detections[j], address_of(scan.addresses, j)});
+  }
+  return report;
+}
+
+template <typename Tracks>
+auto PeerPicture<Tracks>::report_of(const Station& station, std::span<const Detection> detections,
+                                    std::span<const Address> addresses,
+                                    std::span<const ReportedPair> pairs,
+                                    std::span<const std::uint32_t> unassociated,
+                                    std::size_t dropped) const -> std::optional<Report> {
+  Report report;
+  report.station_id = station.id;
+  report.dropped = dropped;
+  const auto tracks = this->tracks();
+  auto next = tracks.begin();  // pairs ascend, as tracks do
+  for (auto pair = pairs.begin(); pair != pairs.end();) {
+    auto end = pair;
+    while (end != pairs.end() && end->track == pair->track) ++end;
+    next = std::lower_bound(next, tracks.end(), pair->track,
+                            [](const auto& track, TrackId wanted) { return track.id < wanted; });
+    if (next == tracks.end() || next->id != pair->track) return std::nullopt;
+    add_update(report, station, *next, std::span<const ReportedPair>(pair, end), detections,
+               addresses);
+    pair = end;
+  }
+  for (const std::uint32_t j : unassociated) {
+    report.unassociated.push_back({j, detections[j], address_of(addresses, j)});
+  }
+  return report;
+}
+
+template <typename Tracks>
+RoundOutcome PeerPicture<Tracks>::fuse(std::uint64_t step, std::span<const Report> reports) {
+  const std::size_t count = this->tracks().size();
+  hit_.assign(count, 0);
+  cursor_.assign(reports.size(), 0);
+  report_weights_.clear();
+  for (const Report& report : reports) report_weights_.push_back(weight_of(report.station_id));
+  offered_.assign(count, kNoAddress);
+  for (std::size_t t = 0; t < count; ++t) {
+    auto& track = this->track(t);
+    contributions_.clear();
+    weights_.clear();
+    track.updated_by.clear();
+    for (std::size_t r = 0; r < reports.size(); ++r) {
+      const auto& updates = reports[r].updates;
+      std::size_t& at = cursor_[r];
+      while (at < updates.size() && updates[at].track < track.id) ++at;
+      if (at < updates.size() && updates[at].track == track.id) {
+        contributions_.push_back(&updates[at].contribution);
+        weights_.push_back(report_weights_[r]);
+        if (offered_[t] == kNoAddress) offered_[t] = updates[at].address;
+        track.updated_by.push_back(reports[r].station_id);
+      }
+    }
+    if (contributions_.empty()) continue;
+    if (Tracks::fuse(track.filter, contributions_, weights_) == NumericalStatus::kOk) {
+      hit_[t] = 1;
+    } else {
+      track.updated_by.clear();
+      offered_[t] = kNoAddress;  // a miss offers nothing
+    }
+  }
+  return this->close_round(step, hit_, offered_, [&](std::size_t s) {
+    const int id = this->stations()[s].id;
+    for (const Report& report : reports) {
+      if (report.station_id == id) return std::span(report.unassociated);
+    }
+    return std::span<const UnassociatedDetection>();
+  });
+}
+
+// A pair whose contribution fails numerically adds nothing and is not published, so a peer
+// rebuilding the report skips it too. One pair of weight 1 (GNN's) is its contribution as it
+// is; several are summed, each weighed, which only a part whose contributions add up (an
+// increment rule) can do: the scenario's loader refuses an associator that weighs pairs for any
+// other.
+template <typename Tracks>
+template <typename Pair>
+void PeerPicture<Tracks>::add_update(Report& report, const Station& station,
+                                     const typename Table::TrackType& track,
+                                     std::span<const Pair> pairs,
+                                     std::span<const Detection> detections,
+                                     std::span<const Address> addresses) const {
+  const std::size_t updates = report.updates.size();
+  std::visit(
+      [&]<typename Sensor>(const Sensor& sensor) {
+        add_update_of(report, station.id, sensor, fixed_noise<Sensor::kMeasDim>(station.noise),
+                      track, pairs, detections);
+      },
+      station.sensor);
+  if (addresses.empty() || report.updates.size() == updates) return;
+  for (const Pair& pair : pairs) {
+    if (pair.weight > 0.5) report.updates.back().address = address_of(addresses, pair.detection);
+  }
+}
+
+template <typename Tracks>
+template <typename Pair, typename Sensor>
+void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Sensor& sensor,
+                                        const Covariance<Sensor::kMeasDim>& noise,
+                                        const typename Table::TrackType& track,
+                                        std::span<const Pair> pairs,
+                                        std::span<const Detection> detections) const {
+  constexpr int M = Sensor::kMeasDim;
+  typename Report::Update update;
+  update.track = track.id;
+  const auto contribute = [&](const Pair& pair, Contribution& out) {
+    const StationObservation<Sensor> observation{
+        station_id, sensor, fixed_detection<M>(detections[pair.detection]), noise};
+    return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;
+  };
+  if (pairs.size() == 1 && pairs.front().weight == 1.0) {
+    if (!contribute(pairs.front(), update.contribution)) return;
+    report.updates.push_back(std::move(update));
+    report.pairs.push_back({track.id, pairs.front().detection, pairs.front().weight});
+    return;
+  }
+  if constexpr (requires(Contribution & c) { Tracks::add_weighted(c, c, 1.0); }) {
+    bool any = false;
+    Contribution one;
+    for (const Pair& pair : pairs) {
+      if (!contribute(pair, one)) continue;
+      if (!any) Tracks::start_sum(update.contribution, station_id);
+      Tracks::add_weighted(update.contribution, one, pair.weight);
+      report.pairs.push_back({track.id, pair.detection, pair.weight});
+      any = true;
+    }
+    if (any) report.updates.push_back(std::move(update));
+  } else {
+    throw std::logic_error("a weighed association reached a filter part that cannot sum it");
+  }
+}
+
+template <typename Tracks>
+double PeerPicture<Tracks>::weight_of(int station_id) const {
+  for (const auto& station : this->stations()) {
+    if (station.id == station_id) return station.weight;
+  }
+  return 1.0;
+}
+
+}  // namespace skyfuse

@@ -1,0 +1,163 @@
+#pragma once
+/// \file
+/// The table of tracks every node keeps, peer or center, and what every node does with it the
+/// same way: predict every track, associate a station's scan with the predicted tracks by the
+/// tracker's parts (hypothesiser.hpp, then the scenario's associator), and close a round — record
+/// which tracks were hit, confirm and delete by the management rule, start tracks from the round's
+/// unassociated detections by the initiation rule. How a hit track is updated (peers: summed
+/// contributions; the center: one update of its detections) is the caller's, between the two.
+/// `Tracks` says what a track's filter is (picture/track_filters.hpp).
+///
+/// Identity (identity.hpp) is the table's too: it routes a station's addressed detections before
+/// the gate search, and a round's close gives an unaddressed track the address its detections
+/// offered and starts tracks from addressed detections.
+///
+/// Tracks are kept in ascending id; a new track's id holds its round in the high bits, so new
+/// tracks go at the end and the order never needs sorting.
+///
+/// The rounds are defined in track_table_impl.hpp and compiled once per filter part and motion
+/// model in skyfuse_core (core/src/picture/pictures_shard.cpp); this header declares them.
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "skyfuse/metrics/chi_square.hpp"
+#include "skyfuse/picture/associator.hpp"
+#include "skyfuse/picture/hypothesiser.hpp"
+#include "skyfuse/picture/identity.hpp"
+#include "skyfuse/picture/initiation.hpp"
+#include "skyfuse/picture/picture_digest.hpp"
+#include "skyfuse/picture/picture_sensor.hpp"
+#include "skyfuse/picture/track.hpp"
+#include "skyfuse/picture/track_management.hpp"
+#include "skyfuse/picture/tracker_config.hpp"
+#include "skyfuse/scenario/truth.hpp"
+
+namespace skyfuse {
+
+/// A station as every node knows it: its id, its sensor (of the tracks' N-entry estimate; a
+/// value, picture/picture_sensor.hpp), the noise of its detections, its fusion weight and
+/// what its associator knows of its detections. Ascending id in every list.
+template <int N>
+struct KnownStation {
+  int id = 0;
+  PictureSensor<N> sensor;
+  DetectionNoise noise;
+  double weight = 1.0;
+  DetectionPrior prior;
+};
+
+/// What closing a round did to the table.
+struct RoundOutcome {
+  std::size_t hit = 0;
+  std::size_t confirmed = 0;  ///< tentative tracks confirmed this round
+  std::size_t deleted = 0;
+  std::size_t started = 0;
+};
+
+/// One station's unassociated detection, as it publishes it: index in its scan, value, address.
+struct UnassociatedDetection {
+  std::uint32_t detection = 0;
+  Detection z;
+  Address address = kNoAddress;
+};
+
+template <typename Tracks>
+class TrackTable {
+ public:
+  static constexpr int kDim = Tracks::kDim;
+  using State = typename Tracks::State;
+  using TrackType = Track<State>;
+  using Station = KnownStation<kDim>;
+
+  TrackTable(Tracks filters, std::vector<Station> stations, const TrackerConfig& config)
+      : filters_(std::move(filters)),
+        stations_(std::move(stations)),
+        config_(config),
+        associator_(find_associator(config.association.associator)) {
+    if (associator_ == nullptr) {
+      throw std::invalid_argument("tracker.associator: '" + config.association.associator +
+                                  "' is none of " + associator_names());
+    }
+    for (int m = 1; m <= kMaxDetectionDim; ++m) {
+      gates_[static_cast<std::size_t>(m)] =
+          chi_square_quantile(config.association.gate_probability, m);
+      sanity_gates_[static_cast<std::size_t>(m)] =
+          chi_square_quantile(config.identity.sanity_gate_probability, m);
+    }
+  }
+
+  std::span<const TrackType> tracks() const { return tracks_; }
+  /// Each track's estimate (tracks()[i]'s), as of the last predict() or close_round().
+  std::span<const GaussianState<kDim>> estimates() const { return estimates_; }
+  const std::vector<Station>& stations() const { return stations_; }
+  const TrackerConfig& config() const { return config_; }
+  const Tracks& filters() const { return filters_; }
+  Tracks& filters() { return filters_; }
+  /// The chi-square(M) gate of a pair of a sensor of M values a detection.
+  double gate(int measurement_dim) const {
+    return gates_[static_cast<std::size_t>(measurement_dim)];
+  }
+  const Associator& associator() const { return *associator_; }
+
+  /// Station `station`'s association of its `scan` with this (predicted) picture: its
+  /// addressed detections routed to the tracks of their addresses, then the hypotheses of the
+  /// other pairs, decided by the scenario's associator.
+  ScanAssociation associate(const Station& station, const Scan& scan, AssociationWork& work) const;
+
+  /// A track known before the run (the one aircraft of a single-target scenario), confirmed.
+  void add_known_track(TrackId id, const GaussianState<kDim>& estimate);
+
+  void predict();
+
+  /// Replaces the whole picture with `tracks` (ascending id): another peer's, taken when this
+  /// one's has parted from it.
+  void restore(std::vector<TrackType> tracks);
+
+  /// A digest of the picture as it stands (every track's id, status and estimate, bit for
+  /// bit): equal at two nodes that hold the same picture, and different, but for a chance of
+  /// 2^-64, where they do not. A station publishes its predicted picture's with its scan.
+  std::uint64_t digest() const;
+
+  /// Track i, for the caller's update between predict() and close_round().
+  TrackType& track(std::size_t i) { return tracks_[i]; }
+
+ protected:
+  /// Gives each unaddressed track the address its hit offered (offered[i], kNoAddress for
+  /// none: the first station's of weight above 1/2, identity.hpp), manages every track (hit[i]:
+  /// whether track i was updated this round), then starts tracks from `unassociated` (per
+  /// station, ascending station id as stations(); each ascending). For the pictures' own
+  /// rounds (peer_picture.hpp, central_picture.hpp), compiled with them.
+  template <typename UnassociatedOf>
+  RoundOutcome close_round(std::uint64_t step, const std::vector<char>& hit,
+                           std::span<const Address> offered, UnassociatedOf unassociated_of);
+
+ private:
+  void refresh_estimates();
+  void refresh_addresses();
+  // Gives each unaddressed track the address offered to it this round, in picture order, unless
+  // a track holds it already (one taken earlier in this loop included).
+  void learn_addresses(std::span<const Address> offered);
+  void start_track(NewTrack&& started);
+
+  Tracks filters_;
+  std::vector<Station> stations_;
+  TrackerConfig config_;
+  std::array<double, kMaxDetectionDim + 1> gates_{};         // by a sensor's values a detection
+  std::array<double, kMaxDetectionDim + 1> sanity_gates_{};  // identity's, likewise
+  const Associator* associator_;
+  std::vector<TrackType> tracks_;
+  std::vector<GaussianState<kDim>> estimates_;
+  std::vector<PositionFix> fixes_;
+  std::vector<Address> addresses_;  // tracks_[i].address, for the gate search's mask
+  AddressBook book_;                // the tracks that hold an address, by address
+};
+
+}  // namespace skyfuse

@@ -1,0 +1,184 @@
+#pragma once
+/// \file
+/// The definitions of TrackTable's rounds (track_table.hpp). Only the files that compile the
+/// pictures once per filter part and motion model include it (core/src/picture/
+/// pictures_shard.cpp): every other file calls the compiled
+/// code, which keeps the per-track arithmetic out of the node processes' and the tests' builds.
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <variant>
+
+#include "skyfuse/picture/hypothesiser.hpp"
+#include "skyfuse/picture/picture_digest.hpp"
+#include "skyfuse/picture/track_management.hpp"
+#include "skyfuse/picture/track_table.hpp"
+
+namespace skyfuse {
+
+template <typename Tracks>
+ScanAssociation TrackTable<Tracks>::associate(const Station& station, const Scan& scan,
+                                              AssociationWork& work) const {
+  std::visit(
+      [&]<typename Sensor>(const Sensor& sensor) {
+        constexpr std::size_t M = Sensor::kMeasDim;
+        const std::size_t taken =
+            std::min(scan.detections.size(), config_.association.max_detections_per_scan);
+        route_addressed(estimates(), book_, sensor, scan, taken, sanity_gates_[M], work.routing);
+        const std::span<const Address> held =
+            book_.empty() ? std::span<const Address>() : std::span<const Address>(addresses_);
+        hypothesise(estimates(), sensor, scan, gates_[M],
+                    config_.association.max_detections_per_scan, associator_->reads_densities,
+                    work.routing.mask(held, scan.addresses), work.hypothesiser, work.hypotheses);
+      },
+      station.sensor);
+  ScanAssociation decided;
+  associator_->associate(work.hypotheses, station.prior, config_.association, work, decided);
+  merge_routing(work.routing, decided);
+  return decided;
+}
+
+template <typename Tracks>
+void TrackTable<Tracks>::add_known_track(TrackId id, const GaussianState<kDim>& estimate) {
+  TrackType track{id, TrackStatus::kConfirmed, {}, filters_.start(estimate), {}};
+  tracks_.push_back(std::move(track));
+  estimates_.push_back(estimate);
+  refresh_addresses();
+}
+
+template <typename Tracks>
+void TrackTable<Tracks>::predict() {
+  for (TrackType& track : tracks_) filters_.predict(track.filter);
+  refresh_estimates();
+}
+
+template <typename Tracks>
+void TrackTable<Tracks>::restore(std::vector<TrackType> tracks) {
+  tracks_ = std::move(tracks);
+  refresh_estimates();
+}
+
+template <typename Tracks>
+std::uint64_t TrackTable<Tracks>::digest() const {
+  PictureDigest digest(tracks_.size());
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    digest.add(tracks_[i].id, tracks_[i].status, estimates_[i].mean, estimates_[i].covariance);
+    if (tracks_[i].address != kNoAddress) digest.add_address(tracks_[i].address);
+  }
+  return digest.value();
+}
+
+template <typename Tracks>
+template <typename UnassociatedOf>
+RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vector<char>& hit,
+                                             std::span<const Address> offered,
+                                             UnassociatedOf unassociated_of) {
+  learn_addresses(offered);
+  refresh_estimates();
+  RoundOutcome outcome;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    if (hit[i]) ++outcome.hit;
+    TrackType& track = tracks_[i];
+    const double position_variance =
+        estimates_[i].covariance.template topLeftCorner<3, 3>().trace();
+    const TrackFate fate = manage_track(track.history, track.status, position_variance, hit[i] != 0,
+                                        config_.management);
+    if (fate == TrackFate::kDeleted) {
+      ++outcome.deleted;
+      continue;
+    }
+    if (fate == TrackFate::kConfirmed) ++outcome.confirmed;
+    if (kept != i) {
+      tracks_[kept] = std::move(tracks_[i]);
+      estimates_[kept] = estimates_[i];
+    }
+    ++kept;
+  }
+  tracks_.erase(tracks_.begin() + static_cast<std::ptrdiff_t>(kept), tracks_.end());
+  estimates_.resize(kept);
+  refresh_addresses();
+
+  fixes_.clear();
+  for (std::size_t s = 0; s < stations_.size(); ++s) {
+    const Station& station = stations_[s];
+    std::visit(
+        [&]<typename Sensor>(const Sensor& sensor) {
+          constexpr int M = Sensor::kMeasDim;
+          const Covariance<M> noise = fixed_noise<M>(station.noise);
+          for (const UnassociatedDetection& d : unassociated_of(s)) {
+            // A track that took this address this round has the aircraft already.
+            if (d.address != kNoAddress && book_.track_of(d.address)) continue;
+            if (auto fix =
+                    fix_position(station.id, d.detection, sensor, fixed_detection<M>(d.z), noise)) {
+              fix->address = d.address;
+              fixes_.push_back(*fix);
+            }
+          }
+        },
+        station.sensor);
+  }
+  for (NewTrack& started : initiate_tracks(fixes_, step, config_.initiation)) {
+    start_track(std::move(started));
+    ++outcome.started;
+  }
+  refresh_addresses();
+  return outcome;
+}
+
+template <typename Tracks>
+void TrackTable<Tracks>::refresh_estimates() {
+  estimates_.resize(tracks_.size());
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    estimates_[i] = filters_.estimate(tracks_[i].filter);
+  }
+  refresh_addresses();
+}
+
+template <typename Tracks>
+void TrackTable<Tracks>::refresh_addresses() {
+  addresses_.resize(tracks_.size());
+  for (std::size_t i = 0; i < tracks_.size(); ++i) addresses_[i] = tracks_[i].address;
+  book_.rebuild(addresses_);
+}
+
+template <typename Tracks>
+void TrackTable<Tracks>::learn_addresses(std::span<const Address> offered) {
+  for (std::size_t i = 0; i < offered.size(); ++i) {
+    const Address address = offered[i];
+    if (address == kNoAddress || tracks_[i].address != kNoAddress) continue;
+    if (book_.track_of(address)) continue;
+    tracks_[i].address = address;
+    addresses_[i] = address;
+    book_.insert(address, static_cast<int>(i));
+  }
+}
+
+template <typename Tracks>
+void TrackTable<Tracks>::start_track(NewTrack&& started) {
+  Vector<kKinematicsDim> kinematics = Vector<kKinematicsDim>::Zero();
+  kinematics.template head<3>() = started.position;
+  GaussianState<kDim> initial;
+  initial.mean = Tracks::from_kinematics(kinematics);
+  initial.covariance = filters_.initial_variance().asDiagonal();
+  initial.covariance.template topLeftCorner<3, 3>() = started.covariance;
+  const double v = config_.initiation.velocity_std_mps;
+  initial.covariance.template block<3, 3>(3, 3) = v * v * Covariance<3>::Identity();
+  if (started.velocity) {  // an aircraft's own report of its velocity (initiation.hpp)
+    initial.mean.template segment<3>(3) = *started.velocity;
+    initial.covariance.template block<3, 3>(3, 3) = started.velocity_covariance;
+  }
+  TrackType track{started.id,
+                  TrackStatus::kTentative,
+                  {},
+                  filters_.start(initial),
+                  std::move(started.stations)};
+  track.history.record(true);
+  track.address = started.address;
+  tracks_.push_back(std::move(track));
+  estimates_.push_back(filters_.estimate(tracks_.back().filter));
+}
+
+}  // namespace skyfuse

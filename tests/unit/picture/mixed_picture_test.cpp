@@ -1,0 +1,169 @@
+// A picture whose stations carry different sensors: a radar (range, azimuth, elevation) and a
+// position-velocity report (what an aircraft broadcasting ADS-B gives a ground station). Each
+// station's detections are of its own sensor's size and gated by its own chi-square; a peer per
+// station, each assigning only its own scan, holds the same picture as the other bit for bit,
+// and the center, which stacks both sensors' detections of a track at once, agrees.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <span>
+#include <variant>
+#include <vector>
+
+#include "skyfuse/metrics/chi_square.hpp"
+#include "skyfuse/models/constant_velocity.hpp"
+#include "skyfuse/models/position_velocity.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/picture/central_picture.hpp"
+#include "skyfuse/picture/peer_picture.hpp"
+#include "skyfuse/picture/picture_sensor.hpp"
+#include "skyfuse/picture/track_filters.hpp"
+#include "skyfuse/registry/make_parts.hpp"
+#include "skyfuse/tracking/ekf_increment_rule.hpp"
+#include "skyfuse/traffic/scan_simulation.hpp"
+#include "unit/picture/picture_round.hpp"
+
+namespace skyfuse {
+namespace {
+
+using Model = ConstantVelocity3D;
+constexpr int N = Model::kDim;
+using Radar = RangeAzimuthElevation<N>;
+using Broadcast = PositionVelocity<N>;
+using PeerTracks = PeerModelTracks<Model, EkfIncrementRule>;
+using Peer = PeerPicture<PeerTracks>;
+using Center = CentralPicture<CenterStackedTracks<Model>>;
+using Station = KnownStation<N>;
+
+constexpr double kTimeStepS = 1.0;
+constexpr std::uint64_t kSeed = 4242;
+constexpr int kRounds = 30;
+
+// Station 1: a radar south-west of the aircraft; station 2: the aircraft's own reports.
+std::vector<Station> mixed_stations() {
+  const double angle_std = 0.2 * std::numbers::pi / 180.0;
+  Covariance<3> radar_noise = Covariance<3>::Zero();
+  radar_noise.diagonal() << 5.0 * 5.0, angle_std * angle_std, angle_std * angle_std;
+  Covariance<6> broadcast_noise = Covariance<6>::Zero();
+  broadcast_noise.diagonal() << 100.0, 100.0, 100.0, 1.0, 1.0, 1.0;
+  return {{1, Radar(Vector3(-3000.0, -2000.0, 30.0)), radar_noise, 1.0, {}},
+          {2, Broadcast(), broadcast_noise, 1.0, {}}};
+}
+
+// One aircraft flying straight and level-ish for the whole run.
+std::vector<TargetTruth> one_aircraft() {
+  TargetTruth truth{"T0", 0, {}};
+  const Vector3 start(-1500.0, 800.0, 350.0);
+  const Vector3 velocity(35.0, -10.0, 0.5);
+  for (int k = 0; k < kRounds; ++k) {
+    Vector<kKinematicsDim> x = Vector<kKinematicsDim>::Zero();
+    x.head<3>() = start + k * kTimeStepS * velocity;
+    x.segment<3>(3) = velocity;
+    truth.states.push_back(x);
+  }
+  return {truth};
+}
+
+// Relative gap of two matrices, as in_process_network_test.cpp measures the center's.
+template <typename A, typename B>
+double relative_gap(const A& mine, const B& theirs) {
+  return (mine - theirs).norm() / (1.0 + theirs.norm());
+}
+
+TEST(MixedPicture, ARadarAndAPositionVelocityStationShareOnePicture) {
+  const std::vector<TargetTruth> truths = one_aircraft();
+  const std::vector<Station> stations = mixed_stations();
+  ASSERT_EQ(measurement_dim<N>(stations[0].sensor), 3);
+  ASSERT_EQ(measurement_dim<N>(stations[1].sensor), 6);
+  const Model motion(kTimeStepS, {0.5, 1.0});
+  const Vector<N> initial_variance = Vector<N>::Constant(100.0);
+  const TrackerConfig config;
+  std::vector<Peer> peers(stations.size(),
+                          Peer(PeerTracks(motion, initial_variance), stations, config));
+  Center center(CenterStackedTracks<Model>(motion, initial_variance), stations, config);
+  DetectionConfig sees;
+  sees.field_of_view.max_range_m = 20000.0;
+  sees.field_of_view.min_elevation_rad = 0.0;
+  sees.clutter_per_scan = 2.0;
+
+  double worst_gap = 0.0;
+  int rounds_with_both_sensors = 0;
+  for (int k = 0; k < kRounds; ++k) {
+    const auto step = static_cast<std::uint64_t>(k);
+    std::vector<Scan> scans;
+    for (const Station& station : stations) {
+      scans.push_back(simulate_scan(station.id, test::truth_sensor_of(station),
+                                    test::site_of(station), station.noise, sees, truths, k, kSeed,
+                                    0));
+      for (const Detection& z : scans.back().detections) {
+        ASSERT_EQ(z.size(), measurement_dim<N>(station.sensor)) << "station " << station.id;
+      }
+    }
+    const std::vector<Peer::Report> reports = test::play_picture_round(
+        step, peers, center, std::span<const Station>(stations), std::span<const Scan>(scans));
+
+    ASSERT_EQ(peers[0].digest(), peers[1].digest()) << "round " << k;
+    std::vector<Association> peer_associations;
+    for (const auto& report : reports) {
+      for (const ReportedPair& pair : report.pairs) {
+        peer_associations.push_back({report.station_id, pair.detection, pair.track});
+      }
+    }
+    ASSERT_EQ(peer_associations, center.associations()) << "round " << k;
+    ASSERT_EQ(peers[0].tracks().size(), center.tracks().size()) << "round " << k;
+    for (std::size_t t = 0; t < center.tracks().size(); ++t) {
+      const auto& mine = peers[0].tracks()[t];
+      const auto& theirs = center.tracks()[t];
+      ASSERT_EQ(mine.id, theirs.id) << "round " << k;
+      EXPECT_EQ(mine.updated_by, theirs.updated_by) << "round " << k;
+      worst_gap = std::max(worst_gap, relative_gap(mine.filter.mean, theirs.filter.mean));
+      worst_gap =
+          std::max(worst_gap, relative_gap(mine.filter.covariance, theirs.filter.covariance));
+      if (mine.updated_by == std::vector<int>{1, 2}) ++rounds_with_both_sensors;
+    }
+  }
+  EXPECT_LT(worst_gap, 1e-9);
+  // The center's update stacked a radar's and a position-velocity detection of one track.
+  EXPECT_GT(rounds_with_both_sensors, kRounds / 2);
+
+  // After the last round: the aircraft, and nothing else, has a confirmed track, close to it.
+  const Vector<kKinematicsDim>& truth = truths.front().states.back();
+  std::size_t confirmed = 0;
+  for (const auto& track : peers[0].tracks()) {
+    if (track.status != TrackStatus::kConfirmed) continue;
+    ++confirmed;
+    EXPECT_LT((track.filter.mean.head<3>() - truth.head<3>()).norm(), 50.0);
+    EXPECT_LT((track.filter.mean.segment<3>(3) - truth.segment<3>(3)).norm(), 5.0);
+  }
+  EXPECT_EQ(confirmed, 1U);
+}
+
+TEST(MixedPicture, EachStationIsGatedByItsOwnMeasurementDimension) {
+  const std::vector<Station> stations = mixed_stations();
+  TrackerConfig config;
+  config.association.gate_probability = 0.999;
+  const Peer peer(PeerTracks(Model(kTimeStepS, {0.5, 1.0}), Vector<N>::Constant(100.0)), stations,
+                  config);
+  EXPECT_EQ(peer.gate(3), chi_square_quantile(0.999, 3));
+  EXPECT_EQ(peer.gate(6), chi_square_quantile(0.999, 6));
+  EXPECT_NE(peer.gate(3), peer.gate(6));
+
+  // The gate each station's association used is its own sensor's.
+  const std::vector<TargetTruth> truths = one_aircraft();
+  AssociationWork work;
+  for (const Station& station : stations) {
+    const Scan scan =
+        simulate_scan(station.id, test::truth_sensor_of(station), test::site_of(station),
+                      station.noise, DetectionConfig{}, truths, 0, kSeed, 0);
+    peer.associate(station, scan, work);
+    const int m = measurement_dim<N>(station.sensor);
+    EXPECT_EQ(work.hypotheses.gate, chi_square_quantile(0.999, m)) << "station " << station.id;
+    EXPECT_EQ(work.hypotheses.detections, 1U) << "station " << station.id;
+  }
+}
+
+}  // namespace
+}  // namespace skyfuse
