@@ -368,7 +368,15 @@ INSTANTIATE_TEST_SUITE_P(
                       "60.0], [3000.0, 5500.0, 25.0], [-3000.0, 5500.0, 110.0], [-6000.0, 0.0, "
                       "40.0], [0.0, 1000.0, 80.0]]}, detection: {probability: 0.95, max_range_m: "
                       "20000.0, clutter_per_scan: 0.0, reports_address: true}}",
-                      230}),
+                      230},
+        // A primary 2-D radar among the 3-D ones: range and azimuth only, its detections placed
+        // at its height band's middle until the other radars' fix the height (docs/picture.md,
+        // "A 2-D radar").
+        FilterVariant{"EkfWithA2dRadar",
+                      "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar}",
+                      "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: {kind: range_azimuth, "
+                      "noise_std: [5.0, 0.0026], height_band_m: [120.0, 450.0]}}",
+                      231}),
     [](const ::testing::TestParamInfo<FilterVariant>& param) { return param.param.name; });
 
 // The tree exchange: five stations in clusters of two ({1, 2}, {3, 4}, {5}), each aggregator

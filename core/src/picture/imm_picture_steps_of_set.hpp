@@ -56,7 +56,7 @@ using ImmPictureSensor = PictureSensor<KinematicState::kDim>;
 // a new picture sensor its line below.
 static_assert(std::tuple_size_v<detail::ImmSets> == 3,
               "every IMM mode set of the registry has its imm_picture_steps_<n>.cpp");
-static_assert(std::variant_size_v<detail::ImmPictureSensor> == 4,
+static_assert(std::variant_size_v<detail::ImmPictureSensor> == 5,
               "every picture sensor has its line below");
 template struct ImmPictureSteps<std::tuple_element_t<SKYFUSE_IMM_SET, detail::ImmSets>,
                                 std::variant_alternative_t<0, detail::ImmPictureSensor>>;
@@ -66,5 +66,7 @@ template struct ImmPictureSteps<std::tuple_element_t<SKYFUSE_IMM_SET, detail::Im
                                 std::variant_alternative_t<2, detail::ImmPictureSensor>>;
 template struct ImmPictureSteps<std::tuple_element_t<SKYFUSE_IMM_SET, detail::ImmSets>,
                                 std::variant_alternative_t<3, detail::ImmPictureSensor>>;
+template struct ImmPictureSteps<std::tuple_element_t<SKYFUSE_IMM_SET, detail::ImmSets>,
+                                std::variant_alternative_t<4, detail::ImmPictureSensor>>;
 
 }  // namespace skyfuse

@@ -8,6 +8,7 @@
 #include "skyfuse/models/state_position.hpp"
 #include "skyfuse/picture/fixes_position.hpp"
 #include "skyfuse/registry/filter_info.hpp"
+#include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 
@@ -36,13 +37,13 @@ constexpr int other_receivers_of() {
 
 template <template <int> class... Sensors>
 std::vector<SensorInfo> describe(SensorList<Sensors...> /*list*/) {
-  return {SensorInfo{Sensors<kAnyStateDim>::kKind, Sensors<kAnyStateDim>::kMeasDim,
-                     Sensors<kAnyStateDim>::kJacobianCols, Sensors<kAnyStateDim>::kNeedsSite,
-                     std::vector<std::string_view>(Sensors<kAnyStateDim>::kComponents.begin(),
-                                                   Sensors<kAnyStateDim>::kComponents.end()),
-                     FixesPosition<Sensors<kAnyStateDim>>,
-                     other_receivers_of<Sensors<kAnyStateDim>>(),
-                     position_dim<Sensors<kAnyStateDim>>()}...};
+  return {
+      SensorInfo{Sensors<kAnyStateDim>::kKind, Sensors<kAnyStateDim>::kMeasDim,
+                 Sensors<kAnyStateDim>::kJacobianCols, Sensors<kAnyStateDim>::kNeedsSite,
+                 std::vector<std::string_view>(Sensors<kAnyStateDim>::kComponents.begin(),
+                                               Sensors<kAnyStateDim>::kComponents.end()),
+                 FixesPosition<Sensors<kAnyStateDim>>, other_receivers_of<Sensors<kAnyStateDim>>(),
+                 TakesHeightBand<Sensors<kAnyStateDim>>, position_dim<Sensors<kAnyStateDim>>()}...};
 }
 
 // Whether a filter part's station turns one detection into one increment by an increment rule.

@@ -18,6 +18,7 @@
 #include "skyfuse/registry/part_info.hpp"
 #include "skyfuse/scenario/associator_choice.hpp"
 #include "skyfuse/scenario/truth.hpp"
+#include "skyfuse/validation/physical_bounds.hpp"
 
 namespace skyfuse {
 namespace {
@@ -151,8 +152,17 @@ std::vector<Vector3> read_receivers(const YamlField& field, const SensorInfo& se
   return sites;
 }
 
+// The heights a sensor that measures none assumes: [low, high], low below high, both finite.
+HeightBand read_height_band(const YamlField& field) {
+  const auto band = field.numbers(2);
+  if (!(band(0) < band(1)) || std::abs(band(0)) > kMaxRangeM || std::abs(band(1)) > kMaxRangeM) {
+    field.fail(fmt::format("expected [low_m, high_m] with low below high, got '{}'", field.text()));
+  }
+  return HeightBand{band(0), band(1)};
+}
+
 SensorConfig read_sensor(const YamlField& field) {
-  field.allow_only({"kind", "noise_std", "receivers_m"});
+  field.allow_only({"kind", "noise_std", "receivers_m", "height_band_m"});
   SensorConfig sensor;
   const YamlField kind = field.required("kind");
   sensor.kind = kind.string();
@@ -168,6 +178,18 @@ SensorConfig read_sensor(const YamlField& field) {
   } else if (receivers) {
     receivers->fail(
         fmt::format("a {} sensor has one receiver, at the station; remove it", sensor.kind));
+  }
+  const auto band = field.optional("height_band_m");
+  if (info->assumes_height) {
+    if (!band) {
+      field.fail(
+          fmt::format("a {} sensor measures no height: give the heights it assumes, height_band_m: "
+                      "[low_m, high_m]",
+                      sensor.kind));
+    }
+    sensor.height_band_m = read_height_band(*band);
+  } else if (band) {
+    band->fail(fmt::format("a {} sensor assumes no heights; remove it", sensor.kind));
   }
   return sensor;
 }

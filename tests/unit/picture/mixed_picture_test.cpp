@@ -16,6 +16,7 @@
 #include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/models/constant_velocity.hpp"
 #include "skyfuse/models/position_velocity.hpp"
+#include "skyfuse/models/range_azimuth.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/picture/central_picture.hpp"
 #include "skyfuse/picture/peer_picture.hpp"
@@ -33,6 +34,7 @@ using Model = ConstantVelocity3D;
 constexpr int N = Model::kDim;
 using Radar = RangeAzimuthElevation<N>;
 using Broadcast = PositionVelocity<N>;
+using Radar2d = RangeAzimuth<N>;
 using PeerTracks = PeerModelTracks<Model, EkfIncrementRule>;
 using Peer = PeerPicture<PeerTracks>;
 using Center = CentralPicture<CenterStackedTracks<Model>>;
@@ -73,6 +75,73 @@ double relative_gap(const A& mine, const B& theirs) {
   return (mine - theirs).norm() / (1.0 + theirs.norm());
 }
 
+// What kRounds rounds of a picture showed: the center's worst relative gap to the peers, and how
+// many track-rounds every station's detection updated.
+struct Played {
+  double worst_gap = 0.0;
+  int updated_by_every_station = 0;
+};
+
+// Plays kRounds rounds of `stations` (a peer each, and the center) over `truths`, holding every
+// peer to the same bits as the first, the center to the peers' associations and tracks, and
+// each detection to its sensor's size, every round.
+void play_and_check(const std::vector<Station>& stations, const std::vector<TargetTruth>& truths,
+                    const DetectionConfig& sees, std::vector<Peer>& peers, Center& center,
+                    Played& played) {
+  std::vector<int> every_station;
+  for (const Station& station : stations) every_station.push_back(station.id);
+  for (int k = 0; k < kRounds; ++k) {
+    const auto step = static_cast<std::uint64_t>(k);
+    std::vector<Scan> scans;
+    for (const Station& station : stations) {
+      scans.push_back(simulate_scan(station.id, test::truth_sensor_of(station),
+                                    test::site_of(station), station.noise, sees, truths, k, kSeed,
+                                    0));
+      for (const Detection& z : scans.back().detections) {
+        ASSERT_EQ(z.size(), measurement_dim<N>(station.sensor)) << "station " << station.id;
+      }
+    }
+    const std::vector<Peer::Report> reports = test::play_picture_round(
+        step, peers, center, std::span<const Station>(stations), std::span<const Scan>(scans));
+
+    for (std::size_t p = 1; p < peers.size(); ++p) {
+      ASSERT_EQ(peers[0].digest(), peers[p].digest()) << "round " << k << ", peer " << p;
+    }
+    std::vector<Association> peer_associations;
+    for (const auto& report : reports) {
+      for (const ReportedPair& pair : report.pairs) {
+        peer_associations.push_back({report.station_id, pair.detection, pair.track});
+      }
+    }
+    ASSERT_EQ(peer_associations, center.associations()) << "round " << k;
+    ASSERT_EQ(peers[0].tracks().size(), center.tracks().size()) << "round " << k;
+    for (std::size_t t = 0; t < center.tracks().size(); ++t) {
+      const auto& mine = peers[0].tracks()[t];
+      const auto& theirs = center.tracks()[t];
+      ASSERT_EQ(mine.id, theirs.id) << "round " << k;
+      EXPECT_EQ(mine.updated_by, theirs.updated_by) << "round " << k;
+      played.worst_gap =
+          std::max(played.worst_gap, relative_gap(mine.filter.mean, theirs.filter.mean));
+      played.worst_gap = std::max(played.worst_gap,
+                                  relative_gap(mine.filter.covariance, theirs.filter.covariance));
+      if (mine.updated_by == every_station) ++played.updated_by_every_station;
+    }
+  }
+}
+
+// The confirmed tracks at the end: one, on the aircraft, within `within_m`.
+void expect_one_confirmed_track_on(const Peer& peer, const TargetTruth& aircraft, double within_m) {
+  const Vector<kKinematicsDim>& truth = aircraft.states.back();
+  std::size_t confirmed = 0;
+  for (const auto& track : peer.tracks()) {
+    if (track.status != TrackStatus::kConfirmed) continue;
+    ++confirmed;
+    EXPECT_LT((track.filter.mean.head<3>() - truth.head<3>()).norm(), within_m);
+    EXPECT_LT((track.filter.mean.segment<3>(3) - truth.segment<3>(3)).norm(), 5.0);
+  }
+  EXPECT_EQ(confirmed, 1U);
+}
+
 TEST(MixedPicture, ARadarAndAPositionVelocityStationShareOnePicture) {
   const std::vector<TargetTruth> truths = one_aircraft();
   const std::vector<Station> stations = mixed_stations();
@@ -89,56 +158,54 @@ TEST(MixedPicture, ARadarAndAPositionVelocityStationShareOnePicture) {
   sees.field_of_view.min_elevation_rad = 0.0;
   sees.clutter_per_scan = 2.0;
 
-  double worst_gap = 0.0;
-  int rounds_with_both_sensors = 0;
-  for (int k = 0; k < kRounds; ++k) {
-    const auto step = static_cast<std::uint64_t>(k);
-    std::vector<Scan> scans;
-    for (const Station& station : stations) {
-      scans.push_back(simulate_scan(station.id, test::truth_sensor_of(station),
-                                    test::site_of(station), station.noise, sees, truths, k, kSeed,
-                                    0));
-      for (const Detection& z : scans.back().detections) {
-        ASSERT_EQ(z.size(), measurement_dim<N>(station.sensor)) << "station " << station.id;
-      }
-    }
-    const std::vector<Peer::Report> reports = test::play_picture_round(
-        step, peers, center, std::span<const Station>(stations), std::span<const Scan>(scans));
-
-    ASSERT_EQ(peers[0].digest(), peers[1].digest()) << "round " << k;
-    std::vector<Association> peer_associations;
-    for (const auto& report : reports) {
-      for (const ReportedPair& pair : report.pairs) {
-        peer_associations.push_back({report.station_id, pair.detection, pair.track});
-      }
-    }
-    ASSERT_EQ(peer_associations, center.associations()) << "round " << k;
-    ASSERT_EQ(peers[0].tracks().size(), center.tracks().size()) << "round " << k;
-    for (std::size_t t = 0; t < center.tracks().size(); ++t) {
-      const auto& mine = peers[0].tracks()[t];
-      const auto& theirs = center.tracks()[t];
-      ASSERT_EQ(mine.id, theirs.id) << "round " << k;
-      EXPECT_EQ(mine.updated_by, theirs.updated_by) << "round " << k;
-      worst_gap = std::max(worst_gap, relative_gap(mine.filter.mean, theirs.filter.mean));
-      worst_gap =
-          std::max(worst_gap, relative_gap(mine.filter.covariance, theirs.filter.covariance));
-      if (mine.updated_by == std::vector<int>{1, 2}) ++rounds_with_both_sensors;
-    }
-  }
-  EXPECT_LT(worst_gap, 1e-9);
+  Played played;
+  play_and_check(stations, truths, sees, peers, center, played);
+  EXPECT_LT(played.worst_gap, 1e-9);
   // The center's update stacked a radar's and a position-velocity detection of one track.
-  EXPECT_GT(rounds_with_both_sensors, kRounds / 2);
-
+  EXPECT_GT(played.updated_by_every_station, kRounds / 2);
   // After the last round: the aircraft, and nothing else, has a confirmed track, close to it.
-  const Vector<kKinematicsDim>& truth = truths.front().states.back();
-  std::size_t confirmed = 0;
+  expect_one_confirmed_track_on(peers[0], truths.front(), 50.0);
+}
+
+// Two 2-D radars (range and azimuth, no height) and a 3-D radar: the 2-D radars' detections
+// place the aircraft at their height band's middle (300 m) and join the 3-D radar's when the
+// track starts; the track flies at the aircraft's height (420 m), which only the 3-D radar and
+// the slant ranges tell; peers hold one picture bit for bit and the center agrees.
+TEST(MixedPicture, TwoDimensionalRadarsShareAPictureWithA3dRadar) {
+  const HeightBand band{100.0, 500.0};
+  const double angle_std = 0.2 * std::numbers::pi / 180.0;
+  Covariance<3> radar_noise = Covariance<3>::Zero();
+  radar_noise.diagonal() << 5.0 * 5.0, angle_std * angle_std, angle_std * angle_std;
+  Covariance<2> radar_2d_noise = Covariance<2>::Zero();
+  radar_2d_noise.diagonal() << 10.0 * 10.0, angle_std * angle_std;
+  const std::vector<Station> stations = {
+      {1, Radar2d(Vector3(-3000.0, -2000.0, 30.0), band), radar_2d_noise, 1.0, {}},
+      {2, Radar2d(Vector3(4000.0, 3000.0, 20.0), band), radar_2d_noise, 1.0, {}},
+      {3, Radar(Vector3(0.0, -5000.0, 25.0)), radar_noise, 1.0, {}}};
+  ASSERT_EQ(measurement_dim<N>(stations[0].sensor), 2);
+
+  std::vector<TargetTruth> truths = one_aircraft();
+  for (auto& x : truths.front().states) x(2) += 70.0;  // 420 m and climbing slowly
+  const Model motion(kTimeStepS, {0.5, 1.0});
+  const Vector<N> initial_variance = Vector<N>::Constant(100.0);
+  const TrackerConfig config;
+  std::vector<Peer> peers(stations.size(),
+                          Peer(PeerTracks(motion, initial_variance), stations, config));
+  Center center(CenterStackedTracks<Model>(motion, initial_variance), stations, config);
+  DetectionConfig sees;
+  sees.field_of_view.max_range_m = 20000.0;
+  sees.clutter_per_scan = 2.0;
+
+  Played played;
+  play_and_check(stations, truths, sees, peers, center, played);
+  EXPECT_LT(played.worst_gap, 1e-9);
+  EXPECT_GT(played.updated_by_every_station, kRounds / 2);
+  expect_one_confirmed_track_on(peers[0], truths.front(), 30.0);
   for (const auto& track : peers[0].tracks()) {
     if (track.status != TrackStatus::kConfirmed) continue;
-    ++confirmed;
-    EXPECT_LT((track.filter.mean.head<3>() - truth.head<3>()).norm(), 50.0);
-    EXPECT_LT((track.filter.mean.segment<3>(3) - truth.segment<3>(3)).norm(), 5.0);
+    EXPECT_LT(std::abs(track.filter.mean(2) - truths.front().states.back()(2)), 20.0)
+        << "not the band's 300 m";
   }
-  EXPECT_EQ(confirmed, 1U);
 }
 
 TEST(MixedPicture, EachStationIsGatedByItsOwnMeasurementDimension) {

@@ -449,6 +449,39 @@ TEST(ScenarioLoader, ReadsAMultilaterationGroupsReceivers) {
             "receiver, at the station; remove it (line 38)");
 }
 
+// A 2-D radar measures no height: it names the heights it assumes, and only it does.
+TEST(ScenarioLoader, ReadsTheHeightsA2dRadarAssumes) {
+  const std::string radar =
+      "sensor: &radar {kind: range_azimuth_elevation, noise_std: [0.1, 0.01, 0.01]}";
+  const std::string two_d =
+      "sensor: &radar {kind: range_azimuth, noise_std: [20, 0.002], height_band_m: [100, 500]}";
+  const Scenario s = parse_scenario(default_with(radar, two_d), "test.yaml");
+  EXPECT_EQ(s.stations[0].sensor.kind, "range_azimuth");
+  ASSERT_TRUE(s.stations[0].sensor.height_band_m.has_value());
+  EXPECT_EQ(s.stations[0].sensor.height_band_m->low_m, 100.0);
+  EXPECT_EQ(s.stations[0].sensor.height_band_m->high_m, 500.0);
+
+  std::string none = two_d;
+  none.erase(none.find(", height_band_m"));
+  none += "}";
+  EXPECT_EQ(rejection(default_with(radar, none)),
+            "test.yaml: stations[0].sensor: a range_azimuth sensor measures no height: give the "
+            "heights it assumes, height_band_m: [low_m, high_m] (line 38)");
+  std::string upside_down = two_d;
+  upside_down.replace(upside_down.find("[100, 500]"), 10, "[500, 100]");
+  const std::string refused = rejection(default_with(radar, upside_down));
+  EXPECT_NE(refused.find("test.yaml: stations[0].sensor.height_band_m: expected [low_m, high_m] "
+                         "with low below high"),
+            std::string::npos)
+      << refused;
+  EXPECT_EQ(rejection(default_with(
+                radar,
+                "sensor: &radar {kind: range_azimuth_elevation, noise_std: [0.1, 0.01, "
+                "0.01], height_band_m: [0, 100]}")),
+            "test.yaml: stations[0].sensor.height_band_m: a range_azimuth_elevation sensor "
+            "assumes no heights; remove it (line 38)");
+}
+
 TEST(ScenarioLoader, TheNcrkfNeedsItsModelAndTdoaReceivers) {
   const Scenario s = load_scenario_file(SKYFUSE_SOURCE_DIR "/scenarios/paper002.yaml");
   EXPECT_EQ(s.filter.kind, "ncrkf");

@@ -16,6 +16,7 @@
 /// itself and starts a track from one station, with the velocity of its first detection that
 /// reports one; an address starts one track a round.
 
+#include <concepts>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -48,9 +49,17 @@ concept ReportsVelocity = requires(const typename Sensor::Measurement& z) {
   { Sensor::kVelocityEntries } -> std::convertible_to<int>;
 };
 
+/// A sensor that measures no height and assumes a band of heights instead (a 2-D radar,
+/// models/range_azimuth.hpp).
+template <typename Sensor>
+concept AssumesHeight = requires(const Sensor& sensor) {
+  { sensor.height_band().variance_m2() } -> std::convertible_to<double>;
+};
+
 /// The fix of detection `z` (noise R) of a sensor one of whose detections fixes a position:
 /// the position the sensor inverts it to, and (H^T R^-1 H)^-1 with H the sensor's Jacobian in
-/// the position there. None where H loses rank (a radar's zenith).
+/// the position there; for a sensor that assumes a band of heights, the band's variance is a
+/// prior on the height, added to H^T R^-1 H. None where that loses rank (a radar's zenith).
 template <typename Sensor>
 std::optional<PositionFix> fix_position(int station_id, std::uint32_t detection,
                                         const Sensor& sensor, const Vector<Sensor::kMeasDim>& z,
@@ -67,6 +76,9 @@ std::optional<PositionFix> fix_position(int station_id, std::uint32_t detection,
   for (int c = 0; c < 3; ++c) r_inv_h.col(c) = r_factor.solve(h.col(c));
   Covariance<3> information = h.transpose() * r_inv_h;
   symmetrize(information);
+  if constexpr (AssumesHeight<Sensor>) {
+    information(2, 2) += 1.0 / sensor.height_band().variance_m2();
+  }
   SmallCholesky<3> info_factor;
   if (!info_factor.compute(information)) return std::nullopt;
   fix.covariance = info_factor.inverse();

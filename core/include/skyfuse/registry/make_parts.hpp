@@ -38,12 +38,30 @@ struct AtStateDim<Sensor<N>, M> {
 template <typename Sensor>
 using TruthSensorOf = typename detail::AtStateDim<Sensor, kKinematicsDim>::type;
 
+/// A sensor of several receivers: the scenario lists those beside its site.
+template <typename Sensor>
+concept HasOtherReceivers = requires {
+  Sensor::kReceivers;
+};
+/// A sensor that measures no height: the scenario gives the heights it assumes.
+template <typename Sensor>
+concept TakesHeightBand = requires {
+  Sensor::kAssumesHeight;
+};
+/// Whether a sensor takes more from the scenario than its site. Such a sensor is rebuilt from
+/// the scenario wherever it is received, never from its site alone.
+template <typename Sensor>
+concept ConfiguredByScenario = HasOtherReceivers<Sensor> || TakesHeightBand<Sensor>;
+
 /// Station `station`'s sensor standing at `site`: for a sensor of several receivers, with the
 /// others' sites and its components' nominal noise from the scenario
-/// (models/multilateration.hpp).
+/// (models/multilateration.hpp); for a sensor that measures no height, with the heights it
+/// assumes (models/range_azimuth.hpp).
 template <typename Sensor>
 Sensor make_sensor_at(const Vector3& site, const StationConfig& station) {
-  if constexpr (requires { Sensor::kReceivers; }) {
+  if constexpr (TakesHeightBand<Sensor>) {
+    return Sensor(site, station.sensor.height_band_m.value());
+  } else if constexpr (HasOtherReceivers<Sensor>) {
     const Eigen::VectorXd& noise_std = station.sensor.noise_std;
     return Sensor(
         site, station.sensor.receivers_m,

@@ -35,6 +35,9 @@ struct SensorInfo {
   /// Receivers beside the one at the station's position (`sensor.receivers_m`); 0 for a
   /// sensor of one receiver.
   int other_receivers = 0;
+  /// Whether it measures no height and needs the heights it assumes (`sensor.height_band_m`,
+  /// models/range_azimuth.hpp).
+  bool assumes_height = false;
   /// Leading state entries it reads as the position (models/state_position.hpp): a model
   /// must keep a position of at least that many.
   int position_dim = 3;

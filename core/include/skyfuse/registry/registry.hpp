@@ -21,6 +21,7 @@
 #include "skyfuse/models/constant_velocity.hpp"
 #include "skyfuse/models/multilateration.hpp"
 #include "skyfuse/models/position_velocity.hpp"
+#include "skyfuse/models/range_azimuth.hpp"
 #include "skyfuse/models/range_azimuth_altitude.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/models/state_position.hpp"
@@ -34,7 +35,7 @@ namespace skyfuse {
 
 using MotionModels = ModelList<ConstantAcceleration3D, ConstantVelocity3D, TdoaRelativeMotion>;
 using Sensors = SensorList<RangeAzimuthElevation, PositionVelocity, RangeDifferenceSensor,
-                           Multilateration, RangeAzimuthAltitude>;
+                           Multilateration, RangeAzimuthAltitude, RangeAzimuth>;
 
 /// The IMM is one part per set of modes it is compiled for (tracking/imm_modes.hpp); a scenario
 /// picks one by its filter.imm.modes.

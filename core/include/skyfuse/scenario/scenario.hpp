@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/models/height_band.hpp"
 #include "skyfuse/picture/tracker_config.hpp"
 #include "skyfuse/traffic/detection_model.hpp"
 
@@ -27,6 +28,9 @@ struct SensorConfig {
   /// A sensor of several receivers (multilateration): the sites of those beside the one at the
   /// station's position, world frame (m); empty for every other sensor.
   std::vector<Vector3> receivers_m;
+  /// A sensor that measures no height (a 2-D radar): the heights it assumes
+  /// (`sensor.height_band_m`); none for every other sensor.
+  std::optional<HeightBand> height_band_m;
 };
 
 struct StationConfig {

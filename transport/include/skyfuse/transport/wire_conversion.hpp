@@ -78,8 +78,9 @@ wire::Measurement to_wire(const StationObservation<Sensor>& observation, std::ui
 }
 
 /// The observation of a `Sensor` a measurement carries; nothing if it names another sensor kind
-/// or its lengths are not that sensor's. The wire carries the sensor's site; a sensor of several
-/// receivers (multilateration) takes the others from `station`, the sending station as the
+/// or its lengths are not that sensor's. The wire carries the sensor's site; a sensor the
+/// scenario configures further (a multilateration group's other receivers, a 2-D radar's
+/// heights: registry/make_parts.hpp) takes the rest from `station`, the sending station as the
 /// scenario every node loaded describes it, and without it is nothing.
 template <typename Sensor>
 std::optional<StationObservation<Sensor>> observation_from_wire(
@@ -90,7 +91,7 @@ std::optional<StationObservation<Sensor>> observation_from_wire(
   if (!z || !noise) return std::nullopt;
   const auto& p = sample.station_position();
   const Vector3 site(p[0], p[1], p[2]);
-  if constexpr (requires { Sensor::kReceivers; }) {
+  if constexpr (ConfiguredByScenario<Sensor>) {
     if (station == nullptr || station->sensor.kind != Sensor::kKind) return std::nullopt;
     return StationObservation<Sensor>{sample.station_id(), make_sensor_at<Sensor>(site, *station),
                                       *z, *noise};
