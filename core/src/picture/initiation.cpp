@@ -1,6 +1,7 @@
 #include "skyfuse/picture/initiation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "skyfuse/metrics/chi_square.hpp"
@@ -17,6 +18,17 @@ struct Group {
   std::vector<int> stations;
   Address address = kNoAddress;
   const PositionFix* velocity_from = nullptr;  // its first fix that reports a velocity
+
+  // Empty again, keeping the stations' storage for the next group.
+  void clear() {
+    information.setZero();
+    information_vector.setZero();
+    position.setZero();
+    covariance.setZero();
+    stations.clear();
+    address = kNoAddress;
+    velocity_from = nullptr;
+  }
 
   // Whether `fix` may join: not of a station already in it, nor of another address.
   bool admits(const PositionFix& fix) const {
@@ -43,12 +55,30 @@ struct Group {
 };
 
 bool agrees(const Group& group, const PositionFix& fix, double threshold) {
+  // d^T S^-1 d >= |d|^2 / lambda_max(S) >= |d|^2 / trace(S) for S = P_group + P_fix: a fix
+  // farther than that bound allows fails the test below, so it is refused without factoring S
+  // (most fixes are far apart: false alarms, other aircraft). The margin keeps a pair within
+  // rounding of the bound for the exact test, so the decisions are the exact test's.
+  const Vector3 difference = fix.position - group.position;
+  const double trace = group.covariance.trace() + fix.covariance.trace();
+  if (difference.squaredNorm() > threshold * trace * (1.0 + 1e-9)) return false;
   Covariance<3> sum = group.covariance + fix.covariance;
   symmetrize(sum);
   SmallCholesky<3> factor;
   if (!factor.compute(sum)) return false;
-  const Vector3 difference = fix.position - group.position;
   return difference.dot(factor.solve(difference)) <= threshold;
+}
+
+// chi_square_quantile(probability, 3), computed again only when the probability changes: every
+// round of every peer asks for the same one, and the quantile is an iterative solve.
+double join_threshold(double probability) {
+  thread_local double last_probability = std::nan("");
+  thread_local double last_threshold = 0.0;
+  if (probability != last_probability) {
+    last_threshold = chi_square_quantile(probability, 3.0);
+    last_probability = probability;
+  }
+  return last_threshold;
 }
 
 }  // namespace
@@ -61,7 +91,7 @@ std::vector<NewTrack> initiate_tracks(std::span<const PositionFix> fixes, std::u
       throw std::invalid_argument("initiate_tracks: fixes out of (station, detection) order");
     }
   }
-  const double threshold = chi_square_quantile(config.gate_probability, 3.0);
+  const double threshold = join_threshold(config.gate_probability);
   std::vector<char> used(fixes.size(), 0);
   std::vector<NewTrack> started;
   std::vector<Address> started_addresses;  // an address starts one track
@@ -69,11 +99,13 @@ std::vector<NewTrack> initiate_tracks(std::span<const PositionFix> fixes, std::u
     return address != kNoAddress && std::find(started_addresses.begin(), started_addresses.end(),
                                               address) != started_addresses.end();
   };
+  Group group;
+  std::vector<std::size_t> members;
   for (std::size_t first = 0; first < fixes.size(); ++first) {
     if (used[first] || already_started(fixes[first].address)) continue;
-    Group group;
+    group.clear();
     if (!group.add(fixes[first])) continue;
-    std::vector<std::size_t> members = {first};
+    members.assign(1, first);
     for (std::size_t other = first + 1; other < fixes.size(); ++other) {
       if (used[other] || !group.admits(fixes[other]) || already_started(fixes[other].address)) {
         continue;
