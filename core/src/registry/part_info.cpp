@@ -5,10 +5,10 @@
 
 #include <algorithm>
 
+#include "skyfuse/models/height_band.hpp"
 #include "skyfuse/models/state_position.hpp"
 #include "skyfuse/picture/fixes_position.hpp"
 #include "skyfuse/registry/filter_info.hpp"
-#include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 

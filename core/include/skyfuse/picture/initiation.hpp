@@ -16,7 +16,6 @@
 /// itself and starts a track from one station, with the velocity of its first detection that
 /// reports one; an address starts one track a round.
 
-#include <concepts>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -24,6 +23,7 @@
 
 #include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/models/height_band.hpp"
 #include "skyfuse/picture/track.hpp"
 #include "skyfuse/picture/tracker_config.hpp"
 
@@ -49,13 +49,6 @@ concept ReportsVelocity = requires(const typename Sensor::Measurement& z) {
   { Sensor::kVelocityEntries } -> std::convertible_to<int>;
 };
 
-/// A sensor that measures no height and assumes a band of heights instead (a 2-D radar,
-/// models/range_azimuth.hpp).
-template <typename Sensor>
-concept AssumesHeight = requires(const Sensor& sensor) {
-  { sensor.height_band().variance_m2() } -> std::convertible_to<double>;
-};
-
 /// The fix of detection `z` (noise R) of a sensor one of whose detections fixes a position:
 /// the position the sensor inverts it to, and (H^T R^-1 H)^-1 with H the sensor's Jacobian in
 /// the position there; for a sensor that assumes a band of heights, the band's variance is a
@@ -76,7 +69,7 @@ std::optional<PositionFix> fix_position(int station_id, std::uint32_t detection,
   for (int c = 0; c < 3; ++c) r_inv_h.col(c) = r_factor.solve(h.col(c));
   Covariance<3> information = h.transpose() * r_inv_h;
   symmetrize(information);
-  if constexpr (AssumesHeight<Sensor>) {
+  if constexpr (TakesHeightBand<Sensor>) {
     information(2, 2) += 1.0 / sensor.height_band().variance_m2();
   }
   SmallCholesky<3> info_factor;

@@ -7,6 +7,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "skyfuse/models/height_band.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
@@ -43,15 +44,11 @@ template <typename Sensor>
 concept HasOtherReceivers = requires {
   Sensor::kReceivers;
 };
-/// A sensor that measures no height: the scenario gives the heights it assumes.
-template <typename Sensor>
-concept TakesHeightBand = requires {
-  Sensor::kAssumesHeight;
-};
 /// Whether a sensor takes more from the scenario than its site. Such a sensor is rebuilt from
 /// the scenario wherever it is received, never from its site alone.
 template <typename Sensor>
-concept ConfiguredByScenario = HasOtherReceivers<Sensor> || TakesHeightBand<Sensor>;
+concept ConfiguredByScenario =
+    HasOtherReceivers<Sensor> || TakesHeightBand<Sensor>;  // models/height_band.hpp
 
 /// Station `station`'s sensor standing at `site`: for a sensor of several receivers, with the
 /// others' sites and its components' nominal noise from the scenario
