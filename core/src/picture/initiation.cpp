@@ -1,7 +1,6 @@
 #include "skyfuse/picture/initiation.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 
 #include "skyfuse/metrics/chi_square.hpp"
@@ -69,29 +68,20 @@ bool agrees(const Group& group, const PositionFix& fix, double threshold) {
   return difference.dot(factor.solve(difference)) <= threshold;
 }
 
-// chi_square_quantile(probability, 3), computed again only when the probability changes: every
-// round of every peer asks for the same one, and the quantile is an iterative solve.
-double join_threshold(double probability) {
-  thread_local double last_probability = std::nan("");
-  thread_local double last_threshold = 0.0;
-  if (probability != last_probability) {
-    last_threshold = chi_square_quantile(probability, 3.0);
-    last_probability = probability;
-  }
-  return last_threshold;
-}
-
 }  // namespace
 
+double join_gate(const InitiationConfig& config) {
+  return chi_square_quantile(config.gate_probability, 3.0);
+}
+
 std::vector<NewTrack> initiate_tracks(std::span<const PositionFix> fixes, std::uint64_t step,
-                                      const InitiationConfig& config) {
+                                      const InitiationConfig& config, double gate) {
   for (std::size_t i = 1; i < fixes.size(); ++i) {
     const auto before = std::pair{fixes[i - 1].station_id, fixes[i - 1].detection};
     if (!(before < std::pair{fixes[i].station_id, fixes[i].detection})) {
       throw std::invalid_argument("initiate_tracks: fixes out of (station, detection) order");
     }
   }
-  const double threshold = join_threshold(config.gate_probability);
   std::vector<char> used(fixes.size(), 0);
   std::vector<NewTrack> started;
   std::vector<Address> started_addresses;  // an address starts one track
@@ -110,7 +100,7 @@ std::vector<NewTrack> initiate_tracks(std::span<const PositionFix> fixes, std::u
       if (used[other] || !group.admits(fixes[other]) || already_started(fixes[other].address)) {
         continue;
       }
-      if (agrees(group, fixes[other], threshold) && group.add(fixes[other])) {
+      if (agrees(group, fixes[other], gate) && group.add(fixes[other])) {
         members.push_back(other);
       }
     }

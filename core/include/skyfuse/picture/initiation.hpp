@@ -97,8 +97,18 @@ struct NewTrack {
   Covariance<3> velocity_covariance = Covariance<3>::Identity();
 };
 
-/// The tracks `fixes` (in (station id, detection index) order) start at `step`.
+/// The chi-square(3) quantile two fixes' difference is tested against to join
+/// (config.gate_probability): an iterative solve, so a tracker computes it once.
+double join_gate(const InitiationConfig& config);
+
+/// The tracks `fixes` (in (station id, detection index) order) start at `step`, joining fixes
+/// within `gate` (join_gate(config)).
 std::vector<NewTrack> initiate_tracks(std::span<const PositionFix> fixes, std::uint64_t step,
-                                      const InitiationConfig& config);
+                                      const InitiationConfig& config, double gate);
+/// The same, computing the gate.
+inline std::vector<NewTrack> initiate_tracks(std::span<const PositionFix> fixes, std::uint64_t step,
+                                             const InitiationConfig& config) {
+  return initiate_tracks(fixes, step, config, join_gate(config));
+}
 
 }  // namespace skyfuse

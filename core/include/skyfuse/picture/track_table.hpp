@@ -92,6 +92,7 @@ class TrackTable {
       sanity_gates_[static_cast<std::size_t>(m)] =
           chi_square_quantile(config.identity.sanity_gate_probability, m);
     }
+    join_gate_ = join_gate(config.initiation);
   }
 
   std::span<const TrackType> tracks() const { return tracks_; }
@@ -152,6 +153,7 @@ class TrackTable {
   TrackerConfig config_;
   std::array<double, kMaxDetectionDim + 1> gates_{};         // by a sensor's values a detection
   std::array<double, kMaxDetectionDim + 1> sanity_gates_{};  // identity's, likewise
+  double join_gate_ = 0.0;                                   // initiation's (initiation.hpp)
   const Associator* associator_;
   std::vector<TrackType> tracks_;
   std::vector<GaussianState<kDim>> estimates_;

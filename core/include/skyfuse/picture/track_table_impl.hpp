@@ -120,7 +120,7 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
         },
         station.sensor);
   }
-  for (NewTrack& started : initiate_tracks(fixes_, step, config_.initiation)) {
+  for (NewTrack& started : initiate_tracks(fixes_, step, config_.initiation, join_gate_)) {
     start_track(std::move(started));
     ++outcome.started;
   }
