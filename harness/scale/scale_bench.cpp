@@ -72,33 +72,26 @@ struct OneAircraft {
     return r.realtime ? r.realtime->datagrams_per_round : std::nullopt;
   }
 
-  nlohmann::json json(const Row& r) const {
-    nlohmann::json row = {{"exchange", r.exchange},
-                          {"stations", r.stations},
-                          {"fanout", r.exchange == "tree" ? nlohmann::json(fanout) : nullptr},
-                          {"hosts", r.hosts}};
-    if (!r.error.empty()) {
-      row["error"] = r.error;
-      return row;
-    }
+  // The row's configuration, and its own figures beside the house's (row_json).
+  nlohmann::json configuration(const Row& r) const {
+    return {{"exchange", r.exchange},
+            {"stations", r.stations},
+            {"fanout", r.exchange == "tree" ? nlohmann::json(fanout) : nullptr},
+            {"hosts", r.hosts}};
+  }
+  nlohmann::json lockstep_figures(const Row& r) const {
     const RunSummary& s = *r.lockstep;
-    row["lockstep"] = house_figures(s);
-    row["lockstep"].update(
-        {{"round_latency_ms_p50", s.round_latency_us_p50 / 1e3},
-         {"round_latency_ms_p99", s.round_latency_us_p99 / 1e3},
-         {"data_samples_per_round", samples_per_round(r.exchange, r.stations, fanout)},
-         {"max_abs_diff_between_peers", s.max_abs_diff_between_peers},
-         {"max_abs_diff_central_vs_p2p", s.max_abs_diff_central_vs_p2p}});
-    if (!r.realtime_error.empty()) row["realtime"] = {{"error", r.realtime_error}};
-    if (r.realtime) {
-      const RunSummary& t = *r.realtime;
-      row["realtime"] = house_figures(t);
-      row["realtime"].update({{"deadline_ms", t.realtime_deadline_ms},
-                              {"rounds_all_inputs_in_time", t.rounds_all_inputs_in_time},
-                              {"track_age_ms_p50", t.track_age_ms_p50},
-                              {"track_age_ms_p99", t.track_age_ms_p99}});
-    }
-    return row;
+    return {{"round_latency_ms_p50", s.round_latency_us_p50 / 1e3},
+            {"round_latency_ms_p99", s.round_latency_us_p99 / 1e3},
+            {"data_samples_per_round", samples_per_round(r.exchange, r.stations, fanout)},
+            {"max_abs_diff_between_peers", s.max_abs_diff_between_peers},
+            {"max_abs_diff_central_vs_p2p", s.max_abs_diff_central_vs_p2p}};
+  }
+  static nlohmann::json realtime_figures(const RunSummary& t) {
+    return {{"deadline_ms", t.realtime_deadline_ms},
+            {"rounds_all_inputs_in_time", t.rounds_all_inputs_in_time},
+            {"track_age_ms_p50", t.track_age_ms_p50},
+            {"track_age_ms_p99", t.track_age_ms_p99}};
   }
 
   static std::string csv_header() {
@@ -167,28 +160,21 @@ struct ManyAircraft {
     return s.steps == 0 ? 0.0 : static_cast<double>(s.rounds_in_time) / s.steps;
   }
 
-  static nlohmann::json json(const Row& r) {
-    nlohmann::json row = {
-        {"aircraft", r.aircraft}, {"stations", r.stations}, {"exchange", r.exchange}};
-    if (!r.error.empty()) row["error"] = r.error;
-    if (r.lockstep) {
-      const PictureRunSummary& s = *r.lockstep;
-      row["lockstep"] = house_figures(s);
-      row["lockstep"].update({{"peers_identical", s.peers_identical},
-                              {"equals_in_process", s.equals_in_process},
-                              {"max_state_gap_center_vs_p2p", s.max_state_gap_center_vs_p2p},
-                              {"confirmed_at_end", s.confirmed_at_end}});
-    }
-    if (!r.realtime_error.empty()) row["realtime"] = {{"error", r.realtime_error}};
-    if (r.realtime) {
-      const PictureRunSummary& t = *r.realtime;
-      row["realtime"] = house_figures(t);
-      row["realtime"].update({{"rounds_in_time", t.rounds_in_time},
-                              {"steps", t.steps},
-                              {"share_in_time", share_in_time(t)},
-                              {"rounds_peers_apart", t.rounds_peers_apart}});
-    }
-    return row;
+  static nlohmann::json configuration(const Row& r) {
+    return {{"aircraft", r.aircraft}, {"stations", r.stations}, {"exchange", r.exchange}};
+  }
+  static nlohmann::json lockstep_figures(const Row& r) {
+    const PictureRunSummary& s = *r.lockstep;
+    return {{"peers_identical", s.peers_identical},
+            {"equals_in_process", s.equals_in_process},
+            {"max_state_gap_center_vs_p2p", s.max_state_gap_center_vs_p2p},
+            {"confirmed_at_end", s.confirmed_at_end}};
+  }
+  static nlohmann::json realtime_figures(const PictureRunSummary& t) {
+    return {{"rounds_in_time", t.rounds_in_time},
+            {"steps", t.steps},
+            {"share_in_time", share_in_time(t)},
+            {"rounds_peers_apart", t.rounds_peers_apart}};
   }
 
   static std::string csv_header() {
@@ -231,6 +217,24 @@ struct ManyAircraft {
   }
 };
 
+// A row of either kind in its JSON: the kind's configuration, the error of a run that failed,
+// and each run's figures, the house's (house_figures) and the kind's own.
+template <typename Kind>
+nlohmann::json row_json(const Kind& kind, const typename Kind::Row& r) {
+  nlohmann::json row = kind.configuration(r);
+  if (!r.error.empty()) row["error"] = r.error;
+  if (r.lockstep) {
+    row["lockstep"] = house_figures(*r.lockstep);
+    row["lockstep"].update(kind.lockstep_figures(r));
+  }
+  if (!r.realtime_error.empty()) row["realtime"] = {{"error", r.realtime_error}};
+  if (r.realtime) {
+    row["realtime"] = house_figures(*r.realtime);
+    row["realtime"].update(kind.realtime_figures(*r.realtime));
+  }
+  return row;
+}
+
 // The options of one run of `row`'s configuration: lock-step for `o.rounds` rounds or real
 // time for `o.realtime_steps`, the bench's reliability, domain, fanout and stations per
 // process, its files in `out_dir`.
@@ -269,7 +273,7 @@ void measure_rows(const ScaleBenchOptions& o, const Kind& kind, const BenchScena
     nlohmann::json json_rows = nlohmann::json::array();
     std::string csv = Kind::csv_header();
     for (const Row& r : rows) {
-      json_rows.push_back(kind.json(r));
+      json_rows.push_back(row_json(kind, r));
       if (r.lockstep) csv += kind.csv(r);
     }
     const nlohmann::json doc = {{"cores", std::thread::hardware_concurrency()},
