@@ -457,17 +457,18 @@ TEST(DdsPicture, ThroughTheTreeAKilledAggregatorsClusterIsRelayedByItsStandIn) {
   EXPECT_LE(agreed_for_good_from(rounds), rejoined + 2) << run.output;
 }
 
-// recorded-airport.yaml on a file of 60 aircraft in OpenSky's format, given by --traffic-file:
-// the stations read it by its absolute path (they run on the scenario's copy in the results
-// folder), and the run goes to its end with the same guarantees.
+// recorded-airport-adsb.yaml on a file of 60 aircraft in OpenSky's format, given by
+// --traffic-file: four radars see the recorded flights and an ADS-B station replays their rows
+// as their own reports. The stations read the file by its absolute path (they run on the
+// scenario's copy in the results folder), and the run goes to its end with the same guarantees.
 TEST(DdsPicture, RecordedTrafficOfSixtyAircraftRunsToTheEndBitForBit) {
   const auto dir = test_dir();
-  const Scenario scenario = load_scenario_file(bin("scenarios/recorded-airport.yaml"));
+  const Scenario scenario = load_scenario_file(bin("scenarios/recorded-airport-adsb.yaml"));
   const auto file = dir / "states.csv";
   write_opensky_states(file, scenario.anchor, 1700000000.0, 5);
   const Completed run = run_to_completion(
-      {bin("skyfuse"), "run", "--scenario", bin("scenarios/recorded-airport.yaml"),
-       "--traffic-file", file.string(), "--stations", "4", "--steps", "60", "--domain", "94",
+      {bin("skyfuse"), "run", "--scenario", bin("scenarios/recorded-airport-adsb.yaml"),
+       "--traffic-file", file.string(), "--stations", "5", "--steps", "60", "--domain", "94",
        "--out", (dir / "out").string()},
       dir / "out.log", 180s);
   ASSERT_EQ(run.status.code, 0) << run.output;
@@ -476,7 +477,7 @@ TEST(DdsPicture, RecordedTrafficOfSixtyAircraftRunsToTheEndBitForBit) {
   EXPECT_TRUE(summary.at("equals_in_process").get<bool>());
   EXPECT_TRUE(summary.at("center_equals_in_process").get<bool>());
   EXPECT_EQ(summary.at("steps").get<int>(), 60);
-  EXPECT_GE(summary.at("confirmed_at_end").get<int>(), 50) << "most of the 60 aircraft tracked";
+  EXPECT_EQ(summary.at("confirmed_at_end").get<int>(), 60) << "each aircraft's broadcasts start it";
 }
 
 // 20 % of the scans lost on every link in rounds 40-59: stations that missed different scans

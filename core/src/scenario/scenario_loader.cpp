@@ -13,6 +13,7 @@
 
 #include "scenario/traffic_reader.hpp"
 #include "scenario/yaml_field.hpp"
+#include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/registry/compiled_parts.hpp"
 #include "skyfuse/registry/filter_info.hpp"
 #include "skyfuse/registry/part_info.hpp"
@@ -478,6 +479,24 @@ void check_many_targets(const Scenario& s, std::size_t i, const YamlField& item,
   const DetectionConfig& detection = *s.stations[i].detection;
   if (detection.clutter_per_scan > 0.0 && !std::isfinite(detection.field_of_view.max_range_m)) {
     item.fail("clutter needs a field of view with a finite detection.max_range_m");
+  }
+  if (detection.replays_broadcasts) {
+    const YamlField where = item.optional("detection").value_or(item);
+    constexpr std::string_view kBroadcastSensor = PositionVelocity<kKinematicsDim>::kKind;
+    if (sensor.kind != kBroadcastSensor) {
+      where.fail(
+          fmt::format("replays_broadcasts: a recorded broadcast is a {} report; station's "
+                      "sensor is {}",
+                      kBroadcastSensor, sensor.kind));
+    }
+    if (!detection.reports_address) {
+      where.fail("replays_broadcasts: a broadcast carries its address; set reports_address: true");
+    }
+    if (!s.traffic->recorded) {
+      where.fail(
+          "replays_broadcasts: only recorded aircraft broadcast; the scenario has no "
+          "traffic.recorded");
+    }
   }
 }
 

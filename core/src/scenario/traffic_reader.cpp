@@ -159,7 +159,8 @@ TrackerConfig read_tracker(const YamlField& field) {
 
 DetectionConfig read_detection(const YamlField& field, const DetectionConfig& defaults) {
   field.allow_only({"probability", "max_range_m", "min_elevation_deg", "azimuth_sector_deg",
-                    "clutter_per_scan", "clutter_max_speed_mps", "reports_address"});
+                    "clutter_per_scan", "clutter_max_speed_mps", "reports_address",
+                    "replays_broadcasts"});
   DetectionConfig d = defaults;
   if (const auto f = field.optional("probability")) d.probability = read_probability(*f);
   if (const auto f = field.optional("max_range_m"))
@@ -178,6 +179,7 @@ DetectionConfig read_detection(const YamlField& field, const DetectionConfig& de
     d.field_of_view.azimuth_sector = AzimuthSector{sector(0) * kDegToRad, sector(1) * kDegToRad};
   }
   if (const auto f = field.optional("reports_address")) d.reports_address = f->boolean();
+  if (const auto f = field.optional("replays_broadcasts")) d.replays_broadcasts = f->boolean();
   if (const auto f = field.optional("clutter_max_speed_mps")) {
     d.clutter_max_speed_mps = f->non_negative_number();
   }

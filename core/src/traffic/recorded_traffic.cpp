@@ -240,13 +240,41 @@ Vector<kKinematicsDim> hermite_state(const Sample& from, const Sample& to, doubl
   return state;
 }
 
+// A step within a billionth of a step of a sample time counts as at it, so that the sums
+// k * dt that land on sample times are not lost to rounding.
+constexpr double kStepTolerance = 1e-9;
+
+/// The reports a ground receiver hears from one presence at its steps first..last: at each
+/// step, the newest sample sent since the step before whose row gave a velocity (a row without
+/// one is no position-and-velocity report), carried forward to the step's time.
+std::vector<HeardBroadcast> heard_broadcasts(const std::vector<Sample>& samples, int first,
+                                             int last, double dt) {
+  std::vector<HeardBroadcast> heard;
+  std::size_t next = 0;
+  for (int step = first; step <= last; ++step) {
+    const double until_s = (static_cast<double>(step) + kStepTolerance) * dt;
+    const Sample* newest = nullptr;
+    for (; next < samples.size() && samples[next].time_s <= until_s; ++next) {
+      const Sample& sample = samples[next];
+      const bool since_step_before =
+          sample.time_s > (static_cast<double>(step - 1) + kStepTolerance) * dt;
+      if (since_step_before && sample.velocity_known) newest = &sample;
+    }
+    if (newest == nullptr) continue;
+    HeardBroadcast report;
+    report.step = step;
+    report.age_s = std::max(0.0, static_cast<double>(step) * dt - newest->time_s);
+    report.position_velocity.head<3>() = newest->position + report.age_s * newest->velocity;
+    report.position_velocity.tail<3>() = newest->velocity;
+    heard.push_back(report);
+  }
+  return heard;
+}
+
 /// Resamples one presence (at least two samples, velocities known) at the run's steps; empty
 /// states where no step falls between its first and last sample.
 TargetTruth resample(std::string label, const std::vector<Sample>& samples,
                      const RecordedTrafficOptions& options) {
-  // A step within a billionth of a step of a sample time counts as at it, so that the sums
-  // k * dt that land on sample times are not lost to rounding.
-  constexpr double kStepTolerance = 1e-9;
   const double dt = options.time_step_s;
   const double first_k = std::ceil(samples.front().time_s / dt - kStepTolerance);
   const double last_k = std::floor(samples.back().time_s / dt + kStepTolerance);
@@ -265,6 +293,7 @@ TargetTruth resample(std::string label, const std::vector<Sample>& samples,
     while (segment + 2 < samples.size() && samples[segment + 1].time_s <= time_s) ++segment;
     target.states.push_back(hermite_state(samples[segment], samples[segment + 1], time_s));
   }
+  target.broadcasts = heard_broadcasts(samples, first_step, last_step, dt);
   return target;
 }
 

@@ -164,5 +164,31 @@ TEST(PictureRun, RecordedAirportTrafficOfSixtyAircraft) {
   EXPECT_GE(run.score.completeness, 0.9);
 }
 
+// The same file's rows replayed as the aircraft's own ADS-B reports by a fifth station
+// (recorded-airport-adsb.yaml): each aircraft heard only at the steps after a report, about
+// two scans in five here (a row every 10 s, 4 s scans). The broadcasts start a track for each
+// address, the radars' tracks take it, and the picture keeps every guarantee.
+TEST(PictureRun, RecordedBroadcastsJoinTheAirportsRadars) {
+  Scenario scenario = load_scenario_file(kScenarios + "recorded-airport-adsb.yaml");
+  scenario.steps = 100;
+  const auto file = write_traffic_file(scenario.anchor, 1700000000.0, 7);
+  const TrafficTruth truth = build_traffic_truth(scenario, file.string());
+  ASSERT_EQ(truth.targets.size(), 60U);
+  std::size_t heard = 0;
+  for (const TargetTruth& aircraft : truth.targets) heard += aircraft.broadcasts.size();
+  EXPECT_NEAR(static_cast<double>(heard) / (60.0 * 101.0), 0.4, 0.02);
+  ASSERT_EQ(scenario.stations.size(), 5U);
+  const PictureRunResult mixed = run_picture(scenario, truth.targets, 5, 0);
+  expect_guarantees(mixed);
+  const PictureRunResult radars = run_picture(scenario, truth.targets, 4, 0);
+  EXPECT_EQ(mixed.score.aircraft_confirmed, 60U);
+  EXPECT_EQ(mixed.confirmed_at_end, 60U) << "one track per aircraft";
+  EXPECT_EQ(mixed.score.duplicate_track_steps_addressed, 0U);
+  EXPECT_EQ(mixed.refused_addresses, 0U);
+  EXPECT_LT(mixed.score.gospa_mean, radars.score.gospa_mean)
+      << "radars alone " << radars.score.gospa_mean << " m, with the broadcasts "
+      << mixed.score.gospa_mean << " m";
+}
+
 }  // namespace
 }  // namespace skyfuse

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include "skyfuse/picture/detection_prior.hpp"
@@ -26,12 +27,15 @@ std::string read_text(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// uam-city.yaml with one piece of text replaced; the text must be there.
-std::string uam_city_with(const std::string& from, const std::string& to) {
-  std::string text = read_text(kUamCity);
+// `text` with one piece of it replaced; the piece must be there.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
   const auto at = text.find(from);
   if (at == std::string::npos) throw std::logic_error("test fixture: '" + from + "' not found");
   return text.replace(at, from.size(), to);
+}
+
+std::string uam_city_with(const std::string& from, const std::string& to) {
+  return replaced(read_text(kUamCity), from, to);
 }
 
 std::string rejection(const std::string& yaml) {
@@ -207,6 +211,39 @@ TEST(TrafficScenario, ACooperativeStationSeesOnlyTheAircraftWithAnAddress) {
   }
   EXPECT_GT(addressed, 40U);
   EXPECT_LT(addressed, 80U) << "uam-mixed equips 60 %";
+}
+
+// An ADS-B ground station that replays a recorded file's own reports: read from the shipped
+// scenario, and refused by name where nothing broadcasts what it would replay.
+TEST(TrafficScenario, AReceiverReplaysRecordedBroadcastsOnlyWhereThereAreSome) {
+  const std::string path =
+      std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/recorded-airport-adsb.yaml";
+  const Scenario s = load_scenario_file(path);
+  ASSERT_EQ(s.stations.size(), 5U);
+  EXPECT_TRUE(s.stations[4].detection->replays_broadcasts);
+  EXPECT_TRUE(s.stations[4].detection->reports_address);
+  EXPECT_FALSE(s.stations[0].detection->replays_broadcasts);
+
+  const std::string text = read_text(path);
+  const auto with = [&](const std::string& from, const std::string& to) {
+    return replaced(text, from, to);
+  };
+  const std::string not_a_broadcast = rejection(
+      with("sensor: {kind: position_velocity, noise_std: [20.0, 20.0, 20.0, 3.0, 3.0, 3.0]}",
+           "position_m: [0.0, 0.0, 30.0]\n    sensor: *radar"));
+  EXPECT_NE(not_a_broadcast.find("stations[4].detection: replays_broadcasts: a recorded broadcast "
+                                 "is a position_velocity report; station's sensor is "
+                                 "range_azimuth_elevation"),
+            std::string::npos)
+      << not_a_broadcast;
+  const std::string unaddressed =
+      rejection(with("reports_address: true", "reports_address: false"));
+  EXPECT_NE(unaddressed.find("set reports_address: true"), std::string::npos) << unaddressed;
+  const std::string generated = rejection(
+      with("  recorded:\n    file: opensky-states.csv   # relative to this file; --traffic-file "
+           "overrides it\n    max_staleness_s: 15.0\n",
+           "  generator: {aircraft: 10}\n"));
+  EXPECT_NE(generated.find("the scenario has no traffic.recorded"), std::string::npos) << generated;
 }
 
 TEST(TrafficScenario, RefusesWhatAPictureCannotTake) {

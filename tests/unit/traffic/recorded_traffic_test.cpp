@@ -10,6 +10,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "skyfuse/traffic/geodesy.hpp"
@@ -211,6 +212,44 @@ TEST(RecordedTraffic, MissingVelocityIsEstimatedFromNeighbouringPositions) {
     const auto& state = traffic.targets[0].at(step);
     expect_near(state.head<3>(), kStart + 0.1 * step * kVelocity, 0.01);
     expect_near(state.segment<3>(3), kVelocity, 1e-3);
+  }
+}
+
+TEST(RecordedTraffic, EachStepHearsTheNewestReportSinceTheStepBeforeCarriedForward) {
+  const GeoAnchor anchor;
+  // Positions sent at these times (s after kT0), each row written 3 s later; the one at 27 s
+  // has no heading, so it gives no velocity and is no report; 41 and 43 fall in one step.
+  std::vector<StateRow> rows;
+  for (const double sent : {-3.0, 7.0, 17.0, 27.0, 37.0, 41.0, 43.0, 57.0}) {
+    StateRow row = row_at(anchor, kT0 + sent, kStart + sent * kVelocity, kVelocity);
+    row.time = kT0 + sent + 3.0;
+    if (sent == 27.0) row.heading.reset();
+    rows.push_back(row);
+  }
+  RecordedTrafficOptions options = steps_of(4.0, 15);
+  options.start_time_s = kT0;
+  const RecordedTraffic traffic = read_opensky_states(write_states(rows), anchor, options);
+  ASSERT_EQ(traffic.targets.size(), 1U);
+  const TargetTruth& aircraft = traffic.targets[0];
+  EXPECT_EQ(aircraft.first_step, 0);
+  EXPECT_EQ(aircraft.states.size(), 15U);  // steps 0..14: the last report is at 57 s
+  // Step k hears what was sent in (4k - 4, 4k]: -3 at step 0, 7 at 2, 17 at 5, 37 at 10, the
+  // newer 43 at 11; none at 7 (27 s gave no velocity) nor at 14 (57 s is after 56 s).
+  const std::vector<std::pair<int, double>> heard = {
+      {0, 3.0}, {2, 1.0}, {5, 3.0}, {10, 3.0}, {11, 1.0}};
+  ASSERT_EQ(aircraft.broadcasts.size(), heard.size());
+  for (std::size_t i = 0; i < heard.size(); ++i) {
+    const auto [step, age] = heard[i];
+    const HeardBroadcast& report = aircraft.broadcasts[i];
+    EXPECT_EQ(report.step, step);
+    EXPECT_NEAR(report.age_s, age, 1e-9) << "step " << step;
+    // Carried forward along its own velocity to the step's time: on the straight line.
+    expect_near(report.position_velocity.head<3>(), kStart + 4.0 * step * kVelocity, 1e-6);
+    expect_near(report.position_velocity.tail<3>(), kVelocity, 1e-6);
+    EXPECT_EQ(aircraft.broadcast_at(step), &report);
+  }
+  for (const int silent : {1, 3, 4, 6, 7, 8, 9, 12, 13, 14}) {
+    EXPECT_EQ(aircraft.broadcast_at(silent), nullptr) << "step " << silent;
   }
 }
 

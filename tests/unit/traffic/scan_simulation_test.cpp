@@ -139,6 +139,44 @@ TEST(ScanSimulation, TheOrderSaysNothingOfTheOrigin) {
   EXPECT_LT(first_is_target_zero, 100);  // about 1 in 5 with ~6 detections a scan
 }
 
+TEST(ScanSimulation, AReceiverOfRecordedBroadcastsHearsEachAsSentAndNothingBetween) {
+  auto truths = hovering({{1000, 0, 300}, {2000, 500, 300}, {-800, 900, 200}}, 6);
+  // Aircraft 0 broadcast at steps 1 and 4, aircraft 1 at step 4; aircraft 2 has no address.
+  const auto report = [](int step, double east) {
+    HeardBroadcast heard;
+    heard.step = step;
+    heard.position_velocity << east, 10.0, 300.0, 40.0, -2.0, 0.5;
+    return heard;
+  };
+  truths[0].address = 0x3c6444;
+  truths[0].broadcasts = {report(1, 1001.0), report(4, 1003.5)};
+  truths[1].address = 0x4b1801;
+  truths[1].broadcasts = {report(4, 2002.0)};
+  truths[2].broadcasts = {report(4, -790.0)};
+  DetectionConfig config;
+  config.reports_address = true;
+  config.replays_broadcasts = true;
+  const PositionVelocity<kKinematicsDim> receiver;
+  const Covariance<6> noise = 100.0 * Covariance<6>::Identity();
+  for (int k = 0; k < 6; ++k) {
+    ScanOrigins origins;
+    const Scan scan = simulate_scan(7, receiver, kSite, noise, config, truths, k, 5, 0, &origins);
+    ASSERT_EQ(scan.addresses.size(), scan.detections.size());
+    const std::size_t expected = k == 1 ? 1U : k == 4 ? 2U : 0U;
+    ASSERT_EQ(scan.detections.size(), expected) << "step " << k;
+    EXPECT_EQ(origins.missed, 2U - expected) << "the addressed aircraft that sent nothing";
+    for (std::size_t i = 0; i < scan.detections.size(); ++i) {
+      const int from = origins.target[i];
+      ASSERT_NE(from, 2) << "an aircraft without an address is not heard";
+      // Exactly what it sent: no noise drawn on a real report.
+      EXPECT_TRUE(same_detection(
+          scan.detections[i],
+          truths[static_cast<std::size_t>(from)].broadcast_at(k)->position_velocity));
+      EXPECT_EQ(scan.addresses[i], truths[static_cast<std::size_t>(from)].address);
+    }
+  }
+}
+
 // Half the targets seen, three false alarms a scan, within 20 km.
 DetectionConfig half_seen_with_clutter() {
   DetectionConfig config;

@@ -45,6 +45,11 @@ struct DetectionConfig {
   /// A cooperative sensor (a Mode S radar, an ADS-B or Remote ID receiver): it hears only
   /// aircraft with an address, and reports each one's address with its detection.
   bool reports_address = false;
+  /// A receiver of recorded broadcasts: its detections are the recorded aircraft's own reports
+  /// (TargetTruth::broadcasts), not drawn from the truth; no noise is added, and an aircraft
+  /// that sent nothing since the step before is not heard. P_D and clutter apply on top. Only
+  /// a cooperative position_velocity sensor on recorded traffic (the loader checks).
+  bool replays_broadcasts = false;
 
   /// The largest clutter mean a scenario may ask for: beyond it a scan's work is no longer
   /// bounded by the aircraft.

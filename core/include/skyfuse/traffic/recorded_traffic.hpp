@@ -19,6 +19,12 @@
 /// positions and velocities, so position and velocity are continuous and the acceleration is
 /// the spline's second derivative. Altitudes are taken as heights above the WGS-84 ellipsoid,
 /// as the anchor's; the barometric one is a pressure altitude and off by tens of metres.
+///
+/// The rows are also what the aircraft broadcast (ADS-B): each target keeps, per step, the
+/// newest report with a velocity sent since the step before, carried forward to the step's time
+/// (TargetTruth::broadcasts), for a receiver that replays them (DetectionConfig::
+/// replays_broadcasts). Steps without such a report are the recording's own gaps. The truth is
+/// made from the same reports, so a report differs from it only by the carrying forward.
 
 #include <cmath>
 #include <cstddef>

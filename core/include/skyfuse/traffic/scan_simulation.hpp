@@ -8,11 +8,14 @@
 #include <cmath>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/models/position_velocity.hpp"
 #include "skyfuse/picture/scan.hpp"
 #include "skyfuse/random/counter_rng.hpp"
 #include "skyfuse/traffic/detection_model.hpp"
@@ -27,14 +30,26 @@ struct ScanOrigins {
   std::uint32_t missed = 0;  ///< targets in the field of view not detected
 };
 
+/// A recorded broadcast as `Sensor` measures it: only a receiver of the aircraft's own position
+/// and velocity replays one (the scenario loader allows no other).
+template <typename Sensor>
+Vector<Sensor::kMeasDim> replayed(const HeardBroadcast& heard) {
+  if constexpr (std::is_same_v<Sensor, PositionVelocity<kKinematicsDim>>) {
+    return heard.position_velocity;
+  } else {
+    throw std::logic_error("only a position_velocity sensor replays recorded broadcasts");
+  }
+}
+
 /// The scan of the station `station_id`, whose sensor `sensor` (of the true kinematics, a
 /// 9-entry state) stands at `site`, at `step`: each target present and in the field of view
 /// detected with probability P_D (its value h(x) + nu, nu ~ N(0, R)), then the false alarms,
 /// then all of them shuffled. A cooperative sensor (`detection.reports_address`) hears only the
 /// targets with an address and lists each detection's address (a false alarm's is none). A
-/// target's noise is drawn from its own stream, the first
-/// target's from the one a one-target run uses, so that with P_D = 1 and no clutter its values
-/// are today's.
+/// receiver of recorded broadcasts (`detection.replays_broadcasts`) takes each aircraft's own
+/// report of the step instead of drawing one. A target's noise is drawn from its own stream, the
+/// first target's from the one a one-target run uses, so that with P_D = 1 and no clutter its
+/// values are today's.
 template <typename Sensor>
 Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
                    const Covariance<Sensor::kMeasDim>& noise, const DetectionConfig& detection,
@@ -61,9 +76,19 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
       ++missed;
       continue;
     }
-    CounterRng rng({seed, run, station, at, NoiseStream::kMeasurement, t});
-    Vector<M> z = sensor.predict(x);
-    for (int i = 0; i < M; ++i) z(i) += std::sqrt(noise(i, i)) * rng.normal();
+    Vector<M> z;
+    if (detection.replays_broadcasts) {
+      const HeardBroadcast* heard = truths[t].broadcast_at(step);
+      if (heard == nullptr) {  // the recording's own gap
+        ++missed;
+        continue;
+      }
+      z = replayed<Sensor>(*heard);
+    } else {
+      CounterRng rng({seed, run, station, at, NoiseStream::kMeasurement, t});
+      z = sensor.predict(x);
+      for (int i = 0; i < M; ++i) z(i) += std::sqrt(noise(i, i)) * rng.normal();
+    }
     scan.detections.emplace_back(Sensor::to_reported(z));
     if (cooperative) scan.addresses.push_back(truths[t].address);
     origin.push_back(static_cast<int>(t));

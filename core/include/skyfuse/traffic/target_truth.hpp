@@ -5,6 +5,7 @@
 /// recorded file — is the business of whoever makes it; the sensors and the metrics read only
 /// this.
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -14,6 +15,17 @@
 #include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse {
+
+/// A position report a recorded aircraft broadcast (its own ADS-B position and velocity), as a
+/// ground receiver hears it at a step: the newest report sent since the step before, carried
+/// forward to the step's time along the velocity it reported.
+struct HeardBroadcast {
+  int step = 0;
+  /// [p; v] (m, m/s, the scenario's frame) at the step's time.
+  Vector<6> position_velocity = Vector<6>::Zero();
+  /// How long before the step's time the report was sent (s), in [0, time_step_s).
+  double age_s = 0.0;
+};
 
 /// One aircraft, present from step `first_step` to `first_step + states.size() - 1`.
 struct TargetTruth {
@@ -26,6 +38,10 @@ struct TargetTruth {
   /// The address it reports to cooperative sensors (picture/address.hpp); kNoAddress for
   /// an aircraft that carries no transponder nor broadcast, which only primary radars see.
   Address address = kNoAddress;
+  /// A recorded aircraft's own reports, one at each step it sent one, in step order
+  /// (traffic/recorded_traffic.hpp); empty for a simulated aircraft, whose reports a cooperative
+  /// sensor draws from its kinematics instead.
+  std::vector<HeardBroadcast> broadcasts{};
 
   bool present_at(int step) const {
     return step >= first_step && step < first_step + static_cast<int>(states.size());
@@ -33,6 +49,13 @@ struct TargetTruth {
   /// Its kinematics at `step`; present_at(step) must hold.
   const Vector<kKinematicsDim>& at(int step) const {
     return states[static_cast<std::size_t>(step - first_step)];
+  }
+  /// Its broadcast heard at `step`, or null where it sent none since the step before.
+  const HeardBroadcast* broadcast_at(int step) const {
+    const auto heard =
+        std::lower_bound(broadcasts.begin(), broadcasts.end(), step,
+                         [](const HeardBroadcast& b, int at) { return b.step < at; });
+    return heard != broadcasts.end() && heard->step == step ? &*heard : nullptr;
   }
 };
 
