@@ -9,7 +9,7 @@
 namespace skyfuse {
 
 Gospa gospa(std::span<const Vector3> truths, std::span<const Vector3> estimates,
-            const GospaParameters& parameters) {
+            const GospaParameters& parameters, std::vector<int>* assignment) {
   if (!(parameters.cutoff_m > 0.0)) throw std::invalid_argument("GOSPA: the cut-off must be > 0");
   if (!(parameters.order >= 1.0)) throw std::invalid_argument("GOSPA: the order must be >= 1");
   const double p = parameters.order;
@@ -36,6 +36,10 @@ Gospa gospa(std::span<const Vector3> truths, std::span<const Vector3> estimates,
     if (e < 0) continue;
     ++result.assigned;
     result.localisation += std::pow((truths[t] - estimates[static_cast<std::size_t>(e)]).norm(), p);
+  }
+  if (assignment != nullptr) {
+    assignment->assign(solved.column_of_row.begin(),
+                       solved.column_of_row.begin() + static_cast<std::ptrdiff_t>(truths.size()));
   }
   result.missed_targets = truths.size() - result.assigned;
   result.false_estimates = estimates.size() - result.assigned;

@@ -17,6 +17,29 @@ void PictureScore::detected(std::size_t target, int step) {
   if (!first_detected_[target]) first_detected_[target] = step;
 }
 
+template <typename Counted>
+Gospa PictureScore::gospa_over(const Counted& counted, std::span<const TruthPoint> aircraft,
+                               std::span<const TrackPoint> tracks,
+                               std::span<const std::optional<std::size_t>> track_aircraft,
+                               const Gospa& whole) const {
+  // Where every aircraft counts (the generated scenarios) that is the whole step, whose GOSPA
+  // (an assignment, cubic in the aircraft) is not solved twice.
+  if (std::ranges::all_of(aircraft, counted)) return whole;
+  std::vector<Vector3> truths;
+  std::vector<Vector3> estimates;
+  for (const TruthPoint& a : aircraft) {
+    if (counted(a)) truths.push_back(a.position);
+  }
+  // A track on an aircraft left out (one coasting after its aircraft left every station's view)
+  // is neither false nor asked for; a track on no aircraft is false.
+  for (std::size_t t = 0; t < tracks.size(); ++t) {
+    if (!track_aircraft[t] || counted(aircraft[*track_aircraft[t]])) {
+      estimates.push_back(tracks[t].position);
+    }
+  }
+  return gospa(truths, estimates, gospa_);
+}
+
 const PictureStep& PictureScore::add_step(int step, std::span<const TruthPoint> aircraft,
                                           std::span<const TrackPoint> tracks) {
   PictureStep row;
@@ -27,7 +50,8 @@ const PictureStep& PictureScore::add_step(int step, std::span<const TruthPoint> 
   std::vector<Vector3> estimates;
   for (const TruthPoint& a : aircraft) truths.push_back(a.position);
   for (const TrackPoint& t : tracks) estimates.push_back(t.position);
-  row.gospa = gospa(truths, estimates, gospa_);
+  std::vector<int> assigned_track;  // per aircraft: its track in GOSPA's assignment, or -1
+  row.gospa = gospa(truths, estimates, gospa_, &assigned_track);
 
   // Each track to its nearest aircraft within the cut-off.
   track_target_.assign(tracks.size(), std::nullopt);
@@ -58,24 +82,27 @@ const PictureStep& PictureScore::add_step(int step, std::span<const TruthPoint> 
     }
   }
   // What the network can see: the aircraft in view, and every track but those on an aircraft
-  // out of view. With every aircraft in view (the generated scenarios) that is the whole step,
-  // whose GOSPA (an assignment, cubic in the aircraft) is not solved twice.
-  const bool all_in_view =
-      std::ranges::all_of(aircraft, [](const TruthPoint& a) { return a.in_view; });
-  if (all_in_view) {
-    row.gospa_in_view = row.gospa;
-  } else {
-    std::vector<Vector3> truths_in_view;
-    std::vector<Vector3> estimates_in_view;
-    for (const TruthPoint& a : aircraft) {
-      if (a.in_view) truths_in_view.push_back(a.position);
-    }
-    for (std::size_t t = 0; t < tracks.size(); ++t) {
-      if (!track_aircraft[t] || aircraft[*track_aircraft[t]].in_view) {
-        estimates_in_view.push_back(tracks[t].position);
-      }
-    }
-    row.gospa_in_view = gospa(truths_in_view, estimates_in_view, gospa_);
+  // out of view. And the like of it over the aircraft with an address in view: what a network of
+  // cooperative sensors alone sees, so that a mixed network's picture of those same aircraft
+  // can be set beside it.
+  row.gospa_in_view = gospa_over([](const TruthPoint& a) { return a.in_view; }, aircraft, tracks,
+                                 track_aircraft, row.gospa);
+  row.gospa_addressed_in_view =
+      gospa_over([](const TruthPoint& a) { return a.in_view && a.addressed; }, aircraft, tracks,
+                 track_aircraft, row.gospa);
+
+  // A duplicate: a track within the cut-off of an aircraft that GOSPA's optimal assignment
+  // leaves over. Every aircraft within its cut-off then has a track of its own (else pairing
+  // them would lower GOSPA), so it is a second track, counted on its nearest aircraft; two
+  // aircraft passing close with a track each are none, though both tracks be nearest one.
+  std::vector<bool> in_assignment(tracks.size(), false);
+  for (const int t : assigned_track) {
+    if (t >= 0) in_assignment[static_cast<std::size_t>(t)] = true;
+  }
+  for (std::size_t t = 0; t < tracks.size(); ++t) {
+    if (!track_aircraft[t] || in_assignment[t]) continue;
+    ++duplicates_;
+    if (aircraft[*track_aircraft[t]].addressed) ++duplicates_addressed_;
   }
 
   for (std::size_t a = 0; a < aircraft.size(); ++a) {
@@ -84,7 +111,6 @@ const PictureStep& PictureScore::add_step(int step, std::span<const TruthPoint> 
     if (tracked) {
       ++row.tracked;
       associated_total_ += tracks_of[a];
-      if (aircraft[a].addressed) duplicates_addressed_ += tracks_of[a] - 1;
       if (!first_confirmed_[target]) first_confirmed_[target] = step;
       const std::uint64_t id = tracks[*nearest_track[a]].id;
       if (last_track_id_[target] && *last_track_id_[target] != id) ++number_changes_;
@@ -139,6 +165,7 @@ PictureSummary PictureScore::summary() const {
     s.missed_mean = all.missed;
     s.false_mean = all.false_tracks;
     s.in_view = mean_of(steps_, &PictureStep::gospa_in_view);
+    s.addressed_in_view = mean_of(steps_, &PictureStep::gospa_addressed_in_view);
     if (pairs > 0) {
       s.localisation_per_pair_m =
           std::pow(localisation / static_cast<double>(pairs), 1.0 / gospa_.order);
@@ -149,7 +176,7 @@ PictureSummary PictureScore::summary() const {
   };
   s.completeness = share(counted_tracked_, counted_);
   s.ambiguity = share(associated_total_, tracked_total_);
-  s.duplicate_track_steps = associated_total_ - tracked_total_;
+  s.duplicate_track_steps = duplicates_;
   s.duplicate_track_steps_addressed = duplicates_addressed_;
   s.spuriousness = share(spurious_total_, tracks_total_);
   s.track_number_changes = number_changes_;

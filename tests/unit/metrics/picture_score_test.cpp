@@ -39,6 +39,24 @@ TEST(PictureScore, GospaInViewLeavesOutTheAircraftOutOfViewAndTheirTracks) {
   EXPECT_DOUBLE_EQ(step.gospa_in_view.distance, std::sqrt(9.0 + 50.0 + 50.0));
 }
 
+TEST(PictureScore, GospaOverTheAddressedLeavesOutTheSilentAndTheirTracks) {
+  std::vector<TruthPoint> aircraft = kAircraft;
+  aircraft[0].addressed = true;
+  std::vector<TrackPoint> tracks = kTracks;
+  tracks.push_back({14, {100, 2, 0}});  // on aircraft 1, in view but silent
+  PictureScore score(kGospa, aircraft.size(), 1.0);
+  const PictureStep& step = score.add_step(0, aircraft, tracks);
+  // Only aircraft 0 counts, with its track 11 at 3 m; tracks 12 (out of view) and 14 (on the
+  // silent aircraft) are left out; track 13, on no aircraft, is false.
+  const Gospa& g = step.gospa_addressed_in_view;
+  EXPECT_EQ(g.assigned, 1U);
+  EXPECT_DOUBLE_EQ(g.localisation, 9.0);
+  EXPECT_EQ(g.missed_targets, 0U);
+  EXPECT_EQ(g.false_estimates, 1U);
+  EXPECT_DOUBLE_EQ(g.distance, std::sqrt(59.0));
+  EXPECT_DOUBLE_EQ(score.summary().addressed_in_view.distance, std::sqrt(59.0));
+}
+
 TEST(PictureScore, EveryAircraftInViewGivesTheSameGospaTwice) {
   std::vector<TruthPoint> aircraft = kAircraft;
   aircraft[2].in_view = true;
@@ -75,6 +93,21 @@ TEST(PictureScore, ASecondTrackOnOneAircraftIsCountedAsADuplicateEachStep) {
   of_addressed.add_step(0, addressed, twice);
   EXPECT_EQ(of_addressed.summary().duplicate_track_steps_addressed, 1U);
   EXPECT_DOUBLE_EQ(s.ambiguity, 8.0 / 6.0);
+}
+
+// Two aircraft 6 m apart, a track 4 m from one and 2 m from the other, a second 1 m beyond the
+// other: both tracks are nearest the second aircraft (ambiguity 2), but GOSPA pairs each aircraft
+// with a track of its own, and no track is a duplicate.
+TEST(PictureScore, TwoAircraftPassingCloseWithATrackEachHaveNoDuplicate) {
+  const std::vector<TruthPoint> close = {{0, {0, 0, 0}, true, true}, {1, {6, 0, 0}, true, true}};
+  const std::vector<TrackPoint> each = {{21, {4, 0, 0}}, {22, {7, 0, 0}}};
+  PictureScore score(kGospa, close.size(), 1.0);
+  const PictureStep& step = score.add_step(0, close, each);
+  EXPECT_EQ(step.gospa.assigned, 2U);
+  const PictureSummary s = score.summary();
+  EXPECT_DOUBLE_EQ(s.ambiguity, 2.0);
+  EXPECT_EQ(s.duplicate_track_steps, 0U);
+  EXPECT_EQ(s.duplicate_track_steps_addressed, 0U);
 }
 
 }  // namespace

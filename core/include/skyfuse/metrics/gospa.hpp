@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <span>
+#include <vector>
 
 #include "skyfuse/core/types.hpp"
 
@@ -30,9 +31,10 @@ struct Gospa {
   std::size_t false_estimates = 0;
 };
 
-/// GOSPA between `truths` and `estimates` (positions, m). Throws std::invalid_argument for a
-/// cut-off <= 0 or an order < 1.
+/// GOSPA between `truths` and `estimates` (positions, m); `assignment`, if given, receives per
+/// truth the index of its estimate in the optimal assignment, or -1. Throws
+/// std::invalid_argument for a cut-off <= 0 or an order < 1.
 Gospa gospa(std::span<const Vector3> truths, std::span<const Vector3> estimates,
-            const GospaParameters& parameters);
+            const GospaParameters& parameters, std::vector<int>* assignment = nullptr);
 
 }  // namespace skyfuse

@@ -50,6 +50,9 @@ struct PictureStep {
   std::size_t tracks = 0;    ///< confirmed
   Gospa gospa;               ///< over every aircraft present
   Gospa gospa_in_view;       ///< over the aircraft in view, without the tracks of those out of it
+  /// Over the aircraft with an address in view, without the tracks of the others: what a
+  /// network of cooperative sensors alone can see.
+  Gospa gospa_addressed_in_view;
   std::size_t tracked = 0;   ///< aircraft with at least one track
   std::size_t spurious = 0;  ///< tracks with no aircraft within the cut-off
 };
@@ -65,6 +68,8 @@ struct GospaMeans {
 struct PictureSummary {
   /// Over the aircraft in at least one station's view (PictureStep::gospa_in_view).
   GospaMeans in_view;
+  /// Over the aircraft with an address in view (PictureStep::gospa_addressed_in_view).
+  GospaMeans addressed_in_view;
   double gospa_mean = 0.0;
   double localisation_mean = 0.0;  ///< per step, in GOSPA's units (m^p)
   double missed_mean = 0.0;
@@ -74,8 +79,11 @@ struct PictureSummary {
   double localisation_per_pair_m = 0.0;
   double completeness = 0.0;
   double ambiguity = 0.0;
-  /// Confirmed tracks on an aircraft beyond its first, summed over the steps: ambiguity's
-  /// excess as a count (a duplicate track of one aircraft for 10 steps counts 10).
+  /// Confirmed tracks on an aircraft beyond its own, summed over the steps (a duplicate track of
+  /// one aircraft for 10 steps counts 10): a track within the cut-off of an aircraft that
+  /// GOSPA's optimal assignment leaves over, counted on its nearest aircraft. Unlike
+  /// ambiguity's excess (nearest aircraft only), two aircraft passing close with a track each
+  /// count none.
   std::size_t duplicate_track_steps = 0;
   /// The same, of the aircraft with an address: a primary radar's track and the aircraft's own
   /// broadcast that should have been one (identity.hpp).
@@ -106,6 +114,14 @@ class PictureScore {
   const std::vector<std::optional<std::size_t>>& last_association() const { return track_target_; }
 
  private:
+  /// GOSPA over the aircraft `counted` keeps, against every track but those on an aircraft it
+  /// leaves out; `whole` where it keeps them all.
+  template <typename Counted>
+  Gospa gospa_over(const Counted& counted, std::span<const TruthPoint> aircraft,
+                   std::span<const TrackPoint> tracks,
+                   std::span<const std::optional<std::size_t>> track_aircraft,
+                   const Gospa& whole) const;
+
   GospaParameters gospa_;
   double time_step_s_;
   std::vector<PictureStep> steps_;
@@ -116,7 +132,8 @@ class PictureScore {
   std::size_t counted_tracked_ = 0;       // of those, tracked
   std::size_t tracked_total_ = 0;         // aircraft-steps tracked (all in view)
   std::size_t associated_total_ = 0;      // tracks associated, summed over steps
-  std::size_t duplicates_addressed_ = 0;  // tracks beyond the first on addressed aircraft
+  std::size_t duplicates_ = 0;            // tracks left over near an aircraft, summed
+  std::size_t duplicates_addressed_ = 0;  // of those, on addressed aircraft
   std::size_t tracks_total_ = 0;
   std::size_t spurious_total_ = 0;
   std::size_t number_changes_ = 0;
