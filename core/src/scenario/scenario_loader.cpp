@@ -197,7 +197,7 @@ SensorConfig read_sensor(const YamlField& field) {
 
 StationConfig read_station(const YamlField& field) {
   // `noise_std` beside the id is paper 000's shorthand for a range/azimuth/elevation sensor.
-  field.allow_only({"id", "position_m", "sensor", "noise_std", "weight", "detection"});
+  field.allow_only({"id", "position_m", "sensor", "noise_std", "weight", "detection", "bias"});
   StationConfig station;
   const YamlField id = field.required("id");
   const std::int64_t raw_id = id.integer();
@@ -453,6 +453,34 @@ GeoAnchor read_anchor(const YamlField& field) {
   return anchor;
 }
 
+// A station's `bias:` (traffic/sensor_bias.hpp): offsets of components its sensor measures,
+// and a clock offset, each within a bound that a bias, not a misalignment or a unit slip, keeps.
+SensorBias read_bias(const YamlField& field, const SensorInfo& sensor) {
+  field.allow_only({"range_m", "azimuth_rad", "elevation_rad", "time_s"});
+  SensorBias bias;
+  const auto offset = [&](std::string_view name, double bound, std::string_view bound_text,
+                          double& into) {
+    const auto f = field.optional(std::string(name));
+    if (!f) return;
+    if (name != "time_s" && std::ranges::find(sensor.components, name) == sensor.components.end()) {
+      f->fail(fmt::format("a {} sensor measures no {} (it measures {})", sensor.kind, name,
+                          fmt::join(sensor.components, ", ")));
+    }
+    const double value = f->number();
+    if (!(std::abs(value) <= bound)) {
+      f->fail(fmt::format("must be within +-{}, got {}", bound_text, f->text()));
+    }
+    into = value;
+  };
+  offset("range_m", 10000.0, "10000 m", bias.range_m);
+  constexpr std::string_view kAngleBound =
+      "0.1 rad (5.7 degrees: beyond it a misaligned antenna, or degrees given as radians)";
+  offset("azimuth_rad", 0.1, kAngleBound, bias.azimuth_rad);
+  offset("elevation_rad", 0.1, kAngleBound, bias.elevation_rad);
+  offset("time_s", 10.0, "10 s", bias.time_s);
+  return bias;
+}
+
 // What a run with many aircraft takes of station i and the filter.
 void check_many_targets(const Scenario& s, std::size_t i, const YamlField& item,
                         const YamlField& filter_field, const FilterInfo& filter,
@@ -582,6 +610,13 @@ Scenario read_scenario(const YamlField& root) {
       s.stations[i].detection = detail::read_detection(*detection, s.traffic->detection);
     } else if (s.traffic) {
       s.stations[i].detection = s.traffic->detection;
+    }
+    if (const auto bias = station_items[i].optional("bias")) {
+      if (!s.traffic) bias->fail("only a scenario with 'traffic' (many aircraft) takes it");
+      s.stations[i].detection->bias = read_bias(*bias, sensor);
+      if (s.stations[i].detection->replays_broadcasts) {
+        bias->fail("a replayed broadcast is the aircraft's own report; it takes no bias");
+      }
     }
     if (s.traffic) check_many_targets(s, i, station_items[i], filter, filter_info, sensor);
     if (sensor.position_dim > model.position_dim) {

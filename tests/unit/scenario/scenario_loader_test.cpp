@@ -75,7 +75,7 @@ TEST(ScenarioLoader, RefusesAMissingField) {
             "stands somewhere) (line 36)");
   EXPECT_EQ(rejection(default_with("    sensor: &radar", "    radar: &radar")),
             "test.yaml: stations[0].radar: unknown field (allowed: id, position_m, sensor, "
-            "noise_std, weight, detection) (line 38)");
+            "noise_std, weight, detection, bias) (line 38)");
 }
 
 TEST(ScenarioLoader, RefusesAWrongType) {

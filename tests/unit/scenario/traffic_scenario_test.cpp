@@ -246,6 +246,47 @@ TEST(TrafficScenario, AReceiverReplaysRecordedBroadcastsOnlyWhereThereAreSome) {
   EXPECT_NE(generated.find("the scenario has no traffic.recorded"), std::string::npos) << generated;
 }
 
+// A station's systematic errors: read for the components its sensor measures, refused for
+// others, beyond a bias's bounds, and where there is no picture.
+TEST(TrafficScenario, ReadsAStationsBiasesAndRefusesWhatItCannotHave) {
+  const std::string second = "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar}";
+  const auto with_bias = [&](const std::string& bias) {
+    return uam_city_with(second,
+                         "{id: 2, position_m: [0.0, -5000.0, 45.0], sensor: *radar, "
+                         "bias: " +
+                             bias + "}");
+  };
+  const Scenario s = parse_scenario(
+      with_bias("{range_m: 150.0, azimuth_rad: 0.0026, elevation_rad: -0.0017, time_s: 0.5}"),
+      "test.yaml");
+  const SensorBias& bias = s.stations[1].detection->bias;
+  EXPECT_EQ(bias.range_m, 150.0);
+  EXPECT_EQ(bias.azimuth_rad, 0.0026);
+  EXPECT_EQ(bias.elevation_rad, -0.0017);
+  EXPECT_EQ(bias.time_s, 0.5);
+  EXPECT_FALSE(s.stations[0].detection->bias.any());
+
+  const std::string degrees = rejection(with_bias("{azimuth_rad: 0.15}"));
+  EXPECT_NE(degrees.find("stations[1].bias.azimuth_rad: must be within +-0.1 rad"),
+            std::string::npos)
+      << degrees;
+  EXPECT_NE(rejection(with_bias("{x_m: 3.0}")).find("x_m"), std::string::npos);
+  const std::string receiver = rejection(
+      uam_city_with(second,
+                    "{id: 2, sensor: {kind: position_velocity, noise_std: [10, 10, 10, 1, 1, 1]}, "
+                    "bias: {range_m: 20.0}}"));
+  EXPECT_NE(receiver.find("a position_velocity sensor measures no range_m (it measures x_m, "
+                          "y_m, z_m, vx_mps, vy_mps, vz_mps)"),
+            std::string::npos)
+      << receiver;
+  const std::string one_aircraft = rejection(replaced(
+      read_text(std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/paper000.yaml"),
+      "{id: 2, position_m: [-450.0, -450.0, 20.0], sensor: *radar}",
+      "{id: 2, position_m: [-450.0, -450.0, 20.0], sensor: *radar, bias: {range_m: 5.0}}"));
+  EXPECT_NE(one_aircraft.find("bias: only a scenario with 'traffic'"), std::string::npos)
+      << one_aircraft;
+}
+
 TEST(TrafficScenario, RefusesWhatAPictureCannotTake) {
   EXPECT_NE(rejection(uam_city_with("traffic:",
                                     "target: {initial_position_m: [0, 0, 100], "

@@ -177,6 +177,43 @@ TEST(ScanSimulation, AReceiverOfRecordedBroadcastsHearsEachAsSentAndNothingBetwe
   }
 }
 
+// A biased radar: every detection of an aircraft is the unbiased one plus the station's
+// offsets, drawn with the same noise; its clock's offset is the aircraft where it is that much
+// later.
+TEST(ScanSimulation, ABiasedStationOffsetsEachDetectionAndItsClockMovesTheAircraft) {
+  std::vector<TargetTruth> truths = hovering({{3000, 2000, 500}, {-4000, 1500, 300}}, 3);
+  for (TargetTruth& t : truths) {
+    for (auto& x : t.states) x.segment<3>(3) << 40.0, -10.0, 1.0;
+  }
+  DetectionConfig plain;
+  plain.field_of_view.max_range_m = 20000.0;
+  DetectionConfig biased = plain;
+  biased.bias = {.range_m = 150.0, .azimuth_rad = 0.0026, .elevation_rad = 0.0017};
+  const Sensor sensor(kSite);
+  ScanOrigins order;
+  const Scan seen = simulate_scan(3, sensor, kSite, radar_noise(), plain, truths, 1, 5, 0, &order);
+  const Scan off = simulate_scan(3, sensor, kSite, radar_noise(), biased, truths, 1, 5, 0);
+  ASSERT_EQ(seen.detections.size(), 2U);
+  ASSERT_EQ(off.detections.size(), 2U);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Detection difference = off.detections[i] - seen.detections[i];
+    EXPECT_NEAR(difference(0), 150.0, 1e-9);
+    EXPECT_NEAR(difference(1), 0.0026, 1e-12);
+    EXPECT_NEAR(difference(2), 0.0017, 1e-12);
+  }
+
+  DetectionConfig late = plain;
+  late.bias.time_s = 2.0;
+  std::vector<TargetTruth> moved = truths;
+  for (TargetTruth& t : moved) {
+    for (auto& x : t.states) x = kinematics_after(x, 2.0);
+  }
+  const Scan clock = simulate_scan(3, sensor, kSite, radar_noise(), late, truths, 1, 5, 0);
+  const Scan where = simulate_scan(3, sensor, kSite, radar_noise(), plain, moved, 1, 5, 0);
+  EXPECT_TRUE(same_detections(clock.detections, where.detections));
+  EXPECT_FALSE(same_detections(clock.detections, seen.detections));
+}
+
 // Half the targets seen, three false alarms a scan, within 20 km.
 DetectionConfig half_seen_with_clutter() {
   DetectionConfig config;

@@ -14,6 +14,7 @@
 
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/random/counter_rng.hpp"
+#include "skyfuse/traffic/sensor_bias.hpp"
 
 namespace skyfuse {
 
@@ -50,6 +51,9 @@ struct DetectionConfig {
   /// that sent nothing since the step before is not heard. P_D and clutter apply on top. Only
   /// a cooperative position_velocity sensor on recorded traffic (the loader checks).
   bool replays_broadcasts = false;
+  /// The station's systematic errors (its own `bias:`), added to every detection of an
+  /// aircraft; none by default. Not applied to a replayed broadcast (the loader refuses both).
+  SensorBias bias;
 
   /// The largest clutter mean a scenario may ask for: beyond it a scan's work is no longer
   /// bounded by the aircraft.

@@ -47,9 +47,11 @@ Vector<Sensor::kMeasDim> replayed(const HeardBroadcast& heard) {
 /// then all of them shuffled. A cooperative sensor (`detection.reports_address`) hears only the
 /// targets with an address and lists each detection's address (a false alarm's is none). A
 /// receiver of recorded broadcasts (`detection.replays_broadcasts`) takes each aircraft's own
-/// report of the step instead of drawing one. A target's noise is drawn from its own stream, the
-/// first target's from the one a one-target run uses, so that with P_D = 1 and no clutter its
-/// values are today's.
+/// report of the step instead of drawing one. A station's bias (`detection.bias`) moves each
+/// aircraft's detection by its clock offset and its components' offsets before the noise; a
+/// false alarm, uniform over the field of view, is none the worse for it. A target's noise is drawn
+/// from its own stream, the first target's from the one a one-target run uses, so that with P_D = 1
+/// and no clutter its values are today's.
 template <typename Sensor>
 Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
                    const Covariance<Sensor::kMeasDim>& noise, const DetectionConfig& detection,
@@ -65,6 +67,9 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
 
   CounterRng detect({seed, run, station, at, NoiseStream::kDetection});
   const bool cooperative = detection.reports_address;
+  const SensorBias& bias = detection.bias;
+  const bool biased = bias.any();
+  const Vector<M> offset = offsets_of<Sensor>(bias);
   for (std::size_t t = 0; t < truths.size(); ++t) {
     if (!truths[t].present_at(step)) continue;
     if (cooperative && truths[t].address == kNoAddress) continue;
@@ -86,7 +91,12 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
       z = replayed<Sensor>(*heard);
     } else {
       CounterRng rng({seed, run, station, at, NoiseStream::kMeasurement, t});
-      z = sensor.predict(x);
+      if (biased) {
+        // Where its clock's stamp puts the aircraft, then the offsets: the same noise after.
+        z = sensor.predict(bias.time_s != 0.0 ? kinematics_after(x, bias.time_s) : x) + offset;
+      } else {
+        z = sensor.predict(x);
+      }
       for (int i = 0; i < M; ++i) z(i) += std::sqrt(noise(i, i)) * rng.normal();
     }
     scan.detections.emplace_back(Sensor::to_reported(z));
