@@ -99,6 +99,20 @@ class BiasEstimate {
     return GaussianState<kDim>{factor.solve(information_vector_), factor.inverse()};
   }
 
+  /// The entries of `bias` this sensor's estimate keeps, in its order (e.g. a prior's standard
+  /// deviations given by name).
+  static Bias from_sensor_bias(const SensorBias& bias) {
+    Bias b;
+    int column = 0;
+    for (const auto& name : Sensor::kComponents) {
+      for (const auto& biased : SensorBias::kComponents) {
+        if (name == biased) b(column++) = bias.of_component(name);
+      }
+    }
+    b(kDim - 1) = bias.time_s;
+    return b;
+  }
+
   /// The bias as the scenario names it (offsets the sensor does not measure stay 0).
   static SensorBias as_sensor_bias(const Bias& b) {
     SensorBias bias;
