@@ -68,6 +68,13 @@ class PictureStation {
     // What it sends to itself never crosses the simulated link: the exchange keeps it as it
     // goes out.
     loop_.skip_own(options.id, exchange_.own_writer());
+    // A restarted station would correct its detections by estimates it never learnt, which the
+    // picture it is sent does not carry yet (docs/registration.md).
+    if (options.rejoin_step && picture_.registers()) {
+      throw std::invalid_argument(
+          "a station cannot rejoin a run whose tracker registers its stations: the picture it "
+          "would be sent does not carry the registration's estimates yet");
+    }
   }
 
   int run() {

@@ -84,7 +84,7 @@ double read_probability(const YamlField& field) {
 TrackerConfig read_tracker(const YamlField& field) {
   field.allow_only({"associator", "gate_probability", "max_detections_per_scan", "clutter_density",
                     "jpda_max_events", "confirm", "delete_after_misses", "max_position_std_m",
-                    "initiation", "identity"});
+                    "initiation", "identity", "registration"});
   TrackerConfig t;
   if (const auto f = field.optional("associator")) {
     const std::string name = f->string();
@@ -131,6 +131,28 @@ TrackerConfig read_tracker(const YamlField& field) {
   }
   if (const auto f = field.optional("max_position_std_m")) {
     t.management.max_position_std_m = f->positive_number();
+  }
+  if (const auto registration = field.optional("registration")) {
+    registration->allow_only({"kind", "prior_std"});
+    const YamlField kind = registration->required("kind");
+    const std::string name = kind.string();
+    if (name != "least_squares" && name != "none") {
+      kind.fail(fmt::format("unknown registration '{}'; known: least_squares, none", name));
+    }
+    t.registration.enabled = name == "least_squares";
+    if (const auto prior = registration->optional("prior_std")) {
+      prior->allow_only({"range_m", "azimuth_rad", "elevation_rad", "time_s"});
+      if (const auto f = prior->optional("range_m"))
+        t.registration.range_std_m = f->positive_number();
+      if (const auto f = prior->optional("azimuth_rad")) {
+        t.registration.azimuth_std_rad = f->positive_number();
+      }
+      if (const auto f = prior->optional("elevation_rad")) {
+        t.registration.elevation_std_rad = f->positive_number();
+      }
+      if (const auto f = prior->optional("time_s"))
+        t.registration.time_std_s = f->positive_number();
+    }
   }
   if (const auto identity = field.optional("identity")) {
     identity->allow_only({"sanity_gate_probability"});

@@ -287,6 +287,29 @@ TEST(TrafficScenario, ReadsAStationsBiasesAndRefusesWhatItCannotHave) {
       << one_aircraft;
 }
 
+// The tracker's registration: off unless named, its prior read by name, anything else refused.
+TEST(TrafficScenario, ReadsTheTrackersRegistration) {
+  const std::string text =
+      read_text(std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/registration.yaml");
+  EXPECT_FALSE(parse_scenario(text, "test.yaml").tracker.registration.enabled);
+  const auto with = [&](const std::string& registration) {
+    return replaced(text, "tracker:\n", "tracker:\n  registration: " + registration + "\n");
+  };
+  const Scenario s = parse_scenario(
+      with("{kind: least_squares, prior_std: {range_m: 300.0, time_s: 0.5}}"), "test.yaml");
+  EXPECT_TRUE(s.tracker.registration.enabled);
+  EXPECT_EQ(s.tracker.registration.range_std_m, 300.0);
+  EXPECT_EQ(s.tracker.registration.azimuth_std_rad, 0.01);  // the default
+  EXPECT_EQ(s.tracker.registration.time_std_s, 0.5);
+  EXPECT_FALSE(parse_scenario(with("{kind: none}"), "test.yaml").tracker.registration.enabled);
+  EXPECT_NE(rejection(with("{kind: kalman}"))
+                .find("unknown registration 'kalman'; known: "
+                      "least_squares, none"),
+            std::string::npos);
+  EXPECT_NE(rejection(with("{kind: least_squares, prior_std: {range_m: 0.0}}")).find("range_m"),
+            std::string::npos);
+}
+
 TEST(TrafficScenario, RefusesWhatAPictureCannotTake) {
   EXPECT_NE(rejection(uam_city_with("traffic:",
                                     "target: {initial_position_m: [0, 0, 100], "

@@ -31,12 +31,17 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
       const Address address = address_of(scans[s].addresses, pair.detection);
       if (pair.weight > 0.5 && offered_[t] == kNoAddress) offered_[t] = address;
       associations_.push_back({station.id, pair.detection, this->tracks()[t].id});
+      const Detection& raw = scans[s].detections[pair.detection];
+      const Detection z = this->registered(station, raw, this->estimates()[t].mean);
+      // As every peer learns it (peer_picture_impl.hpp): ascending station, then pair.
+      if (pair.weight == 1.0)
+        this->learn_bias(station, this->tracks()[t], this->estimates()[t], raw);
       std::visit(
           [&]<typename Sensor>(const Sensor& sensor) {
             constexpr int M = Sensor::kMeasDim;
             const Covariance<M> noise = fixed_noise<M>(station.noise);
             observations_[t].push_back(StationObservation<Sensor>{
-                station.id, sensor, fixed_detection<M>(scans[s].detections[pair.detection]),
+                station.id, sensor, fixed_detection<M>(z),
                 pair.weight == 1.0 ? noise : Covariance<M>(noise / pair.weight)});
           },
           station.sensor);

@@ -52,8 +52,11 @@ struct StationReport {
     Address address = kNoAddress;
   };
   int station_id = 0;
-  std::vector<Update> updates;                      ///< ascending track id
-  std::vector<ReportedPair> pairs;                  ///< ascending track id, then detection
+  std::vector<Update> updates;      ///< ascending track id
+  std::vector<ReportedPair> pairs;  ///< ascending track id, then detection
+  /// Each pair's detection as the station measured it, for its registration (empty where
+  /// nothing registers).
+  std::vector<Detection> paired_detections;
   std::vector<UnassociatedDetection> unassociated;  ///< ascending detection index
   std::size_t dropped = 0;            ///< detections beyond the assignment's bound, left out
   std::size_t refused_addresses = 0;  ///< addressed detections refused as possible spoofs

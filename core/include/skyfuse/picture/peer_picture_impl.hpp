@@ -77,6 +77,22 @@ RoundOutcome PeerPicture<Tracks>::fuse(std::uint64_t step, std::span<const Repor
   report_weights_.clear();
   for (const Report& report : reports) report_weights_.push_back(weight_of(report.station_id));
   offered_.assign(count, kNoAddress);
+  // Registration: each station's raw detections of confirmed tracks against their priors, in
+  // ascending station id and pair order — the same sums at every peer.
+  if (this->registers()) {
+    for (const Report& report : reports) {
+      const Station& station = this->stations()[this->station_index(report.station_id)];
+      auto next = this->tracks().begin();
+      for (std::size_t p = 0; p < report.pairs.size(); ++p) {
+        next =
+            std::lower_bound(next, this->tracks().end(), report.pairs[p].track,
+                             [](const auto& track, TrackId wanted) { return track.id < wanted; });
+        const auto t = static_cast<std::size_t>(next - this->tracks().begin());
+        if (report.pairs[p].weight != 1.0) continue;  // a weighed pair is no certain one
+        this->learn_bias(station, *next, this->estimates()[t], report.paired_detections[p]);
+      }
+    }
+  }
   for (std::size_t t = 0; t < count; ++t) {
     auto& track = this->track(t);
     contributions_.clear();
@@ -145,15 +161,27 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
   constexpr int M = Sensor::kMeasDim;
   typename Report::Update update;
   update.track = track.id;
+  const Station* registered =
+      this->registers() ? &this->stations()[this->station_index(station_id)] : nullptr;
+  const auto index = static_cast<std::size_t>(&track - this->tracks().data());
+  const Vector<Table::kDim>& prior_mean = this->estimates()[index].mean;
+  const auto paired = [&](const Pair& pair) {
+    if (registered != nullptr) report.paired_detections.push_back(detections[pair.detection]);
+  };
   const auto contribute = [&](const Pair& pair, Contribution& out) {
+    const Detection& raw = detections[pair.detection];
     const StationObservation<Sensor> observation{
-        station_id, sensor, fixed_detection<M>(detections[pair.detection]), noise};
+        station_id, sensor,
+        fixed_detection<M>(registered != nullptr ? this->registered(*registered, raw, prior_mean)
+                                                 : raw),
+        noise};
     return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;
   };
   if (pairs.size() == 1 && pairs.front().weight == 1.0) {
     if (!contribute(pairs.front(), update.contribution)) return;
     report.updates.push_back(std::move(update));
     report.pairs.push_back({track.id, pairs.front().detection, pairs.front().weight});
+    paired(pairs.front());
     return;
   }
   if constexpr (requires(Contribution & c) { Tracks::add_weighted(c, c, 1.0); }) {
@@ -164,6 +192,7 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
       if (!any) Tracks::start_sum(update.contribution, station_id);
       Tracks::add_weighted(update.contribution, one, pair.weight);
       report.pairs.push_back({track.id, pair.detection, pair.weight});
+      paired(pair);
       any = true;
     }
     if (any) report.updates.push_back(std::move(update));

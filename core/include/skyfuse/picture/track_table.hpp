@@ -38,6 +38,7 @@
 #include "skyfuse/picture/track.hpp"
 #include "skyfuse/picture/track_management.hpp"
 #include "skyfuse/picture/tracker_config.hpp"
+#include "skyfuse/registration/station_bias.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse {
@@ -82,6 +83,11 @@ class TrackTable {
         stations_(std::move(stations)),
         config_(config),
         associator_(find_associator(config.association.associator)) {
+    if (config.registration.enabled) {
+      const SensorBias prior{config.registration.range_std_m, config.registration.azimuth_std_rad,
+                             config.registration.elevation_std_rad, config.registration.time_std_s};
+      for (const Station& station : stations_) biases_.emplace_back(station.sensor, prior);
+    }
     if (associator_ == nullptr) {
       throw std::invalid_argument("tracker.associator: '" + config.association.associator +
                                   "' is none of " + associator_names());
@@ -130,6 +136,32 @@ class TrackTable {
   /// Track i, for the caller's update between predict() and close_round().
   TrackType& track(std::size_t i) { return tracks_[i]; }
 
+  /// The index in stations() of station `station_id`, which the table knows.
+  std::size_t station_index(int station_id) const {
+    const auto at = std::lower_bound(stations_.begin(), stations_.end(), station_id,
+                                     [](const Station& s, int id) { return s.id < id; });
+    return static_cast<std::size_t>(at - stations_.begin());
+  }
+  /// Whether the scenario registers its stations (TrackerConfig::registration).
+  bool registers() const { return !biases_.empty(); }
+  /// Station `station_id`'s registration; registers() must hold.
+  const StationBias<kDim>& bias_of(int station_id) const {
+    return biases_[station_index(station_id)];
+  }
+  /// `z` of station `station_id` as the pictures use it: corrected by its registration for the
+  /// track whose prior mean is `mean`, or as it is where nothing registers.
+  Detection registered(const Station& station, const Detection& z, const Vector<kDim>& mean) const {
+    if (biases_.empty()) return z;
+    return biases_[station_index(station.id)].corrected(station.sensor, z, mean);
+  }
+  /// Teaches station `station_id`'s registration its raw detection `z` of the track whose
+  /// prior is `prior`, if that track is confirmed (registers() holds).
+  void learn_bias(const Station& station, const TrackType& track, const GaussianState<kDim>& prior,
+                  const Detection& z) {
+    if (biases_.empty() || track.status != TrackStatus::kConfirmed) return;
+    biases_[station_index(station.id)].learn(station.sensor, prior, z, station.noise);
+  }
+
  protected:
   /// Gives each unaddressed track the address its hit offered (offered[i], kNoAddress for
   /// none: the first station's of weight above 1/2, identity.hpp), manages every track (hit[i]:
@@ -158,8 +190,9 @@ class TrackTable {
   std::vector<TrackType> tracks_;
   std::vector<GaussianState<kDim>> estimates_;
   std::vector<PositionFix> fixes_;
-  std::vector<Address> addresses_;  // tracks_[i].address, for the gate search's mask
-  AddressBook book_;                // the tracks that hold an address, by address
+  std::vector<Address> addresses_;         // tracks_[i].address, for the gate search's mask
+  AddressBook book_;                       // the tracks that hold an address, by address
+  std::vector<StationBias<kDim>> biases_;  // per station, when the scenario registers them
 };
 
 }  // namespace skyfuse

@@ -19,8 +19,17 @@
 namespace skyfuse {
 
 template <typename Tracks>
-ScanAssociation TrackTable<Tracks>::associate(const Station& station, const Scan& scan,
+ScanAssociation TrackTable<Tracks>::associate(const Station& station, const Scan& raw,
                                               AssociationWork& work) const {
+  // A registered station's detections are gated with its offsets removed (the clock's part
+  // needs a track's velocity: its pairs' updates take it, PeerPicture and CentralPicture).
+  Scan offset_free;
+  if (!biases_.empty()) {
+    offset_free = raw;
+    const StationBias<kDim>& bias = biases_[station_index(station.id)];
+    for (Detection& z : offset_free.detections) z = bias.offsets_removed(station.sensor, z);
+  }
+  const Scan& scan = biases_.empty() ? raw : offset_free;
   std::visit(
       [&]<typename Sensor>(const Sensor& sensor) {
         constexpr std::size_t M = Sensor::kMeasDim;
@@ -75,6 +84,8 @@ template <typename UnassociatedOf>
 RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vector<char>& hit,
                                              std::span<const Address> offered,
                                              UnassociatedOf unassociated_of) {
+  // What this round taught each station's registration corrects the next round's detections.
+  for (StationBias<kDim>& bias : biases_) bias.settle();
   learn_addresses(offered);
   refresh_estimates();
   RoundOutcome outcome;
@@ -111,8 +122,10 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
           for (const UnassociatedDetection& d : unassociated_of(s)) {
             // A track that took this address this round has the aircraft already.
             if (d.address != kNoAddress && book_.track_of(d.address)) continue;
+            const Detection z =
+                biases_.empty() ? d.z : biases_[s].offsets_removed(station.sensor, d.z);
             if (auto fix =
-                    fix_position(station.id, d.detection, sensor, fixed_detection<M>(d.z), noise)) {
+                    fix_position(station.id, d.detection, sensor, fixed_detection<M>(z), noise)) {
               fix->address = d.address;
               fixes_.push_back(*fix);
             }

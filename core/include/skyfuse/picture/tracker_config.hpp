@@ -50,8 +50,20 @@ struct ManagementConfig {
   double max_position_std_m = 1000.0;
 };
 
+/// Registration (registration/station_bias.hpp): each station's biases estimated online from
+/// its detections of confirmed tracks, and its detections corrected by them; off by default.
+struct RegistrationConfig {
+  bool enabled = false;
+  /// The biases' prior standard deviations, each > 0.
+  double range_std_m = 500.0;
+  double azimuth_std_rad = 0.01;
+  double elevation_std_rad = 0.01;
+  double time_std_s = 1.0;
+};
+
 struct TrackerConfig {
   AssociationConfig association;
+  RegistrationConfig registration;
   IdentityConfig identity;
   InitiationConfig initiation;
   ManagementConfig management;
