@@ -84,11 +84,13 @@ RoundOutcome PeerPicture<Tracks>::fuse(std::uint64_t step, std::span<const Repor
       const Station& station = this->stations()[this->station_index(report.station_id)];
       auto next = this->tracks().begin();
       for (std::size_t p = 0; p < report.pairs.size(); ++p) {
+        if (report.pairs[p].weight != 1.0) continue;  // a weighed pair is no certain one
         next =
             std::lower_bound(next, this->tracks().end(), report.pairs[p].track,
                              [](const auto& track, TrackId wanted) { return track.id < wanted; });
+        // A report names only this picture's tracks (report_of gives none otherwise).
+        if (next == this->tracks().end() || next->id != report.pairs[p].track) break;
         const auto t = static_cast<std::size_t>(next - this->tracks().begin());
-        if (report.pairs[p].weight != 1.0) continue;  // a weighed pair is no certain one
         this->learn_bias(station, *next, this->estimates()[t], report.paired_detections[p]);
       }
     }
