@@ -68,13 +68,6 @@ class PictureStation {
     // What it sends to itself never crosses the simulated link: the exchange keeps it as it
     // goes out.
     loop_.skip_own(options.id, exchange_.own_writer());
-    // A restarted station would correct its detections by estimates it never learnt, which the
-    // picture it is sent does not carry yet (docs/registration.md).
-    if (options.rejoin_step && picture_.registers()) {
-      throw std::invalid_argument(
-          "a station cannot rejoin a run whose tracker registers its stations: the picture it "
-          "would be sent does not carry the registration's estimates yet");
-    }
   }
 
   int run() {
@@ -199,6 +192,7 @@ class PictureStation {
     int station_id = 0;
     std::uint64_t digest = 0;  // of the picture after the round, as its sender computed it
     std::vector<typename Picture::TrackType> tracks;
+    std::vector<BiasSums> biases;  // every station's registration, where the tracker registers
   };
 
   void take_states() {
@@ -206,13 +200,14 @@ class PictureStation {
     while (states_in_.take(sample)) {
       if (sample.run_id() != options_.node.run_id || sample.station_id() == options_.id) continue;
       auto tracks = transport::picture_state_from_wire(sample, picture_.filters());
-      if (!tracks) {
+      auto biases = transport::picture_biases_from_wire(sample);
+      if (!tracks || !biases) {
         spdlog::warn("step {}: a picture from station {} that is wrong; refused", sample.step(),
                      sample.station_id());
         continue;
       }
       latest_ = PeerState{sample.step(), static_cast<int>(sample.station_id()),
-                          sample.picture_digest(), std::move(*tracks)};
+                          sample.picture_digest(), std::move(*tracks), std::move(*biases)};
     }
   }
 
@@ -230,12 +225,24 @@ class PictureStation {
     tracks_.publish(picture_, options_.node.run_id, step, options_.id, wire::PEER);
   }
 
+  // `candidate` with the latest picture a peer sent: its tracks and, where the tracker
+  // registers, every station's registration (a picture without them would correct the next
+  // scans otherwise than its sender). False where the registration is not this run's.
+  bool restore_into(Picture& candidate) const {
+    candidate.restore(latest_->tracks);
+    if (!picture_.registers()) return true;
+    if (candidate.restore_biases(latest_->biases)) return true;
+    spdlog::warn("step {}: station {}'s picture holds no registration of this run's stations",
+                 latest_->step, latest_->station_id);
+    return false;
+  }
+
   // Takes station `station`'s picture after round k as this station's, if it came and holds
   // what its digest says.
   bool take_finished_round_of(int station, std::uint64_t k) {
     if (!latest_ || latest_->station_id != station || latest_->step != k) return false;
     Picture candidate = picture_;
-    candidate.restore(latest_->tracks);
+    if (!restore_into(candidate)) return false;
     if (candidate.digest() != latest_->digest) return false;
     picture_ = std::move(candidate);
     ++resyncs_;
@@ -264,7 +271,7 @@ class PictureStation {
   void take_picture_of(const std::pair<int, std::uint64_t>& lowest, std::uint64_t k) {
     if (!latest_ || latest_->station_id != lowest.first || latest_->step + 1 != k) return;
     Picture candidate = picture_;
-    candidate.restore(latest_->tracks);
+    if (!restore_into(candidate)) return;
     candidate.predict();
     if (candidate.digest() != lowest.second) {
       spdlog::warn("step {}: station {}'s picture does not predict to its scan's", k, lowest.first);

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "report/picture_report.hpp"
+#include "report/registration_report.hpp"
 #include "report/sweep_report.hpp"
 #include "report/sweep_runner.hpp"
 #include "skyfuse/options/node_options.hpp"
@@ -75,9 +76,14 @@ int run_picture_sweep(const SweepOptions& options, const Scenario& scenario, int
   PictureReport report{scenario, truth, {}};
   report.runs = run_picture_runs(scenario, truth.targets, options.runs, stations, options.threads);
   print_picture_table(report, stdout);
+  print_registration_table(report, stdout);
   write_picture_csv(report, out_dir / "picture.csv");
   write_picture_json(report, out_dir / "picture.json");
   fmt::print("wrote {}/picture.csv and picture.json\n", out_dir.string());
+  if (!report.runs.empty() && !report.runs.front().registration.empty()) {
+    write_registration_csv(report, out_dir / "registration.csv");
+    fmt::print("wrote {}/registration.csv\n", out_dir.string());
+  }
   // A broken guarantee is a failed run, whatever the figures.
   return picture_guarantees_held(report) ? 0 : 1;
 }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "report/registration_report.hpp"
 #include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 
@@ -143,6 +144,9 @@ void write_picture_json(const PictureReport& report, const std::filesystem::path
                     {"refused_addresses", run.refused_addresses},
                     {"confirmed_at_end", run.confirmed_at_end},
                     {"tentative_at_end", run.tentative_at_end}});
+    if (!run.registration.empty()) {
+      runs.back()["registration"] = registration_json(run, report.scenario.time_step_s);
+    }
   }
   const TrafficConfig& traffic = *report.scenario.traffic;
   const nlohmann::json summary = {

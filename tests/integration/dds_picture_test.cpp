@@ -403,6 +403,52 @@ TEST(DdsPicture, ThroughTheTreeEveryNodeHoldsTheInProcessPictureBitForBit) {
   EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
 }
 
+// scenarios/registration.yaml with the tracker estimating every station's biases, written to
+// `dir`.
+std::filesystem::path registered_scenario(const std::filesystem::path& dir) {
+  std::string text = read_file(bin("scenarios/registration.yaml"));
+  const auto at = text.find("\ntracker:\n");
+  EXPECT_NE(at, std::string::npos);
+  if (at != std::string::npos) text.insert(at + 10, "  registration: {kind: least_squares}\n");
+  const auto path = dir / "registered.yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+// A registered run (docs/registration.md): scenarios/registration.yaml's three biased radars and
+// its ADS-B station, with the tracker estimating each station's biases. The estimates correct
+// every detection before it is fused, so a peer whose estimate parted from the others' would
+// hold another picture within a round: every node holds the in-process run's picture in every
+// round, through the flat exchange and the tree, and the center agrees within 1e-9.
+class DdsRegisteredPicture : public testing::TestWithParam<const char*> {};
+
+TEST_P(DdsRegisteredPicture, EveryNodeHoldsTheInProcessPictureBitForBit) {
+  constexpr int kStations = 4;
+  constexpr int kSteps = 60;
+  const auto dir = test_dir();
+  const auto scenario = registered_scenario(dir);
+  const bool tree = std::string_view(GetParam()) == "tree";
+  std::vector<std::string> command = {bin("skyfuse"), "run",
+                                      "--scenario",   scenario.string(),
+                                      "--stations",   std::to_string(kStations),
+                                      "--steps",      std::to_string(kSteps),
+                                      "--domain",     tree ? "86" : "87",
+                                      "--out",        (dir / "out").string()};
+  if (tree) command.insert(command.end(), {"--exchange", "tree", "--fanout", "2"});
+  const Completed run = run_to_completion(command, dir / "out.log", 180s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  const std::size_t confirmed_seen =
+      expect_every_node_is_in_process(dir / "out", scenario, kStations, kSteps);
+  EXPECT_GE(confirmed_seen, 20U) << "the stations confirmed tracks of the area's 40 aircraft";
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  EXPECT_TRUE(summary.at("peers_identical").get<bool>());
+  EXPECT_EQ(summary.at("rounds_center_tracks_differ").get<int>(), 0);
+  EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
+}
+
+INSTANTIATE_TEST_SUITE_P(Exchanges, DdsRegisteredPicture, testing::Values("flat", "tree"),
+                         [](const auto& param) { return std::string(param.param); });
+
 // Through the tree, cluster {3, 4}'s aggregator killed before round 40 and restarted before
 // round 60: after two rounds without the cluster, station 4 stands in and relays its own scan;
 // the restarted aggregator takes the cluster back. The peers never part over it, and every
@@ -564,12 +610,15 @@ INSTANTIATE_TEST_SUITE_P(
 // picture meanwhile; the restarted station starts with an empty picture, its first scan shows
 // it, the lowest station with tracks sends its picture and the restarted one takes it in the
 // next round. Station 2, flat and through the tree (a member of station 1's cluster); and
-// station 1, the lowest, whose empty picture must not become everyone's.
+// station 1, the lowest, whose empty picture must not become everyone's. And station 2 of a
+// registered run (scenarios/registration.yaml, registering): the picture it takes carries every
+// station's registration, without which it would correct its scans otherwise.
 struct RestartVariant {
   const char* name;
   bool tree;
   int domain;
   int victim;
+  bool registered = false;
 };
 class DdsPictureRestart : public ::testing::TestWithParam<RestartVariant> {};
 
@@ -577,8 +626,10 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
   constexpr int kSteps = 80;
   const int victim = GetParam().victim;
   const auto dir = test_dir();
+  const std::string scenario =
+      GetParam().registered ? registered_scenario(dir).string() : std::string(kCity);
   std::vector<std::string> args = {
-      bin("skyfuse"), "run", "--scenario", kCity, "--stations", "4", "--steps",
+      bin("skyfuse"), "run", "--scenario", scenario, "--stations", "4", "--steps",
       std::to_string(kSteps), "--kill", fmt::format("{}@40", victim), "--restart",
       fmt::format("{}@50", victim),
       // Rounds without the victim wait for their deadline: 250 ms, as the loss tests.
@@ -621,7 +672,8 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
 INSTANTIATE_TEST_SUITE_P(Exchanges, DdsPictureRestart,
                          ::testing::Values(RestartVariant{"Flat", false, 92, 2},
                                            RestartVariant{"Tree", true, 83, 2},
-                                           RestartVariant{"TheLowestStation", false, 82, 1}),
+                                           RestartVariant{"TheLowestStation", false, 82, 1},
+                                           RestartVariant{"Registered", false, 85, 2, true}),
                          [](const ::testing::TestParamInfo<RestartVariant>& param) {
                            return param.param.name;
                          });

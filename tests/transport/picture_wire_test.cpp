@@ -61,6 +61,16 @@ Sent a_round() {
   return sent;
 }
 
+// A whole picture through the generated type's serializer, as DDS would carry it.
+wire::PictureState through_cdr(wire::PictureState sample) {
+  wire::PictureStatePubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&sample)());
+  EXPECT_TRUE(type.serialize(&sample, &payload));
+  wire::PictureState back;
+  EXPECT_TRUE(type.deserialize(&payload, &back));
+  return back;
+}
+
 // The sample through the generated type's serializer, as DDS would carry it.
 wire::PictureScan through_cdr(wire::PictureScan sample) {
   wire::PictureScanPubSubType type;
@@ -277,22 +287,10 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   const test::PictureWorld world(12);
   Peer sender = world.empty_picture();
   AssociationWork work;
-  for (int k = 0; k < 12; ++k) {
-    sender.predict();
-    std::vector<Peer::Report> reports;
-    for (std::size_t s = 0; s < world.stations.size(); ++s) {
-      reports.push_back(sender.report(world.stations[s], world.scan(s, k), work));
-    }
-    sender.fuse(static_cast<std::uint64_t>(k), reports);
-  }
+  for (int k = 0; k < 12; ++k) world.play_round(sender, k, work);
   ASSERT_GE(sender.tracks().size(), 5U);
-  wire::PictureStatePubSubType type;
   const wire::PictureState sent = picture_state_to_wire(sender, 1, 11, 2);
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(
-      type.getSerializedSizeProvider(const_cast<wire::PictureState*>(&sent))());
-  ASSERT_TRUE(type.serialize(const_cast<wire::PictureState*>(&sent), &payload));
-  wire::PictureState back;
-  ASSERT_TRUE(type.deserialize(&payload, &back));
+  const wire::PictureState back = through_cdr(sent);
   auto tracks = picture_state_from_wire(back, test::PictureWorld::track_filters());
   ASSERT_TRUE(tracks.has_value());
 
@@ -332,6 +330,65 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   // An IMM's modes on a single-model track.
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].mode_probabilities({1.0}); }));
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].modes().resize(1); }));
+}
+
+// A registering picture's state carries every station's registration sums: the taker holds
+// the same estimates bit for bit, so it corrects the next scans as the sender does; sums of
+// another size, not finite or out of order are refused, and a taker whose stations they are
+// not refuses them.
+TEST(PictureWire, ARegisteringPictureArrivesWithEveryStationsRegistration) {
+  using Peer = test::PictureWorld::Peer;
+  const test::PictureWorld world(12);
+  TrackerConfig config;
+  config.registration.enabled = true;
+  Peer sender = world.empty_picture(config);
+  AssociationWork work;
+  for (int k = 0; k < 11; ++k) world.play_round(sender, k, work);
+  const wire::PictureState sent = picture_state_to_wire(sender, 1, 10, 2);
+  ASSERT_EQ(sent.biases().size(), world.stations.size());
+  EXPECT_GT(sent.biases()[0].detections(), 0U) << "the registration learnt something to send";
+  const wire::PictureState back = through_cdr(sent);
+  auto tracks = picture_state_from_wire(back, test::PictureWorld::track_filters());
+  const auto biases = picture_biases_from_wire(back);
+  ASSERT_TRUE(tracks.has_value());
+  ASSERT_TRUE(biases.has_value());
+
+  Peer taker = world.empty_picture(config);
+  taker.restore(std::move(*tracks));
+  ASSERT_TRUE(taker.restore_biases(*biases));
+  for (const auto& station : world.stations) {
+    const SensorBias& mine = taker.bias_of(station.id).bias();
+    const SensorBias& theirs = sender.bias_of(station.id).bias();
+    EXPECT_TRUE(mine.range_m == theirs.range_m && mine.azimuth_rad == theirs.azimuth_rad &&
+                mine.elevation_rad == theirs.elevation_rad && mine.time_s == theirs.time_s)
+        << "station " << station.id;
+  }
+  // The next round, from the same scans: the same picture.
+  world.play_round(taker, 11, work);
+  world.play_round(sender, 11, work);
+  EXPECT_EQ(taker.digest(), sender.digest());
+
+  const auto refused = [&](const std::function<void(wire::PictureState&)>& forge) {
+    wire::PictureState wrong = back;
+    forge(wrong);
+    return !picture_biases_from_wire(wrong).has_value();
+  };
+  EXPECT_TRUE(refused([](auto& w) { w.biases()[0].information().pop_back(); }));
+  EXPECT_TRUE(refused([](auto& w) { w.biases()[0].information_vector().push_back(0.0); }));
+  EXPECT_TRUE(refused([](auto& w) {
+    w.biases()[0].information_vector()[0] = std::numeric_limits<double>::infinity();
+  }));
+  EXPECT_TRUE(refused([](auto& w) { w.biases()[1].station_id(w.biases()[0].station_id()); }));
+  // Sums the wire takes but the taker's stations are not: one missing, or of another station.
+  Peer other = world.empty_picture(config);
+  std::vector<BiasSums> missing = *biases;
+  missing.pop_back();
+  EXPECT_FALSE(other.restore_biases(missing));
+  std::vector<BiasSums> renamed = *biases;
+  renamed.back().station_id += 100;
+  EXPECT_FALSE(other.restore_biases(renamed));
+  // A picture that registers nothing sends none.
+  EXPECT_TRUE(picture_state_to_wire(world.empty_picture(), 1, 0, 2).biases().empty());
 }
 
 // The same for an IMM's picture: each track's mode probabilities and every mode's state come

@@ -53,7 +53,9 @@ struct PictureWorld {
   }
 
   // An empty picture of the world's filter, at every peer the same.
-  Peer empty_picture() const { return Peer(track_filters(), stations, TrackerConfig{}); }
+  Peer empty_picture(const TrackerConfig& config = {}) const {
+    return Peer(track_filters(), stations, config);
+  }
 
   // Station `s`'s scan of round k (seeded: the same at every call).
   Scan scan(std::size_t s, int k) const {
@@ -61,6 +63,16 @@ struct PictureWorld {
     const Vector3 site = std::get<Sensor>(station.sensor).site();
     return simulate_scan(station.id, RangeAzimuthElevation<kKinematicsDim>(site), site,
                          fixed_noise<3>(station.noise), detection, truths, k, 11, 0);
+  }
+
+  // Round k of one peer that reports and fuses every station's scan itself.
+  void play_round(Peer& peer, int k, AssociationWork& work) const {
+    peer.predict();
+    std::vector<Peer::Report> reports;
+    for (std::size_t s = 0; s < stations.size(); ++s) {
+      reports.push_back(peer.report(stations[s], scan(s, k), work));
+    }
+    peer.fuse(static_cast<std::uint64_t>(k), reports);
   }
 
   // Round k's start at every node of `nodes` (each with a `picture` and an `exchange`): it

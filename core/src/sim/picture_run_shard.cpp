@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <stdexcept>
 #include <type_traits>
@@ -79,6 +80,13 @@ class PictureRun {
       const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
       detection_.push_back(station.detection.value());
       truth_sensors_.push_back(make_picture_sensor<kKinematicsDim>(station));
+      if (peers_.front().registers(station.id)) {
+        result_.registration.push_back({station.id,
+                                        peers_.front().bias_of(station.id).estimated(),
+                                        detection_.back().bias,
+                                        {},
+                                        {}});
+      }
     }
   }
 
@@ -134,6 +142,22 @@ class PictureRun {
     result_.peer_digests.push_back(peers_.front().digest());
     result_.center_digests.push_back(center_->digest());
     compare(k);
+    trace_registration();
+  }
+
+  // Each station's estimate as the round settled it, and how far the center's is from it.
+  void trace_registration() {
+    for (BiasTrace& trace : result_.registration) {
+      const auto& mine = peers_.front().bias_of(trace.station_id);
+      trace.estimate.push_back(mine.bias());
+      trace.sigma.push_back(mine.sigma());
+      const SensorBias& theirs = center_->bias_of(trace.station_id).bias();
+      for (std::size_t e = 0; e < BiasTrace::kEntries.size(); ++e) {
+        const double peer = bias_entry(mine.bias(), e);
+        result_.max_bias_gap = std::max(
+            result_.max_bias_gap, std::abs(bias_entry(theirs, e) - peer) / (1.0 + std::abs(peer)));
+      }
+    }
   }
 
   void compare(int k) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -113,6 +114,72 @@ TEST(StationBias, WithoutATrackOnlyTheOffsetsComeOff) {
   const Detection removed = station.offsets_removed(sensor, z);
   EXPECT_NEAR(removed(0), radar.predict(track.mean)(0), 0.5);
   EXPECT_NEAR(removed(1), radar.predict(track.mean)(1), 1e-5);
+}
+
+// What the corrections do not know yet, as R's addition: the prior's until it settles, then the
+// estimate's, which learning shrinks.
+TEST(StationBias, ItsUncertaintyIsThePriorsUntilItLearns) {
+  const PictureSensor<N> sensor = Radar(kSite);
+  const Radar& radar = std::get<Radar>(sensor);
+  StationBias<N> station(sensor, kPriorStd);
+  EXPECT_EQ(station.estimated(), (std::array<bool, 4>{true, true, true, true}));
+  EXPECT_EQ(station.sigma().range_m, kPriorStd.range_m);
+  EXPECT_EQ(station.sigma().time_s, kPriorStd.time_s);
+  EXPECT_EQ(station.clock_variance(), kPriorStd.time_s * kPriorStd.time_s);
+  const Covariance<3> offsets = fixed_noise<3>(station.offsets_noise(sensor));
+  EXPECT_EQ(offsets, Covariance<3>(Vector3(500.0 * 500.0, 0.01 * 0.01, 0.01 * 0.01).asDiagonal()));
+  // G Σ Gᵀ: the offsets' and the clock's, whose column is the aircraft's motion as the radar
+  // measures it.
+  const GaussianState<N> track = known_track(7);
+  const Vector3 clock_column = radar.jacobian(track.mean).leftCols<3>() * track.mean.segment<3>(3);
+  const Covariance<3> expected =
+      offsets + kPriorStd.time_s * kPriorStd.time_s * clock_column * clock_column.transpose();
+  const Covariance<3> considered = fixed_noise<3>(station.correction_noise(sensor, track.mean));
+  EXPECT_LT((considered - expected).norm(), 1e-12 * expected.norm());
+
+  for (int i = 0; i < 300; ++i) {
+    const GaussianState<N> each = known_track(i);
+    ASSERT_TRUE(station.learn(sensor, each, biased(radar, each.mean), radar_noise()));
+  }
+  ASSERT_TRUE(station.settle());
+  EXPECT_LT(station.sigma().range_m, 0.1 * kPriorStd.range_m);
+  EXPECT_LT(station.sigma().azimuth_rad, 0.1 * kPriorStd.azimuth_rad);
+  EXPECT_LT(fixed_noise<3>(station.correction_noise(sensor, track.mean)).trace(),
+            0.01 * considered.trace());
+}
+
+TEST(StationBias, A2dRadarEstimatesNoElevation) {
+  using Radar2d = RangeAzimuth<N>;
+  const StationBias<N> station(PictureSensor<N>(Radar2d(kSite, HeightBand{0.0, 3000.0})),
+                               kPriorStd);
+  EXPECT_EQ(station.estimated(), (std::array<bool, 4>{true, true, false, true}));
+  EXPECT_EQ(station.sigma().elevation_rad, 0.0);
+}
+
+// Another node holds the same estimate from its sums alone; sums of another sensor are refused.
+TEST(StationBias, AnotherNodeHoldsTheSameEstimateFromItsSums) {
+  const PictureSensor<N> sensor = Radar(kSite);
+  const Radar& radar = std::get<Radar>(sensor);
+  StationBias<N> station(sensor, kPriorStd);
+  for (int i = 0; i < 40; ++i) {
+    const GaussianState<N> each = known_track(i);
+    ASSERT_TRUE(station.learn(sensor, each, biased(radar, each.mean), radar_noise()));
+  }
+  ASSERT_TRUE(station.settle());
+  const BiasSums sums = station.sums(7);
+  EXPECT_EQ(sums.station_id, 7);
+  EXPECT_EQ(sums.detections, 40U);
+  StationBias<N> other(sensor, kPriorStd);
+  ASSERT_TRUE(other.restore(sums));
+  const Vector<4> mine = BiasEstimate<Radar>::from_sensor_bias(station.bias());
+  EXPECT_EQ(BiasEstimate<Radar>::from_sensor_bias(other.bias()), mine);
+  EXPECT_EQ(BiasEstimate<Radar>::from_sensor_bias(other.sigma()),
+            BiasEstimate<Radar>::from_sensor_bias(station.sigma()));
+
+  using Radar2d = RangeAzimuth<N>;
+  StationBias<N> two_d(PictureSensor<N>(Radar2d(kSite, HeightBand{0.0, 3000.0})), kPriorStd);
+  EXPECT_FALSE(two_d.restore(sums)) << "a 3-D radar's four entries are not a 2-D radar's three";
+  EXPECT_FALSE(two_d.bias().any());
 }
 
 TEST(StationBias, RefusesAPriorWithoutSpread) {

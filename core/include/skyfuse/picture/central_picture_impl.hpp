@@ -21,6 +21,7 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
   clear_each(unassociated_, scans.size());
   offered_.assign(count, kNoAddress);
   refused_addresses_ = 0;
+  std::vector<PairedDetection> learned;
   for (std::size_t s = 0; s < scans.size(); ++s) {
     const typename Table::Station& station = this->stations()[s];
     const ScanAssociation association = this->associate(station, scans[s], work_);
@@ -34,12 +35,12 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
       const Detection& raw = scans[s].detections[pair.detection];
       const Detection z = this->registered(station, raw, this->estimates()[t].mean);
       // As every peer learns it (peer_picture_impl.hpp): ascending station, then pair.
-      if (pair.weight == 1.0)
-        this->learn_bias(station, this->tracks()[t], this->estimates()[t], raw);
+      if (pair.weight == 1.0 && this->registers()) learned.push_back({s, t, &raw});
       std::visit(
           [&]<typename Sensor>(const Sensor& sensor) {
             constexpr int M = Sensor::kMeasDim;
-            const Covariance<M> noise = fixed_noise<M>(station.noise);
+            const Covariance<M> noise =
+                this->template registered_noise<M>(station, this->estimates()[t].mean);
             observations_[t].push_back(StationObservation<Sensor>{
                 station.id, sensor, fixed_detection<M>(z),
                 pair.weight == 1.0 ? noise : Covariance<M>(noise / pair.weight)});
@@ -51,6 +52,7 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
       unassociated_[s].push_back({j, scans[s].detections[j], address_of(scans[s].addresses, j)});
     }
   }
+  this->learn_biases(learned);
   hit_.assign(count, 0);
   for (std::size_t t = 0; t < count; ++t) {
     auto& track = this->track(t);

@@ -77,23 +77,27 @@ RoundOutcome PeerPicture<Tracks>::fuse(std::uint64_t step, std::span<const Repor
   report_weights_.clear();
   for (const Report& report : reports) report_weights_.push_back(weight_of(report.station_id));
   offered_.assign(count, kNoAddress);
-  // Registration: each station's raw detections of confirmed tracks against their priors, in
-  // ascending station id and pair order — the same sums at every peer.
+  // Registration: each station's raw detections of tracks, in ascending station id and pair
+  // order — the same sums at every peer.
   if (this->registers()) {
+    std::vector<PairedDetection> learned;
     for (const Report& report : reports) {
-      const Station& station = this->stations()[this->station_index(report.station_id)];
+      const std::size_t station = this->station_index(report.station_id);
       auto next = this->tracks().begin();
-      for (std::size_t p = 0; p < report.pairs.size(); ++p) {
+      // Each pair has its detection (add_update_of keeps them together where anything registers).
+      const std::size_t pairs = std::min(report.pairs.size(), report.paired_detections.size());
+      for (std::size_t p = 0; p < pairs; ++p) {
         if (report.pairs[p].weight != 1.0) continue;  // a weighed pair is no certain one
         next =
             std::lower_bound(next, this->tracks().end(), report.pairs[p].track,
                              [](const auto& track, TrackId wanted) { return track.id < wanted; });
         // A report names only this picture's tracks (report_of gives none otherwise).
         if (next == this->tracks().end() || next->id != report.pairs[p].track) break;
-        const auto t = static_cast<std::size_t>(next - this->tracks().begin());
-        this->learn_bias(station, *next, this->estimates()[t], report.paired_detections[p]);
+        learned.push_back({station, static_cast<std::size_t>(next - this->tracks().begin()),
+                           &report.paired_detections[p]});
       }
     }
+    this->learn_biases(learned);
   }
   for (std::size_t t = 0; t < count; ++t) {
     auto& track = this->track(t);
@@ -164,11 +168,15 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
   typename Report::Update update;
   update.track = track.id;
   const Station* registered =
-      this->registers() ? &this->stations()[this->station_index(station_id)] : nullptr;
+      this->registers(station_id) ? &this->stations()[this->station_index(station_id)] : nullptr;
   const auto index = static_cast<std::size_t>(&track - this->tracks().data());
   const Vector<Table::kDim>& prior_mean = this->estimates()[index].mean;
+  // A registered station's detection, corrected, is as uncertain as its noise and what its
+  // registration does not know yet (TrackTable::registered_noise).
+  const Covariance<M> r =
+      registered != nullptr ? this->template registered_noise<M>(*registered, prior_mean) : noise;
   const auto paired = [&](const Pair& pair) {
-    if (registered != nullptr) report.paired_detections.push_back(detections[pair.detection]);
+    if (this->registers()) report.paired_detections.push_back(detections[pair.detection]);
   };
   const auto contribute = [&](const Pair& pair, Contribution& out) {
     const Detection& raw = detections[pair.detection];
@@ -176,7 +184,7 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
         station_id, sensor,
         fixed_detection<M>(registered != nullptr ? this->registered(*registered, raw, prior_mean)
                                                  : raw),
-        noise};
+        r};
     return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;
   };
   if (pairs.size() == 1 && pairs.front().weight == 1.0) {

@@ -21,32 +21,92 @@ namespace skyfuse {
 template <typename Tracks>
 ScanAssociation TrackTable<Tracks>::associate(const Station& station, const Scan& raw,
                                               AssociationWork& work) const {
-  // A registered station's detections are gated with its offsets removed (the clock's part
-  // needs a track's velocity: its pairs' updates take it, PeerPicture and CentralPicture).
+  // A registered station's detections are gated with its offsets removed, and with what its
+  // registration does not know yet added to R: the offsets' part to the scan's noise, the
+  // clock's (a late clock sees the aircraft further along its velocity) to each track's
+  // position spread. The clock's correction itself needs a track's velocity: the pairs'
+  // updates take it (PeerPicture, CentralPicture).
   Scan offset_free;
-  if (!biases_.empty()) {
-    offset_free = raw;
+  std::vector<GaussianState<kDim>> gated;
+  const bool registered = registers(station.id);
+  if (registered) {
     const StationBias<kDim>& bias = biases_[station_index(station.id)];
+    offset_free = raw;
     for (Detection& z : offset_free.detections) z = bias.offsets_removed(station.sensor, z);
+    offset_free.noise += bias.offsets_noise(station.sensor);
+    gated.assign(estimates_.begin(), estimates_.end());
+    for (GaussianState<kDim>& estimate : gated) {
+      const Vector3 v = estimate.mean.template segment<3>(3);
+      estimate.covariance.template topLeftCorner<3, 3>() +=
+          bias.clock_variance() * v * v.transpose();
+    }
   }
-  const Scan& scan = biases_.empty() ? raw : offset_free;
+  const Scan& scan = registered ? offset_free : raw;
+  const std::span<const GaussianState<kDim>> priors =
+      registered ? std::span<const GaussianState<kDim>>(gated) : estimates();
   std::visit(
       [&]<typename Sensor>(const Sensor& sensor) {
         constexpr std::size_t M = Sensor::kMeasDim;
         const std::size_t taken =
             std::min(scan.detections.size(), config_.association.max_detections_per_scan);
-        route_addressed(estimates(), book_, sensor, scan, taken, sanity_gates_[M], work.routing);
+        route_addressed(priors, book_, sensor, scan, taken, sanity_gates_[M], work.routing);
         const std::span<const Address> held =
             book_.empty() ? std::span<const Address>() : std::span<const Address>(addresses_);
-        hypothesise(estimates(), sensor, scan, gates_[M],
-                    config_.association.max_detections_per_scan, associator_->reads_densities,
-                    work.routing.mask(held, scan.addresses), work.hypothesiser, work.hypotheses);
+        hypothesise(priors, sensor, scan, gates_[M], config_.association.max_detections_per_scan,
+                    associator_->reads_densities, work.routing.mask(held, scan.addresses),
+                    work.hypothesiser, work.hypotheses);
       },
       station.sensor);
   ScanAssociation decided;
   associator_->associate(work.hypotheses, station.prior, config_.association, work, decided);
   merge_routing(work.routing, decided);
   return decided;
+}
+
+template <typename Tracks>
+void TrackTable<Tracks>::learn_biases(std::span<const PairedDetection> pairs) {
+  if (biases_.empty()) return;
+  if (has_reference_) {
+    reference_of_.assign(tracks_.size(), nullptr);
+    for (const PairedDetection& pair : pairs) {
+      if (reference_[pair.station] && reference_of_[pair.track] == nullptr) {
+        reference_of_[pair.track] = &pair;
+      }
+    }
+  }
+  for (const PairedDetection& pair : pairs) {
+    const TrackType& track = tracks_[pair.track];
+    if (reference_[pair.station] || track.status != TrackStatus::kConfirmed) continue;
+    const Station& station = stations_[pair.station];
+    if (!has_reference_) {
+      // A track only this station holds where it is would teach it its own estimate back.
+      if (std::ranges::all_of(track.updated_by, [&](int id) { return id == station.id; })) {
+        continue;
+      }
+      biases_[pair.station].learn(station.sensor, estimates_[pair.track], *pair.z, station.noise);
+      continue;
+    }
+    const PairedDetection* reference = reference_of_[pair.track];
+    if (reference == nullptr) continue;
+    // The aircraft where its own report puts it: the report's position and velocity with its
+    // noise, the track's prior for whatever else the state holds (no sensor with a bias reads
+    // it).
+    GaussianState<kDim> reported = estimates_[pair.track];
+    const Station& source = stations_[reference->station];
+    std::visit(
+        [&]<typename S>(const S&) {
+          if constexpr (requires { S::kReportsOwnState; }) {
+            constexpr int M = S::kMeasDim;
+            static_assert(S::kJacobianCols == M, "a report of the state's first M entries");
+            reported.mean.template head<M>() = fixed_detection<M>(*reference->z);
+            reported.covariance.template topRows<M>().setZero();
+            reported.covariance.template leftCols<M>().setZero();
+            reported.covariance.template topLeftCorner<M, M>() = fixed_noise<M>(source.noise);
+          }
+        },
+        source.sensor);
+    biases_[pair.station].learn(station.sensor, reported, *pair.z, station.noise);
+  }
 }
 
 template <typename Tracks>
@@ -118,12 +178,15 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
     std::visit(
         [&]<typename Sensor>(const Sensor& sensor) {
           constexpr int M = Sensor::kMeasDim;
-          const Covariance<M> noise = fixed_noise<M>(station.noise);
+          // A registered station's fix carries what its offsets' estimate does not know yet.
+          const bool registered = registers(station.id);
+          const Covariance<M> noise = fixed_noise<M>(
+              registered ? DetectionNoise(station.noise + biases_[s].offsets_noise(station.sensor))
+                         : station.noise);
           for (const UnassociatedDetection& d : unassociated_of(s)) {
             // A track that took this address this round has the aircraft already.
             if (d.address != kNoAddress && book_.track_of(d.address)) continue;
-            const Detection z =
-                biases_.empty() ? d.z : biases_[s].offsets_removed(station.sensor, d.z);
+            const Detection z = registered ? biases_[s].offsets_removed(station.sensor, d.z) : d.z;
             if (auto fix =
                     fix_position(station.id, d.detection, sensor, fixed_detection<M>(z), noise)) {
               fix->address = d.address;

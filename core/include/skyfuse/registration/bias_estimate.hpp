@@ -33,9 +33,7 @@ namespace skyfuse {
 template <typename Sensor>
 constexpr int offset_components() {
   int count = 0;
-  for (const auto& name : Sensor::kComponents) {
-    for (const auto& biased : SensorBias::kComponents) count += name == biased ? 1 : 0;
-  }
+  for (const int c : bias_components_of<Sensor>()) count += c < 0 ? 0 : 1;
   return count;
 }
 
@@ -46,6 +44,8 @@ class BiasEstimate {
   /// The offsets, in the sensor's component order, then the clock.
   static constexpr int kDim = offset_components<Sensor>() + 1;
   using Bias = Vector<kDim>;
+  /// Which bias offset reaches each measured component (-1: none).
+  static constexpr auto kOffsetOf = bias_components_of<Sensor>();
 
   /// No detection yet: the prior, b ~ N(0, diag(prior_std²)), one standard deviation per
   /// entry in the order above.
@@ -83,10 +83,7 @@ class BiasEstimate {
     Matrix<kMeasDim, kDim> g = Matrix<kMeasDim, kDim>::Zero();
     int column = 0;
     for (int i = 0; i < kMeasDim; ++i) {
-      const auto name = Sensor::kComponents[static_cast<std::size_t>(i)];
-      for (const auto& biased : SensorBias::kComponents) {
-        if (name == biased) g(i, column++) = 1.0;
-      }
+      if (kOffsetOf[static_cast<std::size_t>(i)] >= 0) g(i, column++) = 1.0;
     }
     g.col(kDim - 1) = h.template leftCols<3>() * mean.template segment<3>(3);
     return g;
@@ -104,10 +101,8 @@ class BiasEstimate {
   static Bias from_sensor_bias(const SensorBias& bias) {
     Bias b;
     int column = 0;
-    for (const auto& name : Sensor::kComponents) {
-      for (const auto& biased : SensorBias::kComponents) {
-        if (name == biased) b(column++) = bias.of_component(name);
-      }
+    for (const int c : kOffsetOf) {
+      if (c >= 0) b(column++) = bias.offset(static_cast<std::size_t>(c));
     }
     b(kDim - 1) = bias.time_s;
     return b;
@@ -117,13 +112,20 @@ class BiasEstimate {
   static SensorBias as_sensor_bias(const Bias& b) {
     SensorBias bias;
     int column = 0;
-    for (const auto& name : Sensor::kComponents) {
-      if (name == SensorBias::kComponents[0]) bias.range_m = b(column++);
-      if (name == SensorBias::kComponents[1]) bias.azimuth_rad = b(column++);
-      if (name == SensorBias::kComponents[2]) bias.elevation_rad = b(column++);
+    for (const int c : kOffsetOf) {
+      if (c >= 0) bias.set_offset(static_cast<std::size_t>(c), b(column++));
     }
     bias.time_s = b(kDim - 1);
     return bias;
+  }
+
+  /// Takes another node's sums as this estimate's (StationBias::restore): the same sums, the
+  /// same estimate bit for bit.
+  void restore(const Covariance<kDim>& information, const Bias& information_vector,
+               std::size_t detections) {
+    information_ = information;
+    information_vector_ = information_vector;
+    detections_ = detections;
   }
 
   const Covariance<kDim>& information() const { return information_; }

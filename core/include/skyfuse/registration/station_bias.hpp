@@ -6,6 +6,8 @@
 /// when settle() is called (once a round), so that every detection of a round is corrected
 /// alike whatever the order it is met in.
 
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <variant>
@@ -24,6 +26,19 @@ struct BiasEstimateOf<std::variant<S...>> {
   using type = std::variant<BiasEstimate<S>...>;
 };
 }  // namespace detail
+
+/// What a station's registration has summed — its estimate's information, information vector
+/// and detections — which is all another node needs to hold the same estimate bit for bit (a
+/// restarted station, a peer that missed a scan: transport/picture_wire.hpp).
+struct BiasSums {
+  using Information = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4>;
+  using InformationVector = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1>;
+
+  int station_id = 0;
+  Information information;
+  InformationVector information_vector;
+  std::uint64_t detections = 0;
+};
 
 template <int N>
 class StationBias {
@@ -44,7 +59,14 @@ class StationBias {
               }
               return BiasEstimate<S>(prior);
             },
-            sensor)) {}
+            sensor)) {
+    // Until the first settle the corrections are zero and as uncertain as the prior.
+    std::visit(
+        [&]<typename S>(const BiasEstimate<S>&) {
+          covariance_ = BiasEstimate<S>::from_sensor_bias(prior_std).cwiseAbs2().asDiagonal();
+        },
+        estimate_);
+  }
 
   /// Adds detection `z` (noise `noise`) of the aircraft whose track has prior `prior`: z as
   /// the station measured it, biases and all. False, and nothing added, where S does not
@@ -68,6 +90,7 @@ class StationBias {
           const auto settled = estimate.estimate();
           if (!settled) return false;
           bias_ = BiasEstimate<S>::as_sensor_bias(settled->mean);
+          covariance_ = settled->covariance;
           return true;
         },
         estimate_);
@@ -75,6 +98,66 @@ class StationBias {
 
   /// The biases the corrections use (none learnt: zero).
   const SensorBias& bias() const { return bias_; }
+
+  /// Their standard deviations, as settled (before the first settle: the prior's); 0 for an
+  /// entry the sensor's estimate does not hold (estimated()).
+  SensorBias sigma() const {
+    return std::visit(
+        [&]<typename S>(const BiasEstimate<S>&) {
+          return BiasEstimate<S>::as_sensor_bias(
+              fixed_covariance<BiasEstimate<S>::kDim>().diagonal().cwiseSqrt());
+        },
+        estimate_);
+  }
+
+  /// Which of SensorBias's entries (range, azimuth, elevation, clock) the estimate holds.
+  std::array<bool, 4> estimated() const {
+    return std::visit(
+        [&]<typename S>(const BiasEstimate<S>&) {
+          std::array<bool, 4> held{false, false, false, true};
+          for (const int c : BiasEstimate<S>::kOffsetOf) {
+            if (c >= 0) held[static_cast<std::size_t>(c)] = true;
+          }
+          return held;
+        },
+        estimate_);
+  }
+
+  /// How uncertain a detection corrected for the track of prior mean `mean` still is: G Σ Gᵀ,
+  /// Σ the settled covariance. Added to R, it makes the gates and updates consider the biases
+  /// not yet known (a Schmidt, or "consider", treatment: the biases are not states of the
+  /// tracks, but their uncertainty is not ignored either).
+  DetectionNoise correction_noise(const Sensor& sensor, const Vector<N>& mean) const {
+    return std::visit(
+        [&]<typename S>(const S& typed) -> DetectionNoise {
+          constexpr int D = BiasEstimate<S>::kDim;
+          const auto g = BiasEstimate<S>::bias_jacobian(typed.jacobian(mean), mean);
+          return g * fixed_covariance<D>() * g.transpose();
+        },
+        sensor);
+  }
+
+  /// The same for the offsets alone, E Σ Eᵀ: what a detection no track has met still carries
+  /// (its clock's part needs a velocity; clock_variance() gives it to whoever has one).
+  DetectionNoise offsets_noise(const Sensor& sensor) const {
+    return std::visit(
+        [&]<typename S>(const S&) -> DetectionNoise {
+          constexpr int M = S::kMeasDim;
+          constexpr int D = BiasEstimate<S>::kDim;
+          Matrix<M, D - 1> e = Matrix<M, D - 1>::Zero();
+          int column = 0;
+          for (int i = 0; i < M; ++i) {
+            if (BiasEstimate<S>::kOffsetOf[static_cast<std::size_t>(i)] >= 0) e(i, column++) = 1.0;
+          }
+          return e * fixed_covariance<D>().template topLeftCorner<D - 1, D - 1>() * e.transpose();
+        },
+        sensor);
+  }
+
+  /// The settled variance of the clock offset (s²).
+  double clock_variance() const {
+    return covariance_(covariance_.rows() - 1, covariance_.cols() - 1);
+  }
 
   /// `z` corrected for the aircraft whose track's prior mean is `mean`: z − G(x̂) b̂, the
   /// clock's part included.
@@ -102,9 +185,46 @@ class StationBias {
 
   const Estimate& estimate() const { return estimate_; }
 
+  /// What it has summed, for station `station_id` (BiasSums).
+  BiasSums sums(int station_id) const {
+    return std::visit(
+        [&]<typename S>(const BiasEstimate<S>& estimate) {
+          return BiasSums{station_id, estimate.information(), estimate.information_vector(),
+                          estimate.detections()};
+        },
+        estimate_);
+  }
+
+  /// Takes `sums` (another node's, of a station of this sensor) as its own and settles them;
+  /// false, and nothing changed, where they are not of this sensor's size or do not factor.
+  bool restore(const BiasSums& sums) {
+    return std::visit(
+        [&]<typename S>(BiasEstimate<S>& estimate) {
+          constexpr int D = BiasEstimate<S>::kDim;
+          if (sums.information.rows() != D || sums.information.cols() != D ||
+              sums.information_vector.size() != D) {
+            return false;
+          }
+          const BiasEstimate<S> before = estimate;
+          estimate.restore(sums.information, sums.information_vector,
+                           static_cast<std::size_t>(sums.detections));
+          if (settle()) return true;
+          estimate = before;
+          return false;
+        },
+        estimate_);
+  }
+
  private:
+  template <int D>
+  Covariance<D> fixed_covariance() const {
+    return covariance_.template topLeftCorner<D, D>();
+  }
+
   Estimate estimate_;
   SensorBias bias_;
+  /// Σ of the settled estimate, of its size (at most the three offsets and the clock).
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4> covariance_;
 };
 
 }  // namespace skyfuse

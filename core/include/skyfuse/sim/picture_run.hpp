@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "skyfuse/metrics/picture_score.hpp"
+#include "skyfuse/registration/bias_trace.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/traffic/target_truth.hpp"
 
@@ -47,6 +48,12 @@ struct PictureRunResult {
   std::size_t nees_samples = 0;
   std::size_t confirmed_at_end = 0;
   std::size_t tentative_at_end = 0;
+  /// Each station's registration round by round (the first peer's; every peer's is the same
+  /// bits), where the scenario registers its stations; empty otherwise.
+  std::vector<BiasTrace> registration;
+  /// The largest difference between the center's bias estimates and the first peer's, over
+  /// the run, relative to 1 + |peer's|.
+  double max_bias_gap = 0.0;
 };
 
 /// Runs `scenario` (has_many_targets()) with its first `stations` stations against `truth`,

@@ -321,7 +321,38 @@ wire::PictureState picture_state_to_wire(const Table& table, std::uint64_t run_i
     t.address(track.address);
     out.push_back(std::move(t));
   }
+  for (const BiasSums& sums : table.bias_sums()) {
+    wire::PictureStateBias b;
+    b.station_id(sums.station_id);
+    b.information(pack_upper<Eigen::Dynamic>(Eigen::MatrixXd(sums.information)));
+    const auto& v = sums.information_vector;
+    b.information_vector(std::vector<double>(v.data(), v.data() + v.size()));
+    b.detections(sums.detections);
+    sample.biases().push_back(std::move(b));
+  }
   return sample;
+}
+
+/// The registration sums of a PictureState (ascending station id; none where the tracker
+/// registers nothing), or nothing if any is wrong: more than the four entries a bias has, an
+/// information of another size than its vector, a value that is not finite, station ids not
+/// strictly ascending. Whether they are the receiving table's stations' is its to say
+/// (TrackTable::restore_biases).
+inline std::optional<std::vector<BiasSums>> picture_biases_from_wire(
+    const wire::PictureState& sample) {
+  std::vector<BiasSums> biases;
+  for (const wire::PictureStateBias& b : sample.biases()) {
+    if (!biases.empty() && b.station_id() <= biases.back().station_id) return std::nullopt;
+    const auto d = static_cast<int>(b.information_vector().size());
+    if (d < 1 || d > 4) return std::nullopt;
+    const auto information = unpack_upper<Eigen::Dynamic>(b.information(), d);
+    const auto vector = unpack_vector<Eigen::Dynamic>(b.information_vector(), d);
+    if (!information || !vector || !information->allFinite() || !vector->allFinite()) {
+      return std::nullopt;
+    }
+    biases.push_back({b.station_id(), *information, *vector, b.detections()});
+  }
+  return biases;
 }
 
 /// The tracks of a PictureState for a table of `filters`' tracks (a single model's Gaussian of
