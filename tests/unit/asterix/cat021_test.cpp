@@ -1,0 +1,165 @@
+// CAT021 ed. 2.6, item by item against bytes worked out from the standard's definitions, then
+// a whole record, then round trips within each item's LSB.
+#include "skyfuse/asterix/cat021.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "asterix_samples.hpp"
+#include "skyfuse/asterix/datagram.hpp"
+#include "skyfuse/asterix/units.hpp"
+
+namespace skyfuse::asterix {
+namespace {
+
+using testing::sample_report;
+
+Bytes item(const AdsbReport& report, std::uint16_t number) {
+  return testing::encoded_item(encode_cat021_record, uap_cat021(), report, number);
+}
+
+TEST(AsterixCat021, DataSourceTimesAndAddress) {
+  EXPECT_EQ(item(sample_report(), 10), (Bytes{0x19, 0x0B}));        // SAC 25, SIC 11
+  EXPECT_EQ(item(sample_report(), 71), (Bytes{0x58, 0x78, 0x40}));  // 45296.5 s × 128
+  EXPECT_EQ(item(sample_report(), 73), (Bytes{0x58, 0x78, 0x60}));  // 45296.75 s × 128
+  EXPECT_EQ(item(sample_report(), 80), (Bytes{0xA1, 0xB2, 0xC3}));
+}
+
+TEST(AsterixCat021, TargetReportDescriptor) {
+  // ATP 0 (ICAO address), ARC 0 (25 ft), RC 0, RAB 0, FX; extension: all 0 (GBS, SIM, TST,
+  // SAA = capable, CL = valid).
+  EXPECT_EQ(item(sample_report(), 40), (Bytes{0x01, 0x00}));
+  auto r = sample_report();
+  r.address_type = 3;        // anonymous: 3 << 5 = 0x60
+  r.altitude_reporting = 1;  // 100 ft: 1 << 3 = 0x08
+  r.ground = true;           // GBS, bit 7 of the extension
+  r.test_target = true;      // TST, bit 5
+  EXPECT_EQ(item(r, 40), (Bytes{0x69, 0x50}));
+  r.address_type = 4;  // reserved
+  EXPECT_FALSE(encode_cat021_record(r));
+}
+
+TEST(AsterixCat021, PositionInEitherResolution) {
+  // I021/131: LSB 180/2^30 deg: -45° = -2^28 = 0xF0000000, -90° = -2^29 = 0xE0000000.
+  EXPECT_EQ(item(sample_report(), 131), (Bytes{0xF0, 0x00, 0x00, 0x00, 0xE0, 0x00, 0x00, 0x00}));
+  EXPECT_TRUE(item(sample_report(), 130).empty());
+  auto r = sample_report();
+  r.position_items = PositionItems::low_resolution;
+  // I021/130: LSB 180/2^23 deg in 24 bits: -45° = -2^21 = 0xE00000, -90° = -2^22 = 0xC00000.
+  EXPECT_EQ(item(r, 130), (Bytes{0xE0, 0x00, 0x00, 0xC0, 0x00, 0x00}));
+  EXPECT_TRUE(item(r, 131).empty());
+  r.position_items = PositionItems::both;
+  EXPECT_FALSE(item(r, 130).empty());
+  EXPECT_FALSE(item(r, 131).empty());
+}
+
+TEST(AsterixCat021, GeometricHeightIn6Point25Feet) {
+  auto r = sample_report();
+  r.geometric_height_m = 3048.0;  // 10 000 ft = 1600 = 0x0640
+  EXPECT_EQ(item(r, 140), (Bytes{0x06, 0x40}));
+  r.geometric_height_m = 150000 * kMetresPerFoot;  // the standard's range ends below 150 000 ft
+  EXPECT_FALSE(encode_cat021_record(r));
+}
+
+TEST(AsterixCat021, QualityIndicatorsWithTwoExtensions) {
+  auto r = sample_report();
+  r.quality = AdsbQuality{2, 8, 1, 3, 9, 0, 2, 1};
+  // Primary: NACv 2 << 5 = 0x40, NIC 8 << 1 = 0x10, FX: 0x51. First extension: NICbaro 0x80,
+  // SIL 3 << 5 = 0x60, NACp 9 << 1 = 0x12, FX: 0xF3. Second: SILS 0, SDA 2 << 3 = 0x10, GVA
+  // 1 << 1 = 0x02: 0x12.
+  EXPECT_EQ(item(r, 90), (Bytes{0x51, 0xF3, 0x12}));
+  r.quality.nacp = 16;
+  EXPECT_FALSE(encode_cat021_record(r));
+}
+
+TEST(AsterixCat021, AirborneGroundVector) {
+  auto r = sample_report();
+  // 250 kt = 250/3600 NM/s = 1137.8 LSB of 2^-14 NM/s → 1138 = 0x0472; 45° = 8192 = 0x2000.
+  r.ground_vector = GroundVector{250 * kMetresPerNauticalMile / 3600, 45.0};
+  EXPECT_EQ(item(r, 160), (Bytes{0x04, 0x72, 0x20, 0x00}));
+  r.ground_vector->ground_speed_mps = 2 * kMetresPerNauticalMile;  // 2 NM/s: past 15 bits
+  EXPECT_FALSE(encode_cat021_record(r));
+}
+
+TEST(AsterixCat021, AWholeRecordsFspec) {
+  auto r = sample_report();
+  r.geometric_height_m = 3048.0;
+  r.ground_vector = GroundVector{100.0, 10.0};
+  const auto record = encode_cat021_record(r);
+  ASSERT_TRUE(record);
+  // FRNs 1 2 5 7 (010 040 071 131) + FX: 0xCB; 11 12 (080 073) + FX: 0x19; 16 17 (140 090) +
+  // FX: 0x61; 26 (160): 0x08.
+  EXPECT_EQ(Bytes(record.bytes.begin(), record.bytes.begin() + 4), (Bytes{0xCB, 0x19, 0x61, 0x08}));
+  // FSPEC 4 + 010 2 + 040 2 + 071 3 + 131 8 + 080 3 + 073 3 + 140 2 + 090 3 + 160 4.
+  EXPECT_EQ(record.bytes.size(), 34u);
+}
+
+void expect_round_trip(const AdsbReport& in) {
+  const AdsbReport reports[] = {in};
+  const auto block = encode_cat021(reports);
+  ASSERT_TRUE(block) << block.error->item << ": " << block.error->reason;
+  const auto decoded = decode_datagram(block.bytes);
+  ASSERT_EQ(decoded.reports.size(), 1u);
+  EXPECT_EQ(decoded.refusals.total(), 0u);
+  const auto& out = decoded.reports[0];
+  EXPECT_EQ(out.source, in.source);
+  EXPECT_EQ(out.address_type, in.address_type);
+  EXPECT_EQ(out.altitude_reporting, in.altitude_reporting);
+  EXPECT_EQ(out.ground, in.ground);
+  EXPECT_EQ(out.simulated, in.simulated);
+  EXPECT_EQ(out.test_target, in.test_target);
+  EXPECT_NEAR(out.time_of_applicability_s, in.time_of_applicability_s, 1.0 / 256 + 1e-9);
+  EXPECT_NEAR(out.time_of_reception_s, in.time_of_reception_s, 1.0 / 256 + 1e-9);
+  EXPECT_EQ(out.address, in.address);
+  EXPECT_EQ(out.position_items, in.position_items);
+  const int scale = in.position_items == PositionItems::low_resolution ? 24 : 31;
+  const double half = 180.0 / std::ldexp(1.0, scale);
+  EXPECT_NEAR(out.latitude_deg, in.latitude_deg, half + 1e-12);
+  EXPECT_NEAR(out.longitude_deg, in.longitude_deg, half + 1e-12);
+  ASSERT_EQ(out.geometric_height_m.has_value(), in.geometric_height_m.has_value());
+  if (in.geometric_height_m) {
+    EXPECT_NEAR(*out.geometric_height_m, *in.geometric_height_m, 3.125 * kMetresPerFoot + 1e-9);
+  }
+  EXPECT_EQ(out.quality, in.quality);
+  ASSERT_EQ(out.ground_vector.has_value(), in.ground_vector.has_value());
+  if (in.ground_vector) {
+    EXPECT_NEAR(out.ground_vector->ground_speed_mps, in.ground_vector->ground_speed_mps,
+                std::ldexp(1.0, -15) * kMetresPerNauticalMile + 1e-9);
+    const double turn = std::remainder(
+        out.ground_vector->track_angle_deg - in.ground_vector->track_angle_deg, 360.0);
+    EXPECT_NEAR(turn, 0.0, 180.0 / 65536 + 1e-9);
+  }
+}
+
+TEST(AsterixCat021, RoundTripsWithinEachItemsResolution) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 500; ++i) {
+    AdsbReport r;
+    r.source = {static_cast<std::uint8_t>(rng()), static_cast<std::uint8_t>(rng())};
+    r.address_type = static_cast<std::uint8_t>(rng() % 4);
+    r.altitude_reporting = static_cast<std::uint8_t>(rng() % 4);
+    r.ground = (rng() & 1) != 0;
+    r.simulated = (rng() & 1) != 0;
+    r.test_target = (rng() & 1) != 0;
+    r.time_of_applicability_s = u(rng) * 86399.0;
+    r.time_of_reception_s = u(rng) * 86399.0;
+    r.address = static_cast<std::uint32_t>(rng() & 0xFFFFFF);
+    r.latitude_deg = (u(rng) - 0.5) * 179.9;
+    r.longitude_deg = (u(rng) - 0.5) * 359.9;
+    r.position_items = static_cast<PositionItems>(rng() % 3);
+    if ((rng() & 1) != 0) r.geometric_height_m = u(rng) * 40000.0 - 400.0;
+    r.quality =
+        AdsbQuality{static_cast<std::uint8_t>(rng() % 8),  static_cast<std::uint8_t>(rng() % 16),
+                    static_cast<std::uint8_t>(rng() % 2),  static_cast<std::uint8_t>(rng() % 4),
+                    static_cast<std::uint8_t>(rng() % 16), static_cast<std::uint8_t>(rng() % 2),
+                    static_cast<std::uint8_t>(rng() % 4),  static_cast<std::uint8_t>(rng() % 4)};
+    if ((rng() & 1) != 0) r.ground_vector = GroundVector{u(rng) * 3000.0, (u(rng) - 0.5) * 720.0};
+    expect_round_trip(r);
+  }
+}
+
+}  // namespace
+}  // namespace skyfuse::asterix
