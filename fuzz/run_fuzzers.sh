@@ -59,4 +59,6 @@ status=0
 run scenario_loader || status=1
 run increment_check -dict="$src/doubles.dict" -max_len=433 || status=1
 run observation_check -dict="$src/doubles.dict" -max_len=96 || status=1
+# A UDP datagram of ASTERIX is at most 65 507 octets; 4 096 holds many blocks and records.
+run asterix_decode -max_len=4096 || status=1
 exit $status
