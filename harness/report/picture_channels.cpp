@@ -9,6 +9,7 @@
 #include <string>
 
 #include "report/foxglove_json.hpp"
+#include "skyfuse/registration/bias_trace.hpp"
 #include "skyfuse/traffic/geodesy.hpp"
 
 namespace skyfuse::harness {
@@ -42,6 +43,20 @@ std::string picture_schema() {
       .dump();
 }
 
+std::string registration_schema() {
+  const json entry = object_of({{"entry", typed("string")},
+                                {"estimate", typed("number")},
+                                {"sigma", typed("number")},
+                                {"truth", typed("number")},
+                                {"within_2sigma", typed("boolean")}});
+  const json station = object_of({{"station", typed("integer")}, {"entries", array_of(entry)}});
+  return titled(object_of({{"timestamp", time_schema()},
+                           {"step", typed("integer")},
+                           {"stations", array_of(station)}}),
+                "skyfuse.Registration")
+      .dump();
+}
+
 std::string geojson_schema() {
   return titled(object_of({{"geojson", typed("string")}}), "foxglove.GeoJSON").dump();
 }
@@ -55,6 +70,35 @@ json geojson_point(const GeoAnchor& anchor, const Vector3& enu, json properties)
           {"properties", std::move(properties)}};
 }
 
+// The first station's bias estimates of `frame`, each entry beside its truth (the scenario's,
+// which only the harness knows) and whether it lies within 2 sigma of it.
+json registration_message(const PicturePlan& plan, const PictureFrame& frame, json timestamp) {
+  json stations = json::array();
+  for (const FrameBias& bias : frame.biases) {
+    const auto config =
+        std::find_if(plan.scenario.stations.begin(), plan.scenario.stations.end(),
+                     [&](const StationConfig& s) { return s.id == bias.station_id; });
+    const SensorBias truth = config != plan.scenario.stations.end() && config->detection
+                                 ? config->detection->bias
+                                 : SensorBias{};
+    json entries = json::array();
+    for (std::size_t e = 0; e < BiasTrace::kEntries.size(); ++e) {
+      const double sigma = bias_entry(bias.sigma, e);
+      if (!(sigma > 0.0)) continue;  // the sensor has no such entry
+      const double estimate = bias_entry(bias.estimate, e);
+      const double truth_e = bias_entry(truth, e);
+      entries.push_back({{"entry", BiasTrace::kEntries[e]},
+                         {"estimate", estimate},
+                         {"sigma", sigma},
+                         {"truth", truth_e},
+                         {"within_2sigma", std::abs(estimate - truth_e) <= 2.0 * sigma}});
+    }
+    stations.push_back({{"station", bias.station_id}, {"entries", std::move(entries)}});
+  }
+  return {
+      {"timestamp", std::move(timestamp)}, {"step", frame.step}, {"stations", std::move(stations)}};
+}
+
 }  // namespace
 
 PictureChannels::PictureChannels(const PicturePlan& plan, std::uint64_t epoch_ns)
@@ -65,6 +109,9 @@ PictureChannels::PictureChannels(const PicturePlan& plan, std::uint64_t epoch_ns
             {"/skyfuse/round", "skyfuse.Round", round_schema()},
             {"/skyfuse/picture", "skyfuse.Picture", picture_schema()},
             {"/skyfuse/summary", "skyfuse.RunSummary", run_summary_schema()}};
+  if (plan.scenario.tracker.registration.enabled) {
+    specs_.push_back({"/skyfuse/registration", "skyfuse.Registration", registration_schema()});
+  }
 }
 
 std::uint64_t PictureChannels::log_time_ns(int step) const {
@@ -240,6 +287,9 @@ void PictureChannels::figure_messages(const PictureFrame& frame, std::uint64_t n
         {"false_alarms", false_alarms},
         {"peers_agree", frame.peers_agree},
         {"digest", fmt::format("{:016x}", frame.digest)}});
+  if (plan_.scenario.tracker.registration.enabled) {
+    emit(kRegistration, registration_message(plan_, frame, stamp(ns)));
+  }
 }
 
 ChannelMessage PictureChannels::summary_message(std::string summary_json, int steps) const {

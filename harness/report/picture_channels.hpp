@@ -16,6 +16,7 @@
 #include "skyfuse/metrics/picture_score.hpp"
 #include "skyfuse/sim/picture_detections.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
+#include "skyfuse/traffic/sensor_bias.hpp"
 
 namespace skyfuse::harness {
 
@@ -34,6 +35,13 @@ struct FrameNode {
   std::uint32_t scans_fused = 0;
 };
 
+/// A registered station's bias estimate after a round, as the first station's picture holds it.
+struct FrameBias {
+  int station_id = 0;
+  SensorBias estimate;
+  SensorBias sigma;  ///< 0 for an entry the station's sensor does not have
+};
+
 /// A round of a run of many aircraft, as the harness saw it.
 struct PictureFrame {
   int step = 0;
@@ -45,11 +53,21 @@ struct PictureFrame {
   bool peers_agree = true;
   std::uint64_t digest = 0;
   double latency_ms = 0.0;  ///< how long the round took to come in (picture_run.cpp says from when)
+  std::vector<FrameBias> biases;  ///< the first station's, where the tracker registers
 };
 
 class PictureChannels {
  public:
-  enum Channel : std::size_t { kScene, kStations, kTracksGeoJson, kRounds, kPicture, kSummary };
+  /// kRegistration only where the scenario registers its stations.
+  enum Channel : std::size_t {
+    kScene,
+    kStations,
+    kTracksGeoJson,
+    kRounds,
+    kPicture,
+    kSummary,
+    kRegistration
+  };
 
   /// `epoch_ns`: the log time of step 0 (steps follow at the scenario's time step).
   PictureChannels(const PicturePlan& plan, std::uint64_t epoch_ns);

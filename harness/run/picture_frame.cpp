@@ -41,6 +41,12 @@ PictureFrame picture_frame(int k, const std::vector<wire::PictureRound>& rounds,
   }
   if (first_peer == nullptr) return frame;
   frame.digest = first_peer->picture_digest();
+  for (const wire::PictureBias& b : first_peer->biases()) {
+    if (b.estimate().size() != 4 || b.sigma().size() != 4) continue;
+    const auto& e = b.estimate();
+    const auto& s = b.sigma();
+    frame.biases.push_back({b.station_id(), {e[0], e[1], e[2], e[3]}, {s[0], s[1], s[2], s[3]}});
+  }
   for (const wire::PictureTrack& t : first_peer->tracks()) {
     FrameTrack& track = frame.tracks.emplace_back();
     track.id = t.track_id();

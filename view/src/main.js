@@ -12,6 +12,7 @@ import "./page.css";
 import { legendShowsLatest, showLatestInLegend } from "./plots.js";
 import { drawDetections, drawPicturePlots, drawTrackLabel, emptyPicture, onPicture, onPictureDeletion,
   onPictureEntity } from "./picture.js";
+import { drawRegistration, onRegistration } from "./registration.js";
 
 window.NODRAW = new URLSearchParams(location.search).has("nodraw");
 window.NOMSG = new URLSearchParams(location.search).has("nomsg");
@@ -29,6 +30,7 @@ const view = {
   stripNodes: [],            // the strip's rows: the center (0), then each station's id
   modes: null, summary: null,
   picture: emptyPicture(),   // a run of many aircraft: its tracks' series and last scans
+  registration: null,        // a registered run's latest bias estimates
 };
 window.skyfuseView = view;
 
@@ -339,6 +341,7 @@ function draw() {
   drawStrip();
   drawFigures();
   drawPicturePlots(view);
+  drawRegistration(view);
 }
 
 // Drawn only when something changed, and at most DRAWS_PER_SECOND: a page open beside a run on
@@ -367,11 +370,13 @@ const handlers = {
   "/skyfuse/modes": (m) => { view.modes = m; },
   "/skyfuse/summary": (m) => { view.summary = m; },
   "/skyfuse/picture": (m) => onPicture(view, m),
+  "/skyfuse/registration": (m) => onRegistration(view, m),
 };
 
 function resetView() {
   Object.assign(view, { round: null, rounds: 0, firstRoundAt: null, latencyMs: null,
-    modes: null, summary: null, strip: [], stripNodes: [], picture: emptyPicture() });
+    modes: null, summary: null, strip: [], stripNodes: [], picture: emptyPicture(),
+    registration: null });
   view.entities.clear();
   view.series.clear();
 }

@@ -122,7 +122,8 @@ test("skyfuse view shows a run of many aircraft: every track labelled, the scans
         labels: tracks.map(([id, e]) => [id, e.label]),
         aircraft: [...v.entities.keys()].filter((id) => id.startsWith("aircraft/")).length,
         figures: document.getElementById("picture-figures").textContent,
-        pictureShown: !document.getElementById("picture-section").hidden };
+        pictureShown: !document.getElementById("picture-section").hidden,
+        registrationShown: !document.getElementById("registration-section").hidden };
     });
     // Every track of the last round drawn with its id, as many as the picture holds.
     assert.equal(seen.labels.length, seen.last.confirmed + seen.last.tentative);
@@ -132,12 +133,71 @@ test("skyfuse view shows a run of many aircraft: every track labelled, the scans
     assert.equal(seen.gospa, rounds, "a GOSPA point per round");
     assert.equal(seen.scans, 8, "the last scan of each of the eight radars");
     assert.ok(seen.pictureShown);
+    assert.ok(!seen.registrationShown, "uam-city registers nothing");
     assert.match(seen.figures, /confirmed and \d+ tentative tracks, \d+ aircraft; GOSPA [\d.]+ m/);
     // The scene holds confirmed tracks' blue and the aircraft's green.
     const colours = await opaqueColours(page, "#scene");
     assert.ok(colours.includes("51,115,230") && colours.includes("38,179,64"), colours.slice(0, 20).join(" "));
     assert.deepEqual(errors, []);
     await page.screenshot({ path: process.env.SKYFUSE_PICTURE_SCREENSHOT ?? join(dir, "view-picture.png"), fullPage: true });
+  } finally {
+    server?.kill("SIGINT");
+    await browser.close();
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+// A registered run (scenarios/registration.yaml's biased radars with the tracker estimating
+// their biases): the page shows each radar's estimates beside their truths, the 2σ band and
+// whether the truth lies in it, as the recording's last /skyfuse/registration message says.
+test("skyfuse view shows a registered run's bias estimates against their truths", { skip: !existsSync(browserPath) && `no ${browserPath}` }, async () => {
+  assert.ok(skyfuse && scenarios, "SKYFUSE_BIN and SKYFUSE_SCENARIOS name the build's skyfuse and scenarios/");
+  const dir = mkdtempSync(join(tmpdir(), "skyfuse-view-"));
+  const browser = await chromium.launch(launchOptions);
+  let server = null;
+  try {
+    const rounds = 80;
+    const scenario = join(dir, "registered.yaml");
+    writeFileSync(scenario, readFileSync(join(scenarios, "registration.yaml"), "utf8")
+      .replace(/\ntracker:\n/, "\ntracker:\n  registration: {kind: least_squares}\n"));
+    let url;
+    ({ server, url } = await recordAndServe(join(dir, "run.mcap"),
+      ["--scenario", scenario, "--steps", String(rounds)]));
+    const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
+    const errors = [];
+    page.on("pageerror", (e) => errors.push(e.message));
+    await page.goto(url);
+    await page.waitForFunction((n) => window.skyfuseView?.recordingRounds === n, rounds, { timeout: 30_000 });
+    await page.waitForFunction((n) => document.getElementById("round-counter").textContent === String(n - 1), rounds);
+    const seen = await page.evaluate(() => ({
+      message: window.skyfuseView.registration,
+      shown: !document.getElementById("registration-section").hidden,
+      rows: [...document.querySelectorAll("#registration tbody tr")].map((r) =>
+        [r.dataset.station, r.dataset.entry, ...[...r.cells].map((c) => c.textContent)]),
+    }));
+    assert.ok(seen.shown);
+    assert.equal(seen.message.step, rounds - 1);
+    // The three radars, each with range, azimuth, elevation and clock; the ADS-B station is the
+    // reference and has none.
+    assert.deepEqual(seen.message.stations.map((s) => s.station), [1, 2, 3]);
+    assert.equal(seen.rows.length, 12);
+    const truths = { 1: [150, 0.002618, 0.001745, 0], 2: [-150, -0.002618, 0.001745, 0],
+      3: [150, -0.002618, -0.001745, 0] };
+    seen.message.stations.forEach((s) => {
+      assert.deepEqual(s.entries.map((e) => e.entry), ["range_m", "azimuth_rad", "elevation_rad", "time_s"]);
+      s.entries.forEach((e, i) => {
+        assert.equal(e.truth, truths[s.station][i]);
+        assert.ok(e.sigma > 0 && Number.isFinite(e.estimate));
+        assert.equal(e.within_2sigma, Math.abs(e.estimate - e.truth) <= 2 * e.sigma);
+      });
+      // After 80 scans of 4 s the range is known to metres: within 20 m of its 150.
+      assert.ok(Math.abs(s.entries[0].estimate - s.entries[0].truth) < 20, JSON.stringify(s.entries[0]));
+    });
+    const [station, entry, , unit, truth, band, within] = [...seen.rows[0]];
+    assert.deepEqual([station, entry, unit, truth], ["1", "range_m", "range (m)", "150.000"]);
+    assert.match(band, /^-?[\d.]+ ± [\d.]+$/);
+    assert.equal(within, seen.message.stations[0].entries[0].within_2sigma ? "yes" : "no");
+    assert.deepEqual(errors, []);
   } finally {
     server?.kill("SIGINT");
     await browser.close();

@@ -6,7 +6,7 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { mkdtempSync, readFileSync, readdirSync, rmSync } from "node:fs";
+import { mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { McapIndexedReader, McapStreamReader } from "@mcap/core";
@@ -207,6 +207,42 @@ test("a run of many aircraft records every track, scan and score its CSV file ho
     assert.equal(summary.length, 1);
     assert.equal(summary[0].steps, steps);
     assert.equal(summary[0].picture_digest_at_end, firstStation.get(String(steps - 1)).digest);
+  } finally {
+    rmSync(dir, { recursive: true, force: true });
+  }
+});
+
+// A registered run (scenarios/registration.yaml, the tracker estimating the radars' biases):
+// one /skyfuse/registration message a round, valid against its recorded schema (topicsOf), the
+// three radars' entries each beside the scenario's truth.
+test("a registered run records every round's bias estimates beside their truths", async () => {
+  const dir = mkdtempSync(join(tmpdir(), "skyfuse-record-"));
+  try {
+    const file = join(dir, "run.mcap");
+    const steps = 40;
+    const scenario = join(dir, "registered.yaml");
+    writeFileSync(scenario, readFileSync(join(scenarios, "registration.yaml"), "utf8")
+      .replace(/\ntracker:\n/, "\ntracker:\n  registration: {kind: least_squares}\n"));
+    execFileSync(skyfuse, ["run", "--scenario", scenario, "--steps", String(steps), "--domain", domain,
+      "--out", dir, "--record", file], { stdio: ["ignore", "ignore", "pipe"], timeout: 120_000 });
+    const { reader, messages } = await readRecording(file);
+    const topics = topicsOf(reader, messages);
+    assert.equal(topics.get("/skyfuse/registration").schema.name, "skyfuse.Registration");
+    const estimates = topics.get("/skyfuse/registration").payloads;
+    assert.equal(estimates.length, steps);
+    estimates.forEach((m, k) => {
+      assert.equal(m.step, k);
+      assert.deepEqual(m.stations.map((s) => s.station), [1, 2, 3]);
+      for (const s of m.stations) {
+        assert.deepEqual(s.entries.map((e) => e.entry), ["range_m", "azimuth_rad", "elevation_rad", "time_s"]);
+        assert.equal(Math.abs(s.entries[0].truth), 150);
+      }
+    });
+    // The first round's are the prior's (nothing learnt before a track is confirmed); the last
+    // round's range is known to metres.
+    assert.equal(estimates[0].stations[0].entries[0].sigma, 500);
+    const last = estimates.at(-1).stations[0].entries[0];
+    assert.ok(last.sigma < 10 && Math.abs(last.estimate - last.truth) < 30, JSON.stringify(last));
   } finally {
     rmSync(dir, { recursive: true, force: true });
   }

@@ -208,7 +208,8 @@ inline std::pair<std::optional<ReceivedScan>, std::optional<DropKind>> picture_s
 }
 
 /// Node `source_id`'s picture after round `step`: every track (id, status, estimate), the
-/// picture's digest and how many stations' scans the round fused. `Table` is a TrackTable, a
+/// picture's digest, how many stations' scans the round fused and, where the tracker
+/// registers, each registered station's bias estimate. `Table` is a TrackTable, a
 /// peer's or the center's.
 template <typename Table>
 wire::PictureRound picture_round_to_wire(const Table& table, std::uint64_t run_id,
@@ -233,6 +234,17 @@ wire::PictureRound picture_round_to_wire(const Table& table, std::uint64_t run_i
     track.covariance(pack_upper<N>(estimate.covariance));
     track.address(tracks[t].address);
     out.push_back(std::move(track));
+  }
+  for (const auto& station : table.stations()) {
+    if (!table.registers(station.id)) continue;
+    const auto& registration = table.bias_of(station.id);
+    const SensorBias& b = registration.bias();
+    const SensorBias s = registration.sigma();
+    wire::PictureBias bias;
+    bias.station_id(station.id);
+    bias.estimate({b.range_m, b.azimuth_rad, b.elevation_rad, b.time_s});
+    bias.sigma({s.range_m, s.azimuth_rad, s.elevation_rad, s.time_s});
+    sample.biases().push_back(std::move(bias));
   }
   return sample;
 }
