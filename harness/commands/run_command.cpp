@@ -131,6 +131,10 @@ void add_run_command(CLI::App& app, RunOptions& o) {
   cmd->add_option("--record", o.record_path,
                   "Also write the run as an MCAP recording (Foxglove, Lichtblick, skyfuse view)")
       ->type_name("FILE.mcap");
+  cmd->add_option("--asterix-record", o.asterix_record_path,
+                  "A run of many aircraft: also write every node's picture each round as ASTERIX "
+                  "CAT062 system tracks, UDP datagrams in a pcap file (Wireshark reads it)")
+      ->type_name("FILE.pcap");
   CLI::Option* live =
       cmd->add_option_function<std::string>(
              "--live", [&o](const std::string& text) { o.live = parse_live_endpoint(text); },

@@ -58,7 +58,13 @@ std::optional<std::string> missing_from(const RoundRecord& r, std::size_t statio
 class OneAircraftRun final : public RunKind {
  public:
   OneAircraftRun(const RunOptions& o, const RunPlan& plan)
-      : o_(o), plan_(plan), ids_(plan.participant_ids()), recorder_(plan, ids_, o.restarts) {}
+      : o_(o), plan_(plan), ids_(plan.participant_ids()), recorder_(plan, ids_, o.restarts) {
+    if (!o.asterix_record_path.empty()) {
+      throw std::invalid_argument(
+          "--asterix-record: for a run of many aircraft (a scenario with 'traffic'): one "
+          "aircraft's run has no system tracks to number");
+    }
+  }
 
   std::vector<int> station_ids() const override { return ids_; }
   int stations() const override { return plan_.stations; }

@@ -14,6 +14,7 @@
 
 #include "report/live_serving.hpp"
 #include "report/output_files.hpp"
+#include "report/picture_asterix.hpp"
 #include "report/picture_live_source.hpp"
 #include "report/picture_recording.hpp"
 #include "report/picture_run_report.hpp"
@@ -138,6 +139,7 @@ class ManyAircraftRun final : public RunKind {
   void begin_rounds(std::uint64_t epoch_ns) override {
     check_.emplace(plan_, truth_->targets, *twin_, summary_);
     if (!o_.record_path.empty()) recording_.emplace(o_.record_path, plan_, epoch_ns);
+    if (!o_.asterix_record_path.empty()) asterix_.emplace(o_.asterix_record_path, plan_, node_ids_);
     if (live_) live_->set_epoch_ns(epoch_ns);
   }
   void run_lockstep_round(int k, std::chrono::milliseconds round_timeout,
@@ -171,6 +173,7 @@ class ManyAircraftRun final : public RunKind {
             std::chrono::duration<double, std::milli> latency) {
     const PictureStep* scored = check_->add(k, rounds);
     ++rounds_taken_;
+    if (asterix_) asterix_->add(k, rounds);
     // What the nodes reported refusing while the round was collected (the harness refuses
     // nothing of its own here: a picture of another run or step is passed over, not counted).
     append_refusal_rows(refusals_, static_cast<std::uint64_t>(k),
@@ -196,6 +199,7 @@ class ManyAircraftRun final : public RunKind {
   std::unique_ptr<PictureLiveFeed> live_;
   std::optional<PictureRoundCheck> check_;
   std::optional<PictureRecording> recording_;
+  std::optional<PictureAsterixRecording> asterix_;
   int rounds_taken_ = 0;
   std::string refusals_{kRefusalsHeader};  // refusals.csv (run/refusal_rows.hpp)
   PictureRunSummary summary_;
@@ -243,6 +247,11 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
   const std::string summary_json = picture_run_json(summary, run_id, *twin_);
   write_file_atomically(out / "summary.json", summary_json + "\n");
   if (recording_) recording_->finish(summary_json, rounds_taken_);
+  if (asterix_) {
+    asterix_->close();
+    fmt::print("ASTERIX CAT062 of every node's picture in {} ({} tracks left out)\n",
+               o_.asterix_record_path, asterix_->left_out());
+  }
   if (live_) finish_live(*live_, summary_json);
   if (measured.stopped) {
     throw StoppedEarlyWith<PictureRunSummary>(*measured.stopped, summary, summary.host_verdict);

@@ -33,6 +33,9 @@ struct RunOptions {
   std::string replay_path;  ///< stations replay measurements from this CSV instead of simulating
   /// Also write the run as an MCAP recording here (report/run_recording.hpp); empty: none.
   std::string record_path;
+  /// A run of many aircraft: every node's picture each round as ASTERIX CAT062 in this pcap
+  /// (report/picture_asterix.hpp); empty: none.
+  std::string asterix_record_path;
   std::optional<LiveEndpoint> live;
   double live_scene_hz = 30.0;  ///< live scenes a second at most; 0: one every round  ///< stream
                                 ///< the run while it goes on (report/live_feed.hpp)

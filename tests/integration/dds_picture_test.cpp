@@ -15,6 +15,8 @@
 #include <sstream>
 
 #include "integration/run_fixture.hpp"
+#include "skyfuse/asterix/datagram.hpp"
+#include "skyfuse/asterix/pcap.hpp"
 #include "skyfuse/picture/picture_digest.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
@@ -35,6 +37,7 @@ struct StationRound {
   std::string digest;
   std::size_t confirmed = 0;
   int scans_fused = 0;
+  std::size_t tracks = 0;
 };
 using StationRounds = std::map<int, std::map<int, StationRound>>;  // step -> node -> row
 
@@ -56,7 +59,7 @@ StationRounds node_rounds(const std::filesystem::path& csv_path) {
                           &tracks, &confirmed, &scans),
               6)
         << line;
-    rounds[step][node] = {digest, confirmed, scans};
+    rounds[step][node] = {digest, confirmed, scans, tracks};
   }
   return rounds;
 }
@@ -401,6 +404,92 @@ TEST(DdsPicture, ThroughTheTreeEveryNodeHoldsTheInProcessPictureBitForBit) {
   EXPECT_EQ(summary.at("fanout").get<int>(), 2);
   EXPECT_EQ(summary.at("rounds_center_tracks_differ").get<int>(), 0);
   EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
+}
+
+// `--asterix-record`: every node's picture each round as CAT062 in a pcap. Every station holds
+// the same picture and numbers it by the same rule, so the four stations' datagrams of a round
+// are the same bytes; the project's decoder reads every record back, as many as the picture's
+// tracks, each with a short track number of its own; and Debian's Wireshark decoder (tshark)
+// finds nothing malformed and a track number per record.
+TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsPictureAsTheSameBytes) {
+  constexpr int kStations = 4;
+  constexpr int kSteps = 30;
+  const auto dir = test_dir();
+  const auto pcap = dir / "picture.pcap";
+  const Completed run =
+      run_to_completion({bin("skyfuse"), "run", "--scenario", kCity, "--stations",
+                         std::to_string(kStations), "--steps", std::to_string(kSteps), "--domain",
+                         "84", "--out", (dir / "out").string(), "--asterix-record", pcap.string()},
+                        dir / "out.log", 180s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  const asterix::PcapContents file = asterix::read_pcap(pcap);
+  ASSERT_FALSE(file.error.has_value()) << *file.error;
+  EXPECT_EQ(file.skipped.total(), 0U);
+  // Each round's datagram per node, by the node its source names.
+  std::map<std::int64_t, std::map<int, asterix::Bytes>> rounds;
+  for (const asterix::UdpDatagram& d : file.datagrams) {
+    const int node = d.source.address[2] * 256 + d.source.address[3];
+    EXPECT_TRUE(rounds[d.time_ns].emplace(node, d.payload).second) << "one datagram a node";
+  }
+  std::size_t records = 0;
+  for (const auto& [time_ns, nodes] : rounds) {
+    ASSERT_EQ(nodes.size(), static_cast<std::size_t>(kStations + 1)) << time_ns;
+    for (int station = 2; station <= kStations; ++station) {
+      EXPECT_EQ(nodes.at(station), nodes.at(1)) << "station " << station << " at " << time_ns;
+    }
+    const asterix::Decoded decoded = asterix::decode_datagram(nodes.at(1));
+    EXPECT_EQ(decoded.refusals.total(), 0U);
+    std::set<std::uint16_t> numbers;
+    for (const asterix::SystemTrack& t : decoded.tracks) {
+      EXPECT_TRUE(numbers.insert(t.track_number).second) << "a number per track";
+      EXPECT_GE(t.track_number, 1);
+      EXPECT_LT(t.track_number, 200) << "short numbers, reused after their hold-off";
+    }
+    for (const auto& [node, bytes] : nodes) {
+      records += asterix::decode_datagram(bytes).tracks.size();
+    }
+  }
+  // Every node's tracks of every round, as picture_rounds.csv counts them.
+  std::size_t tracks = 0;
+  for (const auto& [step, nodes] : node_rounds(dir / "out" / "picture_rounds.csv")) {
+    for (const auto& [node, row] : nodes) tracks += row.tracks;
+  }
+  EXPECT_EQ(records, tracks);
+  EXPECT_GT(records, 100U);
+
+  if (!std::filesystem::exists("/usr/bin/tshark")) {
+    GTEST_SKIP() << "tshark is not installed (Debian: apt-get install tshark)";
+  }
+  const Completed malformed =
+      run_to_completion({"/usr/bin/tshark", "-r", pcap.string(), "-d", "udp.port==8600,asterix",
+                         "-Y", "_ws.malformed || _ws.expert"},
+                        dir / "tshark_malformed.log", 60s);
+  ASSERT_EQ(malformed.status.code, 0) << malformed.output;
+  EXPECT_EQ(malformed.output.find("ASTERIX"), std::string::npos) << malformed.output;
+  const Completed numbers = run_to_completion(
+      {"/usr/bin/tshark", "-r", pcap.string(), "-d", "udp.port==8600,asterix", "-T", "fields", "-E",
+       "occurrence=a", "-E", "aggregator=,", "-e", "asterix.062_040_VALUE"},
+      dir / "tshark_numbers.log", 60s);
+  ASSERT_EQ(numbers.status.code, 0) << numbers.output;
+  // A line per datagram, its track numbers in hex joined by commas (tshark's own notes, on
+  // the same stream, are not such lines): each the number the project's decoder reads.
+  std::vector<unsigned long> theirs;
+  std::istringstream lines(numbers.output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("0x", 0) != 0) continue;
+    std::istringstream values(line);
+    for (std::string value; std::getline(values, value, ',');) {
+      theirs.push_back(std::stoul(value, nullptr, 16));
+    }
+  }
+  std::vector<unsigned long> ours;
+  for (const asterix::UdpDatagram& d : file.datagrams) {
+    for (const asterix::SystemTrack& t : asterix::decode_datagram(d.payload).tracks) {
+      ours.push_back(t.track_number);
+    }
+  }
+  EXPECT_EQ(theirs.size(), records);
+  EXPECT_EQ(theirs, ours);
 }
 
 // scenarios/registration.yaml with the tracker estimating every station's biases, written to
