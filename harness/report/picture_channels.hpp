@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "report/run_channels.hpp"
+#include "skyfuse/asterix/track_numbers.hpp"
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/metrics/picture_score.hpp"
 #include "skyfuse/sim/picture_detections.hpp"
@@ -85,6 +86,8 @@ class PictureChannels {
   /// The run's summary (summary.json's text) at the log time after the last step.
   ChannelMessage summary_message(std::string summary_json, int steps) const;
   std::uint64_t log_time_ns(int step) const;
+  /// A track's label: "T" and its short number (its long id past the numbers).
+  std::string track_name(std::uint64_t id) const;
 
   static constexpr int kTrailEvery = 10;
   static constexpr std::size_t kTrailPoints = 30;
@@ -103,6 +106,9 @@ class PictureChannels {
   bool trails_unsent_ = false;   ///< a trail took a point since the trails were last sent
   std::set<std::string> shown_;  ///< the tracks' and aircraft's entities of the last round
   std::set<std::string> gone_;   ///< entities gone since the last scene sent
+  /// The tracks' short numbers, given round by round as `--asterix-record` gives the first
+  /// station's (asterix/track_numbers.hpp): the labels a person reads.
+  asterix::TrackNumbers numbers_;
 };
 
 }  // namespace skyfuse::harness

@@ -127,7 +127,9 @@ test("skyfuse view shows a run of many aircraft: every track labelled, the scans
     });
     // Every track of the last round drawn with its id, as many as the picture holds.
     assert.equal(seen.labels.length, seen.last.confirmed + seen.last.tentative);
-    for (const [id, label] of seen.labels) assert.equal(label.replace(/[?]$/, ""), `T${id.slice(6)}`);
+    // Each with its short number (what --asterix-record sends), one a track.
+    for (const [, label] of seen.labels) assert.match(label, /^T\d{1,3}[?]?$/);
+    assert.equal(new Set(seen.labels.map(([, label]) => label.replace(/[?]$/, ""))).size, seen.labels.length);
     assert.equal(seen.aircraft, seen.last.aircraft);
     assert.ok(seen.last.confirmed >= 18, `${seen.last.confirmed} confirmed tracks of uam-city's 20 aircraft`);
     assert.equal(seen.gospa, rounds, "a GOSPA point per round");

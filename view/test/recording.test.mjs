@@ -190,7 +190,17 @@ test("a run of many aircraft records every track, scan and score its CSV file ho
       if (p.aircraft > 0) assert.equal(p.completeness, p.tracked / p.aircraft);
       const tracks = scenes[k].entities.filter((e) => e.id.startsWith("track/"));
       assert.equal(tracks.length, row.tracks, `step ${k}: a scene entity per track`);
-      for (const t of tracks) assert.equal(t.texts[0].text.replace(/[?]$/, ""), `T${t.id.slice(6)}`);
+      // Each track labelled with its short number (what --asterix-record sends), one a track,
+      // beside its long id.
+      const numbers = new Set();
+      for (const t of tracks) {
+        const meta = Object.fromEntries(t.metadata.map((m) => [m.key, m.value]));
+        assert.equal(meta.track_id, t.id.slice(6));
+        assert.equal(t.texts[0].text.replace(/[?]$/, ""), `T${meta.track_number}`);
+        assert.ok(+meta.track_number >= 1 && +meta.track_number < 1000, meta.track_number);
+        numbers.add(meta.track_number);
+      }
+      assert.equal(numbers.size, tracks.length, `step ${k}: a number per track`);
       const scans = scenes[k].entities.filter((e) => e.id.startsWith("scan/"));
       assert.equal(scans.length, 4);
       assert.equal(scans.reduce((n, e) => n + e.cubes.length, 0), p.detections, `step ${k}`);
