@@ -1,10 +1,12 @@
 #include "report/picture_asterix.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <span>
+#include <optional>
+#include <stdexcept>
+#include <vector>
 
+#include "skyfuse/asterix/data_block.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 
 namespace skyfuse::harness {
@@ -14,8 +16,8 @@ namespace {
 // same bytes whenever it is made and its times of track are seconds since that midnight.
 constexpr std::int64_t kEpochNs = 1'767'225'600'000'000'000;
 constexpr double kSecondsPerDay = 86'400.0;
-// A block's LEN is 16 bits: a picture of more tracks goes in several blocks, one datagram each.
-constexpr std::size_t kTracksPerBlock = 500;
+// One block per datagram, each within an unfragmented IPv4 UDP payload.
+constexpr std::size_t kMaxDatagramOctets = 65'507;
 // SAC 0 (no area assigned), SIC 1, until a scenario names its own.
 constexpr asterix::DataSource kSystemSource{0, 1};
 
@@ -77,26 +79,31 @@ void PictureAsterixRecording::add(int k, const std::vector<wire::PictureRound>& 
     for (const wire::PictureTrack& t : round.tracks()) ids.push_back(t.track_id());
     numbers->second.update(ids, static_cast<std::uint64_t>(k));
     left_out_ += numbers->second.unnumbered();
-    std::vector<asterix::SystemTrack> tracks;
+    // Each track encoded once; one it cannot hold is left out, not its whole block.
+    std::vector<asterix::Bytes> records;
     for (const wire::PictureTrack& t : round.tracks()) {
       if (t.x().size() < 6) continue;
       const auto number = numbers->second.number_of(t.track_id());
       if (!number) continue;
-      asterix::SystemTrack track = system_track(t, *number, time_of_day_s, plan_.scenario.anchor);
-      if (!asterix::encode_cat062_record(track)) {
+      asterix::Encoded record = asterix::encode_cat062_record(
+          system_track(t, *number, time_of_day_s, plan_.scenario.anchor));
+      if (!record) {
         ++left_out_;
         continue;
       }
-      tracks.push_back(std::move(track));
+      records.push_back(std::move(record.bytes));
     }
-    // A picture without tracks sends nothing that round.
-    for (std::size_t first = 0; first < tracks.size(); first += kTracksPerBlock) {
-      const std::size_t count = std::min(kTracksPerBlock, tracks.size() - first);
-      const asterix::Encoded block = asterix::encode_cat062(
-          std::span<const asterix::SystemTrack>(tracks).subspan(first, count));
-      if (!block) continue;
-      pcap_.write(
-          {time_ns, asterix_source_of(round.source_id()), {{127, 0, 0, 1}, 8600}, block.bytes});
+    // A picture without tracks sends nothing that round; a large one, several datagrams.
+    std::optional<asterix::EncodeError> error;
+    std::vector<asterix::Bytes> blocks =
+        asterix::encode_blocks(asterix::kCat062, records, kMaxDatagramOctets, error);
+    // Only a record longer than a datagram fails here, and a track's is under a hundred octets.
+    if (error) throw std::logic_error("--asterix-record: a CAT062 record longer than a datagram");
+    for (asterix::Bytes& block : blocks) {
+      pcap_.write({time_ns,
+                   asterix_source_of(round.source_id()),
+                   {{127, 0, 0, 1}, 8600},
+                   std::move(block)});
     }
   }
 }
