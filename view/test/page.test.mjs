@@ -11,6 +11,7 @@ import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "no
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { chromium } from "playwright-core";
+import { registeredScenario } from "./registered_scenario.mjs";
 
 const skyfuse = process.env.SKYFUSE_BIN;
 const browserPath = process.env.SKYFUSE_CHROMIUM ?? "/usr/bin/chromium";
@@ -99,22 +100,34 @@ test("skyfuse view shows a recording, and its slider moves through the rounds", 
   }
 });
 
-test("skyfuse view shows a run of many aircraft: every track labelled, the scans, GOSPA and counts", { skip: !existsSync(browserPath) && `no ${browserPath}` }, async () => {
-  assert.ok(skyfuse && scenarios, "SKYFUSE_BIN and SKYFUSE_SCENARIOS name the build's skyfuse and scenarios/");
+// Records a run of `rounds` rounds (`runArgs(dir)` after `skyfuse run`), serves it and opens
+// it in Chromium at its last round; `use(page, errors, dir)` looks at it. Everything is closed
+// and removed afterwards.
+async function showRecordedRun(rounds, runArgs, use) {
   const dir = mkdtempSync(join(tmpdir(), "skyfuse-view-"));
   const browser = await chromium.launch(launchOptions);
   let server = null;
   try {
-    const rounds = 120;
     let url;
-    ({ server, url } = await recordAndServe(join(dir, "run.mcap"),
-      ["--scenario", join(scenarios, "uam-city.yaml"), "--steps", String(rounds)]));
+    ({ server, url } = await recordAndServe(join(dir, "run.mcap"), [...runArgs(dir), "--steps", String(rounds)]));
     const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
     const errors = [];
     page.on("pageerror", (e) => errors.push(e.message));
     await page.goto(url);
     await page.waitForFunction((n) => window.skyfuseView?.recordingRounds === n, rounds, { timeout: 30_000 });
     await page.waitForFunction((n) => document.getElementById("round-counter").textContent === String(n - 1), rounds);
+    await use(page, errors, dir);
+  } finally {
+    server?.kill("SIGINT");
+    await browser.close();
+    rmSync(dir, { recursive: true, force: true });
+  }
+}
+
+test("skyfuse view shows a run of many aircraft: every track labelled, the scans, GOSPA and counts", { skip: !existsSync(browserPath) && `no ${browserPath}` }, async () => {
+  assert.ok(skyfuse && scenarios, "SKYFUSE_BIN and SKYFUSE_SCENARIOS name the build's skyfuse and scenarios/");
+  const rounds = 120;
+  await showRecordedRun(rounds, () => ["--scenario", join(scenarios, "uam-city.yaml")], async (page, errors, dir) => {
     const seen = await page.evaluate(() => {
       const v = window.skyfuseView;
       const tracks = [...v.entities.entries()].filter(([id, e]) => id.startsWith("track/") && !e.trail);
@@ -142,11 +155,7 @@ test("skyfuse view shows a run of many aircraft: every track labelled, the scans
     assert.ok(colours.includes("51,115,230") && colours.includes("38,179,64"), colours.slice(0, 20).join(" "));
     assert.deepEqual(errors, []);
     await page.screenshot({ path: process.env.SKYFUSE_PICTURE_SCREENSHOT ?? join(dir, "view-picture.png"), fullPage: true });
-  } finally {
-    server?.kill("SIGINT");
-    await browser.close();
-    rmSync(dir, { recursive: true, force: true });
-  }
+  });
 });
 
 // A registered run (scenarios/registration.yaml's biased radars with the tracker estimating
@@ -154,23 +163,8 @@ test("skyfuse view shows a run of many aircraft: every track labelled, the scans
 // whether the truth lies in it, as the recording's last /skyfuse/registration message says.
 test("skyfuse view shows a registered run's bias estimates against their truths", { skip: !existsSync(browserPath) && `no ${browserPath}` }, async () => {
   assert.ok(skyfuse && scenarios, "SKYFUSE_BIN and SKYFUSE_SCENARIOS name the build's skyfuse and scenarios/");
-  const dir = mkdtempSync(join(tmpdir(), "skyfuse-view-"));
-  const browser = await chromium.launch(launchOptions);
-  let server = null;
-  try {
-    const rounds = 80;
-    const scenario = join(dir, "registered.yaml");
-    writeFileSync(scenario, readFileSync(join(scenarios, "registration.yaml"), "utf8")
-      .replace(/\ntracker:\n/, "\ntracker:\n  registration: {kind: least_squares}\n"));
-    let url;
-    ({ server, url } = await recordAndServe(join(dir, "run.mcap"),
-      ["--scenario", scenario, "--steps", String(rounds)]));
-    const page = await browser.newPage({ viewport: { width: 1400, height: 900 } });
-    const errors = [];
-    page.on("pageerror", (e) => errors.push(e.message));
-    await page.goto(url);
-    await page.waitForFunction((n) => window.skyfuseView?.recordingRounds === n, rounds, { timeout: 30_000 });
-    await page.waitForFunction((n) => document.getElementById("round-counter").textContent === String(n - 1), rounds);
+  const rounds = 80;
+  await showRecordedRun(rounds, (dir) => ["--scenario", registeredScenario(scenarios, dir)], async (page, errors, dir) => {
     const seen = await page.evaluate(() => ({
       message: window.skyfuseView.registration,
       shown: !document.getElementById("registration-section").hidden,
@@ -200,11 +194,9 @@ test("skyfuse view shows a registered run's bias estimates against their truths"
     assert.match(band, /^-?[\d.]+ ± [\d.]+$/);
     assert.equal(within, seen.message.stations[0].entries[0].within_2sigma ? "yes" : "no");
     assert.deepEqual(errors, []);
-  } finally {
-    server?.kill("SIGINT");
-    await browser.close();
-    rmSync(dir, { recursive: true, force: true });
-  }
+    await page.locator("#registration-section").screenshot({
+      path: process.env.SKYFUSE_REGISTRATION_SCREENSHOT ?? join(dir, "view-registration.png") });
+  });
 });
 
 test("the live page follows a run to its last round", { skip: !existsSync(browserPath) && `no ${browserPath}` }, async () => {

@@ -6,12 +6,13 @@
 import { test } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from "node:fs";
+import { mkdtempSync, readFileSync, readdirSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join } from "node:path";
 import { McapIndexedReader, McapStreamReader } from "@mcap/core";
 import * as foxglove from "@foxglove/schemas/jsonschema.js";
 import Ajv from "ajv";
+import { registeredScenario } from "./registered_scenario.mjs";
 
 const skyfuse = process.env.SKYFUSE_BIN;
 const scenarios = process.env.SKYFUSE_SCENARIOS;
@@ -230,9 +231,7 @@ test("a registered run records every round's bias estimates beside their truths"
   try {
     const file = join(dir, "run.mcap");
     const steps = 40;
-    const scenario = join(dir, "registered.yaml");
-    writeFileSync(scenario, readFileSync(join(scenarios, "registration.yaml"), "utf8")
-      .replace(/\ntracker:\n/, "\ntracker:\n  registration: {kind: least_squares}\n"));
+    const scenario = registeredScenario(scenarios, dir);
     execFileSync(skyfuse, ["run", "--scenario", scenario, "--steps", String(steps), "--domain", domain,
       "--out", dir, "--record", file], { stdio: ["ignore", "ignore", "pipe"], timeout: 120_000 });
     const { reader, messages } = await readRecording(file);
