@@ -9,6 +9,7 @@
 #include <string>
 
 #include "report/foxglove_json.hpp"
+#include "skyfuse/picture/registration.hpp"
 #include "skyfuse/registration/bias_trace.hpp"
 #include "skyfuse/traffic/geodesy.hpp"
 
@@ -109,7 +110,7 @@ PictureChannels::PictureChannels(const PicturePlan& plan, std::uint64_t epoch_ns
             {"/skyfuse/round", "skyfuse.Round", round_schema()},
             {"/skyfuse/picture", "skyfuse.Picture", picture_schema()},
             {"/skyfuse/summary", "skyfuse.RunSummary", run_summary_schema()}};
-  if (plan.scenario.tracker.registration.enabled) {
+  if (estimates_biases(plan.scenario.tracker.registration)) {
     specs_.push_back({"/skyfuse/registration", "skyfuse.Registration", registration_schema()});
   }
 }
@@ -302,7 +303,7 @@ void PictureChannels::figure_messages(const PictureFrame& frame, std::uint64_t n
         {"false_alarms", false_alarms},
         {"peers_agree", frame.peers_agree},
         {"digest", fmt::format("{:016x}", frame.digest)}});
-  if (plan_.scenario.tracker.registration.enabled) {
+  if (estimates_biases(plan_.scenario.tracker.registration)) {
     emit(kRegistration, registration_message(plan_, frame, stamp(ns)));
   }
 }

@@ -340,7 +340,7 @@ TEST(PictureWire, ARegisteringPictureArrivesWithEveryStationsRegistration) {
   using Peer = test::PictureWorld::Peer;
   const test::PictureWorld world(12);
   TrackerConfig config;
-  config.registration.enabled = true;
+  config.registration.kind = "least_squares";
   Peer sender = world.empty_picture(config);
   AssociationWork work;
   for (int k = 0; k < 11; ++k) world.play_round(sender, k, work);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "skyfuse/picture/associator.hpp"
+#include "skyfuse/picture/registration.hpp"
 
 namespace skyfuse::detail {
 namespace {
@@ -136,10 +137,10 @@ TrackerConfig read_tracker(const YamlField& field) {
     registration->allow_only({"kind", "prior_std"});
     const YamlField kind = registration->required("kind");
     const std::string name = kind.string();
-    if (name != "least_squares" && name != "none") {
-      kind.fail(fmt::format("unknown registration '{}'; known: least_squares, none", name));
+    if (find_registration(name) == nullptr) {
+      kind.fail(fmt::format("unknown registration '{}'; known: {}", name, registration_names()));
     }
-    t.registration.enabled = name == "least_squares";
+    t.registration.kind = name;
     if (const auto prior = registration->optional("prior_std")) {
       prior->allow_only({"range_m", "azimuth_rad", "elevation_rad", "time_s"});
       if (const auto f = prior->optional("range_m"))

@@ -96,7 +96,7 @@ TEST(PictureRun, RegisteredBiasedRadarsKeepOnePictureAndTrackBetter) {
   scenario.steps = 100;
   const TrafficTruth truth = build_traffic_truth(scenario);
   const PictureRunResult biased = run_picture(scenario, truth.targets, 4, 0);
-  scenario.tracker.registration.enabled = true;
+  scenario.tracker.registration.kind = "least_squares";
   const PictureRunResult registered = run_picture(scenario, truth.targets, 4, 0);
   expect_guarantees(registered);
   EXPECT_LT(registered.score.gospa_mean, 0.7 * biased.score.gospa_mean)

@@ -140,7 +140,7 @@ TEST(RegisteredPicture, PeersLearnOneEstimateTheTruthsAndABatchSolutionAgree) {
   const Model motion(kTimeStepS, {5.0, 5.0});
   const Vector<N> initial_variance = Vector<N>::Constant(100.0);
   TrackerConfig config;
-  config.registration.enabled = true;
+  config.registration.kind = "least_squares";
   std::vector<Peer> peers(known.size(), Peer(PeerTracks(motion, initial_variance), known, config));
   Center center(CenterStackedTracks<Model>(motion, initial_variance), known, config);
   const std::vector<DetectionConfig> sees = {radar_sees(kRadar1Bias), radar_sees(kRadar2Bias),

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "skyfuse/picture/detection_prior.hpp"
+#include "skyfuse/picture/registration.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
@@ -291,20 +292,21 @@ TEST(TrafficScenario, ReadsAStationsBiasesAndRefusesWhatItCannotHave) {
 TEST(TrafficScenario, ReadsTheTrackersRegistration) {
   const std::string text =
       read_text(std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/registration.yaml");
-  EXPECT_FALSE(parse_scenario(text, "test.yaml").tracker.registration.enabled);
+  EXPECT_EQ(parse_scenario(text, "test.yaml").tracker.registration.kind, "none");
   const auto with = [&](const std::string& registration) {
     return replaced(text, "tracker:\n", "tracker:\n  registration: " + registration + "\n");
   };
   const Scenario s = parse_scenario(
       with("{kind: least_squares, prior_std: {range_m: 300.0, time_s: 0.5}}"), "test.yaml");
-  EXPECT_TRUE(s.tracker.registration.enabled);
+  EXPECT_EQ(s.tracker.registration.kind, "least_squares");
+  EXPECT_TRUE(estimates_biases(s.tracker.registration));
   EXPECT_EQ(s.tracker.registration.range_std_m, 300.0);
   EXPECT_EQ(s.tracker.registration.azimuth_std_rad, 0.01);  // the default
   EXPECT_EQ(s.tracker.registration.time_std_s, 0.5);
-  EXPECT_FALSE(parse_scenario(with("{kind: none}"), "test.yaml").tracker.registration.enabled);
+  EXPECT_FALSE(
+      estimates_biases(parse_scenario(with("{kind: none}"), "test.yaml").tracker.registration));
   EXPECT_NE(rejection(with("{kind: kalman}"))
-                .find("unknown registration 'kalman'; known: "
-                      "least_squares, none"),
+                .find("unknown registration 'kalman'; known: none, least_squares"),
             std::string::npos);
   EXPECT_NE(rejection(with("{kind: least_squares, prior_std: {range_m: 0.0}}")).find("range_m"),
             std::string::npos);

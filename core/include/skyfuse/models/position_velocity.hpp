@@ -34,7 +34,7 @@ class PositionVelocity {
   static constexpr bool kNeedsSite = false;
   /// What the aircraft itself reports of where it is (ADS-B, Remote ID): a registration takes
   /// it as the reference the other stations' biases are measured against
-  /// (TrackTable::learn_biases).
+  /// (LeastSquaresRegistration::learn, picture/registrations/least_squares.hpp).
   static constexpr bool kReportsOwnState = true;
   static constexpr std::array<std::string_view, kMeasDim> kComponents = {
       "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps"};

@@ -22,6 +22,7 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
   offered_.assign(count, kNoAddress);
   refused_addresses_ = 0;
   std::vector<PairedDetection> learned;
+  const auto& registration = this->registration();
   for (std::size_t s = 0; s < scans.size(); ++s) {
     const typename Table::Station& station = this->stations()[s];
     const ScanAssociation association = this->associate(station, scans[s], work_);
@@ -33,16 +34,22 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
       if (pair.weight > 0.5 && offered_[t] == kNoAddress) offered_[t] = address;
       associations_.push_back({station.id, pair.detection, this->tracks()[t].id});
       const Detection& raw = scans[s].detections[pair.detection];
-      const Detection z = this->registered(station, raw, this->estimates()[t].mean);
       // As every peer learns it (peer_picture_impl.hpp): ascending station, then pair.
       if (pair.weight == 1.0 && this->registers()) learned.push_back({s, t, &raw});
       std::visit(
           [&]<typename Sensor>(const Sensor& sensor) {
             constexpr int M = Sensor::kMeasDim;
-            const Covariance<M> noise =
-                this->template registered_noise<M>(station, this->estimates()[t].mean);
+            // As a peer's update corrects it (PeerPicture::add_update_of).
+            Vector<M> z = fixed_detection<M>(raw);
+            Covariance<M> noise = fixed_noise<M>(station.noise);
+            if (registration.corrects(s)) {
+              const auto correction =
+                  registration.of(s).correction(sensor, this->estimates()[t].mean);
+              z = correction.applied(z);
+              noise = noise + correction.noise;
+            }
             observations_[t].push_back(StationObservation<Sensor>{
-                station.id, sensor, fixed_detection<M>(z),
+                station.id, sensor, z,
                 pair.weight == 1.0 ? noise : Covariance<M>(noise / pair.weight)});
           },
           station.sensor);

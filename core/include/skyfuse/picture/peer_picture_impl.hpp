@@ -167,24 +167,23 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
   constexpr int M = Sensor::kMeasDim;
   typename Report::Update update;
   update.track = track.id;
-  const Station* registered =
-      this->registers(station_id) ? &this->stations()[this->station_index(station_id)] : nullptr;
-  const auto index = static_cast<std::size_t>(&track - this->tracks().data());
-  const Vector<Table::kDim>& prior_mean = this->estimates()[index].mean;
-  // A registered station's detection, corrected, is as uncertain as its noise and what its
-  // registration does not know yet (TrackTable::registered_noise).
-  const Covariance<M> r =
-      registered != nullptr ? this->template registered_noise<M>(*registered, prior_mean) : noise;
+  const std::size_t index = static_cast<std::size_t>(&track - this->tracks().data());
+  const std::size_t s = this->station_index(station_id);
+  // A registered station's detection, corrected for this track's prior, is as uncertain as its
+  // noise and what its registration does not know yet (BiasCorrection): G once for every pair.
+  std::optional<BiasCorrection<Sensor>> correction;
+  if (this->registration().corrects(s)) {
+    correction = this->registration().of(s).correction(sensor, this->estimates()[index].mean);
+  }
+  const Covariance<M> r = correction ? Covariance<M>(noise + correction->noise) : noise;
   const auto paired = [&](const Pair& pair) {
     if (this->registers()) report.paired_detections.push_back(detections[pair.detection]);
   };
   const auto contribute = [&](const Pair& pair, Contribution& out) {
     const Detection& raw = detections[pair.detection];
-    const StationObservation<Sensor> observation{
-        station_id, sensor,
-        fixed_detection<M>(registered != nullptr ? this->registered(*registered, raw, prior_mean)
-                                                 : raw),
-        r};
+    const Vector<M> z = fixed_detection<M>(raw);
+    const StationObservation<Sensor> observation{station_id, sensor,
+                                                 correction ? correction->applied(z) : z, r};
     return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;
   };
   if (pairs.size() == 1 && pairs.front().weight == 1.0) {

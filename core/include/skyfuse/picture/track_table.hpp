@@ -33,27 +33,16 @@
 #include "skyfuse/picture/hypothesiser.hpp"
 #include "skyfuse/picture/identity.hpp"
 #include "skyfuse/picture/initiation.hpp"
+#include "skyfuse/picture/known_station.hpp"
 #include "skyfuse/picture/picture_digest.hpp"
 #include "skyfuse/picture/picture_sensor.hpp"
+#include "skyfuse/picture/registrations/least_squares.hpp"
 #include "skyfuse/picture/track.hpp"
 #include "skyfuse/picture/track_management.hpp"
 #include "skyfuse/picture/tracker_config.hpp"
-#include "skyfuse/registration/station_bias.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse {
-
-/// A station as every node knows it: its id, its sensor (of the tracks' N-entry estimate; a
-/// value, picture/picture_sensor.hpp), the noise of its detections, its fusion weight and
-/// what its associator knows of its detections. Ascending id in every list.
-template <int N>
-struct KnownStation {
-  int id = 0;
-  PictureSensor<N> sensor;
-  DetectionNoise noise;
-  double weight = 1.0;
-  DetectionPrior prior;
-};
 
 /// What closing a round did to the table.
 struct RoundOutcome {
@@ -70,14 +59,6 @@ struct UnassociatedDetection {
   Address address = kNoAddress;
 };
 
-/// One station's detection a round paired with a track of weight 1, as a registration learns
-/// from it: the station's and the track's indices in the table, and the detection as measured.
-struct PairedDetection {
-  std::size_t station = 0;
-  std::size_t track = 0;
-  const Detection* z = nullptr;
-};
-
 template <typename Tracks>
 class TrackTable {
  public:
@@ -90,24 +71,8 @@ class TrackTable {
       : filters_(std::move(filters)),
         stations_(std::move(stations)),
         config_(config),
-        associator_(find_associator(config.association.associator)) {
-    if (config.registration.enabled) {
-      const SensorBias prior{config.registration.range_std_m, config.registration.azimuth_std_rad,
-                             config.registration.elevation_std_rad, config.registration.time_std_s};
-      for (const Station& station : stations_) {
-        biases_.emplace_back(station.sensor, prior);
-        reference_.push_back(std::visit(
-            []<typename S>(const S&) {
-              if constexpr (requires { S::kReportsOwnState; }) {
-                return S::kReportsOwnState;
-              } else {
-                return false;
-              }
-            },
-            station.sensor));
-        has_reference_ = has_reference_ || reference_.back();
-      }
-    }
+        associator_(find_associator(config.association.associator)),
+        registration_(config.registration, stations_) {
     if (associator_ == nullptr) {
       throw std::invalid_argument("tracker.associator: '" + config.association.associator +
                                   "' is none of " + associator_names());
@@ -162,61 +127,30 @@ class TrackTable {
                                      [](const Station& s, int id) { return s.id < id; });
     return static_cast<std::size_t>(at - stations_.begin());
   }
+  /// The registration (registration.hpp), the scenario's kind: what the pictures' updates
+  /// correct a station's detections by.
+  const LeastSquaresRegistration<kDim>& registration() const { return registration_; }
   /// Whether the scenario registers its stations (TrackerConfig::registration).
-  bool registers() const { return !biases_.empty(); }
-  /// Whether station `station_id`'s detections are corrected by a registration: the scenario
-  /// registers, and the station is no reference (an aircraft's own report is taken as it is).
-  bool registers(int station_id) const {
-    return !biases_.empty() && !reference_[station_index(station_id)];
-  }
-  /// Station `station_id`'s registration; registers() must hold.
+  bool registers() const { return registration_.active(); }
+  /// Whether station `station_id`'s detections are corrected by the registration.
+  bool registers(int station_id) const { return registration_.corrects(station_index(station_id)); }
+  /// Station `station_id`'s estimate; registers() must hold.
   const StationBias<kDim>& bias_of(int station_id) const {
-    return biases_[station_index(station_id)];
+    return registration_.of(station_index(station_id));
   }
   /// Every station's registration sums, ascending station id (empty where nothing registers):
   /// what another node needs to hold the same estimates (restore_biases).
-  std::vector<BiasSums> bias_sums() const {
-    std::vector<BiasSums> sums;
-    for (std::size_t s = 0; s < biases_.size(); ++s)
-      sums.push_back(biases_[s].sums(stations_[s].id));
-    return sums;
-  }
+  std::vector<BiasSums> bias_sums() const { return registration_.sums(stations_); }
   /// Takes another node's bias_sums() as this table's, with the picture it restore()s; false,
   /// and nothing changed, unless they are every station's, in order, of its sensor's size.
   bool restore_biases(std::span<const BiasSums> sums) {
-    if (sums.size() != biases_.size()) return false;
-    for (std::size_t s = 0; s < sums.size(); ++s) {
-      if (sums[s].station_id != stations_[s].id) return false;
-    }
-    std::vector<StationBias<kDim>> restored = biases_;
-    for (std::size_t s = 0; s < sums.size(); ++s) {
-      if (!restored[s].restore(sums[s])) return false;
-    }
-    biases_ = std::move(restored);
-    return true;
+    return registration_.restore(sums, stations_);
   }
-  /// `z` of station `station_id` as the pictures use it: corrected by its registration for the
-  /// track whose prior mean is `mean`, or as it is where nothing registers.
-  Detection registered(const Station& station, const Detection& z, const Vector<kDim>& mean) const {
-    if (!registers(station.id)) return z;
-    return biases_[station_index(station.id)].corrected(station.sensor, z, mean);
+  /// Teaches the registration one round's pairs of weight 1, ascending station then pair, as
+  /// every node gives them (LeastSquaresRegistration::learn).
+  void learn_biases(std::span<const PairedDetection> pairs) {
+    registration_.learn(pairs, tracks_, estimates_, stations_);
   }
-  /// R of `station`'s detection corrected for the track of prior mean `mean`: the station's
-  /// own, plus what its registration does not know yet (StationBias::correction_noise).
-  template <int M>
-  Covariance<M> registered_noise(const Station& station, const Vector<kDim>& mean) const {
-    const Covariance<M> noise = fixed_noise<M>(station.noise);
-    if (!registers(station.id)) return noise;
-    const auto& bias = biases_[station_index(station.id)];
-    return noise + fixed_noise<M>(bias.correction_noise(station.sensor, mean));
-  }
-  /// Teaches the registrations one round's pairs of weight 1 (ascending station, then pair,
-  /// every node alike), each against a confirmed track's reference this round where the
-  /// stations include a reference (an aircraft's own report: an absolute measure of the other
-  /// stations' biases, made at the same time, independent from round to round), else against
-  /// the track's prior where another station updated it last round (relative to the others'
-  /// biases). A reference station learns nothing.
-  void learn_biases(std::span<const PairedDetection> pairs);
 
  protected:
   /// Gives each unaddressed track the address its hit offered (offered[i], kNoAddress for
@@ -246,12 +180,9 @@ class TrackTable {
   std::vector<TrackType> tracks_;
   std::vector<GaussianState<kDim>> estimates_;
   std::vector<PositionFix> fixes_;
-  std::vector<Address> addresses_;         // tracks_[i].address, for the gate search's mask
-  AddressBook book_;                       // the tracks that hold an address, by address
-  std::vector<StationBias<kDim>> biases_;  // per station, when the scenario registers them
-  std::vector<char> reference_;            // per station, with biases_: an aircraft's own report
-  bool has_reference_ = false;
-  std::vector<const PairedDetection*> reference_of_;  // per track: its reference this round
+  std::vector<Address> addresses_;  // tracks_[i].address, for the gate search's mask
+  AddressBook book_;                // the tracks that hold an address, by address
+  LeastSquaresRegistration<kDim> registration_;
 };
 
 }  // namespace skyfuse

@@ -21,26 +21,13 @@ namespace skyfuse {
 template <typename Tracks>
 ScanAssociation TrackTable<Tracks>::associate(const Station& station, const Scan& raw,
                                               AssociationWork& work) const {
-  // A registered station's detections are gated with its offsets removed, and with what its
-  // registration does not know yet added to R: the offsets' part to the scan's noise, the
-  // clock's (a late clock sees the aircraft further along its velocity) to each track's
-  // position spread. The clock's correction itself needs a track's velocity: the pairs'
-  // updates take it (PeerPicture, CentralPicture).
+  // A registered station's detections are gated as its registration corrects them
+  // (LeastSquaresRegistration::gate_inputs).
   Scan offset_free;
   std::vector<GaussianState<kDim>> gated;
-  const bool registered = registers(station.id);
-  if (registered) {
-    const StationBias<kDim>& bias = biases_[station_index(station.id)];
-    offset_free = raw;
-    for (Detection& z : offset_free.detections) z = bias.offsets_removed(station.sensor, z);
-    offset_free.noise += bias.offsets_noise(station.sensor);
-    gated.assign(estimates_.begin(), estimates_.end());
-    for (GaussianState<kDim>& estimate : gated) {
-      const Vector3 v = estimate.mean.template segment<3>(3);
-      estimate.covariance.template topLeftCorner<3, 3>() +=
-          bias.clock_variance() * v * v.transpose();
-    }
-  }
+  const std::size_t s = station_index(station.id);
+  const bool registered = registration_.corrects(s);
+  if (registered) registration_.gate_inputs(s, station, raw, estimates(), offset_free, gated);
   const Scan& scan = registered ? offset_free : raw;
   const std::span<const GaussianState<kDim>> priors =
       registered ? std::span<const GaussianState<kDim>>(gated) : estimates();
@@ -61,52 +48,6 @@ ScanAssociation TrackTable<Tracks>::associate(const Station& station, const Scan
   associator_->associate(work.hypotheses, station.prior, config_.association, work, decided);
   merge_routing(work.routing, decided);
   return decided;
-}
-
-template <typename Tracks>
-void TrackTable<Tracks>::learn_biases(std::span<const PairedDetection> pairs) {
-  if (biases_.empty()) return;
-  if (has_reference_) {
-    reference_of_.assign(tracks_.size(), nullptr);
-    for (const PairedDetection& pair : pairs) {
-      if (reference_[pair.station] && reference_of_[pair.track] == nullptr) {
-        reference_of_[pair.track] = &pair;
-      }
-    }
-  }
-  for (const PairedDetection& pair : pairs) {
-    const TrackType& track = tracks_[pair.track];
-    if (reference_[pair.station] || track.status != TrackStatus::kConfirmed) continue;
-    const Station& station = stations_[pair.station];
-    if (!has_reference_) {
-      // A track only this station holds where it is would teach it its own estimate back.
-      if (std::ranges::all_of(track.updated_by, [&](int id) { return id == station.id; })) {
-        continue;
-      }
-      biases_[pair.station].learn(station.sensor, estimates_[pair.track], *pair.z, station.noise);
-      continue;
-    }
-    const PairedDetection* reference = reference_of_[pair.track];
-    if (reference == nullptr) continue;
-    // The aircraft where its own report puts it: the report's position and velocity with its
-    // noise, the track's prior for whatever else the state holds (no sensor with a bias reads
-    // it).
-    GaussianState<kDim> reported = estimates_[pair.track];
-    const Station& source = stations_[reference->station];
-    std::visit(
-        [&]<typename S>(const S&) {
-          if constexpr (requires { S::kReportsOwnState; }) {
-            constexpr int M = S::kMeasDim;
-            static_assert(S::kJacobianCols == M, "a report of the state's first M entries");
-            reported.mean.template head<M>() = fixed_detection<M>(*reference->z);
-            reported.covariance.template topRows<M>().setZero();
-            reported.covariance.template leftCols<M>().setZero();
-            reported.covariance.template topLeftCorner<M, M>() = fixed_noise<M>(source.noise);
-          }
-        },
-        source.sensor);
-    biases_[pair.station].learn(station.sensor, reported, *pair.z, station.noise);
-  }
 }
 
 template <typename Tracks>
@@ -145,7 +86,7 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
                                              std::span<const Address> offered,
                                              UnassociatedOf unassociated_of) {
   // What this round taught each station's registration corrects the next round's detections.
-  for (StationBias<kDim>& bias : biases_) bias.settle();
+  registration_.settle();
   learn_addresses(offered);
   refresh_estimates();
   RoundOutcome outcome;
@@ -179,14 +120,13 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
         [&]<typename Sensor>(const Sensor& sensor) {
           constexpr int M = Sensor::kMeasDim;
           // A registered station's fix carries what its offsets' estimate does not know yet.
-          const bool registered = registers(station.id);
-          const Covariance<M> noise = fixed_noise<M>(
-              registered ? DetectionNoise(station.noise + biases_[s].offsets_noise(station.sensor))
-                         : station.noise);
+          const bool registered = registration_.corrects(s);
+          const Covariance<M> noise =
+              fixed_noise<M>(registered ? registration_.fix_noise(s, station) : station.noise);
           for (const UnassociatedDetection& d : unassociated_of(s)) {
             // A track that took this address this round has the aircraft already.
             if (d.address != kNoAddress && book_.track_of(d.address)) continue;
-            const Detection z = registered ? biases_[s].offsets_removed(station.sensor, d.z) : d.z;
+            const Detection z = registered ? registration_.offsets_removed(s, station, d.z) : d.z;
             if (auto fix =
                     fix_position(station.id, d.detection, sensor, fixed_detection<M>(z), noise)) {
               fix->address = d.address;

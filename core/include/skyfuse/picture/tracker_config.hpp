@@ -50,10 +50,11 @@ struct ManagementConfig {
   double max_position_std_m = 1000.0;
 };
 
-/// Registration (registration/station_bias.hpp): each station's biases estimated online from
-/// its detections of confirmed tracks, and its detections corrected by them; off by default.
+/// Registration (picture/registration.hpp): each station's biases estimated online from its
+/// detections of confirmed tracks, and its detections corrected by them; none by default.
 struct RegistrationConfig {
-  bool enabled = false;
+  /// A registration's name in the registry (find_registration).
+  std::string kind = "none";
   /// The biases' prior standard deviations, each > 0.
   double range_std_m = 500.0;
   double azimuth_std_rad = 0.01;

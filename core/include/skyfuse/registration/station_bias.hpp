@@ -40,6 +40,24 @@ struct BiasSums {
   std::uint64_t detections = 0;
 };
 
+/// A station's correction of its detections of one track, of sensor S: G(x̂), the Jacobian
+/// of the detection in the biases at the track's prior mean, the settled biases b̂, and what the
+/// registration does not know yet, G Σ Gᵀ. Added to R, that noise makes the gates and updates
+/// consider the biases not yet known (a Schmidt, or "consider", treatment: the biases are not
+/// states of the tracks, but their uncertainty is not ignored either).
+template <typename S>
+struct BiasCorrection {
+  static constexpr int M = S::kMeasDim;
+  static constexpr int D = BiasEstimate<S>::kDim;
+
+  Matrix<M, D> g;
+  Vector<D> b;
+  Covariance<M> noise;
+
+  /// z − G b̂, as the sensor reports it (angles wrapped).
+  Vector<M> applied(const Vector<M>& z) const { return S::to_reported(z - g * b); }
+};
+
 template <int N>
 class StationBias {
  public:
@@ -123,17 +141,24 @@ class StationBias {
         estimate_);
   }
 
-  /// How uncertain a detection corrected for the track of prior mean `mean` still is: G Σ Gᵀ,
-  /// Σ the settled covariance. Added to R, it makes the gates and updates consider the biases
-  /// not yet known (a Schmidt, or "consider", treatment: the biases are not states of the
-  /// tracks, but their uncertainty is not ignored either).
+  /// Station sensor `sensor`'s correction for the track of prior mean `mean` (BiasCorrection),
+  /// for a caller that knows the sensor's type: G computed once for every detection of the
+  /// track and for its noise.
+  template <typename S>
+  BiasCorrection<S> correction(const S& sensor, const Vector<N>& mean) const {
+    constexpr int D = BiasEstimate<S>::kDim;
+    BiasCorrection<S> c;
+    c.g = BiasEstimate<S>::bias_jacobian(sensor.jacobian(mean), mean);
+    c.b = BiasEstimate<S>::from_sensor_bias(bias_);
+    c.noise = c.g * fixed_covariance<D>() * c.g.transpose();
+    return c;
+  }
+
+  /// How uncertain a detection corrected for the track of prior mean `mean` still is: G Σ Gᵀ
+  /// (BiasCorrection::noise).
   DetectionNoise correction_noise(const Sensor& sensor, const Vector<N>& mean) const {
     return std::visit(
-        [&]<typename S>(const S& typed) -> DetectionNoise {
-          constexpr int D = BiasEstimate<S>::kDim;
-          const auto g = BiasEstimate<S>::bias_jacobian(typed.jacobian(mean), mean);
-          return g * fixed_covariance<D>() * g.transpose();
-        },
+        [&]<typename S>(const S& typed) -> DetectionNoise { return correction(typed, mean).noise; },
         sensor);
   }
 
@@ -160,14 +185,11 @@ class StationBias {
   }
 
   /// `z` corrected for the aircraft whose track's prior mean is `mean`: z − G(x̂) b̂, the
-  /// clock's part included.
+  /// clock's part included (BiasCorrection::applied).
   Detection corrected(const Sensor& sensor, const Detection& z, const Vector<N>& mean) const {
     return std::visit(
         [&]<typename S>(const S& typed) -> Detection {
-          constexpr int M = S::kMeasDim;
-          const auto b = BiasEstimate<S>::from_sensor_bias(bias_);
-          const auto g = BiasEstimate<S>::bias_jacobian(typed.jacobian(mean), mean);
-          return S::to_reported(fixed_detection<M>(z) - g * b);
+          return correction(typed, mean).applied(fixed_detection<S::kMeasDim>(z));
         },
         sensor);
   }
