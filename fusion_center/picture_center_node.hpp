@@ -10,6 +10,7 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -26,6 +27,7 @@
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/picture_bundles.hpp"
+#include "skyfuse/transport/picture_cat062.hpp"
 #include "skyfuse/transport/picture_scans.hpp"
 #include "skyfuse/transport/picture_track_writer.hpp"
 #include "skyfuse/transport/picture_tree_exchange.hpp"
@@ -59,7 +61,9 @@ class PictureCenter {
                        : plan_.stations),
         rounds_(node_.make_writer<wire::PictureRound>()),
         tracks_(node_),
-        picture_(Parts::center(plan_.scenario), known_, plan_.scenario.tracker) {}
+        picture_(Parts::center(plan_.scenario), known_, plan_.scenario.tracker),
+        asterix_out_(transport::make_asterix_out(options.asterix_out, plan_.scenario.anchor,
+                                                 plan_.scenario.time_step_s)) {}
 
   int run() {
     auto& inputs = loop_.inputs();
@@ -113,9 +117,11 @@ class PictureCenter {
     }
     picture_.predict();
     picture_.update(k, scans_);
-    rounds_.write(transport::picture_round_to_wire(
+    const wire::PictureRound round = transport::picture_round_to_wire(
         picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
-        static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size())));
+        static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size()));
+    rounds_.write(round);
+    if (asterix_out_) asterix_out_->send(k, round);
     tracks_.publish(picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
                     wire::CENTRAL);
     scans_in_.advance();
@@ -141,6 +147,8 @@ class PictureCenter {
   transport::Writer<wire::PictureRound> rounds_;
   transport::PictureTrackWriter tracks_;
   Picture picture_;
+  // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
+  std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   std::vector<Scan> scans_;
 };
 

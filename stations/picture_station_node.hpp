@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -24,6 +25,7 @@
 #include "skyfuse/transport/node_loop.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
+#include "skyfuse/transport/picture_cat062.hpp"
 #include "skyfuse/transport/picture_exchange.hpp"
 #include "skyfuse/transport/picture_track_writer.hpp"
 #include "skyfuse/transport/picture_tree_exchange.hpp"
@@ -64,7 +66,9 @@ class PictureStation {
         tracks_(node_),
         states_out_(node_.make_writer<wire::PictureState>()),
         states_in_(node_.make_reader<wire::PictureState>()),
-        picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.tracker) {
+        picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.tracker),
+        asterix_out_(transport::make_asterix_out(options.node.asterix_out, plan_.scenario.anchor,
+                                                 plan_.scenario.time_step_s)) {
     // What it sends to itself never crosses the simulated link: the exchange keeps it as it
     // goes out.
     loop_.skip_own(options.id, exchange_.own_writer());
@@ -220,8 +224,10 @@ class PictureStation {
   // The picture after round k, to the harness and to readers of its tracks.
   void publish_round(std::uint64_t k, std::uint32_t scans_fused) {
     const auto step = static_cast<std::uint32_t>(k);
-    rounds_.write(transport::picture_round_to_wire(picture_, options_.node.run_id, step,
-                                                   options_.id, scans_fused));
+    const wire::PictureRound round = transport::picture_round_to_wire(
+        picture_, options_.node.run_id, step, options_.id, scans_fused);
+    rounds_.write(round);
+    if (asterix_out_) asterix_out_->send(k, round);
     tracks_.publish(picture_, options_.node.run_id, step, options_.id, wire::PEER);
   }
 
@@ -306,6 +312,8 @@ class PictureStation {
   transport::Writer<wire::PictureState> states_out_;
   transport::Reader<wire::PictureState> states_in_;
   Picture picture_;
+  // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
+  std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   // picture_'s digest as predicted for the round (or taken): it is published with the scan and
   // compared with the others', and computed once a round rather than at each use.
   std::uint64_t predicted_digest_ = 0;

@@ -1,9 +1,10 @@
 #pragma once
 // `skyfuse run --asterix-record FILE` of a run of many aircraft: every node's picture after
 // each round as CAT062 system tracks (docs/asterix.md), one UDP datagram per node and round in
-// a pcap file, so that Wireshark and air-traffic tools read the run. Each node's tracks are
-// numbered by its own TrackNumbers from its own pictures: nodes holding the same picture send
-// the same bytes.
+// a pcap file, and every station's scan as CAT048 plots or CAT021 reports
+// (report/scan_asterix.hpp), so that Wireshark and air-traffic tools read the run. Each node's
+// picture is encoded as its own `--asterix-out` sends it (transport/picture_cat062.hpp): nodes
+// holding the same picture send the same bytes.
 
 #include <cstddef>
 #include <cstdint>
@@ -11,11 +12,10 @@
 #include <map>
 #include <vector>
 
-#include "skyfuse/asterix/cat062.hpp"
 #include "skyfuse/asterix/pcap.hpp"
-#include "skyfuse/asterix/track_numbers.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
-#include "skyfuse/traffic/geodesy.hpp"
+#include "skyfuse/traffic/target_truth.hpp"
+#include "skyfuse/transport/picture_cat062.hpp"
 #include "skyfuse/wire/skyfuse_picture.h"
 
 namespace skyfuse::harness {
@@ -24,33 +24,34 @@ namespace skyfuse::harness {
 /// usual port 8600 (the center, node 0, is 127.0.0.0); all go to 127.0.0.1:8600.
 asterix::UdpEndpoint asterix_source_of(int node);
 
-/// Track `track` of a node's picture numbered `number`, at `time_of_day_s`: the position in
-/// the scenario's east-north-up plane (I062/100) and as WGS-84 through `anchor` (I062/105,
-/// I062/130's height), the velocity, the accuracies from the covariance's position and
-/// velocity blocks, the address where the track holds one. The data source is the network's
-/// (SAC 0, SIC 1), whichever node sends it.
-asterix::SystemTrack system_track(const wire::PictureTrack& track, std::uint16_t number,
-                                  double time_of_day_s, const GeoAnchor& anchor);
-
 class PictureAsterixRecording {
  public:
+  /// `truth`: the run's aircraft, whose scans it simulates again as the stations do
+  /// (sim/picture_detections.hpp); it must outlive the recording.
   PictureAsterixRecording(const std::filesystem::path& file, const PicturePlan& plan,
-                          const std::vector<int>& nodes);
+                          const std::vector<int>& nodes, const std::vector<TargetTruth>& truth);
 
-  /// Round k's pictures, one per node that sent one.
+  /// Round k: the stations' scans (scan_asterix.hpp) from 127.0.(id / 256).(id % 256):8601,
+  /// then the pictures, one per node that sent one, from the node's address on port 8600.
   void add(int k, const std::vector<wire::PictureRound>& rounds);
   /// Writes what is left; throws if the file could not be written.
   void close() { pcap_.close(); }
 
   /// Tracks left out because an item could not hold a value (beyond I062/185's ±8 192 m/s,
   /// say), and tracks without a number (more than 65 535 at once).
-  std::size_t left_out() const { return left_out_; }
+  std::size_t left_out() const;
+  /// Detections of a scan left out: a value outside its item's range, or a sensor no item
+  /// carries (a 3-D radar's elevation, multilateration's time differences).
+  std::size_t detections_left_out() const { return detections_left_out_; }
 
  private:
+  void add_scans(int k, std::int64_t time_ns);
+
   const PicturePlan& plan_;
+  const std::vector<TargetTruth>& truth_;
   asterix::PcapWriter pcap_;
-  std::map<int, asterix::TrackNumbers> numbers_;  // per node
-  std::size_t left_out_ = 0;
+  std::map<int, transport::PictureCat062> nodes_;
+  std::size_t detections_left_out_ = 0;
 };
 
 }  // namespace skyfuse::harness

@@ -139,7 +139,9 @@ class ManyAircraftRun final : public RunKind {
   void begin_rounds(std::uint64_t epoch_ns) override {
     check_.emplace(plan_, truth_->targets, *twin_, summary_);
     if (!o_.record_path.empty()) recording_.emplace(o_.record_path, plan_, epoch_ns);
-    if (!o_.asterix_record_path.empty()) asterix_.emplace(o_.asterix_record_path, plan_, node_ids_);
+    if (!o_.asterix_record_path.empty()) {
+      asterix_.emplace(o_.asterix_record_path, plan_, node_ids_, truth_->targets);
+    }
     if (live_) live_->set_epoch_ns(epoch_ns);
   }
   void run_lockstep_round(int k, std::chrono::milliseconds round_timeout,
@@ -249,8 +251,10 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
   if (recording_) recording_->finish(summary_json, rounds_taken_);
   if (asterix_) {
     asterix_->close();
-    fmt::print("ASTERIX CAT062 of every node's picture in {} ({} tracks left out)\n",
-               o_.asterix_record_path, asterix_->left_out());
+    fmt::print(
+        "ASTERIX CAT062 of every node's picture and CAT048/CAT021 of every station's scan in {} "
+        "({} tracks and {} detections left out)\n",
+        o_.asterix_record_path, asterix_->left_out(), asterix_->detections_left_out());
   }
   if (live_) finish_live(*live_, summary_json);
   if (measured.stopped) {

@@ -12,6 +12,7 @@
 #include <tuple>
 #include <vector>
 
+#include "skyfuse/asterix/udp.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/picture/associator.hpp"
@@ -112,6 +113,17 @@ void add_deadline_options(CLI::App& app, NodeOptions& o) {
       ->capture_default_str();
 }
 
+void add_asterix_out_option(CLI::App& app, std::string& destination) {
+  app.add_option("--asterix-out", destination,
+                 "Send each round's picture as ASTERIX CAT062 system tracks over UDP to HOST:PORT "
+                 "(IPv4, unicast or multicast; a run of many aircraft; docs/asterix.md)")
+      ->check([](const std::string& text) {
+        std::string error;
+        return asterix::parse_udp_endpoint(text, error) ? std::string() : error;
+      })
+      ->type_name("HOST:PORT");
+}
+
 void add_traffic_file_option(CLI::App& app, std::string& traffic_file) {
   app.add_option("--traffic-file", traffic_file,
                  "An OpenSky state-vector CSV for a scenario with 'traffic: recorded', instead of "
@@ -143,6 +155,7 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
   add_refusion_option(app, o.refusion_lag);
   add_nis_gate_option(app, o.gate);
   add_network_options(app, o.network);
+  add_asterix_out_option(app, o.asterix_out);
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();
@@ -178,6 +191,7 @@ std::vector<std::string> to_arguments(const NodeOptions& o) {
   if (o.refusion_lag != 0) add("--refusion-lag", std::to_string(o.refusion_lag));
   if (o.gate.enabled()) add("--nis-gate", fmt::format("{}", o.gate.probability()));
   for (std::string& a : network_arguments(o.network)) args.push_back(std::move(a));
+  if (!o.asterix_out.empty()) add("--asterix-out", o.asterix_out);
   add("--log-level", o.log_level);
   return args;
 }

@@ -7,20 +7,28 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <csignal>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "integration/run_fixture.hpp"
 #include "skyfuse/asterix/datagram.hpp"
 #include "skyfuse/asterix/pcap.hpp"
+#include "skyfuse/asterix/udp.hpp"
 #include "skyfuse/picture/picture_digest.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/picture_detections.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_run.hpp"
+#include "skyfuse/traffic/geodesy.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 #include "support/opensky_states.hpp"
 
@@ -410,24 +418,52 @@ TEST(DdsPicture, ThroughTheTreeEveryNodeHoldsTheInProcessPictureBitForBit) {
 // the same picture and numbers it by the same rule, so the four stations' datagrams of a round
 // are the same bytes; the project's decoder reads every record back, as many as the picture's
 // tracks, each with a short track number of its own; and Debian's Wireshark decoder (tshark)
-// finds nothing malformed and a track number per record.
+// finds nothing malformed and a track number per record. With `--asterix-out` every node sends
+// the same datagrams itself over UDP, as the record holds them.
 TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsPictureAsTheSameBytes) {
   constexpr int kStations = 4;
   constexpr int kSteps = 30;
   const auto dir = test_dir();
   const auto pcap = dir / "picture.pcap";
+  asterix::UdpReceiver listener(0);
+  std::vector<asterix::Bytes> sent;
+  std::atomic<bool> running = true;
+  std::thread listening([&] {
+    while (running) {
+      if (auto datagram = listener.receive(50)) sent.push_back(std::move(*datagram));
+    }
+  });
   const Completed run =
       run_to_completion({bin("skyfuse"), "run", "--scenario", kCity, "--stations",
                          std::to_string(kStations), "--steps", std::to_string(kSteps), "--domain",
-                         "84", "--out", (dir / "out").string(), "--asterix-record", pcap.string()},
+                         "84", "--out", (dir / "out").string(), "--asterix-record", pcap.string(),
+                         "--asterix-out", "127.0.0.1:" + std::to_string(listener.port())},
                         dir / "out.log", 180s);
+  // What is still on its way arrives within the listener's next waits.
+  std::this_thread::sleep_for(300ms);
+  running = false;
+  listening.join();
   ASSERT_EQ(run.status.code, 0) << run.output;
   const asterix::PcapContents file = asterix::read_pcap(pcap);
   ASSERT_FALSE(file.error.has_value()) << *file.error;
   EXPECT_EQ(file.skipped.total(), 0U);
+  // Payloads as strings of octets, sorted: the record's (pictures on port 8600, the scans'
+  // plots on 8601) against what the nodes sent.
+  const auto octets = [](const asterix::Bytes& b) { return std::string(b.begin(), b.end()); };
+  std::multiset<std::string> recorded;
+  for (const asterix::UdpDatagram& d : file.datagrams) {
+    if (d.source.port == 8600) recorded.insert(octets(d.payload));
+  }
+  std::multiset<std::string> received;
+  for (const asterix::Bytes& b : sent) received.insert(octets(b));
+  EXPECT_EQ(received.size(), recorded.size()) << "a datagram from every node every round";
+  EXPECT_TRUE(received == recorded) << "the nodes send what the record holds";
+  EXPECT_EQ(recorded.size(), file.datagrams.size())
+      << "uam-city's 3-D radars: no plot that CAT048 carries (its elevation)";
   // Each round's datagram per node, by the node its source names.
   std::map<std::int64_t, std::map<int, asterix::Bytes>> rounds;
   for (const asterix::UdpDatagram& d : file.datagrams) {
+    if (d.source.port != 8600) continue;
     const int node = d.source.address[2] * 256 + d.source.address[3];
     EXPECT_TRUE(rounds[d.time_ns].emplace(node, d.payload).second) << "one datagram a node";
   }
@@ -490,6 +526,119 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsPictureAsTheSameBytes) {
   }
   EXPECT_EQ(theirs.size(), records);
   EXPECT_EQ(theirs, ours);
+}
+
+// `--asterix-record` of uam-mixed's first ten stations: besides the pictures, each station's scan
+// of each round from its own address on port 8601 — the Mode S radars' (7, 8) plots as CAT048,
+// the Remote ID receivers' (9, 10) reports as CAT021, nothing for the 3-D radars (1-6), whose
+// elevation no CAT048 item carries. The project's decoder reads every detection the stations
+// simulated back, within each item's resolution; tshark finds no record malformed. (Each
+// item's decoding by tshark against the encoder's value: tests/unit/asterix/wireshark_test.cpp.)
+TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
+  constexpr int kStations = 10;
+  constexpr int kSteps = 20;
+  const auto dir = test_dir();
+  const auto pcap = dir / "mixed.pcap";
+  const std::string scenario = bin("scenarios/uam-mixed.yaml");
+  const Completed run =
+      run_to_completion({bin("skyfuse"), "run", "--scenario", scenario, "--stations",
+                         std::to_string(kStations), "--steps", std::to_string(kSteps), "--domain",
+                         "85", "--out", (dir / "out").string(), "--asterix-record", pcap.string()},
+                        dir / "out.log", 240s);
+  ASSERT_EQ(run.status.code, 0) << run.output;
+  const asterix::PcapContents file = asterix::read_pcap(pcap);
+  ASSERT_FALSE(file.error.has_value()) << *file.error;
+
+  const PicturePlan plan =
+      make_picture_plan(load_scenario_file(scenario), stations_and_steps(kStations, kSteps));
+  const auto truth = build_traffic_truth(plan.scenario).targets;
+  constexpr std::int64_t kEpochNs = 1'767'225'600'000'000'000;  // the record's 2026-01-01
+  const double dt_ns = plan.scenario.time_step_s * 1e9;
+  constexpr double kFootM = 0.3048;
+  constexpr double kNauticalMileM = 1852.0;
+  std::size_t plots = 0;
+  std::size_t reports = 0;
+  for (const asterix::UdpDatagram& d : file.datagrams) {
+    if (d.source.port != 8601) continue;
+    const int station = d.source.address[3];
+    const int k = static_cast<int>(std::llround(static_cast<double>(d.time_ns - kEpochNs) / dt_ns));
+    const auto scans = simulated_scans_at(plan.scenario, truth, kStations, plan.mc_run, k);
+    const SimulatedScan& scan = scans.at(static_cast<std::size_t>(station - 1));
+    const asterix::Decoded decoded = asterix::decode_datagram(d.payload);
+    EXPECT_EQ(decoded.refusals.total(), 0U);
+    const std::vector<Detection>& z = scan.scan.detections;
+    if (scan.sensor_kind == "range_azimuth_altitude") {
+      ASSERT_EQ(decoded.plots.size(), z.size()) << "station " << station << " round " << k;
+      for (std::size_t j = 0; j < z.size(); ++j) {
+        const asterix::RadarPlot& p = decoded.plots[j];
+        EXPECT_EQ(p.source.sic, station);
+        EXPECT_NEAR(p.time_of_day_s, k * plan.scenario.time_step_s, 1.0 / 256.0);
+        EXPECT_NEAR(p.range_m, z[j](0), kNauticalMileM / 256.0 / 2.0 + 1e-9);
+        const double bearing = std::fmod(90.0 - z[j](1) * 180.0 / std::numbers::pi + 360.0, 360.0);
+        EXPECT_NEAR(std::remainder(p.azimuth_deg - bearing, 360.0), 0.0, 360.0 / 65536.0 / 2.0);
+        ASSERT_TRUE(p.flight_level.has_value());
+        EXPECT_NEAR(*p.flight_level * 100.0 * kFootM, z[j](2), 12.5 * kFootM + 1e-9);
+        ASSERT_TRUE(p.address.has_value());
+        EXPECT_EQ(*p.address, scan.scan.addresses.at(j));
+        ++plots;
+      }
+    } else if (scan.sensor_kind == "position_velocity") {
+      ASSERT_EQ(decoded.reports.size(), z.size()) << "station " << station << " round " << k;
+      for (std::size_t j = 0; j < z.size(); ++j) {
+        const asterix::AdsbReport& r = decoded.reports[j];
+        const Vector3 geodetic =
+            from_local_enu(plan.scenario.anchor, Vector3(z[j](0), z[j](1), z[j](2)));
+        EXPECT_NEAR(r.latitude_deg, geodetic.x(), 180.0 / (1U << 30U));
+        EXPECT_NEAR(std::remainder(r.longitude_deg - geodetic.y(), 360.0), 0.0,
+                    180.0 / (1U << 30U));
+        ASSERT_TRUE(r.geometric_height_m.has_value());
+        EXPECT_NEAR(*r.geometric_height_m, geodetic.z(), 3.125 * kFootM + 1e-9);
+        EXPECT_EQ(r.address, scan.scan.addresses.at(j));
+        ASSERT_TRUE(r.ground_vector.has_value());
+        EXPECT_NEAR(r.ground_vector->ground_speed_mps, std::hypot(z[j](3), z[j](4)),
+                    kNauticalMileM / 16384.0 / 2.0 + 1e-9);
+        EXPECT_EQ(r.quality.nacp, 9) << "a σ of 10 m: 24.5 m at 95 %, below NACp 9's 30 m";
+        EXPECT_EQ(r.quality.nucr_or_nacv, 2) << "a σ of 1 m/s: 2.4 m/s, below NACv 2's 3 m/s";
+        ++reports;
+      }
+    } else {
+      ADD_FAILURE() << "station " << station << " (" << scan.sensor_kind << ") sent a scan";
+    }
+  }
+  // Every detection of every round is in the record, and nothing else.
+  std::size_t simulated_plots = 0;
+  std::size_t simulated_reports = 0;
+  for (int k = 0; k < kSteps; ++k) {
+    for (const SimulatedScan& scan :
+         simulated_scans_at(plan.scenario, truth, kStations, plan.mc_run, k)) {
+      if (scan.sensor_kind == "range_azimuth_altitude")
+        simulated_plots += scan.scan.detections.size();
+      if (scan.sensor_kind == "position_velocity") simulated_reports += scan.scan.detections.size();
+    }
+  }
+  EXPECT_EQ(plots, simulated_plots);
+  EXPECT_EQ(reports, simulated_reports);
+  EXPECT_GT(plots, 50U);
+  EXPECT_GT(reports, 50U);
+  EXPECT_NE(run.output.find("detections left out"), std::string::npos) << run.output;
+
+  if (!std::filesystem::exists("/usr/bin/tshark")) {
+    GTEST_SKIP() << "tshark is not installed (Debian: apt-get install tshark)";
+  }
+  const Completed malformed =
+      run_to_completion({"/usr/bin/tshark", "-r", pcap.string(), "-d", "udp.port==8600,asterix",
+                         "-d", "udp.port==8601,asterix", "-Y", "_ws.malformed || _ws.expert"},
+                        dir / "tshark_malformed.log", 60s);
+  ASSERT_EQ(malformed.status.code, 0) << malformed.output;
+  EXPECT_EQ(malformed.output.find("ASTERIX"), std::string::npos) << malformed.output;
+  const Completed categories =
+      run_to_completion({"/usr/bin/tshark", "-r", pcap.string(), "-d", "udp.port==8600,asterix",
+                         "-T", "fields", "-E", "occurrence=f", "-e", "asterix.category"},
+                        dir / "tshark_categories.log", 60s);
+  ASSERT_EQ(categories.status.code, 0) << categories.output;
+  for (const char* category : {"21", "48", "62"}) {
+    EXPECT_NE(categories.output.find(category), std::string::npos) << category;
+  }
 }
 
 // scenarios/registration.yaml with the tracker estimating every station's biases, written to

@@ -38,6 +38,12 @@ AnyPlan load_any_plan(const options::NodeOptions& options) {
           "--traffic-file: scenario '{}' has one target; the option is for one with 'traffic'",
           one->scenario.name));
     }
+    if (!options.asterix_out.empty()) {
+      throw std::invalid_argument(fmt::format(
+          "--asterix-out: scenario '{}' has one target, and one aircraft's run has no system "
+          "tracks to send; the option is for one with 'traffic'",
+          one->scenario.name));
+    }
     options::settle_exchange(one->scenario, options);
   }
   return plan;

@@ -1,6 +1,7 @@
 #include "skyfuse/sim/picture_detections.hpp"
 
 #include <stdexcept>
+#include <string>
 
 #include "skyfuse/picture/fixes_position.hpp"
 #include "skyfuse/registry/dispatch.hpp"
@@ -11,11 +12,15 @@
 
 namespace skyfuse {
 
-std::vector<ScanPositions> scan_positions_at(const Scenario& scenario,
-                                             const std::vector<TargetTruth>& truth, int stations,
-                                             std::uint64_t run, int step) {
-  if (!scenario.traffic) throw std::logic_error("scan_positions_at: a scenario with one target");
-  std::vector<ScanPositions> scans;
+namespace {
+
+// Calls f(sensor, scan, origins) for each of the first `stations` stations' scans at `step`,
+// simulated as the stations simulate them (a scan is a function of seed, run, station and step).
+template <typename F>
+void for_each_scan(const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
+                   std::uint64_t run, int step, const char* caller, F&& f) {
+  if (!scenario.traffic)
+    throw std::logic_error(std::string(caller) + ": a scenario with one target");
   // Each station by its own sensor: a picture may mix kinds.
   for (int s = 0; s < stations; ++s) {
     const StationConfig& station = scenario.stations[static_cast<std::size_t>(s)];
@@ -25,23 +30,46 @@ std::vector<ScanPositions> scan_positions_at(const Scenario& scenario,
           if constexpr (FixesPosition<Sensor>) {
             const Sensor sensor = make_sensor<Sensor>(station);
             ScanOrigins origins;
-            const auto scan =
+            Scan scan =
                 simulate_scan(station.id, sensor, station.position_m,
                               station_noise_covariance<Sensor::kMeasDim>(scenario, station, run),
                               station.detection.value(), truth, step, scenario.seed, run, &origins);
-            ScanPositions& out = scans.emplace_back();
-            out.station_id = station.id;
-            out.target = std::move(origins.target);
-            for (const auto& detection : scan.detections) {
-              out.positions.push_back(
-                  sensor.position_of(fixed_detection<Sensor::kMeasDim>(detection)));
-            }
+            f(sensor, std::move(scan), std::move(origins));
           } else {
-            throw std::logic_error("scan_positions_at: a sensor that does not fix a position");
+            throw std::logic_error(std::string(caller) + ": a sensor that does not fix a position");
           }
         });
-    if (!known) throw std::logic_error("scan_positions_at: an unregistered sensor");
+    if (!known) throw std::logic_error(std::string(caller) + ": an unregistered sensor");
   }
+}
+
+}  // namespace
+
+std::vector<ScanPositions> scan_positions_at(const Scenario& scenario,
+                                             const std::vector<TargetTruth>& truth, int stations,
+                                             std::uint64_t run, int step) {
+  std::vector<ScanPositions> scans;
+  for_each_scan(
+      scenario, truth, stations, run, step, "scan_positions_at",
+      [&]<typename Sensor>(const Sensor& sensor, Scan scan, ScanOrigins origins) {
+        ScanPositions& out = scans.emplace_back();
+        out.station_id = scan.station_id;
+        out.target = std::move(origins.target);
+        for (const auto& detection : scan.detections) {
+          out.positions.push_back(sensor.position_of(fixed_detection<Sensor::kMeasDim>(detection)));
+        }
+      });
+  return scans;
+}
+
+std::vector<SimulatedScan> simulated_scans_at(const Scenario& scenario,
+                                              const std::vector<TargetTruth>& truth, int stations,
+                                              std::uint64_t run, int step) {
+  std::vector<SimulatedScan> scans;
+  for_each_scan(scenario, truth, stations, run, step, "simulated_scans_at",
+                [&]<typename Sensor>(const Sensor&, Scan scan, ScanOrigins origins) {
+                  scans.push_back({Sensor::kKind, std::move(scan), std::move(origins.target)});
+                });
   return scans;
 }
 

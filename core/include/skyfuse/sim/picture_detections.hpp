@@ -7,9 +7,11 @@
 /// its stations associated without the harness hearing their scans.
 
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
+#include "skyfuse/picture/scan.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/traffic/target_truth.hpp"
 
@@ -26,5 +28,18 @@ struct ScanPositions {
 std::vector<ScanPositions> scan_positions_at(const Scenario& scenario,
                                              const std::vector<TargetTruth>& truth, int stations,
                                              std::uint64_t run, int step);
+
+/// A station's scan as it simulates it: its sensor's kind (as a scenario names it), its
+/// detections with their addresses, and which aircraft each came from (-1: a false alarm).
+struct SimulatedScan {
+  std::string_view sensor_kind;
+  Scan scan;
+  std::vector<int> target;
+};
+
+/// The same scans as scan_positions_at's, as the stations hold them.
+std::vector<SimulatedScan> simulated_scans_at(const Scenario& scenario,
+                                              const std::vector<TargetTruth>& truth, int stations,
+                                              std::uint64_t run, int step);
 
 }  // namespace skyfuse

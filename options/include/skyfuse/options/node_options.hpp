@@ -59,6 +59,9 @@ struct NodeOptions {
   /// The interface and the discovery (`--interface`, `--discovery-server`).
   NetworkOptions network;
   std::string log_level = "info";
+  /// `--asterix-out HOST:PORT`: a node of a run of many aircraft sends its picture each round
+  /// as ASTERIX CAT062 over UDP there (transport/picture_cat062.hpp); empty: it sends nothing.
+  std::string asterix_out;
 
   std::chrono::microseconds round_deadline() const;
   /// Real time: how long after its scheduled start a step closes (zero in lock-step).
@@ -84,6 +87,8 @@ void add_qos_option(CLI::App& app, std::optional<std::string>& qos_file);
 void add_secure_option(CLI::App& app, std::optional<std::string>& secure_dir);
 /// `--realtime-deadline-ms D` and `--round-deadline-ms D`.
 void add_deadline_options(CLI::App& app, NodeOptions& options);
+/// `--asterix-out HOST:PORT`, checked as an IPv4 address and a port.
+void add_asterix_out_option(CLI::App& app, std::string& destination);
 
 /// The command line that gives a node exactly `options`: add_node_options parses it back to
 /// the same values, bit for bit (a unit test shows it). The one place where options become a
