@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "report/scan_asterix.hpp"
 #include "skyfuse/asterix/data_block.hpp"
 #include "skyfuse/sim/picture_detections.hpp"
+#include "skyfuse/transport/scan_asterix.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -69,7 +69,8 @@ void PictureAsterixRecording::add_scans(int k, std::int64_t time_ns) {
       simulated_scans_at(plan_.scenario, truth_, plan_.stations, plan_.mc_run, k);
   for (std::size_t s = 0; s < scans.size(); ++s) {
     const StationConfig& station = plan_.scenario.stations[s];
-    ScanRecords records = scan_records(scans[s], station, time_of_day_s, plan_.scenario.anchor);
+    transport::ScanRecords records =
+        transport::scan_records(scans[s], station, time_of_day_s, plan_.scenario.anchor);
     detections_left_out_ += records.left_out;
     if (records.category == 0) {
       detections_left_out_ += scans[s].scan.detections.size();

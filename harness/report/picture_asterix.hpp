@@ -2,7 +2,7 @@
 // `skyfuse run --asterix-record FILE` of a run of many aircraft: every node's picture after
 // each round as CAT062 system tracks (docs/asterix.md), one UDP datagram per node and round in
 // a pcap file, and every station's scan as CAT048 plots or CAT021 reports
-// (report/scan_asterix.hpp), so that Wireshark and air-traffic tools read the run. Each node's
+// (transport/scan_asterix.hpp), so that Wireshark and air-traffic tools read the run. Each node's
 // picture is encoded as its own `--asterix-out` sends it (transport/picture_cat062.hpp): nodes
 // holding the same picture send the same bytes.
 

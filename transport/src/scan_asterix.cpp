@@ -1,22 +1,27 @@
-#include "report/scan_asterix.hpp"
+#include "skyfuse/transport/scan_asterix.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "skyfuse/asterix/cat021.hpp"
-#include "skyfuse/asterix/cat048.hpp"
+#include "skyfuse/asterix/data_block.hpp"
+#include "skyfuse/asterix/datagram.hpp"
 #include "skyfuse/asterix/quality.hpp"
 #include "skyfuse/picture/address.hpp"
 
-namespace skyfuse::harness {
+namespace skyfuse::transport {
 namespace {
 
 constexpr double kFootM = 0.3048;
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
-// The scenario's azimuth (counter-clockwise from east) as ASTERIX's (clockwise from north).
+// The scenario's azimuth (counter-clockwise from east) as ASTERIX's (clockwise from north),
+// and back into (-π, π].
 double bearing_deg(double azimuth_rad) {
   return std::fmod(90.0 - azimuth_rad * kDegPerRad + 360.0, 360.0);
+}
+double azimuth_rad(double bearing_deg) {
+  return std::remainder(90.0 - bearing_deg, 360.0) / kDegPerRad;
 }
 
 void add(ScanRecords& out, asterix::Encoded encoded) {
@@ -88,12 +93,16 @@ ScanRecords broadcast_reports(const SimulatedScan& scan, const StationConfig& st
 
 }  // namespace
 
+bool carried_by_asterix(std::string_view sensor_kind) {
+  return sensor_kind == "range_azimuth" || sensor_kind == "range_azimuth_altitude" ||
+         sensor_kind == "position_velocity";
+}
+
 ScanRecords scan_records(const SimulatedScan& scan, const StationConfig& station,
                          double time_of_day_s, const GeoAnchor& anchor) {
-  const bool radar = scan.sensor_kind == "range_azimuth";
+  if (!carried_by_asterix(scan.sensor_kind)) return {};
   const bool mode_s = scan.sensor_kind == "range_azimuth_altitude";
   const bool broadcast = scan.sensor_kind == "position_velocity";
-  if (!radar && !mode_s && !broadcast) return {};
   if (station.id < 0 || station.id > 255) {
     return {0, {}, scan.scan.detections.size()};
   }
@@ -102,4 +111,74 @@ ScanRecords scan_records(const SimulatedScan& scan, const StationConfig& station
   return radar_plots(scan, source, time_of_day_s, mode_s);
 }
 
-}  // namespace skyfuse::harness
+std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,
+                                  std::span<const asterix::RadarPlot> plots, std::size_t& skipped) {
+  const bool mode_s = sensor_kind == "range_azimuth_altitude";
+  if (!mode_s && sensor_kind != "range_azimuth") return std::nullopt;
+  Scan scan;
+  scan.station_id = station_id;
+  for (const asterix::RadarPlot& plot : plots) {
+    if (mode_s && !plot.flight_level) {
+      ++skipped;
+      continue;
+    }
+    Detection z(mode_s ? 3 : 2);
+    z(0) = plot.range_m;
+    z(1) = azimuth_rad(plot.azimuth_deg);
+    if (mode_s) {
+      z(2) = *plot.flight_level * 100.0 * kFootM;
+      scan.addresses.push_back(plot.address.value_or(kNoAddress));
+    }
+    scan.detections.push_back(z);
+  }
+  // A scan of which no detection has an address holds none (picture/scan.hpp).
+  if (std::ranges::all_of(scan.addresses, [](Address a) { return a == kNoAddress; })) {
+    scan.addresses.clear();
+  }
+  return scan;
+}
+
+std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::AdsbReport> reports,
+                                    const GeoAnchor& anchor, std::size_t& skipped) {
+  Scan scan;
+  scan.station_id = station_id;
+  for (const asterix::AdsbReport& report : reports) {
+    if (!report.geometric_height_m || !report.ground_vector) {
+      ++skipped;
+      continue;
+    }
+    const Vector3 p =
+        to_local_enu(anchor, report.latitude_deg, report.longitude_deg, *report.geometric_height_m);
+    const double track_rad = report.ground_vector->track_angle_deg / kDegPerRad;
+    const double speed = report.ground_vector->ground_speed_mps;
+    Detection z(6);
+    z << p.x(), p.y(), p.z(), speed * std::sin(track_rad), speed * std::cos(track_rad), 0.0;
+    scan.detections.push_back(z);
+    scan.addresses.push_back(report.address_type == 3 ? kNoAddress : report.address);
+  }
+  if (std::ranges::all_of(scan.addresses, [](Address a) { return a == kNoAddress; })) {
+    scan.addresses.clear();
+  }
+  return scan;
+}
+
+std::optional<Scan> quantised_as_asterix(const SimulatedScan& scan, const StationConfig& station,
+                                         const GeoAnchor& anchor) {
+  const ScanRecords records = scan_records(scan, station, 0.0, anchor);
+  if (records.category == 0) return std::nullopt;
+  std::optional<asterix::EncodeError> error;
+  const std::vector<asterix::Bytes> blocks =
+      asterix::encode_blocks(records.category, records.records, 65'507, error);
+  if (error) return std::nullopt;
+  asterix::Decoded decoded;
+  for (const asterix::Bytes& block : blocks) asterix::decode_datagram(block, decoded);
+  std::size_t skipped = 0;
+  std::optional<Scan> quantised =
+      records.category == asterix::kCat021
+          ? scan_of_reports(scan.scan.station_id, decoded.reports, anchor, skipped)
+          : scan_of_plots(scan.scan.station_id, scan.sensor_kind, decoded.plots, skipped);
+  if (quantised) quantised->noise = scan.scan.noise;
+  return quantised;
+}
+
+}  // namespace skyfuse::transport

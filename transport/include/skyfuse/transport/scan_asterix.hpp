@@ -1,19 +1,25 @@
 #pragma once
-// A station's scan as the air-traffic world sends it (docs/asterix.md): a radar's plots as
-// CAT048, a receiver of the aircraft's own reports as CAT021 — what `skyfuse run
-// --asterix-record` writes beside the nodes' CAT062, so that a run's detections are a feed
-// others can read.
+/// \file
+/// A station's scan as the air-traffic world sends it (docs/asterix.md) — a radar's plots as
+/// CAT048, a receiver of the aircraft's own reports as CAT021 — and back: what `skyfuse run
+/// --asterix-record` writes beside the nodes' CAT062, so that a run's detections are a feed
+/// others can read, and what a station would take from such a feed.
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
 #include <vector>
 
 #include "skyfuse/asterix/bytes.hpp"
+#include "skyfuse/asterix/cat021.hpp"
+#include "skyfuse/asterix/cat048.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/sim/picture_detections.hpp"
 #include "skyfuse/traffic/geodesy.hpp"
 
-namespace skyfuse::harness {
+namespace skyfuse::transport {
 
 /// One scan's records, all of one category; none (category 0) for a sensor no item carries.
 struct ScanRecords {
@@ -37,4 +43,26 @@ struct ScanRecords {
 ScanRecords scan_records(const SimulatedScan& scan, const StationConfig& station,
                          double time_of_day_s, const GeoAnchor& anchor);
 
-}  // namespace skyfuse::harness
+/// Whether a sensor kind's detections travel as CAT048 plots or CAT021 reports (scan_records).
+bool carried_by_asterix(std::string_view sensor_kind);
+
+/// The inverse: decoded plots (CAT048) or reports (CAT021) as the detections of a scan of a
+/// station of `sensor_kind`, in the scenario's frame and units — range (m) and azimuth
+/// (counter-clockwise from east, rad) of a radar, the flight level as the altitude (m) and the
+/// address of a Mode S radar; a report's position in east-north-up through `anchor`, its
+/// velocity from the ground vector, and its address. No CAT021 item carried here holds a
+/// vertical speed: a report's vz is 0. A plot or report that cannot be one (a Mode S plot
+/// without a flight level, a report without a ground vector or height) is skipped and counted
+/// in `skipped`. nullopt for a sensor no item carries.
+std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,
+                                  std::span<const asterix::RadarPlot> plots, std::size_t& skipped);
+std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::AdsbReport> reports,
+                                    const GeoAnchor& anchor, std::size_t& skipped);
+
+/// `scan` as ASTERIX carries it: through its records and back, each value quantised to its
+/// item's resolution — the scan a station fed those records holds. Quantising it again gives
+/// the same bits. nullopt for a sensor no item carries.
+std::optional<Scan> quantised_as_asterix(const SimulatedScan& scan, const StationConfig& station,
+                                         const GeoAnchor& anchor);
+
+}  // namespace skyfuse::transport

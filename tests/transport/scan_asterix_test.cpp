@@ -1,0 +1,113 @@
+// A station's scan as ASTERIX carries it and back (transport/scan_asterix.hpp), on uam-mixed's
+// own scans: every detection of a Mode S radar and a Remote ID receiver survives the round trip
+// within its items' resolutions, and a scan so quantised is quantised again to the same bits —
+// what a station fed a recorded feed would hold.
+#include "skyfuse/transport/scan_asterix.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/traffic/traffic_truth.hpp"
+
+namespace skyfuse::transport {
+namespace {
+
+constexpr double kFootM = 0.3048;
+constexpr double kNauticalMileM = 1852.0;
+
+Scenario uam_mixed() {
+  return load_scenario_file(std::string(SKYFUSE_BIN_DIR) + "/scenarios/uam-mixed.yaml");
+}
+
+TEST(ScanAsterix, EveryDetectionSurvivesWithinItsItemsResolutionAndQuantisesToTheSameBits) {
+  const Scenario scenario = uam_mixed();
+  const auto truth = build_traffic_truth(scenario).targets;
+  constexpr int kStations = 10;
+  std::size_t plots = 0;
+  std::size_t reports = 0;
+  for (int k = 20; k < 24; ++k) {
+    const auto scans = simulated_scans_at(scenario, truth, kStations, 0, k);
+    for (std::size_t s = 0; s < scans.size(); ++s) {
+      const SimulatedScan& scan = scans[s];
+      const StationConfig& station = scenario.stations[s];
+      const std::optional<Scan> once = quantised_as_asterix(scan, station, scenario.anchor);
+      ASSERT_EQ(once.has_value(), carried_by_asterix(scan.sensor_kind)) << scan.sensor_kind;
+      if (!once) continue;
+      const auto& z = scan.scan.detections;
+      const auto& q = once->detections;
+      ASSERT_EQ(q.size(), z.size());
+      EXPECT_EQ(once->addresses, scan.scan.addresses);
+      EXPECT_EQ(once->station_id, station.id);
+      for (std::size_t j = 0; j < z.size(); ++j) {
+        ASSERT_EQ(q[j].size(), z[j].size());
+        if (scan.sensor_kind == "range_azimuth_altitude") {
+          EXPECT_NEAR(q[j](0), z[j](0), kNauticalMileM / 256.0 / 2.0 + 1e-9);
+          EXPECT_NEAR(std::remainder(q[j](1) - z[j](1), 2.0 * std::numbers::pi), 0.0,
+                      std::numbers::pi / 65536.0 + 1e-12);
+          EXPECT_NEAR(q[j](2), z[j](2), 12.5 * kFootM + 1e-9);
+          ++plots;
+        } else {
+          // 180/2^30 degrees of latitude is 2 cm; the height 6.25 ft; the ground speed 2^-14
+          // NM/s and the track angle 360/2^16 degrees; no vertical speed.
+          EXPECT_NEAR(q[j](0), z[j](0), 0.05);
+          EXPECT_NEAR(q[j](1), z[j](1), 0.05);
+          EXPECT_NEAR(q[j](2), z[j](2), 3.125 * kFootM + 0.01);
+          const double speed = std::hypot(z[j](3), z[j](4));
+          const double tolerance =
+              kNauticalMileM / 16384.0 / 2.0 + speed * 2.0 * std::numbers::pi / 65536.0;
+          EXPECT_NEAR(q[j](3), z[j](3), tolerance);
+          EXPECT_NEAR(q[j](4), z[j](4), tolerance);
+          EXPECT_EQ(q[j](5), 0.0);
+          ++reports;
+        }
+      }
+      const std::optional<Scan> twice =
+          quantised_as_asterix({scan.sensor_kind, *once, scan.target}, station, scenario.anchor);
+      ASSERT_TRUE(twice.has_value());
+      ASSERT_EQ(twice->detections.size(), q.size());
+      for (std::size_t j = 0; j < q.size(); ++j) {
+        EXPECT_TRUE(same_detection(twice->detections[j], q[j]))
+            << scan.sensor_kind << " detection " << j << " round " << k;
+      }
+      EXPECT_EQ(twice->addresses, once->addresses);
+    }
+  }
+  EXPECT_GT(plots, 50U);
+  EXPECT_GT(reports, 50U);
+}
+
+TEST(ScanAsterix, SkipsAPlotOrReportThatCannotBeADetectionAndCountsIt) {
+  asterix::RadarPlot without_level;
+  without_level.range_m = 5000.0;
+  std::size_t skipped = 0;
+  const auto plots = scan_of_plots(7, "range_azimuth_altitude",
+                                   std::span<const asterix::RadarPlot>(&without_level, 1), skipped);
+  ASSERT_TRUE(plots.has_value());
+  EXPECT_TRUE(plots->detections.empty());
+  EXPECT_EQ(skipped, 1U);
+  // A primary radar's plot needs none: range and azimuth, azimuth 0 (north) as π/2.
+  const auto primary = scan_of_plots(
+      3, "range_azimuth", std::span<const asterix::RadarPlot>(&without_level, 1), skipped);
+  ASSERT_TRUE(primary.has_value());
+  ASSERT_EQ(primary->detections.size(), 1U);
+  EXPECT_NEAR(primary->detections[0](1), std::numbers::pi / 2.0, 1e-15);
+  EXPECT_TRUE(primary->addresses.empty());
+  EXPECT_FALSE(scan_of_plots(1, "range_azimuth_elevation", {}, skipped).has_value());
+
+  asterix::AdsbReport without_height;
+  without_height.ground_vector = asterix::GroundVector{100.0, 90.0};
+  skipped = 0;
+  const GeoAnchor anchor{48.3538, 11.7861, 448.0};
+  const auto reports =
+      scan_of_reports(9, std::span<const asterix::AdsbReport>(&without_height, 1), anchor, skipped);
+  ASSERT_TRUE(reports.has_value());
+  EXPECT_TRUE(reports->detections.empty());
+  EXPECT_EQ(skipped, 1U);
+}
+
+}  // namespace
+}  // namespace skyfuse::transport
