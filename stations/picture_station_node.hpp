@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_stations.hpp"
 #include "skyfuse/traffic/scan_simulation.hpp"
+#include "skyfuse/transport/asterix_replay.hpp"
 #include "skyfuse/transport/node_loop.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
@@ -29,6 +31,7 @@
 #include "skyfuse/transport/picture_exchange.hpp"
 #include "skyfuse/transport/picture_track_writer.hpp"
 #include "skyfuse/transport/picture_tree_exchange.hpp"
+#include "skyfuse/transport/scan_asterix.hpp"
 #include "station_process.hpp"
 
 namespace skyfuse::station {
@@ -68,7 +71,8 @@ class PictureStation {
         states_in_(node_.make_reader<wire::PictureState>()),
         picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.tracker),
         asterix_out_(transport::make_asterix_out(options.node.asterix_out, plan_.scenario.anchor,
-                                                 plan_.scenario.time_step_s)) {
+                                                 plan_.scenario.time_step_s)),
+        replayed_(replayed_scans(options, plan_.participants()[me_], plan_.scenario)) {
     // What it sends to itself never crosses the simulated link: the exchange keeps it as it
     // goes out.
     loop_.skip_own(options.id, exchange_.own_writer());
@@ -108,9 +112,11 @@ class PictureStation {
     picture_.predict();
     predicted_digest_ = picture_.digest();
     const StationConfig& station = plan_.participants()[me_];
-    const Scan scan =
-        simulate_scan(station.id, truth_sensor_, station.position_m, known_[me_].noise, detection_,
-                      truth_, static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
+    const Scan scan = replayed_
+                          ? replayed_->scan_at(k, known_[me_].noise)
+                          : simulate_scan(station.id, truth_sensor_, station.position_m,
+                                          known_[me_].noise, detection_, truth_,
+                                          static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
     exchange_.publish(static_cast<std::uint32_t>(k), scan,
                       picture_.report(known_[me_], scan, work_), predicted_digest_);
     return std::nullopt;
@@ -221,6 +227,22 @@ class PictureStation {
 
   bool realtime() const { return options_.node.realtime_deadline_ms > 0.0; }
 
+  static std::optional<transport::ReplayedScans> replayed_scans(const StationOptions& options,
+                                                                const StationConfig& station,
+                                                                const Scenario& scenario) {
+    if (options.node.asterix_replay.empty() ||
+        !transport::carried_by_asterix(station.sensor.kind)) {
+      return std::nullopt;
+    }
+    std::optional<transport::ReplayedScans> replayed;
+    replayed.emplace(options.node.asterix_replay, station.id, station.sensor.kind, scenario.anchor,
+                     scenario.time_step_s);
+    spdlog::info("station {} takes its scans from {}: {} rounds, {} detections, {} skipped",
+                 station.id, options.node.asterix_replay, replayed->rounds(),
+                 replayed->detections(), replayed->skipped());
+    return replayed;
+  }
+
   // The picture after round k, to the harness and to readers of its tracks.
   void publish_round(std::uint64_t k, std::uint32_t scans_fused) {
     const auto step = static_cast<std::uint32_t>(k);
@@ -314,6 +336,9 @@ class PictureStation {
   Picture picture_;
   // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
   std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
+  // `--asterix-replay`: this station's scans from a recorded feed, where its sensor is one
+  // ASTERIX carries; it simulates them otherwise.
+  std::optional<transport::ReplayedScans> replayed_;
   // picture_'s digest as predicted for the round (or taken): it is published with the scan and
   // compared with the others', and computed once a round rather than at each use.
   std::uint64_t predicted_digest_ = 0;

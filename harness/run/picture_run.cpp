@@ -34,6 +34,7 @@
 #include "skyfuse/sim/picture_run.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 #include "skyfuse/transport/dds_node.hpp"
+#include "skyfuse/transport/scan_asterix.hpp"
 
 namespace skyfuse::harness {
 namespace {
@@ -54,7 +55,9 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
                     option, why));
   };
   if (!o.replay_path.empty()) {
-    refuse("--replay", "its stations' scans are not recorded to be replayed");
+    refuse("--replay",
+           "a picture's stations replay an ASTERIX recording of their scans (--asterix-replay "
+           "FILE.pcap) instead of measurements.csv");
   }
   if (o.external) {
     refuse("--external",
@@ -126,7 +129,20 @@ class ManyAircraftRun final : public RunKind {
   void open(const transport::NodeConfig& config, std::uint64_t run_id,
             std::function<void()> check) override {
     truth_.emplace(build_traffic_truth(plan_.scenario, o_.node.traffic_file));
-    twin_.emplace(run_picture(plan_.scenario, truth_->targets, plan_.stations, plan_.mc_run));
+    // Fed a recording, the stations that replay it hold their simulated scans quantised as the
+    // records hold them: so does the twin.
+    ScanFilter quantised;
+    if (!o_.node.asterix_replay.empty()) {
+      quantised = [this](std::size_t s, Scan& scan) {
+        const StationConfig& station = plan_.scenario.stations[s];
+        if (auto q = transport::quantised_as_asterix({station.sensor.kind, scan, {}}, station,
+                                                     plan_.scenario.anchor)) {
+          scan = std::move(*q);
+        }
+      };
+    }
+    twin_.emplace(
+        run_picture(plan_.scenario, truth_->targets, plan_.stations, plan_.mc_run, {}, quantised));
     if (o_.live) {
       live_ = std::make_unique<PictureLiveFeed>(live_server_options(*o_.live), o_.live_scene_hz,
                                                 plan_, truth_->targets);

@@ -124,6 +124,15 @@ void add_asterix_out_option(CLI::App& app, std::string& destination) {
       ->type_name("HOST:PORT");
 }
 
+void add_asterix_replay_option(CLI::App& app, std::string& file) {
+  app.add_option("--asterix-replay", file,
+                 "Stations whose sensor ASTERIX carries (Mode S and 2-D radars, ADS-B / Remote ID) "
+                 "take their scans from the CAT048/CAT021 records of their own SIC in this pcap "
+                 "(an --asterix-record of the same scenario) instead of simulating them")
+      ->check(CLI::ExistingFile)
+      ->type_name("FILE.pcap");
+}
+
 void add_traffic_file_option(CLI::App& app, std::string& traffic_file) {
   app.add_option("--traffic-file", traffic_file,
                  "An OpenSky state-vector CSV for a scenario with 'traffic: recorded', instead of "
@@ -156,6 +165,7 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
   add_nis_gate_option(app, o.gate);
   add_network_options(app, o.network);
   add_asterix_out_option(app, o.asterix_out);
+  add_asterix_replay_option(app, o.asterix_replay);
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();
@@ -192,6 +202,7 @@ std::vector<std::string> to_arguments(const NodeOptions& o) {
   if (o.gate.enabled()) add("--nis-gate", fmt::format("{}", o.gate.probability()));
   for (std::string& a : network_arguments(o.network)) args.push_back(std::move(a));
   if (!o.asterix_out.empty()) add("--asterix-out", o.asterix_out);
+  if (!o.asterix_replay.empty()) add("--asterix-replay", o.asterix_replay);
   add("--log-level", o.log_level);
   return args;
 }

@@ -641,6 +641,47 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
   }
 }
 
+// `--asterix-replay`: a run of uam-mixed's first ten stations fed the CAT048/CAT021 record of an
+// earlier run of the same scenario. Its Mode S radars and Remote ID receivers take their scans
+// from the file, the 3-D radars simulate theirs; every node's picture equals, every round and
+// bit for bit, the in-process run whose scans are quantised as the records hold them — and
+// differs from the unquantised run the record came from, so the file was what they fused.
+TEST(DdsPicture, StationsFedTheirOwnRecordHoldTheQuantisedPictureBitForBit) {
+  constexpr int kStations = 10;
+  constexpr int kSteps = 20;
+  const auto dir = test_dir();
+  const auto pcap = dir / "recorded.pcap";
+  const std::string scenario = bin("scenarios/uam-mixed.yaml");
+  const auto run_with = [&](const std::string& name, std::vector<std::string> extra,
+                            const std::string& domain) {
+    std::vector<std::string> args{bin("skyfuse"), "run", "--scenario", scenario, "--stations",
+                                  std::to_string(kStations), "--steps", std::to_string(kSteps),
+                                  "--domain", domain, "--out", (dir / name).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_to_completion(args, dir / (name + ".log"), 240s);
+  };
+  const Completed recorded = run_with("recorded", {"--asterix-record", pcap.string()}, "86");
+  ASSERT_EQ(recorded.status.code, 0) << recorded.output;
+  const Completed fed = run_with("fed", {"--asterix-replay", pcap.string()}, "87");
+  ASSERT_EQ(fed.status.code, 0) << fed.output;
+
+  const auto summary = nlohmann::json::parse(read_file(dir / "fed" / "summary.json"));
+  EXPECT_TRUE(summary.at("peers_identical").get<bool>());
+  EXPECT_TRUE(summary.at("equals_in_process").get<bool>()) << "against the quantised twin";
+  EXPECT_TRUE(summary.at("center_equals_in_process").get<bool>());
+  EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
+
+  const StationRounds before = node_rounds(dir / "recorded" / "picture_rounds.csv");
+  const StationRounds after = node_rounds(dir / "fed" / "picture_rounds.csv");
+  ASSERT_EQ(after.size(), static_cast<std::size_t>(kSteps));
+  int rounds_apart = 0;
+  for (const auto& [step, nodes] : after) {
+    ASSERT_EQ(nodes.size(), static_cast<std::size_t>(kStations + 1)) << step;
+    if (nodes.at(1).digest != before.at(step).at(1).digest) ++rounds_apart;
+  }
+  EXPECT_GT(rounds_apart, kSteps / 2) << "the fed stations' plots are quantised";
+}
+
 // scenarios/registration.yaml with the tracker estimating every station's biases, written to
 // `dir`.
 std::filesystem::path registered_scenario(const std::filesystem::path& dir) {

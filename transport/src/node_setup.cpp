@@ -44,6 +44,12 @@ AnyPlan load_any_plan(const options::NodeOptions& options) {
           "tracks to send; the option is for one with 'traffic'",
           one->scenario.name));
     }
+    if (!options.asterix_replay.empty()) {
+      throw std::invalid_argument(fmt::format(
+          "--asterix-replay: scenario '{}' has one target; plots and reports feed a picture, "
+          "a scenario with 'traffic'",
+          one->scenario.name));
+    }
     options::settle_exchange(one->scenario, options);
   }
   return plan;

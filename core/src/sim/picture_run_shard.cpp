@@ -67,8 +67,9 @@ class PictureRun {
   using Center = CentralPicture<typename Parts::Center>;
 
   PictureRun(const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
-             std::uint64_t run)
-      : scenario_(scenario),
+             std::uint64_t run, const ScanFilter& scan_filter)
+      : scan_filter_(scan_filter),
+        scenario_(scenario),
         traffic_(*scenario.traffic),
         truth_(truth),
         run_(run),
@@ -120,6 +121,7 @@ class PictureRun {
       scans_.push_back(simulate_scan(station.id, truth_sensors_[s], station.position_m,
                                      known_[s].noise, detection_[s], truth_, k, scenario_.seed,
                                      run_, &origins));
+      if (scan_filter_) scan_filter_(s, scans_.back());
       result_.detections += scans_.back().detections.size();
       for (const int o : origins.target) {
         if (o < 0) {
@@ -235,6 +237,7 @@ class PictureRun {
     }
   }
 
+  const ScanFilter& scan_filter_;
   const Scenario& scenario_;
   const TrafficConfig& traffic_;
   const std::vector<TargetTruth>& truth_;
@@ -261,16 +264,18 @@ class PictureRun {
 template <std::size_t Shard>
 std::optional<PictureRunResult> run_picture_in_shard(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
-    std::uint64_t run, const std::function<void(const PictureStep&)>& on_step) {
+    std::uint64_t run, const std::function<void(const PictureStep&)>& on_step,
+    const ScanFilter& scan_filter) {
   std::optional<PictureRunResult> result;
   visit_picture_parts_in_shard<Shard>(scenario, [&]<typename Parts>(std::type_identity<Parts>) {
-    result = PictureRun<Parts>(scenario, truth, stations, run).run(on_step);
+    result = PictureRun<Parts>(scenario, truth, stations, run, scan_filter).run(on_step);
   });
   return result;
 }
 
 template std::optional<PictureRunResult> run_picture_in_shard<SKYFUSE_SHARD>(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
-    std::uint64_t run, const std::function<void(const PictureStep&)>& on_step);
+    std::uint64_t run, const std::function<void(const PictureStep&)>& on_step,
+    const ScanFilter& scan_filter);
 
 }  // namespace skyfuse

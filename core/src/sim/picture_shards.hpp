@@ -18,6 +18,7 @@ namespace skyfuse {
 template <std::size_t Shard>
 std::optional<PictureRunResult> run_picture_in_shard(
     const Scenario& scenario, const std::vector<TargetTruth>& truth, int stations,
-    std::uint64_t run, const std::function<void(const PictureStep&)>& on_step);
+    std::uint64_t run, const std::function<void(const PictureStep&)>& on_step,
+    const ScanFilter& scan_filter);
 
 }  // namespace skyfuse

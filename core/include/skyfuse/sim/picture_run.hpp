@@ -8,11 +8,13 @@
 /// bit for bit and how far the center's is from it, and scores the peers' picture against the
 /// truth (metrics/picture_score.hpp).
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "skyfuse/metrics/picture_score.hpp"
+#include "skyfuse/picture/scan.hpp"
 #include "skyfuse/registration/bias_trace.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/traffic/target_truth.hpp"
@@ -56,10 +58,17 @@ struct PictureRunResult {
   double max_bias_gap = 0.0;
 };
 
+/// What a run does to station `station`'s (index) simulated scan before any tracker sees it:
+/// a run fed its own ASTERIX recording quantises each scan as the items hold it
+/// (transport/scan_asterix.hpp), say. None by default.
+using ScanFilter = std::function<void(std::size_t station, Scan& scan)>;
+
 /// Runs `scenario` (has_many_targets()) with its first `stations` stations against `truth`,
-/// Monte-Carlo run `run`; `on_step` hears of each step's figures.
+/// Monte-Carlo run `run`; `on_step` hears of each step's figures, and `scan_filter`, where
+/// given, has each simulated scan first.
 PictureRunResult run_picture(const Scenario& scenario, const std::vector<TargetTruth>& truth,
                              int stations, std::uint64_t run,
-                             const std::function<void(const PictureStep&)>& on_step = {});
+                             const std::function<void(const PictureStep&)>& on_step = {},
+                             const ScanFilter& scan_filter = {});
 
 }  // namespace skyfuse

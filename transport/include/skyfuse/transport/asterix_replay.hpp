@@ -1,0 +1,47 @@
+#pragma once
+/// \file
+/// A station's scans read back from a pcap of ASTERIX (`--asterix-replay FILE.pcap`): the
+/// CAT048 plots or CAT021 reports of its own data source, round by round, as a station fed
+/// that feed holds them (scan_asterix.hpp). A file `skyfuse run --asterix-record` wrote of the
+/// same scenario gives each station the scans it simulated, quantised as the items hold them.
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string_view>
+
+#include "skyfuse/asterix/refusal.hpp"
+#include "skyfuse/picture/scan.hpp"
+#include "skyfuse/scenario/scenario.hpp"
+
+namespace skyfuse::transport {
+
+class ReplayedScans {
+ public:
+  /// Station `station_id`'s scans (SAC 0, SIC its id), of a sensor of `sensor_kind`, in `file`:
+  /// each record's time of day (I048/140, I021/071) names its round, k = round(t / dt).
+  /// Throws std::runtime_error naming the file where it cannot be read, std::invalid_argument
+  /// for a sensor ASTERIX does not carry (carried_by_asterix) or a station id past SIC's 255.
+  ReplayedScans(const std::filesystem::path& file, int station_id, std::string_view sensor_kind,
+                const GeoAnchor& anchor, double time_step_s);
+
+  /// Round k's scan, with `noise` as its R: empty where the file holds nothing of the round.
+  Scan scan_at(std::uint64_t k, const DetectionNoise& noise) const;
+
+  std::size_t rounds() const { return scans_.size(); }
+  std::size_t detections() const { return detections_; }
+  /// What the decoder refused in the file, by kind (asterix/refusal.hpp), and the plots or
+  /// reports of this station that could not be a detection (scan_of_plots).
+  const asterix::RefusalCounts& refusals() const { return refusals_; }
+  std::size_t skipped() const { return skipped_; }
+
+ private:
+  int station_id_;
+  std::map<std::uint64_t, Scan> scans_;
+  std::size_t detections_ = 0;
+  asterix::RefusalCounts refusals_;
+  std::size_t skipped_ = 0;
+};
+
+}  // namespace skyfuse::transport
