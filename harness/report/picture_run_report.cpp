@@ -52,6 +52,13 @@ void print_picture_run_table(const PictureRunSummary& s, std::FILE* out) {
       s.center_equals_in_process
           ? "yes, every round"
           : fmt::format("no, from round {}", s.first_step_center_apart_from_in_process));
+  if (const auto& feed = s.asterix_feed) {
+    row("ASTERIX feed (--asterix-replay)",
+        fmt::format("{} datagrams: {} plots, {} reports, {} system tracks; {} refused{}",
+                    feed->datagrams, feed->plots, feed->reports, feed->system_tracks,
+                    feed->refused.total(),
+                    feed->refused.total() == 0 ? "" : " (by kind in summary.json)"));
+  }
   row("center vs peer-to-peer",
       fmt::format("max |dx| / (1 + |x|) {:.2e}; {} rounds with other "
                   "tracks",
@@ -156,6 +163,20 @@ std::string picture_run_json(const PictureRunSummary& summary, std::uint64_t run
         {"gospa_mean", twin.score.gospa_mean},
         {"gospa_in_view_mean", twin.score.in_view.distance}}}};
   nlohmann::json full = json;
+  if (const auto& feed = summary.asterix_feed) {
+    nlohmann::json refused = nlohmann::json::object();
+    for (std::size_t i = 0; i < asterix::kRefusalKinds; ++i) {
+      const auto kind = static_cast<asterix::Refusal>(i);
+      refused[std::string(asterix::refusal_name(kind))] = feed->refused[kind];
+    }
+    full["asterix_replay"] = {{"datagrams", feed->datagrams},
+                              {"cat048_plots", feed->plots},
+                              {"cat021_reports", feed->reports},
+                              {"cat062_tracks", feed->system_tracks},
+                              {"refused", std::move(refused)},
+                              {"refused_total", feed->refused.total()},
+                              {"pcap_frames_skipped", feed->frames_skipped}};
+  }
   if (!summary.end_detail.empty()) full["end_detail"] = summary.end_detail;
   if (!summary.node_exits.empty()) full["node_exits"] = summary.node_exits;
   if (!summary.host_verdict.empty()) full["host_verdict"] = summary.host_verdict;

@@ -133,6 +133,7 @@ class ManyAircraftRun final : public RunKind {
     // records hold them: so does the twin.
     ScanFilter quantised;
     if (!o_.node.asterix_replay.empty()) {
+      summary_.asterix_feed = transport::count_asterix_feed(o_.node.asterix_replay);
       quantised = [this](std::size_t s, Scan& scan) {
         const StationConfig& station = plan_.scenario.stations[s];
         if (auto q = transport::quantised_as_asterix({station.sensor.kind, scan, {}}, station,

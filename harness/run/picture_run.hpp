@@ -22,6 +22,7 @@
 #include "run/run_stopped_early.hpp"
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
+#include "skyfuse/transport/asterix_replay.hpp"
 #include "skyfuse/validation/drop_kind.hpp"
 
 namespace skyfuse::harness {
@@ -65,6 +66,8 @@ struct PictureRunSummary : RunFigures {
   std::size_t tracks_at_end = 0;
   std::size_t confirmed_at_end = 0;
   std::uint64_t digest_at_end = 0;
+  /// `--asterix-replay`: what the feed file held and what of it was refused, by kind.
+  std::optional<transport::AsterixFeedCounts> asterix_feed;
 };
 
 /// Runs `plan` as `o` says, writing picture_rounds.csv and

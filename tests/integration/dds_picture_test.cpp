@@ -645,7 +645,9 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
 // earlier run of the same scenario. Its Mode S radars and Remote ID receivers take their scans
 // from the file, the 3-D radars simulate theirs; every node's picture equals, every round and
 // bit for bit, the in-process run whose scans are quantised as the records hold them — and
-// differs from the unquantised run the record came from, so the file was what they fused.
+// differs from the unquantised run the record came from, so the file was what they fused. The
+// malformed datagrams added to the feed are refused, counted by kind in summary.json, and
+// change nothing.
 TEST(DdsPicture, StationsFedTheirOwnRecordHoldTheQuantisedPictureBitForBit) {
   constexpr int kStations = 10;
   constexpr int kSteps = 20;
@@ -654,18 +656,53 @@ TEST(DdsPicture, StationsFedTheirOwnRecordHoldTheQuantisedPictureBitForBit) {
   const std::string scenario = bin("scenarios/uam-mixed.yaml");
   const auto run_with = [&](const std::string& name, std::vector<std::string> extra,
                             const std::string& domain) {
-    std::vector<std::string> args{bin("skyfuse"), "run", "--scenario", scenario, "--stations",
-                                  std::to_string(kStations), "--steps", std::to_string(kSteps),
-                                  "--domain", domain, "--out", (dir / name).string()};
+    std::vector<std::string> args{bin("skyfuse"), "run",
+                                  "--scenario",   scenario,
+                                  "--stations",   std::to_string(kStations),
+                                  "--steps",      std::to_string(kSteps),
+                                  "--domain",     domain,
+                                  "--out",        (dir / name).string()};
     args.insert(args.end(), extra.begin(), extra.end());
     return run_to_completion(args, dir / (name + ".log"), 240s);
   };
   const Completed recorded = run_with("recorded", {"--asterix-record", pcap.string()}, "86");
   ASSERT_EQ(recorded.status.code, 0) << recorded.output;
-  const Completed fed = run_with("fed", {"--asterix-replay", pcap.string()}, "87");
+  // The feed: the record, and a malformed datagram of four kinds, which the decoder refuses
+  // (each checked here) and the run counts in summary.json.
+  const asterix::PcapContents record = asterix::read_pcap(pcap);
+  ASSERT_FALSE(record.error.has_value());
+  const std::vector<std::pair<asterix::Bytes, asterix::Refusal>> malformed{
+      {{48}, asterix::Refusal::truncated_block},
+      {{48, 0, 50, 0x80}, asterix::Refusal::length_mismatch},
+      {{99, 0, 4, 0x00}, asterix::Refusal::unknown_category},
+      {{48, 0, 4, 0x01}, asterix::Refusal::fspec_past_end}};
+  const auto feed = dir / "feed.pcap";
+  {
+    asterix::PcapWriter writer(feed);
+    for (const asterix::UdpDatagram& d : record.datagrams) writer.write(d);
+    for (const auto& [bytes, kind] : malformed) {
+      const asterix::Decoded decoded = asterix::decode_datagram(bytes);
+      ASSERT_EQ(decoded.refusals.total(), 1U);
+      ASSERT_EQ(decoded.refusals[kind], 1U) << asterix::refusal_name(kind);
+      writer.write({record.datagrams.back().time_ns,
+                    {{127, 0, 0, 99}, 8601},
+                    {{127, 0, 0, 1}, 8600},
+                    bytes});
+    }
+    writer.close();
+  }
+  const Completed fed = run_with("fed", {"--asterix-replay", feed.string()}, "87");
   ASSERT_EQ(fed.status.code, 0) << fed.output;
 
   const auto summary = nlohmann::json::parse(read_file(dir / "fed" / "summary.json"));
+  const auto& counted = summary.at("asterix_replay");
+  EXPECT_EQ(counted.at("datagrams").get<std::size_t>(), record.datagrams.size() + malformed.size());
+  EXPECT_GT(counted.at("cat048_plots").get<std::size_t>(), 0U);
+  EXPECT_GT(counted.at("cat021_reports").get<std::size_t>(), 0U);
+  EXPECT_EQ(counted.at("refused_total").get<std::size_t>(), malformed.size());
+  for (const auto& [bytes, kind] : malformed) {
+    EXPECT_EQ(counted.at("refused").at(std::string(asterix::refusal_name(kind))).get<int>(), 1);
+  }
   EXPECT_TRUE(summary.at("peers_identical").get<bool>());
   EXPECT_TRUE(summary.at("equals_in_process").get<bool>()) << "against the quantised twin";
   EXPECT_TRUE(summary.at("center_equals_in_process").get<bool>());

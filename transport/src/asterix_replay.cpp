@@ -18,6 +18,28 @@ std::uint64_t round_of(double time_of_day_s, double time_step_s) {
 
 }  // namespace
 
+AsterixFeedCounts count_asterix_feed(const std::filesystem::path& file) {
+  const asterix::PcapContents contents = asterix::read_pcap(file);
+  if (contents.error) {
+    throw std::runtime_error("--asterix-replay: " + file.string() + ": " + *contents.error);
+  }
+  AsterixFeedCounts counts;
+  counts.frames_skipped = contents.skipped.total();
+  asterix::Decoded decoded;
+  for (const asterix::UdpDatagram& datagram : contents.datagrams) {
+    ++counts.datagrams;
+    asterix::decode_datagram(datagram.payload, decoded);
+    counts.plots += decoded.plots.size();
+    counts.reports += decoded.reports.size();
+    counts.system_tracks += decoded.tracks.size();
+    decoded.plots.clear();
+    decoded.reports.clear();
+    decoded.tracks.clear();
+  }
+  counts.refused = decoded.refusals;
+  return counts;
+}
+
 ReplayedScans::ReplayedScans(const std::filesystem::path& file, int station_id,
                              std::string_view sensor_kind, const GeoAnchor& anchor,
                              double time_step_s)

@@ -17,6 +17,21 @@
 
 namespace skyfuse::transport {
 
+/// What a feed file holds, as a run reports it in summary.json: its UDP datagrams, the records
+/// read by category, the records and blocks refused by kind, and the frames the pcap reader
+/// skipped (not IPv4 UDP, fragments, truncated).
+struct AsterixFeedCounts {
+  std::uint64_t datagrams = 0;
+  std::uint64_t plots = 0;          ///< CAT048
+  std::uint64_t reports = 0;        ///< CAT021
+  std::uint64_t system_tracks = 0;  ///< CAT062
+  asterix::RefusalCounts refused;
+  std::uint64_t frames_skipped = 0;
+};
+
+/// Counts `file` (AsterixFeedCounts); throws std::runtime_error naming it where it cannot be read.
+AsterixFeedCounts count_asterix_feed(const std::filesystem::path& file);
+
 class ReplayedScans {
  public:
   /// Station `station_id`'s scans (SAC 0, SIC its id), of a sensor of `sensor_kind`, in `file`:
