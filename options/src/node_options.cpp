@@ -127,10 +127,11 @@ void add_asterix_out_option(CLI::App& app, std::string& destination) {
 void add_asterix_replay_option(CLI::App& app, std::string& file) {
   app.add_option("--asterix-replay", file,
                  "Stations whose sensor ASTERIX carries (Mode S and 2-D radars, ADS-B / Remote ID) "
-                 "take their scans from the CAT048/CAT021 records of their own SIC in this pcap "
-                 "(an --asterix-record of the same scenario) instead of simulating them")
+                 "take their scans from the CAT048/CAT021 records of their own SIC in this file "
+                 "(a pcap, say an --asterix-record of the same scenario, or raw ASTERIX blocks) "
+                 "instead of simulating them")
       ->check(CLI::ExistingFile)
-      ->type_name("FILE.pcap");
+      ->type_name("FILE");
 }
 
 void add_traffic_file_option(CLI::App& app, std::string& traffic_file) {

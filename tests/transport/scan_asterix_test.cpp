@@ -7,11 +7,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <string>
 
+#include "skyfuse/asterix/data_block.hpp"
+#include "skyfuse/asterix/pcap.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
+#include "skyfuse/transport/asterix_replay.hpp"
 
 namespace skyfuse::transport {
 namespace {
@@ -107,6 +112,73 @@ TEST(ScanAsterix, SkipsAPlotOrReportThatCannotBeADetectionAndCountsIt) {
   ASSERT_TRUE(reports.has_value());
   EXPECT_TRUE(reports->detections.empty());
   EXPECT_EQ(skipped, 1U);
+}
+
+// A feed file read back: the scans of a station's records, as a pcap of datagrams and as raw
+// data blocks one after another, are the same — and are the quantised scans the records were
+// made of, round by round.
+TEST(ReplayedScans, APcapAndARawFileOfTheSameRecordsGiveTheQuantisedScans) {
+  const Scenario scenario = uam_mixed();
+  const auto truth = build_traffic_truth(scenario).targets;
+  constexpr int kStations = 10;
+  constexpr int kFirst = 20;  // the aircraft appear over the first minute
+  constexpr int kRounds = 6;
+  const std::filesystem::path dir = std::filesystem::path(SKYFUSE_TEST_WORK_DIR) / "replayed_scans";
+  std::filesystem::create_directories(dir);
+  const auto pcap = dir / "feed.pcap";
+  const auto raw = dir / "feed.ast";
+  std::vector<std::vector<SimulatedScan>> rounds;
+  {
+    asterix::PcapWriter writer(pcap);
+    std::ofstream blocks(raw, std::ios::binary);
+    for (int k = kFirst; k < kFirst + kRounds; ++k) {
+      rounds.push_back(simulated_scans_at(scenario, truth, kStations, 0, k));
+      for (std::size_t s = 0; s < rounds.back().size(); ++s) {
+        const ScanRecords records = scan_records(rounds.back()[s], scenario.stations[s],
+                                                 k * scenario.time_step_s, scenario.anchor);
+        if (records.category == 0 || records.records.empty()) continue;
+        std::optional<asterix::EncodeError> error;
+        for (const asterix::Bytes& block :
+             asterix::encode_blocks(records.category, records.records, 65'507, error)) {
+          writer.write({0, {{127, 0, 0, 7}, 8601}, {{127, 0, 0, 1}, 8600}, block});
+          blocks.write(reinterpret_cast<const char*>(block.data()),
+                       static_cast<std::streamsize>(block.size()));
+        }
+        ASSERT_FALSE(error.has_value());
+      }
+    }
+    writer.close();
+  }
+  std::size_t detections = 0;
+  for (const int id : {7, 9}) {  // a Mode S radar and a Remote ID receiver
+    const StationConfig& station = scenario.stations[static_cast<std::size_t>(id - 1)];
+    const ReplayedScans from_pcap(pcap, id, station.sensor.kind, scenario.anchor,
+                                  scenario.time_step_s);
+    const ReplayedScans from_raw(raw, id, station.sensor.kind, scenario.anchor,
+                                 scenario.time_step_s);
+    EXPECT_EQ(from_pcap.detections(), from_raw.detections());
+    EXPECT_EQ(from_pcap.refusals().total(), 0U);
+    EXPECT_EQ(from_raw.refusals().total(), 0U);
+    for (int k = kFirst; k < kFirst + kRounds; ++k) {
+      const SimulatedScan& simulated =
+          rounds[static_cast<std::size_t>(k - kFirst)][static_cast<std::size_t>(id - 1)];
+      const Scan expected = *quantised_as_asterix(simulated, station, scenario.anchor);
+      for (const ReplayedScans* replayed : {&from_pcap, &from_raw}) {
+        const Scan scan = replayed->scan_at(static_cast<std::uint64_t>(k), simulated.scan.noise);
+        ASSERT_EQ(scan.detections.size(), expected.detections.size()) << id << " round " << k;
+        for (std::size_t j = 0; j < scan.detections.size(); ++j) {
+          EXPECT_TRUE(same_detection(scan.detections[j], expected.detections[j]));
+        }
+        EXPECT_EQ(scan.addresses, expected.addresses);
+        EXPECT_EQ(scan.station_id, id);
+      }
+      detections += expected.detections.size();
+    }
+  }
+  EXPECT_GT(detections, 50U);
+  // A sensor no item carries is refused by name.
+  EXPECT_THROW(ReplayedScans(pcap, 1, "range_azimuth_elevation", scenario.anchor, 1.0),
+               std::invalid_argument);
 }
 
 }  // namespace

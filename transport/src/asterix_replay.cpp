@@ -1,6 +1,8 @@
 #include "skyfuse/transport/asterix_replay.hpp"
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,19 +18,50 @@ std::uint64_t round_of(double time_of_day_s, double time_step_s) {
   return static_cast<std::uint64_t>(std::llround(time_of_day_s / time_step_s));
 }
 
-}  // namespace
+// A feed file's datagrams: a pcap's (classic or its nanosecond form; pcapng is refused by the
+// reader, naming it), or a file of raw ASTERIX data blocks one after another, read as one.
+struct FeedFile {
+  std::vector<asterix::Bytes> datagrams;
+  std::uint64_t frames_skipped = 0;
+};
 
-AsterixFeedCounts count_asterix_feed(const std::filesystem::path& file) {
-  const asterix::PcapContents contents = asterix::read_pcap(file);
+bool starts_like_pcap(const asterix::Bytes& bytes) {
+  if (bytes.size() < 4) return false;
+  const std::uint32_t magic = static_cast<std::uint32_t>(bytes[0]) << 24U |
+                              static_cast<std::uint32_t>(bytes[1]) << 16U |
+                              static_cast<std::uint32_t>(bytes[2]) << 8U | bytes[3];
+  return magic == 0xA1B2C3D4U || magic == 0xD4C3B2A1U || magic == 0xA1B23C4DU ||
+         magic == 0x4D3CB2A1U || magic == 0x0A0D0D0AU;
+}
+
+FeedFile read_feed(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error("--asterix-replay: cannot read " + file.string());
+  asterix::Bytes bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  FeedFile feed;
+  if (!starts_like_pcap(bytes)) {
+    if (!bytes.empty()) feed.datagrams.push_back(std::move(bytes));
+    return feed;
+  }
+  asterix::PcapContents contents = asterix::read_pcap(bytes);
   if (contents.error) {
     throw std::runtime_error("--asterix-replay: " + file.string() + ": " + *contents.error);
   }
+  feed.frames_skipped = contents.skipped.total();
+  for (asterix::UdpDatagram& d : contents.datagrams) feed.datagrams.push_back(std::move(d.payload));
+  return feed;
+}
+
+}  // namespace
+
+AsterixFeedCounts count_asterix_feed(const std::filesystem::path& file) {
+  const FeedFile feed = read_feed(file);
   AsterixFeedCounts counts;
-  counts.frames_skipped = contents.skipped.total();
+  counts.frames_skipped = feed.frames_skipped;
   asterix::Decoded decoded;
-  for (const asterix::UdpDatagram& datagram : contents.datagrams) {
+  for (const asterix::Bytes& datagram : feed.datagrams) {
     ++counts.datagrams;
-    asterix::decode_datagram(datagram.payload, decoded);
+    asterix::decode_datagram(datagram, decoded);
     counts.plots += decoded.plots.size();
     counts.reports += decoded.reports.size();
     counts.system_tracks += decoded.tracks.size();
@@ -53,16 +86,13 @@ ReplayedScans::ReplayedScans(const std::filesystem::path& file, int station_id,
     throw std::invalid_argument("--asterix-replay: station " + std::to_string(station_id) +
                                 " is past SIC's 255");
   }
-  const asterix::PcapContents contents = asterix::read_pcap(file);
-  if (contents.error) {
-    throw std::runtime_error("--asterix-replay: " + file.string() + ": " + *contents.error);
-  }
+  const FeedFile feed = read_feed(file);
   const asterix::DataSource mine{0, static_cast<std::uint8_t>(station_id)};
   const bool reports = sensor_kind == "position_velocity";
   std::map<std::uint64_t, std::vector<asterix::RadarPlot>> plots;
   std::map<std::uint64_t, std::vector<asterix::AdsbReport>> broadcasts;
-  for (const asterix::UdpDatagram& datagram : contents.datagrams) {
-    const asterix::Decoded decoded = asterix::decode_datagram(datagram.payload);
+  for (const asterix::Bytes& datagram : feed.datagrams) {
+    const asterix::Decoded decoded = asterix::decode_datagram(datagram);
     for (std::size_t kind = 0; kind < refusals_.by_kind.size(); ++kind) {
       refusals_.by_kind[kind] += decoded.refusals.by_kind[kind];
     }

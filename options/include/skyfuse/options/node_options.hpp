@@ -62,8 +62,9 @@ struct NodeOptions {
   /// `--asterix-out HOST:PORT`: a node of a run of many aircraft sends its picture each round
   /// as ASTERIX CAT062 over UDP there (transport/picture_cat062.hpp); empty: it sends nothing.
   std::string asterix_out;
-  /// `--asterix-replay FILE.pcap`: a station of a run of many aircraft whose sensor ASTERIX
-  /// carries takes its scans from the CAT048/CAT021 records of its own SIC in the file
+  /// `--asterix-replay FILE`: a station of a run of many aircraft whose sensor ASTERIX carries
+  /// takes its scans from the CAT048/CAT021 records of its own SIC in the file (a pcap or raw
+  /// ASTERIX blocks)
   /// (transport/asterix_replay.hpp) instead of simulating them; empty: it simulates.
   std::string asterix_replay;
 
@@ -93,7 +94,7 @@ void add_secure_option(CLI::App& app, std::optional<std::string>& secure_dir);
 void add_deadline_options(CLI::App& app, NodeOptions& options);
 /// `--asterix-out HOST:PORT`, checked as an IPv4 address and a port.
 void add_asterix_out_option(CLI::App& app, std::string& destination);
-/// `--asterix-replay FILE.pcap`, an existing file.
+/// `--asterix-replay FILE`, an existing file.
 void add_asterix_replay_option(CLI::App& app, std::string& file);
 
 /// The command line that gives a node exactly `options`: add_node_options parses it back to

@@ -1,8 +1,10 @@
 #pragma once
 /// \file
-/// A station's scans read back from a pcap of ASTERIX (`--asterix-replay FILE.pcap`): the
-/// CAT048 plots or CAT021 reports of its own data source, round by round, as a station fed
-/// that feed holds them (scan_asterix.hpp). A file `skyfuse run --asterix-record` wrote of the
+/// A station's scans read back from a file of ASTERIX (`--asterix-replay FILE`: a pcap of UDP
+/// datagrams, or raw data blocks one after another): the CAT048 plots or CAT021 reports of its
+/// own data source, round by round, as a station fed that feed holds them (scan_asterix.hpp).
+/// A raw file is read as one datagram: a block whose length cannot be trusted costs the rest
+/// of it (asterix/refusal.hpp). A file `skyfuse run --asterix-record` wrote of the
 /// same scenario gives each station the scans it simulated, quantised as the items hold them.
 
 #include <cstddef>
