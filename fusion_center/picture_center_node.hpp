@@ -121,7 +121,13 @@ class PictureCenter {
         picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
         static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size()));
     rounds_.write(round);
-    if (asterix_out_) asterix_out_->send(k, round);
+    if (asterix_out_) {
+      asterix_out_->send(k, round);
+      // The loop ends the process after its last round without returning: say it now.
+      if (k + 1 == static_cast<std::uint64_t>(plan_.scenario.steps)) {
+        spdlog::info("{}", transport::asterix_out_summary(*asterix_out_));
+      }
+    }
     tracks_.publish(picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
                     wire::CENTRAL);
     scans_in_.advance();

@@ -249,7 +249,13 @@ class PictureStation {
     const wire::PictureRound round = transport::picture_round_to_wire(
         picture_, options_.node.run_id, step, options_.id, scans_fused);
     rounds_.write(round);
-    if (asterix_out_) asterix_out_->send(k, round);
+    if (asterix_out_) {
+      asterix_out_->send(k, round);
+      // The loop ends the process after its last round without returning: say it now.
+      if (k + 1 == static_cast<std::uint64_t>(plan_.scenario.steps)) {
+        spdlog::info("{}", transport::asterix_out_summary(*asterix_out_));
+      }
+    }
     tracks_.publish(picture_, options_.node.run_id, step, options_.id, wire::PEER);
   }
 

@@ -1,5 +1,7 @@
 #include "skyfuse/transport/picture_cat062.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -76,6 +78,15 @@ std::vector<asterix::Bytes> PictureCat062::blocks(std::uint64_t k,
   // Only a record longer than a datagram fails here, and a track's is under a hundred octets.
   if (error) throw std::logic_error("CAT062: a record longer than a datagram");
   return blocks;
+}
+
+std::string asterix_out_summary(const PictureAsterixOut& out) {
+  const asterix::UdpEndpoint& to = out.sender().destination();
+  return fmt::format(
+      "--asterix-out {}.{}.{}.{}:{}: {} CAT062 datagrams sent, {} refused by the system, "
+      "{} tracks left out",
+      to.address[0], to.address[1], to.address[2], to.address[3], to.port, out.sender().sent(),
+      out.sender().failed(), out.left_out());
 }
 
 std::unique_ptr<PictureAsterixOut> make_asterix_out(const std::string& destination,

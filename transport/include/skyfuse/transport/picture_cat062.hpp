@@ -76,6 +76,10 @@ class PictureAsterixOut {
   asterix::UdpSender sender_;
 };
 
+/// What a node's `--asterix-out` sent, for its log as its run ends: datagrams sent, those the
+/// system refused, tracks left out.
+std::string asterix_out_summary(const PictureAsterixOut& out);
+
 /// A node's `--asterix-out` to `destination` ("HOST:PORT"); none where it is empty. Throws
 /// std::invalid_argument for a destination that is no IPv4 address and port, and
 /// std::runtime_error where no socket can be opened.
