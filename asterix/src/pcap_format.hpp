@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "skyfuse/asterix/pcap.hpp"
+
 namespace skyfuse::asterix::pcap {
 
 inline constexpr std::uint32_t kMagicMicroseconds = 0xA1B2C3D4u;
@@ -29,6 +31,6 @@ inline constexpr std::uint16_t kEthertypeVlan = 0x8100;
 inline constexpr std::size_t kIpv4HeaderOctets = 20;  // without options, as the writer sends
 inline constexpr std::uint8_t kProtocolUdp = 17;
 inline constexpr std::size_t kUdpHeaderOctets = 8;
-inline constexpr std::size_t kMaxUdpPayload = 65535 - kIpv4HeaderOctets - kUdpHeaderOctets;
+static_assert(asterix::kMaxUdpPayload == 65535 - kIpv4HeaderOctets - kUdpHeaderOctets);
 
 }  // namespace skyfuse::asterix::pcap

@@ -18,8 +18,6 @@ namespace {
 constexpr std::int64_t kEpochNs = 1'767'225'600'000'000'000;
 // A station's sensor feed comes from its own address on this port, its picture on 8600.
 constexpr std::uint16_t kSensorPort = 8601;
-// One block per datagram, each within an unfragmented IPv4 UDP payload.
-constexpr std::size_t kMaxDatagramOctets = 65'507;
 
 }  // namespace
 
@@ -78,7 +76,7 @@ void PictureAsterixRecording::add_scans(int k, std::int64_t time_ns) {
     }
     std::optional<asterix::EncodeError> error;
     std::vector<asterix::Bytes> blocks =
-        asterix::encode_blocks(records.category, records.records, kMaxDatagramOctets, error);
+        asterix::encode_blocks(records.category, records.records, asterix::kMaxUdpPayload, error);
     if (error) throw std::logic_error("--asterix-record: a plot's record longer than a datagram");
     asterix::UdpEndpoint from = asterix_source_of(station.id);
     from.port = kSensorPort;

@@ -138,8 +138,8 @@ TEST(ReplayedScans, APcapAndARawFileOfTheSameRecordsGiveTheQuantisedScans) {
                                                  k * scenario.time_step_s, scenario.anchor);
         if (records.category == 0 || records.records.empty()) continue;
         std::optional<asterix::EncodeError> error;
-        for (const asterix::Bytes& block :
-             asterix::encode_blocks(records.category, records.records, 65'507, error)) {
+        for (const asterix::Bytes& block : asterix::encode_blocks(records.category, records.records,
+                                                                  asterix::kMaxUdpPayload, error)) {
           writer.write({0, {{127, 0, 0, 7}, 8601}, {{127, 0, 0, 1}, 8600}, block});
           blocks.write(reinterpret_cast<const char*>(block.data()),
                        static_cast<std::streamsize>(block.size()));

@@ -12,8 +12,6 @@ namespace skyfuse::transport {
 namespace {
 
 constexpr double kSecondsPerDay = 86'400.0;
-// One block per datagram, each within an unfragmented IPv4 UDP payload.
-constexpr std::size_t kMaxDatagramOctets = 65'507;
 
 }  // namespace
 
@@ -74,7 +72,7 @@ std::vector<asterix::Bytes> PictureCat062::blocks(std::uint64_t k,
   // A picture without tracks sends nothing that round; a large one, several datagrams.
   std::optional<asterix::EncodeError> error;
   std::vector<asterix::Bytes> blocks =
-      asterix::encode_blocks(asterix::kCat062, records, kMaxDatagramOctets, error);
+      asterix::encode_blocks(asterix::kCat062, records, asterix::kMaxUdpPayload, error);
   // Only a record longer than a datagram fails here, and a track's is under a hundred octets.
   if (error) throw std::logic_error("CAT062: a record longer than a datagram");
   return blocks;

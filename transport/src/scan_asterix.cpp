@@ -6,6 +6,7 @@
 
 #include "skyfuse/asterix/data_block.hpp"
 #include "skyfuse/asterix/datagram.hpp"
+#include "skyfuse/asterix/pcap.hpp"
 #include "skyfuse/asterix/quality.hpp"
 #include "skyfuse/picture/address.hpp"
 
@@ -22,6 +23,13 @@ double bearing_deg(double azimuth_rad) {
 }
 double azimuth_rad(double bearing_deg) {
   return std::remainder(90.0 - bearing_deg, 360.0) / kDegPerRad;
+}
+
+// A scan of which no detection has an address holds none (picture/scan.hpp).
+void drop_addresses_if_none(Scan& scan) {
+  if (std::ranges::all_of(scan.addresses, [](Address a) { return a == kNoAddress; })) {
+    scan.addresses.clear();
+  }
 }
 
 void add(ScanRecords& out, asterix::Encoded encoded) {
@@ -131,10 +139,7 @@ std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,
     }
     scan.detections.push_back(z);
   }
-  // A scan of which no detection has an address holds none (picture/scan.hpp).
-  if (std::ranges::all_of(scan.addresses, [](Address a) { return a == kNoAddress; })) {
-    scan.addresses.clear();
-  }
+  drop_addresses_if_none(scan);
   return scan;
 }
 
@@ -156,9 +161,7 @@ std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::Ads
     scan.detections.push_back(z);
     scan.addresses.push_back(report.address_type == 3 ? kNoAddress : report.address);
   }
-  if (std::ranges::all_of(scan.addresses, [](Address a) { return a == kNoAddress; })) {
-    scan.addresses.clear();
-  }
+  drop_addresses_if_none(scan);
   return scan;
 }
 
@@ -168,7 +171,7 @@ std::optional<Scan> quantised_as_asterix(const SimulatedScan& scan, const Statio
   if (records.category == 0) return std::nullopt;
   std::optional<asterix::EncodeError> error;
   const std::vector<asterix::Bytes> blocks =
-      asterix::encode_blocks(records.category, records.records, 65'507, error);
+      asterix::encode_blocks(records.category, records.records, asterix::kMaxUdpPayload, error);
   if (error) return std::nullopt;
   asterix::Decoded decoded;
   for (const asterix::Bytes& block : blocks) asterix::decode_datagram(block, decoded);

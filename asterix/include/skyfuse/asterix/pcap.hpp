@@ -24,6 +24,10 @@ struct UdpEndpoint {
   bool operator==(const UdpEndpoint&) const = default;
 };
 
+/// The most one IPv4 UDP datagram carries unfragmented: 65 535 less the IPv4 (20) and UDP (8)
+/// headers. A block of ASTERIX meant for one datagram is framed to it (encode_blocks).
+inline constexpr std::size_t kMaxUdpPayload = 65'507;
+
 struct UdpDatagram {
   std::int64_t time_ns = 0;  ///< capture time, ns since the Unix epoch (≥ 0)
   UdpEndpoint source;
