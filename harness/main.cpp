@@ -8,6 +8,7 @@
 #include "commands/bench_command.hpp"
 #include "commands/certs_command.hpp"
 #include "commands/demo_command.hpp"
+#include "commands/feed_command.hpp"
 #include "commands/reproduce_command.hpp"
 #include "commands/run_command.hpp"
 #include "commands/soak_command.hpp"
@@ -30,8 +31,10 @@ int main(int argc, char** argv) {
   CertsOptions certs;
   ReproduceOptions reproduce;
   ViewOptions view;
+  FeedOptions feed;
   add_sweep_command(app, sweep);
   add_run_command(app, run);
+  add_feed_command(app, feed);
   add_demo_command(app, demo);
   add_bench_command(app, bench);
   add_soak_command(app, soak);
@@ -67,6 +70,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("certs")) return run_certs(certs);
     if (app.got_subcommand("reproduce")) return run_reproduce(reproduce);
     if (app.got_subcommand("view")) return run_view(view);
+    if (app.got_subcommand("feed")) return run_feed(feed);
   } catch (const RunStoppedEarly& e) {
     std::fprintf(stderr, "skyfuse: run stopped early (%s): %s\n",
                  std::string(to_string(e.cause())).c_str(), e.what());

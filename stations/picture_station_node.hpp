@@ -23,7 +23,7 @@
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_stations.hpp"
 #include "skyfuse/traffic/scan_simulation.hpp"
-#include "skyfuse/transport/asterix_replay.hpp"
+#include "skyfuse/transport/fed_scans.hpp"
 #include "skyfuse/transport/node_loop.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
@@ -72,7 +72,7 @@ class PictureStation {
         picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.tracker),
         asterix_out_(transport::make_asterix_out(options.node.asterix_out, plan_.scenario.anchor,
                                                  plan_.scenario.time_step_s)),
-        replayed_(replayed_scans(options, plan_.participants()[me_], plan_.scenario)) {
+        fed_(fed_scans(options, plan_.participants()[me_], plan_.scenario)) {
     // What it sends to itself never crosses the simulated link: the exchange keeps it as it
     // goes out.
     loop_.skip_own(options.id, exchange_.own_writer());
@@ -112,11 +112,10 @@ class PictureStation {
     picture_.predict();
     predicted_digest_ = picture_.digest();
     const StationConfig& station = plan_.participants()[me_];
-    const Scan scan = replayed_
-                          ? replayed_->scan_at(k, known_[me_].noise)
-                          : simulate_scan(station.id, truth_sensor_, station.position_m,
-                                          known_[me_].noise, detection_, truth_,
-                                          static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
+    const Scan scan = fed_ ? fed_->scan_at(k, known_[me_].noise)
+                           : simulate_scan(station.id, truth_sensor_, station.position_m,
+                                           known_[me_].noise, detection_, truth_,
+                                           static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
     exchange_.publish(static_cast<std::uint32_t>(k), scan,
                       picture_.report(known_[me_], scan, work_), predicted_digest_);
     return std::nullopt;
@@ -227,20 +226,12 @@ class PictureStation {
 
   bool realtime() const { return options_.node.realtime_deadline_ms > 0.0; }
 
-  static std::optional<transport::ReplayedScans> replayed_scans(const StationOptions& options,
-                                                                const StationConfig& station,
-                                                                const Scenario& scenario) {
-    if (options.node.asterix_replay.empty() ||
-        !transport::carried_by_asterix(station.sensor.kind)) {
-      return std::nullopt;
-    }
-    std::optional<transport::ReplayedScans> replayed;
-    replayed.emplace(options.node.asterix_replay, station.id, station.sensor.kind, scenario.anchor,
-                     scenario.time_step_s);
-    spdlog::info("station {} takes its scans from {}: {} rounds, {} detections, {} skipped",
-                 station.id, options.node.asterix_replay, replayed->rounds(),
-                 replayed->detections(), replayed->skipped());
-    return replayed;
+  static std::unique_ptr<transport::FedScans> fed_scans(const StationOptions& options,
+                                                        const StationConfig& station,
+                                                        const Scenario& scenario) {
+    auto fed = transport::make_fed_scans(options.node, station, scenario);
+    if (fed) spdlog::info("{}", fed->summary());
+    return fed;
   }
 
   // The picture after round k, to the harness and to readers of its tracks.
@@ -251,10 +242,11 @@ class PictureStation {
     rounds_.write(round);
     if (asterix_out_) {
       asterix_out_->send(k, round);
-      // The loop ends the process after its last round without returning: say it now.
-      if (k + 1 == static_cast<std::uint64_t>(plan_.scenario.steps)) {
-        spdlog::info("{}", transport::asterix_out_summary(*asterix_out_));
-      }
+    }
+    // The loop ends the process after its last round without returning: say it now.
+    if (k + 1 == static_cast<std::uint64_t>(plan_.scenario.steps)) {
+      if (asterix_out_) spdlog::info("{}", transport::asterix_out_summary(*asterix_out_));
+      if (fed_) spdlog::info("{}", fed_->summary());
     }
     tracks_.publish(picture_, options_.node.run_id, step, options_.id, wire::PEER);
   }
@@ -342,9 +334,9 @@ class PictureStation {
   Picture picture_;
   // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
   std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
-  // `--asterix-replay`: this station's scans from a recorded feed, where its sensor is one
-  // ASTERIX carries; it simulates them otherwise.
-  std::optional<transport::ReplayedScans> replayed_;
+  // `--asterix-replay` or `--asterix-in`: this station's scans from a recorded or a live feed,
+  // where its sensor is one ASTERIX carries; it simulates them otherwise (null).
+  std::unique_ptr<transport::FedScans> fed_;
   // picture_'s digest as predicted for the round (or taken): it is published with the scan and
   // compared with the others', and computed once a round rather than at each use.
   std::uint64_t predicted_digest_ = 0;

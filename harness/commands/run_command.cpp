@@ -137,6 +137,7 @@ void add_run_command(CLI::App& app, RunOptions& o) {
       ->type_name("FILE.pcap");
   options::add_asterix_out_option(*cmd, o.node.asterix_out);
   options::add_asterix_replay_option(*cmd, o.node.asterix_replay);
+  options::add_asterix_in_options(*cmd, o.node);
   CLI::Option* live =
       cmd->add_option_function<std::string>(
              "--live", [&o](const std::string& text) { o.live = parse_live_endpoint(text); },

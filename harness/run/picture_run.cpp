@@ -26,6 +26,7 @@
 #include "run/refusal_rows.hpp"
 #include "run/run_over_dds.hpp"
 #include "run/secure_start.hpp"
+#include "skyfuse/asterix/udp.hpp"
 #include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -72,6 +73,27 @@ void refuse_what_a_picture_run_lacks(const RunOptions& o) {
     refuse("--nis-gate",
            "a picture gates each (track, detection) pair by its tracker's own chi^2 gate "
            "(the scenario's tracker.gate_probability)");
+  }
+}
+
+// A unicast port is one socket's: of several stations listening on it, one alone would hear the
+// feed. Several fed stations need a multicast group, each joining it.
+void refuse_a_unicast_feed_for_several_stations(const RunOptions& o, const PicturePlan& plan) {
+  if (o.node.asterix_in.empty()) return;
+  std::string error;
+  const auto listen = asterix::parse_udp_endpoint(o.node.asterix_in, error);
+  if (!listen || asterix::is_multicast(*listen)) return;
+  const auto participants = plan.participants();
+  const auto fed =
+      std::count_if(participants.begin(), participants.end(), [](const StationConfig& station) {
+        return transport::carried_by_asterix(station.sensor.kind);
+      });
+  if (fed > 1) {
+    throw std::invalid_argument(fmt::format(
+        "--asterix-in: {} is a unicast address, and {} of the run's stations take a feed: a port "
+        "of this host reaches one socket only; give a multicast group (224.0.0.0/4), which each "
+        "station joins",
+        o.node.asterix_in, fed));
   }
 }
 
@@ -130,10 +152,13 @@ class ManyAircraftRun final : public RunKind {
             std::function<void()> check) override {
     truth_.emplace(build_traffic_truth(plan_.scenario, o_.node.traffic_file));
     // Fed a recording, the stations that replay it hold their simulated scans quantised as the
-    // records hold them: so does the twin.
+    // records hold them: so does the twin. A live feed is held to the same (it is one where a
+    // recording of this scenario is sent; any other feed's picture is reported apart).
     ScanFilter quantised;
     if (!o_.node.asterix_replay.empty()) {
       summary_.asterix_feed = transport::count_asterix_feed(o_.node.asterix_replay);
+    }
+    if (!o_.node.asterix_replay.empty() || !o_.node.asterix_in.empty()) {
       quantised = [this](std::size_t s, Scan& scan) {
         const StationConfig& station = plan_.scenario.stations[s];
         if (auto q = transport::quantised_as_asterix({station.sensor.kind, scan, {}}, station,
@@ -283,6 +308,7 @@ void ManyAircraftRun::end(const ProcessMeasures& measured, std::uint64_t run_id)
 
 PictureRunSummary execute_picture_run(const RunOptions& o, const PicturePlan& plan) {
   refuse_what_a_picture_run_lacks(o);
+  refuse_a_unicast_feed_for_several_stations(o, plan);
   // A secure start on Fast DDS 2.9 sometimes stalls (secure_start.hpp).
   return with_secure_restarts(o, discovery_timeout_s(o, plan.stations),
                               [&](const RunOptions& attempt) {

@@ -117,10 +117,7 @@ void add_asterix_out_option(CLI::App& app, std::string& destination) {
   app.add_option("--asterix-out", destination,
                  "Send each round's picture as ASTERIX CAT062 system tracks over UDP to HOST:PORT "
                  "(IPv4, unicast or multicast; a run of many aircraft; docs/asterix.md)")
-      ->check([](const std::string& text) {
-        std::string error;
-        return asterix::parse_udp_endpoint(text, error) ? std::string() : error;
-      })
+      ->check(udp_endpoint())
       ->type_name("HOST:PORT");
 }
 
@@ -132,6 +129,21 @@ void add_asterix_replay_option(CLI::App& app, std::string& file) {
                  "instead of simulating them")
       ->check(CLI::ExistingFile)
       ->type_name("FILE");
+}
+
+void add_asterix_in_options(CLI::App& app, NodeOptions& o) {
+  auto* in = app.add_option("--asterix-in", o.asterix_in,
+                            "Stations whose sensor ASTERIX carries take their scans from a live "
+                            "UDP feed of CAT048/CAT021 (their own SIC) on HOST:PORT: a multicast "
+                            "group they join, or a port of this host (one station only)")
+                 ->check(udp_endpoint())
+                 ->type_name("HOST:PORT");
+  if (auto* replay = app.get_option_no_throw("--asterix-replay")) in->excludes(replay);
+  app.add_option("--asterix-in-wait-ms", o.asterix_in_wait_ms,
+                 "How long a station fed by --asterix-in waits for the feed to pass its round "
+                 "before it takes what came (in real time, keep it below the round deadline)")
+      ->check(positive_number())
+      ->capture_default_str();
 }
 
 void add_traffic_file_option(CLI::App& app, std::string& traffic_file) {
@@ -167,6 +179,7 @@ void add_node_options(CLI::App& app, NodeOptions& o) {
   add_network_options(app, o.network);
   add_asterix_out_option(app, o.asterix_out);
   add_asterix_replay_option(app, o.asterix_replay);
+  add_asterix_in_options(app, o);
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error"}))
       ->capture_default_str();
@@ -204,6 +217,10 @@ std::vector<std::string> to_arguments(const NodeOptions& o) {
   for (std::string& a : network_arguments(o.network)) args.push_back(std::move(a));
   if (!o.asterix_out.empty()) add("--asterix-out", o.asterix_out);
   if (!o.asterix_replay.empty()) add("--asterix-replay", o.asterix_replay);
+  if (!o.asterix_in.empty()) {
+    add("--asterix-in", o.asterix_in);
+    add("--asterix-in-wait-ms", fmt::format("{}", o.asterix_in_wait_ms));
+  }
   add("--log-level", o.log_level);
   return args;
 }

@@ -9,6 +9,8 @@
 #include <system_error>
 #include <utility>
 
+#include "skyfuse/asterix/udp.hpp"
+
 namespace skyfuse::options {
 namespace {
 
@@ -69,6 +71,15 @@ CLI::Validator positive_number() {
 CLI::Validator non_negative_number() {
   return number_check(
       real, [](double v) { return v >= 0.0; }, "a number >= 0", "NONNEGATIVE");
+}
+
+CLI::Validator udp_endpoint() {
+  return CLI::Validator(
+      [](const std::string& text) {
+        std::string error;
+        return asterix::parse_udp_endpoint(text, error) ? std::string() : error;
+      },
+      "");
 }
 
 }  // namespace skyfuse::options

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -20,6 +21,7 @@
 #include <thread>
 
 #include "integration/run_fixture.hpp"
+#include "skyfuse/asterix/cat048.hpp"
 #include "skyfuse/asterix/datagram.hpp"
 #include "skyfuse/asterix/pcap.hpp"
 #include "skyfuse/asterix/udp.hpp"
@@ -641,6 +643,46 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
   }
 }
 
+// uam-mixed's first ten stations, 20 rounds over DDS, with `extra` options: what the runs of
+// stations fed ASTERIX below are made of.
+constexpr int kFedStations = 10;
+constexpr int kFedSteps = 20;
+Completed run_fed_scenario(const std::filesystem::path& dir, const std::string& name,
+                           std::vector<std::string> extra, const std::string& domain) {
+  std::vector<std::string> args{bin("skyfuse"), "run",
+                                "--scenario",   bin("scenarios/uam-mixed.yaml"),
+                                "--stations",   std::to_string(kFedStations),
+                                "--steps",      std::to_string(kFedSteps),
+                                "--domain",     domain,
+                                "--out",        (dir / name).string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return run_to_completion(args, dir / (name + ".log"), 240s);
+}
+
+// A fed run's summary: every peer's and the center's picture the quantised twin's, every round.
+void expect_the_quantised_twins_picture(const nlohmann::json& summary) {
+  EXPECT_TRUE(summary.at("peers_identical").get<bool>());
+  EXPECT_TRUE(summary.at("equals_in_process").get<bool>()) << "against the quantised twin";
+  EXPECT_TRUE(summary.at("center_equals_in_process").get<bool>());
+  EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
+}
+
+// The fed run in `fed` holds, in more than half its rounds, another picture than the run in
+// `recorded` that wrote its feed: the fed stations' plots were quantised, so they came from the
+// feed.
+void expect_most_rounds_apart(const std::filesystem::path& recorded,
+                              const std::filesystem::path& fed) {
+  const StationRounds before = node_rounds(recorded / "picture_rounds.csv");
+  const StationRounds after = node_rounds(fed / "picture_rounds.csv");
+  ASSERT_EQ(after.size(), static_cast<std::size_t>(kFedSteps));
+  int rounds_apart = 0;
+  for (const auto& [step, nodes] : after) {
+    ASSERT_EQ(nodes.size(), static_cast<std::size_t>(kFedStations + 1)) << step;
+    if (nodes.at(1).digest != before.at(step).at(1).digest) ++rounds_apart;
+  }
+  EXPECT_GT(rounds_apart, kFedSteps / 2) << "the fed stations' plots are quantised";
+}
+
 // `--asterix-replay`: a run of uam-mixed's first ten stations fed the CAT048/CAT021 record of an
 // earlier run of the same scenario. Its Mode S radars and Remote ID receivers take their scans
 // from the file, the 3-D radars simulate theirs; every node's picture equals, every round and
@@ -649,21 +691,11 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
 // malformed datagrams added to the feed are refused, counted by kind in summary.json, and
 // change nothing.
 TEST(DdsPicture, StationsFedTheirOwnRecordHoldTheQuantisedPictureBitForBit) {
-  constexpr int kStations = 10;
-  constexpr int kSteps = 20;
   const auto dir = test_dir();
   const auto pcap = dir / "recorded.pcap";
-  const std::string scenario = bin("scenarios/uam-mixed.yaml");
   const auto run_with = [&](const std::string& name, std::vector<std::string> extra,
                             const std::string& domain) {
-    std::vector<std::string> args{bin("skyfuse"), "run",
-                                  "--scenario",   scenario,
-                                  "--stations",   std::to_string(kStations),
-                                  "--steps",      std::to_string(kSteps),
-                                  "--domain",     domain,
-                                  "--out",        (dir / name).string()};
-    args.insert(args.end(), extra.begin(), extra.end());
-    return run_to_completion(args, dir / (name + ".log"), 240s);
+    return run_fed_scenario(dir, name, std::move(extra), domain);
   };
   const Completed recorded = run_with("recorded", {"--asterix-record", pcap.string()}, "86");
   ASSERT_EQ(recorded.status.code, 0) << recorded.output;
@@ -703,20 +735,105 @@ TEST(DdsPicture, StationsFedTheirOwnRecordHoldTheQuantisedPictureBitForBit) {
   for (const auto& [bytes, kind] : malformed) {
     EXPECT_EQ(counted.at("refused").at(std::string(asterix::refusal_name(kind))).get<int>(), 1);
   }
-  EXPECT_TRUE(summary.at("peers_identical").get<bool>());
-  EXPECT_TRUE(summary.at("equals_in_process").get<bool>()) << "against the quantised twin";
-  EXPECT_TRUE(summary.at("center_equals_in_process").get<bool>());
-  EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
+  expect_the_quantised_twins_picture(summary);
 
-  const StationRounds before = node_rounds(dir / "recorded" / "picture_rounds.csv");
-  const StationRounds after = node_rounds(dir / "fed" / "picture_rounds.csv");
-  ASSERT_EQ(after.size(), static_cast<std::size_t>(kSteps));
-  int rounds_apart = 0;
-  for (const auto& [step, nodes] : after) {
-    ASSERT_EQ(nodes.size(), static_cast<std::size_t>(kStations + 1)) << step;
-    if (nodes.at(1).digest != before.at(step).at(1).digest) ++rounds_apart;
+  expect_most_rounds_apart(dir / "recorded", dir / "fed");
+}
+
+// UDP sockets of this host bound to `port` (/proc/net/udp): how a test sees that every station
+// of a run listens before it sends the feed.
+int udp_sockets_bound_to(std::uint16_t port) {
+  std::ifstream table("/proc/net/udp");
+  std::string line;
+  std::getline(table, line);  // the header
+  const std::string local_port = fmt::format(":{:04X} ", port);
+  int bound = 0;
+  while (std::getline(table, line)) {
+    std::istringstream fields(line);
+    std::string slot;
+    std::string local;
+    fields >> slot >> local;
+    if ((local + " ").ends_with(local_port)) ++bound;
   }
-  EXPECT_GT(rounds_apart, kSteps / 2) << "the fed stations' plots are quantised";
+  return bound;
+}
+
+// Stations fed live (`--asterix-in GROUP:PORT`): a run's Mode S radars and Remote ID receivers
+// join a multicast group, and `skyfuse feed` sends them the scans an earlier run recorded, round
+// by round as sensors would, once every one of them listens; a plot of a later round from a
+// source no station has ends the feed, as a live feed's next round would. Every node's picture
+// equals, every round and bit for bit, the in-process run whose scans are quantised as the records
+// hold them — as when the same record is replayed from its file.
+TEST(DdsPicture, StationsFedALiveFeedHoldTheQuantisedPictureBitForBit) {
+  const auto dir = test_dir();
+  const auto pcap = dir / "recorded.pcap";
+  const auto run_with = [&](const std::string& name, std::vector<std::string> extra,
+                            const std::string& domain) {
+    return run_fed_scenario(dir, name, std::move(extra), domain);
+  };
+  const Completed recorded = run_with("recorded", {"--asterix-record", pcap.string()}, "88");
+  ASSERT_EQ(recorded.status.code, 0) << recorded.output;
+  const asterix::PcapContents record = asterix::read_pcap(pcap);
+  ASSERT_FALSE(record.error.has_value());
+  std::size_t scans = 0;  // the stations' datagrams of plots and reports
+  std::set<std::array<std::uint8_t, 4>> fed_stations;
+  for (const asterix::UdpDatagram& d : record.datagrams) {
+    if (d.source.port != 8601) continue;
+    ++scans;
+    fed_stations.insert(d.source.address);
+  }
+  ASSERT_GT(fed_stations.size(), 1U) << "uam-mixed has Mode S radars and Remote ID receivers";
+
+  // A port nobody holds, and a group this host can join (else there is nothing to test here).
+  std::uint16_t port = 0;
+  asterix::UdpEndpoint group{{239, 255, 86, 49}, 0};
+  try {
+    const asterix::UdpReceiver probe(0);
+    port = probe.port();
+    group.port = port;
+    const asterix::UdpReceiver joined(port, group);
+  } catch (const std::runtime_error& e) {
+    GTEST_SKIP() << "this host joins no multicast group: " << e.what();
+  }
+  const std::string listen = fmt::format("239.255.86.49:{}", port);
+
+  std::atomic<bool> finished = false;
+  Completed live;
+  std::thread running([&] {
+    live = run_with("live", {"--asterix-in", listen, "--asterix-in-wait-ms", "8000"}, "89");
+    finished = true;
+  });
+  const auto listening = static_cast<int>(fed_stations.size());
+  const auto give_up = std::chrono::steady_clock::now() + 120s;
+  while (!finished && udp_sockets_bound_to(port) < listening &&
+         std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(20ms);
+  }
+  EXPECT_GE(udp_sockets_bound_to(port), listening) << "every fed station listens";
+  // `skyfuse feed` sends the record's scans at 200 times the pace they were captured: a round
+  // every 5 ms, no burst past a socket's buffer.
+  const Completed fed = run_to_completion({bin("skyfuse"), "feed", pcap.string(), "--to", listen,
+                                           "--source-port", "8601", "--speed", "200"},
+                                          dir / "feed.log", 60s);
+  EXPECT_EQ(fed.status.code, 0) << fed.output;
+  EXPECT_NE(fed.output.find(fmt::format("sent {} datagrams", scans)), std::string::npos)
+      << fed.output;
+  asterix::UdpSender sender(group);
+  asterix::RadarPlot next_round;
+  next_round.source = {0, 200};
+  next_round.time_of_day_s =
+      kFedSteps * load_scenario_file(bin("scenarios/uam-mixed.yaml")).time_step_s;
+  next_round.detection = asterix::DetectionType::psr;
+  next_round.range_m = 1000.0;
+  const asterix::Encoded end = asterix::encode_cat048(std::span(&next_round, 1));
+  ASSERT_TRUE(end);
+  EXPECT_TRUE(sender.send(end.bytes));
+  running.join();
+  ASSERT_EQ(live.status.code, 0) << live.output;
+
+  const auto summary = nlohmann::json::parse(read_file(dir / "live" / "summary.json"));
+  expect_the_quantised_twins_picture(summary);
+  expect_most_rounds_apart(dir / "recorded", dir / "live");
 }
 
 // scenarios/registration.yaml with the tracker estimating every station's biases, written to

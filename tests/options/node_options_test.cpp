@@ -59,6 +59,9 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   o.network.interface_address = "10.77.0.3";
   o.network.discovery_server = Ipv4Endpoint{"10.77.0.254", 11811};
   o.log_level = "warn";
+  o.asterix_out = "239.255.86.0:8600";
+  o.asterix_in = "239.255.86.1:8601";
+  o.asterix_in_wait_ms = 2500.5;
 
   const NodeOptions back = parsed(to_arguments(o));
   EXPECT_EQ(back.scenario_path, o.scenario_path);
@@ -83,6 +86,9 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   EXPECT_EQ(back.gate.probability(), o.gate.probability());
   EXPECT_EQ(back.network, o.network);
   EXPECT_EQ(back.log_level, o.log_level);
+  EXPECT_EQ(back.asterix_out, o.asterix_out);
+  EXPECT_EQ(back.asterix_in, o.asterix_in);
+  EXPECT_EQ(back.asterix_in_wait_ms, o.asterix_in_wait_ms);
 
   // Defaults travel as defaults: nothing set, nothing invented.
   const NodeOptions plain = parsed(to_arguments(NodeOptions{}));
@@ -93,6 +99,7 @@ TEST(NodeOptions, ArgumentsParseBackToTheSameOptions) {
   EXPECT_FALSE(plain.delay.enabled());
   EXPECT_EQ(plain.network, NetworkOptions{});
   EXPECT_EQ(plain.network.interface_address, "127.0.0.1");
+  EXPECT_TRUE(plain.asterix_in.empty());
 }
 
 // The delay draws with the loss's seed: a delay without loss still passes the seed on.

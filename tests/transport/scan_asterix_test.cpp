@@ -152,9 +152,9 @@ TEST(ReplayedScans, APcapAndARawFileOfTheSameRecordsGiveTheQuantisedScans) {
   std::size_t detections = 0;
   for (const int id : {7, 9}) {  // a Mode S radar and a Remote ID receiver
     const StationConfig& station = scenario.stations[static_cast<std::size_t>(id - 1)];
-    const ReplayedScans from_pcap(pcap, id, station.sensor.kind, scenario.anchor,
+    ReplayedScans from_pcap(pcap, id, station.sensor.kind, scenario.anchor,
                                   scenario.time_step_s);
-    const ReplayedScans from_raw(raw, id, station.sensor.kind, scenario.anchor,
+    ReplayedScans from_raw(raw, id, station.sensor.kind, scenario.anchor,
                                  scenario.time_step_s);
     EXPECT_EQ(from_pcap.detections(), from_raw.detections());
     EXPECT_EQ(from_pcap.refusals().total(), 0U);
@@ -163,7 +163,7 @@ TEST(ReplayedScans, APcapAndARawFileOfTheSameRecordsGiveTheQuantisedScans) {
       const SimulatedScan& simulated =
           rounds[static_cast<std::size_t>(k - kFirst)][static_cast<std::size_t>(id - 1)];
       const Scan expected = *quantised_as_asterix(simulated, station, scenario.anchor);
-      for (const ReplayedScans* replayed : {&from_pcap, &from_raw}) {
+      for (ReplayedScans* replayed : {&from_pcap, &from_raw}) {
         const Scan scan = replayed->scan_at(static_cast<std::uint64_t>(k), simulated.scan.noise);
         ASSERT_EQ(scan.detections.size(), expected.detections.size()) << id << " round " << k;
         for (std::size_t j = 0; j < scan.detections.size(); ++j) {

@@ -1,5 +1,7 @@
 #include "skyfuse/transport/asterix_replay.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -10,13 +12,10 @@
 #include "skyfuse/asterix/datagram.hpp"
 #include "skyfuse/asterix/pcap.hpp"
 #include "skyfuse/transport/scan_asterix.hpp"
+#include "skyfuse/transport/scan_feed.hpp"
 
 namespace skyfuse::transport {
 namespace {
-
-std::uint64_t round_of(double time_of_day_s, double time_step_s) {
-  return static_cast<std::uint64_t>(std::llround(time_of_day_s / time_step_s));
-}
 
 // A feed file's datagrams: a pcap's (classic or its nanosecond form; pcapng is refused by the
 // reader, naming it), or a file of raw ASTERIX data blocks one after another, read as one.
@@ -76,55 +75,25 @@ AsterixFeedCounts count_asterix_feed(const std::filesystem::path& file) {
 ReplayedScans::ReplayedScans(const std::filesystem::path& file, int station_id,
                              std::string_view sensor_kind, const GeoAnchor& anchor,
                              double time_step_s)
-    : station_id_(station_id) {
-  if (!carried_by_asterix(sensor_kind)) {
-    throw std::invalid_argument("--asterix-replay: station " + std::to_string(station_id) +
-                                "'s sensor (" + std::string(sensor_kind) +
-                                ") has no ASTERIX item that carries its detections");
-  }
-  if (station_id < 0 || station_id > 255) {
-    throw std::invalid_argument("--asterix-replay: station " + std::to_string(station_id) +
-                                " is past SIC's 255");
-  }
-  const FeedFile feed = read_feed(file);
-  const asterix::DataSource mine{0, static_cast<std::uint8_t>(station_id)};
-  const bool reports = sensor_kind == "position_velocity";
-  std::map<std::uint64_t, std::vector<asterix::RadarPlot>> plots;
-  std::map<std::uint64_t, std::vector<asterix::AdsbReport>> broadcasts;
-  for (const asterix::Bytes& datagram : feed.datagrams) {
-    const asterix::Decoded decoded = asterix::decode_datagram(datagram);
-    for (std::size_t kind = 0; kind < refusals_.by_kind.size(); ++kind) {
-      refusals_.by_kind[kind] += decoded.refusals.by_kind[kind];
-    }
-    if (reports) {
-      for (const asterix::AdsbReport& r : decoded.reports) {
-        if (r.source == mine) {
-          broadcasts[round_of(r.time_of_applicability_s, time_step_s)].push_back(r);
-        }
-      }
-    } else {
-      for (const asterix::RadarPlot& p : decoded.plots) {
-        if (p.source == mine) plots[round_of(p.time_of_day_s, time_step_s)].push_back(p);
-      }
-    }
-  }
-  const auto keep = [&](std::uint64_t k, std::optional<Scan> scan) {
-    detections_ += scan->detections.size();
-    scans_.emplace(k, std::move(*scan));
-  };
-  for (const auto& [k, round] : plots) {
-    keep(k, scan_of_plots(station_id, sensor_kind, round, skipped_));
-  }
-  for (const auto& [k, round] : broadcasts) {
-    keep(k, scan_of_reports(station_id, round, anchor, skipped_));
-  }
+    : file_(file), station_id_(station_id) {
+  ScanFeed feed("--asterix-replay", station_id, sensor_kind, anchor, time_step_s);
+  for (const asterix::Bytes& datagram : read_feed(file).datagrams) feed.take(datagram);
+  for (const std::uint64_t k : feed.rounds()) scans_.emplace(k, feed.take_scan(k, {}));
+  detections_ = feed.detections();
+  refusals_ = feed.refusals();
+  skipped_ = feed.skipped();
 }
 
-Scan ReplayedScans::scan_at(std::uint64_t k, const DetectionNoise& noise) const {
+Scan ReplayedScans::scan_at(std::uint64_t k, const DetectionNoise& noise) {
   const auto at = scans_.find(k);
   Scan scan = at == scans_.end() ? Scan{station_id_, {}, {}, {}} : at->second;
   scan.noise = noise;
   return scan;
+}
+
+std::string ReplayedScans::summary() const {
+  return fmt::format("station {} takes its scans from {}: {} rounds, {} detections, {} skipped",
+                     station_id_, file_.string(), rounds(), detections(), skipped());
 }
 
 }  // namespace skyfuse::transport

@@ -50,6 +50,12 @@ AnyPlan load_any_plan(const options::NodeOptions& options) {
           "a scenario with 'traffic'",
           one->scenario.name));
     }
+    if (!options.asterix_in.empty()) {
+      throw std::invalid_argument(fmt::format(
+          "--asterix-in: scenario '{}' has one target; plots and reports feed a picture, "
+          "a scenario with 'traffic'",
+          one->scenario.name));
+    }
     options::settle_exchange(one->scenario, options);
   }
   return plan;

@@ -67,6 +67,12 @@ struct NodeOptions {
   /// ASTERIX blocks)
   /// (transport/asterix_replay.hpp) instead of simulating them; empty: it simulates.
   std::string asterix_replay;
+  /// `--asterix-in HOST:PORT`: such a station takes its scans from a live UDP feed instead, a
+  /// multicast group it joins or a port on this host (transport/asterix_live.hpp); empty: none.
+  std::string asterix_in;
+  /// `--asterix-in-wait-ms`: how long a station fed live waits for the feed to pass its round
+  /// before it takes what came of it.
+  double asterix_in_wait_ms = 1000.0;
 
   std::chrono::microseconds round_deadline() const;
   /// Real time: how long after its scheduled start a step closes (zero in lock-step).
@@ -96,6 +102,9 @@ void add_deadline_options(CLI::App& app, NodeOptions& options);
 void add_asterix_out_option(CLI::App& app, std::string& destination);
 /// `--asterix-replay FILE`, an existing file.
 void add_asterix_replay_option(CLI::App& app, std::string& file);
+/// `--asterix-in HOST:PORT` (checked as --asterix-out is, and not with --asterix-replay) and
+/// `--asterix-in-wait-ms`.
+void add_asterix_in_options(CLI::App& app, NodeOptions& options);
 
 /// The command line that gives a node exactly `options`: add_node_options parses it back to
 /// the same values, bit for bit (a unit test shows it). The one place where options become a

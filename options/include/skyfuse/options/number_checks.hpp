@@ -19,4 +19,8 @@ CLI::Validator positive_number();
 /// A finite number >= 0.
 CLI::Validator non_negative_number();
 
+/// "A.B.C.D:PORT", an IPv4 address (unicast or a multicast group) and a port, as ASTERIX over
+/// UDP takes it (asterix/udp.hpp); the refusal says what is wrong.
+CLI::Validator udp_endpoint();
+
 }  // namespace skyfuse::options

@@ -2,7 +2,7 @@
 /// \file
 /// A station's scans read back from a file of ASTERIX (`--asterix-replay FILE`: a pcap of UDP
 /// datagrams, or raw data blocks one after another): the CAT048 plots or CAT021 reports of its
-/// own data source, round by round, as a station fed that feed holds them (scan_asterix.hpp).
+/// own data source, round by round, as a station fed that feed holds them (scan_feed.hpp).
 /// A raw file is read as one datagram: a block whose length cannot be trusted costs the rest
 /// of it (asterix/refusal.hpp). A file `skyfuse run --asterix-record` wrote of the
 /// same scenario gives each station the scans it simulated, quantised as the items hold them.
@@ -16,6 +16,7 @@
 #include "skyfuse/asterix/refusal.hpp"
 #include "skyfuse/picture/scan.hpp"
 #include "skyfuse/scenario/scenario.hpp"
+#include "skyfuse/transport/fed_scans.hpp"
 
 namespace skyfuse::transport {
 
@@ -34,7 +35,7 @@ struct AsterixFeedCounts {
 /// Counts `file` (AsterixFeedCounts); throws std::runtime_error naming it where it cannot be read.
 AsterixFeedCounts count_asterix_feed(const std::filesystem::path& file);
 
-class ReplayedScans {
+class ReplayedScans final : public FedScans {
  public:
   /// Station `station_id`'s scans (SAC 0, SIC its id), of a sensor of `sensor_kind`, in `file`:
   /// each record's time of day (I048/140, I021/071) names its round, k = round(t / dt).
@@ -44,7 +45,8 @@ class ReplayedScans {
                 const GeoAnchor& anchor, double time_step_s);
 
   /// Round k's scan, with `noise` as its R: empty where the file holds nothing of the round.
-  Scan scan_at(std::uint64_t k, const DetectionNoise& noise) const;
+  Scan scan_at(std::uint64_t k, const DetectionNoise& noise) override;
+  std::string summary() const override;
 
   std::size_t rounds() const { return scans_.size(); }
   std::size_t detections() const { return detections_; }
@@ -54,6 +56,7 @@ class ReplayedScans {
   std::size_t skipped() const { return skipped_; }
 
  private:
+  std::filesystem::path file_;
   int station_id_;
   std::map<std::uint64_t, Scan> scans_;
   std::size_t detections_ = 0;

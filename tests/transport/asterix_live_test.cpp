@@ -1,0 +1,121 @@
+// A station's live feed (transport/asterix_live.hpp) over this host's loopback: the records of
+// its own data source, sent as a sensor would, come back as the quantised scans they were made
+// of; a round is taken at once when the feed has passed it, after the wait when it has not; a
+// record of a round already taken is late, counted and not fused.
+#include "skyfuse/transport/asterix_live.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "skyfuse/asterix/cat048.hpp"
+#include "skyfuse/asterix/data_block.hpp"
+#include "skyfuse/asterix/udp.hpp"
+#include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/traffic/traffic_truth.hpp"
+#include "skyfuse/transport/scan_asterix.hpp"
+
+namespace skyfuse::transport {
+namespace {
+
+using namespace std::chrono_literals;
+
+// Station `s` (index)'s scan of round k as the datagrams a sensor would send.
+std::vector<asterix::Bytes> datagrams_of(const Scenario& scenario, const SimulatedScan& scan,
+                                         std::size_t s, int k) {
+  const ScanRecords records =
+      scan_records(scan, scenario.stations[s], k * scenario.time_step_s, scenario.anchor);
+  std::optional<asterix::EncodeError> error;
+  auto blocks =
+      asterix::encode_blocks(records.category, records.records, asterix::kMaxUdpPayload, error);
+  EXPECT_FALSE(error.has_value());
+  return blocks;
+}
+
+// Polls `done` for up to 10 s: what a datagram on its way through the loopback takes.
+template <typename Done>
+bool eventually(Done done) {
+  const auto give_up = std::chrono::steady_clock::now() + 10s;
+  while (!done() && std::chrono::steady_clock::now() < give_up) std::this_thread::sleep_for(1ms);
+  return done();
+}
+
+TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
+  const Scenario scenario =
+      load_scenario_file(std::string(SKYFUSE_BIN_DIR) + "/scenarios/uam-mixed.yaml");
+  const auto truth = build_traffic_truth(scenario).targets;
+  constexpr int kStations = 10;
+  constexpr int kFirst = 20;      // the aircraft appear over the first minute
+  constexpr std::size_t kMe = 6;  // station 7, a Mode S radar
+  const StationConfig& me = scenario.stations[kMe];
+  ASSERT_EQ(me.sensor.kind, "range_azimuth_altitude");
+
+  LiveScans live(asterix::UdpEndpoint{{127, 0, 0, 1}, 0}, 300ms, me.id, me.sensor.kind,
+                 scenario.anchor, scenario.time_step_s);
+  asterix::UdpSender sender(asterix::UdpEndpoint{{127, 0, 0, 1}, live.port()});
+  std::vector<std::vector<SimulatedScan>> rounds;
+  for (int k = kFirst; k < kFirst + 4; ++k) {
+    rounds.push_back(simulated_scans_at(scenario, truth, kStations, 0, k));
+  }
+  std::size_t sent = 0;
+  const auto send = [&](int k, std::size_t s) {
+    const auto datagrams =
+        datagrams_of(scenario, rounds[static_cast<std::size_t>(k - kFirst)][s], s, k);
+    EXPECT_FALSE(datagrams.empty()) << "station index " << s << " round " << k;
+    for (const asterix::Bytes& d : datagrams) EXPECT_TRUE(sender.send(d));
+    sent += datagrams.size();
+  };
+  const auto expected = [&](int k) {
+    return *quantised_as_asterix(rounds[static_cast<std::size_t>(k - kFirst)][kMe],
+                                 scenario.stations[kMe], scenario.anchor);
+  };
+  const auto same = [](const Scan& a, const Scan& b) {
+    if (a.detections.size() != b.detections.size() || a.addresses != b.addresses) return false;
+    for (std::size_t j = 0; j < a.detections.size(); ++j) {
+      if (!same_detection(a.detections[j], b.detections[j])) return false;
+    }
+    return true;
+  };
+
+  // Rounds kFirst and kFirst + 1 sent: the first is passed, taken at once, the whole of it.
+  send(kFirst, kMe);
+  send(kFirst + 1, kMe);
+  const DetectionNoise noise = rounds[0][kMe].scan.noise;
+  const Scan first = live.scan_at(kFirst, noise);
+  EXPECT_GT(first.detections.size(), 3U);
+  EXPECT_TRUE(same(first, expected(kFirst)));
+  EXPECT_EQ(first.station_id, me.id);
+  EXPECT_EQ(live.waited_out(), 0U);
+
+  // Nothing has passed kFirst + 1: the station waits, then takes what came — all of it here.
+  const Scan second = live.scan_at(kFirst + 1, noise);
+  EXPECT_TRUE(same(second, expected(kFirst + 1)));
+  EXPECT_EQ(live.waited_out(), 1U);
+
+  // Round kFirst again, after it was taken: late, every record of it.
+  send(kFirst, kMe);
+  EXPECT_TRUE(eventually([&] { return live.late() == expected(kFirst).detections.size(); }))
+      << live.late();
+
+  // Another station's records of kFirst + 3 pass kFirst + 2, of which nothing of this station
+  // came: an empty scan, taken without the wait.
+  send(kFirst + 3, 8);  // station 9, a Remote ID receiver
+  ASSERT_TRUE(eventually([&] { return live.datagrams() == sent; })) << live.summary();
+  const Scan third = live.scan_at(kFirst + 2, noise);
+  EXPECT_TRUE(third.detections.empty());
+  EXPECT_EQ(live.waited_out(), 1U);
+  EXPECT_NE(live.summary().find("station 7's live feed"), std::string::npos) << live.summary();
+}
+
+TEST(LiveScans, RefuseASensorNoItemCarries) {
+  const GeoAnchor anchor{};
+  EXPECT_THROW(
+      LiveScans(asterix::UdpEndpoint{{127, 0, 0, 1}, 0}, 10ms, 1, "multilateration", anchor, 1.0),
+      std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace skyfuse::transport

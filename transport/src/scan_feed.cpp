@@ -1,0 +1,103 @@
+#include "skyfuse/transport/scan_feed.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "skyfuse/asterix/datagram.hpp"
+#include "skyfuse/transport/scan_asterix.hpp"
+
+namespace skyfuse::transport {
+
+ScanFeed::ScanFeed(std::string_view option, int station_id, std::string_view sensor_kind,
+                   const GeoAnchor& anchor, double time_step_s)
+    : station_id_(station_id),
+      sensor_kind_(sensor_kind),
+      reports_(sensor_kind == "position_velocity"),
+      anchor_(anchor),
+      time_step_s_(time_step_s) {
+  const std::string who = std::string(option) + ": station " + std::to_string(station_id);
+  if (!carried_by_asterix(sensor_kind)) {
+    throw std::invalid_argument(who + "'s sensor (" + std::string(sensor_kind) +
+                                ") has no ASTERIX item that carries its detections");
+  }
+  if (station_id < 0 || station_id > 255) {
+    throw std::invalid_argument(who + " is past SIC's 255");
+  }
+}
+
+std::uint64_t ScanFeed::round_of(double time_of_day_s) const {
+  return static_cast<std::uint64_t>(std::llround(std::max(0.0, time_of_day_s) / time_step_s_));
+}
+
+void ScanFeed::passed(double time_of_day_s) {
+  const std::uint64_t k = round_of(time_of_day_s);
+  if (!latest_round_ || k > *latest_round_) latest_round_ = k;
+}
+
+void ScanFeed::take(std::span<const std::uint8_t> datagram, std::uint64_t first_open) {
+  ++datagrams_;
+  const asterix::Decoded decoded = asterix::decode_datagram(datagram);
+  for (std::size_t kind = 0; kind < refusals_.by_kind.size(); ++kind) {
+    refusals_.by_kind[kind] += decoded.refusals.by_kind[kind];
+  }
+  const asterix::DataSource mine{0, static_cast<std::uint8_t>(station_id_)};
+  const auto keep = [&](auto& by_round, double time_of_day_s, const auto& record) {
+    const std::uint64_t k = round_of(time_of_day_s);
+    if (k < first_open) {
+      ++late_;
+      return;
+    }
+    by_round[k].push_back(record);
+    ++records_;
+  };
+  for (const asterix::RadarPlot& p : decoded.plots) {
+    passed(p.time_of_day_s);
+    if (!reports_ && p.source == mine) keep(plots_, p.time_of_day_s, p);
+  }
+  for (const asterix::AdsbReport& r : decoded.reports) {
+    passed(r.time_of_applicability_s);
+    if (reports_ && r.source == mine) keep(reports_by_round_, r.time_of_applicability_s, r);
+  }
+  for (const asterix::SystemTrack& t : decoded.tracks) passed(t.time_of_track_s);
+}
+
+Scan ScanFeed::take_scan(std::uint64_t k, const DetectionNoise& noise) {
+  // Rounds before k that were never asked for (a station that joins late) are late too.
+  const auto forget_before = [&](auto& by_round) {
+    for (auto at = by_round.begin(); at != by_round.end() && at->first < k;) {
+      late_ += at->second.size();
+      records_ -= at->second.size();
+      at = by_round.erase(at);
+    }
+  };
+  forget_before(plots_);
+  forget_before(reports_by_round_);
+  std::optional<Scan> scan;
+  if (reports_) {
+    const auto at = reports_by_round_.find(k);
+    if (at != reports_by_round_.end()) {
+      scan = scan_of_reports(station_id_, at->second, anchor_, skipped_);
+      reports_by_round_.erase(at);
+    }
+  } else {
+    const auto at = plots_.find(k);
+    if (at != plots_.end()) {
+      scan = scan_of_plots(station_id_, sensor_kind_, at->second, skipped_);
+      plots_.erase(at);
+    }
+  }
+  if (!scan) scan = Scan{station_id_, {}, {}, {}};
+  detections_ += scan->detections.size();
+  scan->noise = noise;
+  return std::move(*scan);
+}
+
+std::vector<std::uint64_t> ScanFeed::rounds() const {
+  std::vector<std::uint64_t> out;
+  for (const auto& [k, records] : plots_) out.push_back(k);
+  for (const auto& [k, records] : reports_by_round_) out.push_back(k);
+  return out;  // one of the two maps is empty: ascending
+}
+
+}  // namespace skyfuse::transport
