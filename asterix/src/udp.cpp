@@ -6,6 +6,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstring>
@@ -130,6 +131,17 @@ UdpReceiver::UdpReceiver(std::uint16_t port, std::optional<UdpEndpoint> group)
       fail("cannot join the multicast group", *group);
     }
   }
+}
+
+std::size_t UdpReceiver::request_receive_buffer(std::size_t octets) {
+  const int wanted = static_cast<int>(std::min<std::size_t>(octets, 1U << 30U));
+  setsockopt(socket_, SOL_SOCKET, SO_RCVBUF, &wanted, sizeof wanted);
+  int granted = 0;
+  socklen_t length = sizeof granted;
+  getsockopt(socket_, SOL_SOCKET, SO_RCVBUF, &granted, &length);
+  // Linux reports twice what it was asked for (it counts its own bookkeeping): say what the
+  // datagrams get.
+  return static_cast<std::size_t>(granted) / 2;
 }
 
 UdpReceiver::~UdpReceiver() {

@@ -6,7 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -56,6 +58,12 @@ TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
   LiveScans live(asterix::UdpEndpoint{{127, 0, 0, 1}, 0}, 300ms, me.id, me.sensor.kind,
                  scenario.anchor, scenario.time_step_s);
   asterix::UdpSender sender(asterix::UdpEndpoint{{127, 0, 0, 1}, live.port()});
+  // The buffer it asked for, as far as the system lets a process have one.
+  std::size_t system_limit = 0;
+  std::ifstream("/proc/sys/net/core/rmem_max") >> system_limit;
+  if (system_limit > 0) {
+    EXPECT_EQ(live.receive_buffer(), std::min(LiveScans::kReceiveBufferOctets, system_limit));
+  }
   std::vector<std::vector<SimulatedScan>> rounds;
   for (int k = kFirst; k < kFirst + 4; ++k) {
     rounds.push_back(simulated_scans_at(scenario, truth, kStations, 0, k));

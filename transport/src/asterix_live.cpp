@@ -19,6 +19,7 @@ LiveScans::LiveScans(const asterix::UdpEndpoint& listen, std::chrono::millisecon
                      double time_step_s)
     : feed_("--asterix-in", station_id, sensor_kind, anchor, time_step_s),
       receiver_(listen.port, group_of(listen)),
+      receive_buffer_(receiver_.request_receive_buffer(kReceiveBufferOctets)),
       wait_(wait),
       receiving_([this] { receive_until_stopped(); }) {}
 
@@ -70,10 +71,10 @@ std::size_t LiveScans::datagrams() const {
 std::string LiveScans::summary() const {
   const std::lock_guard lock(mutex_);
   return fmt::format(
-      "station {}'s live feed on port {}: {} datagrams, {} detections fused, {} records late, "
-      "{} rounds taken when the wait ran out, {} refused, {} skipped",
-      feed_.station_id(), receiver_.port(), feed_.datagrams(), feed_.detections(), feed_.late(),
-      waited_out_, feed_.refusals().total(), feed_.skipped());
+      "station {}'s live feed on port {} (receive buffer {} octets): {} datagrams, {} detections "
+      "fused, {} records late, {} rounds taken when the wait ran out, {} refused, {} skipped",
+      feed_.station_id(), receiver_.port(), receive_buffer_, feed_.datagrams(), feed_.detections(),
+      feed_.late(), waited_out_, feed_.refusals().total(), feed_.skipped());
 }
 
 }  // namespace skyfuse::transport

@@ -58,6 +58,10 @@ class UdpReceiver {
   UdpReceiver& operator=(const UdpReceiver&) = delete;
 
   std::uint16_t port() const { return port_; }
+  /// Asks the system for a receive buffer of `octets`: a feed that comes in bursts (a radar's
+  /// scan, a round of reports at once) is lost past the buffer while the reader is busy. The
+  /// system grants at most its limit (net.core.rmem_max on Linux); returns what it granted.
+  std::size_t request_receive_buffer(std::size_t octets);
   /// The next datagram, waiting at most `timeout_ms`; nullopt where none came.
   std::optional<Bytes> receive(int timeout_ms);
 

@@ -38,6 +38,12 @@ class LiveScans final : public FedScans {
   std::string summary() const override;
 
   std::uint16_t port() const { return receiver_.port(); }
+  /// The receive buffer the system granted (kReceiveBufferOctets asked).
+  std::size_t receive_buffer() const { return receive_buffer_; }
+
+  /// Twenty rounds of a feed at a large system's scale (4 000 reports, some 180 000 octets, in a
+  /// burst each round): what a station busy fusing may have to hold.
+  static constexpr std::size_t kReceiveBufferOctets = 4U << 20U;
   /// Rounds taken before the feed had passed them: the wait ran out.
   std::size_t waited_out() const;
   std::size_t late() const;
@@ -48,6 +54,7 @@ class LiveScans final : public FedScans {
 
   ScanFeed feed_;  // guarded by mutex_; first, so that a sensor it refuses binds no socket
   asterix::UdpReceiver receiver_;
+  std::size_t receive_buffer_;
   std::chrono::milliseconds wait_;
   mutable std::mutex mutex_;
   std::condition_variable arrived_;
