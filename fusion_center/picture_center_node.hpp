@@ -62,8 +62,7 @@ class PictureCenter {
         rounds_(node_.make_writer<wire::PictureRound>()),
         tracks_(node_),
         picture_(Parts::center(plan_.scenario), known_, plan_.scenario.tracker),
-        asterix_out_(transport::make_asterix_out(options.asterix_out, plan_.scenario.anchor,
-                                                 plan_.scenario.time_step_s)) {}
+        asterix_out_(transport::make_asterix_out(options.asterix_out, plan_.scenario)) {}
 
   int run() {
     auto& inputs = loop_.inputs();

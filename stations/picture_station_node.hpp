@@ -70,8 +70,7 @@ class PictureStation {
         states_out_(node_.make_writer<wire::PictureState>()),
         states_in_(node_.make_reader<wire::PictureState>()),
         picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.tracker),
-        asterix_out_(transport::make_asterix_out(options.node.asterix_out, plan_.scenario.anchor,
-                                                 plan_.scenario.time_step_s)),
+        asterix_out_(transport::make_asterix_out(options.node.asterix_out, plan_.scenario)),
         fed_(fed_scans(options, plan_.participants()[me_], plan_.scenario)) {
     // What it sends to itself never crosses the simulated link: the exchange keeps it as it
     // goes out.

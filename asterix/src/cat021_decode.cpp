@@ -90,6 +90,15 @@ Cat021Decoded decode_cat021_record(const WalkedRecord& record) {
       case 90:
         r.quality = read_quality(item.bytes);
         break;
+      case 157: {
+        const auto raw = in.get(2);
+        // RE set: the rate is only the avionics' bound, no value to fuse.
+        if ((raw & 0x8000u) == 0) {
+          r.vertical_rate_mps =
+              static_cast<double>(sign_extend(raw, 15)) * 6.25 * kMetresPerFoot / 60.0;
+        }
+        break;
+      }
       case 160: {
         const auto first = in.get(2);
         if ((first & 0x8000u) != 0) {  // RE: the speed is only a lower bound

@@ -46,6 +46,18 @@ void put_quality(ByteWriter& out, const AdsbQuality& q) {
   out.put(sils << 5 | sda << 3 | gva << 1, 1);
 }
 
+// I021/157: RE (bit 16) = 0, the geometric vertical rate in 15 bits of two's complement,
+// 6.25 ft/min each.
+void put_vertical_rate(ByteWriter& out, double rate_mps) {
+  const double feet_per_minute = rate_mps / kMetresPerFoot * 60.0;
+  const auto count = quantise(feet_per_minute, 6.25, 15, Signedness::twos_complement);
+  if (!count) {
+    out.fail("I021/157 GVR",
+             "vertical rate " + std::to_string(rate_mps) + " m/s is not within ±102 400 ft/min");
+  }
+  out.put(field_bits(count.value_or(0), 15), 2);
+}
+
 // I021/160: RE (bit 32) = 0, ground speed in 15 bits of 2^-14 NM/s (below 2 NM/s), track
 // angle in 16 bits of 360/2^16 deg.
 void put_ground_vector(ByteWriter& out, const GroundVector& v) {
@@ -92,6 +104,8 @@ Encoded encode_cat021_record(const AdsbReport& r) {
   }
 
   put_quality(record.item(90), r.quality);
+
+  if (r.vertical_rate_mps) put_vertical_rate(record.item(157), *r.vertical_rate_mps);
 
   if (r.ground_vector) put_ground_vector(record.item(160), *r.ground_vector);
 

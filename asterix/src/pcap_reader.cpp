@@ -1,11 +1,14 @@
 #include <algorithm>
+#include <array>
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "pcap_format.hpp"
 #include "skyfuse/asterix/pcap.hpp"
+#include "skyfuse/asterix/pcap_stream.hpp"
 
 namespace skyfuse::asterix {
 namespace {
@@ -90,66 +93,94 @@ void read_udp(std::span<const std::uint8_t> ip, UdpDatagram& d) {
 
 }  // namespace
 
-PcapContents read_pcap(std::span<const std::uint8_t> file) {
-  PcapContents contents;
-  if (file.size() < kFileHeaderOctets) {
-    contents.error = "shorter than a pcap file header (24 octets)";
-    return contents;
+PcapStream::PcapStream(std::istream& in) : in_(in) {
+  std::array<std::uint8_t, kFileHeaderOctets> header{};
+  in_.read(reinterpret_cast<char*>(header.data()), header.size());
+  if (in_.gcount() != static_cast<std::streamsize>(header.size())) {
+    fail("shorter than a pcap file header (24 octets)");
+    return;
   }
   FileOrder order;
-  const std::uint32_t magic = order.u32(file, 0);
-  bool nanoseconds = false;
+  const std::uint32_t magic = order.u32(header, 0);
   if (magic == kMagicMicroseconds || magic == kMagicNanoseconds) {
-    nanoseconds = magic == kMagicNanoseconds;
+    nanoseconds_ = magic == kMagicNanoseconds;
   } else {
     order.swapped = true;
-    const std::uint32_t swapped = order.u32(file, 0);
+    const std::uint32_t swapped = order.u32(header, 0);
     if (swapped == kMagicMicroseconds || swapped == kMagicNanoseconds) {
-      nanoseconds = swapped == kMagicNanoseconds;
+      nanoseconds_ = swapped == kMagicNanoseconds;
     } else if (magic == kMagicPcapng) {
-      contents.error = "a pcapng file, not classic pcap (editcap -F pcap converts it)";
-      return contents;
+      fail("a pcapng file, not classic pcap (editcap -F pcap converts it)");
+      return;
     } else {
-      contents.error = "not a pcap file (unknown magic number)";
-      return contents;
+      fail("not a pcap file (unknown magic number)");
+      return;
     }
   }
-  const std::uint32_t link = order.u32(file, 20) & 0x0FFFFFFFu;  // upper bits: FCS flags
-  if (link != kLinkEthernet && link != kLinkRaw && link != kLinkIpv4 && link != kLinkLinuxCooked) {
-    contents.error = "link type " + std::to_string(link) +
-                     " (only Ethernet, raw IPv4 and Linux cooked are read)";
-    return contents;
+  swapped_ = order.swapped;
+  link_ = order.u32(header, 20) & 0x0FFFFFFFu;  // upper bits: FCS flags
+  if (link_ != kLinkEthernet && link_ != kLinkRaw && link_ != kLinkIpv4 &&
+      link_ != kLinkLinuxCooked) {
+    fail("link type " + std::to_string(link_) +
+         " (only Ethernet, raw IPv4 and Linux cooked are read)");
   }
-  std::size_t at = kFileHeaderOctets;
-  while (at < file.size()) {
-    if (file.size() - at < kRecordHeaderOctets) {
-      contents.error = "a packet record header past the end of the file";
-      return contents;
+}
+
+bool PcapStream::fail(std::string why) {
+  if (!error_) error_ = std::move(why);
+  return false;
+}
+
+std::optional<UdpDatagram> PcapStream::next() {
+  const FileOrder order{swapped_};
+  while (!error_) {
+    std::array<std::uint8_t, kRecordHeaderOctets> header{};
+    in_.read(reinterpret_cast<char*>(header.data()), header.size());
+    if (in_.gcount() == 0) return std::nullopt;  // the end, between records
+    if (in_.gcount() != static_cast<std::streamsize>(header.size())) {
+      fail("a packet record header past the end of the file");
+      return std::nullopt;
     }
-    const std::uint32_t seconds = order.u32(file, at);
-    const std::uint32_t fraction = order.u32(file, at + 4);
-    const std::size_t captured = order.u32(file, at + 8);
-    at += kRecordHeaderOctets;
-    if (captured > file.size() - at) {
-      contents.error =
-          "a packet of " + std::to_string(captured) + " octets past the end of the file";
-      return contents;
+    const std::uint32_t seconds = order.u32(header, 0);
+    const std::uint32_t fraction = order.u32(header, 4);
+    const std::size_t captured = order.u32(header, 8);
+    frame_.resize(captured);
+    in_.read(reinterpret_cast<char*>(frame_.data()), static_cast<std::streamsize>(captured));
+    if (in_.gcount() != static_cast<std::streamsize>(captured)) {
+      fail("a packet of " + std::to_string(captured) + " octets past the end of the file");
+      return std::nullopt;
     }
-    const auto frame = file.subspan(at, captured);
-    at += captured;
     UdpDatagram d;
     d.time_ns = std::int64_t{seconds} * 1'000'000'000 +
-                (nanoseconds ? std::int64_t{fraction} : std::int64_t{fraction} * 1000);
-    const auto ip = ipv4_of(frame, link, contents.skipped);
+                (nanoseconds_ ? std::int64_t{fraction} : std::int64_t{fraction} * 1000);
+    const auto ip = ipv4_of(frame_, link_, skipped_);
     if (!ip) continue;
     if (const auto skip = why_not_udp(*ip)) {
-      ++(contents.skipped.*skip);
+      ++(skipped_.*skip);
       continue;
     }
     read_udp(*ip, d);
-    contents.datagrams.push_back(std::move(d));
+    return d;
   }
+  return std::nullopt;
+}
+
+namespace {
+
+PcapContents read_all(std::istream& in) {
+  PcapStream stream(in);
+  PcapContents contents;
+  while (auto d = stream.next()) contents.datagrams.push_back(std::move(*d));
+  contents.skipped = stream.skipped();
+  contents.error = stream.error();
   return contents;
+}
+
+}  // namespace
+
+PcapContents read_pcap(std::span<const std::uint8_t> file) {
+  std::istringstream in(std::string(file.begin(), file.end()));
+  return read_all(in);
 }
 
 PcapContents read_pcap(const std::filesystem::path& path) {
@@ -159,8 +190,7 @@ PcapContents read_pcap(const std::filesystem::path& path) {
     contents.error = "cannot open " + path.string();
     return contents;
   }
-  const Bytes bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  return read_pcap(bytes);
+  return read_all(in);
 }
 
 }  // namespace skyfuse::asterix

@@ -4,10 +4,12 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
-#include "skyfuse/asterix/pcap.hpp"
+#include "skyfuse/asterix/pcap_stream.hpp"
 #include "skyfuse/asterix/udp.hpp"
 #include "skyfuse/options/number_checks.hpp"
 
@@ -38,8 +40,11 @@ void add_feed_command(CLI::App& app, FeedOptions& o) {
 }
 
 int run_feed(const FeedOptions& o) {
-  const asterix::PcapContents file = asterix::read_pcap(std::filesystem::path(o.file));
-  if (file.error) throw std::invalid_argument(fmt::format("{}: {}", o.file, *file.error));
+  std::ifstream in(o.file, std::ios::binary);
+  if (!in) throw std::invalid_argument(fmt::format("{}: cannot be read", o.file));
+  // One datagram in memory at a time: a day's capture is sent as it is read.
+  asterix::PcapStream file(in);
+  if (file.error()) throw std::invalid_argument(fmt::format("{}: {}", o.file, *file.error()));
   std::string error;
   const auto destination = asterix::parse_udp_endpoint(o.destination, error);
   if (!destination) throw std::invalid_argument("--to: " + error);
@@ -48,21 +53,25 @@ int run_feed(const FeedOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   std::optional<std::int64_t> first_ns;
   std::size_t octets = 0;
-  for (const asterix::UdpDatagram& d : file.datagrams) {
-    if (o.source_port && d.source.port != *o.source_port) continue;
-    if (!first_ns) first_ns = d.time_ns;
-    const double due_s = (static_cast<double>(d.time_ns - *first_ns) * 1e-9 - o.lead_s) / o.speed;
+  while (const auto d = file.next()) {
+    if (o.source_port && d->source.port != *o.source_port) continue;
+    if (!first_ns) first_ns = d->time_ns;
+    const double due_s = (static_cast<double>(d->time_ns - *first_ns) * 1e-9 - o.lead_s) / o.speed;
     if (due_s > 0.0) {
       std::this_thread::sleep_until(start + std::chrono::duration_cast<std::chrono::nanoseconds>(
                                                 std::chrono::duration<double>(due_s)));
     }
-    sender.send(d.payload);
-    octets += d.payload.size();
+    sender.send(d->payload);
+    octets += d->payload.size();
   }
   const double took_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("sent %zu datagrams (%zu octets) to %s in %.1f s; %zu refused by the system\n",
               sender.sent(), octets, o.destination.c_str(), took_s, sender.failed());
+  if (file.error()) {
+    std::fprintf(stderr, "skyfuse: %s: stopped early: %s\n", o.file.c_str(), file.error()->c_str());
+    return 1;
+  }
   return sender.failed() == 0 ? 0 : 1;
 }
 

@@ -34,7 +34,7 @@ PictureAsterixRecording::PictureAsterixRecording(const std::filesystem::path& fi
                                                  const std::vector<TargetTruth>& truth)
     : plan_(plan), truth_(truth), pcap_(file) {
   for (const int node : nodes) {
-    nodes_.emplace(node, transport::PictureCat062(plan.scenario.anchor, plan.scenario.time_step_s));
+    nodes_.emplace(node, transport::PictureCat062(plan.scenario));
   }
 }
 
@@ -68,7 +68,7 @@ void PictureAsterixRecording::add_scans(int k, std::int64_t time_ns) {
   for (std::size_t s = 0; s < scans.size(); ++s) {
     const StationConfig& station = plan_.scenario.stations[s];
     transport::ScanRecords records =
-        transport::scan_records(scans[s], station, time_of_day_s, plan_.scenario.anchor);
+        transport::scan_records(scans[s], station, time_of_day_s, plan_.scenario);
     detections_left_out_ += records.left_out;
     if (records.category == 0) {
       detections_left_out_ += scans[s].scan.detections.size();

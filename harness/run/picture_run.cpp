@@ -162,7 +162,7 @@ class ManyAircraftRun final : public RunKind {
       quantised = [this](std::size_t s, Scan& scan) {
         const StationConfig& station = plan_.scenario.stations[s];
         if (auto q = transport::quantised_as_asterix({station.sensor.kind, scan, {}}, station,
-                                                     plan_.scenario.anchor)) {
+                                                     plan_.scenario)) {
           scan = std::move(*q);
         }
       };

@@ -573,6 +573,7 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
       ASSERT_EQ(decoded.plots.size(), z.size()) << "station " << station << " round " << k;
       for (std::size_t j = 0; j < z.size(); ++j) {
         const asterix::RadarPlot& p = decoded.plots[j];
+        EXPECT_EQ(p.source.sac, 25) << "uam-mixed's own area code";
         EXPECT_EQ(p.source.sic, station);
         EXPECT_NEAR(p.time_of_day_s, k * plan.scenario.time_step_s, 1.0 / 256.0);
         EXPECT_NEAR(p.range_m, z[j](0), kNauticalMileM / 256.0 / 2.0 + 1e-9);
@@ -588,6 +589,8 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
       ASSERT_EQ(decoded.reports.size(), z.size()) << "station " << station << " round " << k;
       for (std::size_t j = 0; j < z.size(); ++j) {
         const asterix::AdsbReport& r = decoded.reports[j];
+        EXPECT_EQ(r.source.sac, 25);
+        EXPECT_EQ(r.source.sic, station);
         const Vector3 geodetic =
             from_local_enu(plan.scenario.anchor, Vector3(z[j](0), z[j](1), z[j](2)));
         EXPECT_NEAR(r.latitude_deg, geodetic.x(), 180.0 / (1U << 30U));
@@ -599,6 +602,8 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
         ASSERT_TRUE(r.ground_vector.has_value());
         EXPECT_NEAR(r.ground_vector->ground_speed_mps, std::hypot(z[j](3), z[j](4)),
                     kNauticalMileM / 16384.0 / 2.0 + 1e-9);
+        ASSERT_TRUE(r.vertical_rate_mps.has_value());
+        EXPECT_NEAR(*r.vertical_rate_mps, z[j](5), 3.125 * kFootM / 60.0 + 1e-12);
         EXPECT_EQ(r.quality.nacp, 9) << "a σ of 10 m: 24.5 m at 95 %, below NACp 9's 30 m";
         EXPECT_EQ(r.quality.nucr_or_nacv, 2) << "a σ of 1 m/s: 2.4 m/s, below NACv 2's 3 m/s";
         ++reports;

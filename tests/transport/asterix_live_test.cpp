@@ -29,7 +29,7 @@ using namespace std::chrono_literals;
 std::vector<asterix::Bytes> datagrams_of(const Scenario& scenario, const SimulatedScan& scan,
                                          std::size_t s, int k) {
   const ScanRecords records =
-      scan_records(scan, scenario.stations[s], k * scenario.time_step_s, scenario.anchor);
+      scan_records(scan, scenario.stations[s], k * scenario.time_step_s, scenario);
   std::optional<asterix::EncodeError> error;
   auto blocks =
       asterix::encode_blocks(records.category, records.records, asterix::kMaxUdpPayload, error);
@@ -46,8 +46,9 @@ bool eventually(Done done) {
 }
 
 TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
-  const Scenario scenario =
+  Scenario scenario =
       load_scenario_file(std::string(SKYFUSE_BIN_DIR) + "/scenarios/uam-mixed.yaml");
+  scenario.asterix.sac = 25;  // this network's area: another's records are not this station's
   const auto truth = build_traffic_truth(scenario).targets;
   constexpr int kStations = 10;
   constexpr int kFirst = 20;      // the aircraft appear over the first minute
@@ -55,8 +56,7 @@ TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
   const StationConfig& me = scenario.stations[kMe];
   ASSERT_EQ(me.sensor.kind, "range_azimuth_altitude");
 
-  LiveScans live(asterix::UdpEndpoint{{127, 0, 0, 1}, 0}, 300ms, me.id, me.sensor.kind,
-                 scenario.anchor, scenario.time_step_s);
+  LiveScans live(asterix::UdpEndpoint{{127, 0, 0, 1}, 0}, 300ms, scenario, me);
   asterix::UdpSender sender(asterix::UdpEndpoint{{127, 0, 0, 1}, live.port()});
   // The buffer it asked for, as far as the system lets a process have one.
   std::size_t system_limit = 0;
@@ -69,16 +69,16 @@ TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
     rounds.push_back(simulated_scans_at(scenario, truth, kStations, 0, k));
   }
   std::size_t sent = 0;
-  const auto send = [&](int k, std::size_t s) {
+  const auto send = [&](int k, std::size_t s, const Scenario& from) {
     const auto datagrams =
-        datagrams_of(scenario, rounds[static_cast<std::size_t>(k - kFirst)][s], s, k);
+        datagrams_of(from, rounds[static_cast<std::size_t>(k - kFirst)][s], s, k);
     EXPECT_FALSE(datagrams.empty()) << "station index " << s << " round " << k;
     for (const asterix::Bytes& d : datagrams) EXPECT_TRUE(sender.send(d));
     sent += datagrams.size();
   };
   const auto expected = [&](int k) {
     return *quantised_as_asterix(rounds[static_cast<std::size_t>(k - kFirst)][kMe],
-                                 scenario.stations[kMe], scenario.anchor);
+                                 scenario.stations[kMe], scenario);
   };
   const auto same = [](const Scan& a, const Scan& b) {
     if (a.detections.size() != b.detections.size() || a.addresses != b.addresses) return false;
@@ -89,8 +89,8 @@ TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
   };
 
   // Rounds kFirst and kFirst + 1 sent: the first is passed, taken at once, the whole of it.
-  send(kFirst, kMe);
-  send(kFirst + 1, kMe);
+  send(kFirst, kMe, scenario);
+  send(kFirst + 1, kMe, scenario);
   const DetectionNoise noise = rounds[0][kMe].scan.noise;
   const Scan first = live.scan_at(kFirst, noise);
   EXPECT_GT(first.detections.size(), 3U);
@@ -104,13 +104,17 @@ TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
   EXPECT_EQ(live.waited_out(), 1U);
 
   // Round kFirst again, after it was taken: late, every record of it.
-  send(kFirst, kMe);
+  send(kFirst, kMe, scenario);
   EXPECT_TRUE(eventually([&] { return live.late() == expected(kFirst).detections.size(); }))
       << live.late();
 
   // Another station's records of kFirst + 3 pass kFirst + 2, of which nothing of this station
   // came: an empty scan, taken without the wait.
-  send(kFirst + 3, 8);  // station 9, a Remote ID receiver
+  // Nor is this station's round kFirst + 2 from another network's area (SAC 0) taken.
+  Scenario elsewhere = scenario;
+  elsewhere.asterix.sac = 0;
+  send(kFirst + 2, kMe, elsewhere);
+  send(kFirst + 3, 8, scenario);  // station 9, a Remote ID receiver
   ASSERT_TRUE(eventually([&] { return live.datagrams() == sent; })) << live.summary();
   const Scan third = live.scan_at(kFirst + 2, noise);
   EXPECT_TRUE(third.detections.empty());
@@ -118,11 +122,17 @@ TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
   EXPECT_NE(live.summary().find("station 7's live feed"), std::string::npos) << live.summary();
 }
 
-TEST(LiveScans, RefuseASensorNoItemCarries) {
-  const GeoAnchor anchor{};
-  EXPECT_THROW(
-      LiveScans(asterix::UdpEndpoint{{127, 0, 0, 1}, 0}, 10ms, 1, "multilateration", anchor, 1.0),
-      std::invalid_argument);
+TEST(LiveScans, RefuseASensorNoItemCarriesAndAStationPastSic) {
+  Scenario scenario;
+  scenario.time_step_s = 1.0;
+  StationConfig station;
+  station.id = 1;
+  station.sensor.kind = "multilateration";
+  const asterix::UdpEndpoint any_port{{127, 0, 0, 1}, 0};
+  EXPECT_THROW(LiveScans(any_port, 10ms, scenario, station), std::invalid_argument);
+  station.sensor.kind = "range_azimuth_altitude";
+  station.id = 256;
+  EXPECT_THROW(LiveScans(any_port, 10ms, scenario, station), std::invalid_argument);
 }
 
 }  // namespace

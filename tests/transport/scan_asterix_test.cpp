@@ -39,7 +39,7 @@ TEST(ScanAsterix, EveryDetectionSurvivesWithinItsItemsResolutionAndQuantisesToTh
     for (std::size_t s = 0; s < scans.size(); ++s) {
       const SimulatedScan& scan = scans[s];
       const StationConfig& station = scenario.stations[s];
-      const std::optional<Scan> once = quantised_as_asterix(scan, station, scenario.anchor);
+      const std::optional<Scan> once = quantised_as_asterix(scan, station, scenario);
       ASSERT_EQ(once.has_value(), carried_by_asterix(scan.sensor_kind)) << scan.sensor_kind;
       if (!once) continue;
       const auto& z = scan.scan.detections;
@@ -57,7 +57,7 @@ TEST(ScanAsterix, EveryDetectionSurvivesWithinItsItemsResolutionAndQuantisesToTh
           ++plots;
         } else {
           // 180/2^30 degrees of latitude is 2 cm; the height 6.25 ft; the ground speed 2^-14
-          // NM/s and the track angle 360/2^16 degrees; no vertical speed.
+          // NM/s and the track angle 360/2^16 degrees; the vertical rate 6.25 ft/min.
           EXPECT_NEAR(q[j](0), z[j](0), 0.05);
           EXPECT_NEAR(q[j](1), z[j](1), 0.05);
           EXPECT_NEAR(q[j](2), z[j](2), 3.125 * kFootM + 0.01);
@@ -66,12 +66,12 @@ TEST(ScanAsterix, EveryDetectionSurvivesWithinItsItemsResolutionAndQuantisesToTh
               kNauticalMileM / 16384.0 / 2.0 + speed * 2.0 * std::numbers::pi / 65536.0;
           EXPECT_NEAR(q[j](3), z[j](3), tolerance);
           EXPECT_NEAR(q[j](4), z[j](4), tolerance);
-          EXPECT_EQ(q[j](5), 0.0);
+          EXPECT_NEAR(q[j](5), z[j](5), 3.125 * kFootM / 60.0 + 1e-12);
           ++reports;
         }
       }
       const std::optional<Scan> twice =
-          quantised_as_asterix({scan.sensor_kind, *once, scan.target}, station, scenario.anchor);
+          quantised_as_asterix({scan.sensor_kind, *once, scan.target}, station, scenario);
       ASSERT_TRUE(twice.has_value());
       ASSERT_EQ(twice->detections.size(), q.size());
       for (std::size_t j = 0; j < q.size(); ++j) {
@@ -135,7 +135,7 @@ TEST(ReplayedScans, APcapAndARawFileOfTheSameRecordsGiveTheQuantisedScans) {
       rounds.push_back(simulated_scans_at(scenario, truth, kStations, 0, k));
       for (std::size_t s = 0; s < rounds.back().size(); ++s) {
         const ScanRecords records = scan_records(rounds.back()[s], scenario.stations[s],
-                                                 k * scenario.time_step_s, scenario.anchor);
+                                                 k * scenario.time_step_s, scenario);
         if (records.category == 0 || records.records.empty()) continue;
         std::optional<asterix::EncodeError> error;
         for (const asterix::Bytes& block : asterix::encode_blocks(records.category, records.records,
@@ -152,17 +152,15 @@ TEST(ReplayedScans, APcapAndARawFileOfTheSameRecordsGiveTheQuantisedScans) {
   std::size_t detections = 0;
   for (const int id : {7, 9}) {  // a Mode S radar and a Remote ID receiver
     const StationConfig& station = scenario.stations[static_cast<std::size_t>(id - 1)];
-    ReplayedScans from_pcap(pcap, id, station.sensor.kind, scenario.anchor,
-                                  scenario.time_step_s);
-    ReplayedScans from_raw(raw, id, station.sensor.kind, scenario.anchor,
-                                 scenario.time_step_s);
+    ReplayedScans from_pcap(pcap, scenario, station);
+    ReplayedScans from_raw(raw, scenario, station);
     EXPECT_EQ(from_pcap.detections(), from_raw.detections());
     EXPECT_EQ(from_pcap.refusals().total(), 0U);
     EXPECT_EQ(from_raw.refusals().total(), 0U);
     for (int k = kFirst; k < kFirst + kRounds; ++k) {
       const SimulatedScan& simulated =
           rounds[static_cast<std::size_t>(k - kFirst)][static_cast<std::size_t>(id - 1)];
-      const Scan expected = *quantised_as_asterix(simulated, station, scenario.anchor);
+      const Scan expected = *quantised_as_asterix(simulated, station, scenario);
       for (ReplayedScans* replayed : {&from_pcap, &from_raw}) {
         const Scan scan = replayed->scan_at(static_cast<std::uint64_t>(k), simulated.scan.noise);
         ASSERT_EQ(scan.detections.size(), expected.detections.size()) << id << " round " << k;
@@ -177,8 +175,9 @@ TEST(ReplayedScans, APcapAndARawFileOfTheSameRecordsGiveTheQuantisedScans) {
   }
   EXPECT_GT(detections, 50U);
   // A sensor no item carries is refused by name.
-  EXPECT_THROW(ReplayedScans(pcap, 1, "range_azimuth_elevation", scenario.anchor, 1.0),
-               std::invalid_argument);
+  StationConfig elevation = scenario.stations[0];
+  elevation.sensor.kind = "range_azimuth_elevation";
+  EXPECT_THROW(ReplayedScans(pcap, scenario, elevation), std::invalid_argument);
 }
 
 }  // namespace

@@ -15,9 +15,8 @@ std::optional<asterix::UdpEndpoint> group_of(const asterix::UdpEndpoint& listen)
 }  // namespace
 
 LiveScans::LiveScans(const asterix::UdpEndpoint& listen, std::chrono::milliseconds wait,
-                     int station_id, std::string_view sensor_kind, const GeoAnchor& anchor,
-                     double time_step_s)
-    : feed_("--asterix-in", station_id, sensor_kind, anchor, time_step_s),
+                     const Scenario& scenario, const StationConfig& station)
+    : feed_("--asterix-in", scenario, station),
       receiver_(listen.port, group_of(listen)),
       receive_buffer_(receiver_.request_receive_buffer(kReceiveBufferOctets)),
       wait_(wait),

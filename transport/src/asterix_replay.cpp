@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -11,54 +12,54 @@
 
 #include "skyfuse/asterix/datagram.hpp"
 #include "skyfuse/asterix/pcap.hpp"
+#include "skyfuse/asterix/pcap_stream.hpp"
 #include "skyfuse/transport/scan_asterix.hpp"
 #include "skyfuse/transport/scan_feed.hpp"
 
 namespace skyfuse::transport {
 namespace {
 
-// A feed file's datagrams: a pcap's (classic or its nanosecond form; pcapng is refused by the
-// reader, naming it), or a file of raw ASTERIX data blocks one after another, read as one.
-struct FeedFile {
-  std::vector<asterix::Bytes> datagrams;
-  std::uint64_t frames_skipped = 0;
-};
-
-bool starts_like_pcap(const asterix::Bytes& bytes) {
-  if (bytes.size() < 4) return false;
-  const std::uint32_t magic = static_cast<std::uint32_t>(bytes[0]) << 24U |
-                              static_cast<std::uint32_t>(bytes[1]) << 16U |
-                              static_cast<std::uint32_t>(bytes[2]) << 8U | bytes[3];
+bool starts_like_pcap(std::istream& in) {
+  std::array<std::uint8_t, 4> first{};
+  in.read(reinterpret_cast<char*>(first.data()), first.size());
+  const bool whole = in.gcount() == static_cast<std::streamsize>(first.size());
+  in.clear();
+  in.seekg(0);
+  if (!whole) return false;
+  const std::uint32_t magic = static_cast<std::uint32_t>(first[0]) << 24U |
+                              static_cast<std::uint32_t>(first[1]) << 16U |
+                              static_cast<std::uint32_t>(first[2]) << 8U | first[3];
   return magic == 0xA1B2C3D4U || magic == 0xD4C3B2A1U || magic == 0xA1B23C4DU ||
          magic == 0x4D3CB2A1U || magic == 0x0A0D0D0AU;
 }
 
-FeedFile read_feed(const std::filesystem::path& file) {
+// Hands each datagram of a feed file to `take`, one at a time: a pcap's (classic or its
+// nanosecond form; pcapng is refused by the reader, naming it), read as it goes, or a file of
+// raw ASTERIX data blocks one after another, read as one. Returns the pcap frames skipped.
+template <typename Take>
+std::uint64_t for_each_datagram(const std::filesystem::path& file, Take take) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw std::runtime_error("--asterix-replay: cannot read " + file.string());
-  asterix::Bytes bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  FeedFile feed;
-  if (!starts_like_pcap(bytes)) {
-    if (!bytes.empty()) feed.datagrams.push_back(std::move(bytes));
-    return feed;
+  if (!starts_like_pcap(in)) {
+    const asterix::Bytes bytes((std::istreambuf_iterator<char>(in)),
+                               std::istreambuf_iterator<char>());
+    if (!bytes.empty()) take(bytes);
+    return 0;
   }
-  asterix::PcapContents contents = asterix::read_pcap(bytes);
-  if (contents.error) {
-    throw std::runtime_error("--asterix-replay: " + file.string() + ": " + *contents.error);
+  asterix::PcapStream stream(in);
+  while (const auto d = stream.next()) take(d->payload);
+  if (stream.error()) {
+    throw std::runtime_error("--asterix-replay: " + file.string() + ": " + *stream.error());
   }
-  feed.frames_skipped = contents.skipped.total();
-  for (asterix::UdpDatagram& d : contents.datagrams) feed.datagrams.push_back(std::move(d.payload));
-  return feed;
+  return stream.skipped().total();
 }
 
 }  // namespace
 
 AsterixFeedCounts count_asterix_feed(const std::filesystem::path& file) {
-  const FeedFile feed = read_feed(file);
   AsterixFeedCounts counts;
-  counts.frames_skipped = feed.frames_skipped;
   asterix::Decoded decoded;
-  for (const asterix::Bytes& datagram : feed.datagrams) {
+  counts.frames_skipped = for_each_datagram(file, [&](const asterix::Bytes& datagram) {
     ++counts.datagrams;
     asterix::decode_datagram(datagram, decoded);
     counts.plots += decoded.plots.size();
@@ -67,17 +68,16 @@ AsterixFeedCounts count_asterix_feed(const std::filesystem::path& file) {
     decoded.plots.clear();
     decoded.reports.clear();
     decoded.tracks.clear();
-  }
+  });
   counts.refused = decoded.refusals;
   return counts;
 }
 
-ReplayedScans::ReplayedScans(const std::filesystem::path& file, int station_id,
-                             std::string_view sensor_kind, const GeoAnchor& anchor,
-                             double time_step_s)
-    : file_(file), station_id_(station_id) {
-  ScanFeed feed("--asterix-replay", station_id, sensor_kind, anchor, time_step_s);
-  for (const asterix::Bytes& datagram : read_feed(file).datagrams) feed.take(datagram);
+ReplayedScans::ReplayedScans(const std::filesystem::path& file, const Scenario& scenario,
+                             const StationConfig& station)
+    : file_(file), station_id_(station.id) {
+  ScanFeed feed("--asterix-replay", scenario, station);
+  for_each_datagram(file, [&](const asterix::Bytes& datagram) { feed.take(datagram); });
   for (const std::uint64_t k : feed.rounds()) scans_.emplace(k, feed.take_scan(k, {}));
   detections_ = feed.detections();
   refusals_ = feed.refusals();

@@ -15,10 +15,16 @@ constexpr double kSecondsPerDay = 86'400.0;
 
 }  // namespace
 
+asterix::DataSource system_source(const Scenario& scenario) {
+  return {static_cast<std::uint8_t>(scenario.asterix.sac),
+          static_cast<std::uint8_t>(scenario.asterix.sic)};
+}
+
 asterix::SystemTrack system_track(const wire::PictureTrack& track, std::uint16_t number,
-                                  double time_of_day_s, const GeoAnchor& anchor) {
+                                  asterix::DataSource source, double time_of_day_s,
+                                  const GeoAnchor& anchor) {
   asterix::SystemTrack out;
-  out.source = kSystemSource;
+  out.source = source;
   out.service_id = 1;
   out.track_number = number;
   out.time_of_track_s = time_of_day_s;
@@ -62,7 +68,7 @@ std::vector<asterix::Bytes> PictureCat062::blocks(std::uint64_t k,
     const auto number = numbers_.number_of(t.track_id());
     if (!number) continue;
     asterix::Encoded record =
-        asterix::encode_cat062_record(system_track(t, *number, time_s, anchor_));
+        asterix::encode_cat062_record(system_track(t, *number, source_, time_s, anchor_));
     if (!record) {
       ++left_out_;
       continue;
@@ -88,12 +94,12 @@ std::string asterix_out_summary(const PictureAsterixOut& out) {
 }
 
 std::unique_ptr<PictureAsterixOut> make_asterix_out(const std::string& destination,
-                                                    const GeoAnchor& anchor, double time_step_s) {
+                                                    const Scenario& scenario) {
   if (destination.empty()) return nullptr;
   std::string error;
   const auto endpoint = asterix::parse_udp_endpoint(destination, error);
   if (!endpoint) throw std::invalid_argument("--asterix-out: " + error);
-  return std::make_unique<PictureAsterixOut>(*endpoint, anchor, time_step_s);
+  return std::make_unique<PictureAsterixOut>(*endpoint, scenario);
 }
 
 }  // namespace skyfuse::transport

@@ -94,6 +94,7 @@ ScanRecords broadcast_reports(const SimulatedScan& scan, const StationConfig& st
     report.quality = quality;
     report.ground_vector =
         asterix::GroundVector{std::hypot(z(3), z(4)), std::atan2(z(3), z(4)) * kDegPerRad};
+    report.vertical_rate_mps = z(5);
     add(out, asterix::encode_cat021_record(report));
   }
   return out;
@@ -106,17 +107,21 @@ bool carried_by_asterix(std::string_view sensor_kind) {
          sensor_kind == "position_velocity";
 }
 
+std::optional<asterix::DataSource> station_source(const Scenario& scenario, int station_id) {
+  if (station_id < 0 || station_id > 255) return std::nullopt;
+  return asterix::DataSource{static_cast<std::uint8_t>(scenario.asterix.sac),
+                             static_cast<std::uint8_t>(station_id)};
+}
+
 ScanRecords scan_records(const SimulatedScan& scan, const StationConfig& station,
-                         double time_of_day_s, const GeoAnchor& anchor) {
+                         double time_of_day_s, const Scenario& scenario) {
   if (!carried_by_asterix(scan.sensor_kind)) return {};
   const bool mode_s = scan.sensor_kind == "range_azimuth_altitude";
   const bool broadcast = scan.sensor_kind == "position_velocity";
-  if (station.id < 0 || station.id > 255) {
-    return {0, {}, scan.scan.detections.size()};
-  }
-  const asterix::DataSource source{0, static_cast<std::uint8_t>(station.id)};
-  if (broadcast) return broadcast_reports(scan, station, source, time_of_day_s, anchor);
-  return radar_plots(scan, source, time_of_day_s, mode_s);
+  const auto source = station_source(scenario, station.id);
+  if (!source) return {0, {}, scan.scan.detections.size()};
+  if (broadcast) return broadcast_reports(scan, station, *source, time_of_day_s, scenario.anchor);
+  return radar_plots(scan, *source, time_of_day_s, mode_s);
 }
 
 std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,
@@ -157,7 +162,8 @@ std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::Ads
     const double track_rad = report.ground_vector->track_angle_deg / kDegPerRad;
     const double speed = report.ground_vector->ground_speed_mps;
     Detection z(6);
-    z << p.x(), p.y(), p.z(), speed * std::sin(track_rad), speed * std::cos(track_rad), 0.0;
+    z << p.x(), p.y(), p.z(), speed * std::sin(track_rad), speed * std::cos(track_rad),
+        report.vertical_rate_mps.value_or(0.0);
     scan.detections.push_back(z);
     scan.addresses.push_back(report.address_type == 3 ? kNoAddress : report.address);
   }
@@ -166,8 +172,9 @@ std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::Ads
 }
 
 std::optional<Scan> quantised_as_asterix(const SimulatedScan& scan, const StationConfig& station,
-                                         const GeoAnchor& anchor) {
-  const ScanRecords records = scan_records(scan, station, 0.0, anchor);
+                                         const Scenario& scenario) {
+  const GeoAnchor& anchor = scenario.anchor;
+  const ScanRecords records = scan_records(scan, station, 0.0, scenario);
   if (records.category == 0) return std::nullopt;
   std::optional<asterix::EncodeError> error;
   const std::vector<asterix::Bytes> blocks =

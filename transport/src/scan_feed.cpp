@@ -9,21 +9,20 @@
 
 namespace skyfuse::transport {
 
-ScanFeed::ScanFeed(std::string_view option, int station_id, std::string_view sensor_kind,
-                   const GeoAnchor& anchor, double time_step_s)
-    : station_id_(station_id),
-      sensor_kind_(sensor_kind),
-      reports_(sensor_kind == "position_velocity"),
-      anchor_(anchor),
-      time_step_s_(time_step_s) {
-  const std::string who = std::string(option) + ": station " + std::to_string(station_id);
-  if (!carried_by_asterix(sensor_kind)) {
-    throw std::invalid_argument(who + "'s sensor (" + std::string(sensor_kind) +
+ScanFeed::ScanFeed(std::string_view option, const Scenario& scenario, const StationConfig& station)
+    : station_id_(station.id),
+      sensor_kind_(station.sensor.kind),
+      reports_(station.sensor.kind == "position_velocity"),
+      anchor_(scenario.anchor),
+      time_step_s_(scenario.time_step_s) {
+  const std::string who = std::string(option) + ": station " + std::to_string(station.id);
+  if (!carried_by_asterix(station.sensor.kind)) {
+    throw std::invalid_argument(who + "'s sensor (" + station.sensor.kind +
                                 ") has no ASTERIX item that carries its detections");
   }
-  if (station_id < 0 || station_id > 255) {
-    throw std::invalid_argument(who + " is past SIC's 255");
-  }
+  const auto source = station_source(scenario, station.id);
+  if (!source) throw std::invalid_argument(who + " is past SIC's 255");
+  source_ = *source;
 }
 
 std::uint64_t ScanFeed::round_of(double time_of_day_s) const {
@@ -41,7 +40,6 @@ void ScanFeed::take(std::span<const std::uint8_t> datagram, std::uint64_t first_
   for (std::size_t kind = 0; kind < refusals_.by_kind.size(); ++kind) {
     refusals_.by_kind[kind] += decoded.refusals.by_kind[kind];
   }
-  const asterix::DataSource mine{0, static_cast<std::uint8_t>(station_id_)};
   const auto keep = [&](auto& by_round, double time_of_day_s, const auto& record) {
     const std::uint64_t k = round_of(time_of_day_s);
     if (k < first_open) {
@@ -53,11 +51,11 @@ void ScanFeed::take(std::span<const std::uint8_t> datagram, std::uint64_t first_
   };
   for (const asterix::RadarPlot& p : decoded.plots) {
     passed(p.time_of_day_s);
-    if (!reports_ && p.source == mine) keep(plots_, p.time_of_day_s, p);
+    if (!reports_ && p.source == source_) keep(plots_, p.time_of_day_s, p);
   }
   for (const asterix::AdsbReport& r : decoded.reports) {
     passed(r.time_of_applicability_s);
-    if (reports_ && r.source == mine) keep(reports_by_round_, r.time_of_applicability_s, r);
+    if (reports_ && r.source == source_) keep(reports_by_round_, r.time_of_applicability_s, r);
   }
   for (const asterix::SystemTrack& t : decoded.tracks) passed(t.time_of_track_s);
 }

@@ -453,6 +453,21 @@ GeoAnchor read_anchor(const YamlField& field) {
   return anchor;
 }
 
+AsterixSource read_asterix_source(const YamlField& field) {
+  field.allow_only({"sac", "sic"});
+  AsterixSource source;
+  const auto code = [](const YamlField& f) {
+    const std::int64_t value = f.integer();
+    if (value < 0 || value > 255) {
+      f.fail(fmt::format("must be a whole number from 0 to 255 (8 bits), got {}", f.text()));
+    }
+    return static_cast<int>(value);
+  };
+  if (const auto sac = field.optional("sac")) source.sac = code(*sac);
+  if (const auto sic = field.optional("sic")) source.sic = code(*sic);
+  return source;
+}
+
 // A station's `bias:` (traffic/sensor_bias.hpp): offsets of components its sensor measures,
 // and a clock offset, each within a bound that a bias, not a misalignment or a unit slip, keeps.
 SensorBias read_bias(const YamlField& field, const SensorInfo& sensor) {
@@ -531,7 +546,7 @@ void check_many_targets(const Scenario& s, std::size_t i, const YamlField& item,
 Scenario read_scenario(const YamlField& root) {
   root.allow_only({"name", "description", "seed", "time_step_s", "steps", "target", "traffic",
                    "detection", "tracker", "metrics", "stations", "measurement_noise", "filter",
-                   "network", "anchor"});
+                   "network", "anchor", "asterix"});
   Scenario s;
   s.name = root.required("name").string();
   if (const auto description = root.optional("description")) s.description = description->string();
@@ -585,6 +600,7 @@ Scenario read_scenario(const YamlField& root) {
   s.filter = read_filter(filter);
   if (const auto network = root.optional("network")) s.exchange = read_network(*network);
   if (const auto anchor = root.optional("anchor")) s.anchor = read_anchor(*anchor);
+  if (const auto asterix = root.optional("asterix")) s.asterix = read_asterix_source(*asterix);
 
   const MotionModelInfo model = *find_motion_model(s.filter.motion_model.kind);
   const FilterInfo filter_info = *find_filter(s.filter.kind);

@@ -83,6 +83,32 @@ TEST(AsterixCat021, AirborneGroundVector) {
   EXPECT_FALSE(encode_cat021_record(r));
 }
 
+TEST(AsterixCat021, GeometricVerticalRate) {
+  auto r = sample_report();
+  // 1 000 ft/min climbing = 160 LSB of 6.25 ft/min = 0x00A0; 500 ft/min descending = -80 in
+  // 15 bits of two's complement = 0x7FB0, RE (bit 16) clear.
+  r.vertical_rate_mps = 1000.0 * kMetresPerFoot / 60.0;
+  EXPECT_EQ(item(r, 157), (Bytes{0x00, 0xA0}));
+  r.vertical_rate_mps = -500.0 * kMetresPerFoot / 60.0;
+  EXPECT_EQ(item(r, 157), (Bytes{0x7F, 0xB0}));
+  r.vertical_rate_mps = 102'400.0 * kMetresPerFoot / 60.0;  // 16 384 LSB: past 15 bits
+  EXPECT_FALSE(encode_cat021_record(r));
+  // Read back with RE set, the rate is a bound only: the report has none.
+  r.vertical_rate_mps = 0.0;
+  auto record = encode_cat021_record(r);
+  ASSERT_TRUE(record);
+  const auto at = record.bytes.size() - 2;  // 157 is the last item written here
+  ASSERT_EQ(record.bytes[at], 0x00);
+  record.bytes[at] = 0x80;
+  const std::size_t length = record.bytes.size() + 3;
+  Bytes block{kCat021, static_cast<std::uint8_t>(length >> 8U),
+              static_cast<std::uint8_t>(length & 0xFFU)};
+  block.insert(block.end(), record.bytes.begin(), record.bytes.end());
+  const auto decoded = decode_datagram(block);
+  ASSERT_EQ(decoded.reports.size(), 1u);
+  EXPECT_FALSE(decoded.reports[0].vertical_rate_mps.has_value());
+}
+
 TEST(AsterixCat021, AWholeRecordsFspec) {
   auto r = sample_report();
   r.geometric_height_m = 3048.0;
@@ -123,6 +149,11 @@ void expect_round_trip(const AdsbReport& in) {
     EXPECT_NEAR(*out.geometric_height_m, *in.geometric_height_m, 3.125 * kMetresPerFoot + 1e-9);
   }
   EXPECT_EQ(out.quality, in.quality);
+  ASSERT_EQ(out.vertical_rate_mps.has_value(), in.vertical_rate_mps.has_value());
+  if (in.vertical_rate_mps) {
+    EXPECT_NEAR(*out.vertical_rate_mps, *in.vertical_rate_mps,
+                3.125 * kMetresPerFoot / 60.0 + 1e-12);
+  }
   ASSERT_EQ(out.ground_vector.has_value(), in.ground_vector.has_value());
   if (in.ground_vector) {
     EXPECT_NEAR(out.ground_vector->ground_speed_mps, in.ground_vector->ground_speed_mps,
@@ -157,6 +188,7 @@ TEST(AsterixCat021, RoundTripsWithinEachItemsResolution) {
                     static_cast<std::uint8_t>(rng() % 16), static_cast<std::uint8_t>(rng() % 2),
                     static_cast<std::uint8_t>(rng() % 4),  static_cast<std::uint8_t>(rng() % 4)};
     if ((rng() & 1) != 0) r.ground_vector = GroundVector{u(rng) * 3000.0, (u(rng) - 0.5) * 720.0};
+    if ((rng() & 1) != 0) r.vertical_rate_mps = (u(rng) - 0.5) * 1000.0;  // ±500 m/s
     expect_round_trip(r);
   }
 }

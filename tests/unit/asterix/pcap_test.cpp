@@ -7,6 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
+
+#include "skyfuse/asterix/pcap_stream.hpp"
 
 namespace skyfuse::asterix {
 namespace {
@@ -85,6 +88,41 @@ TEST(AsterixPcap, ReadsBackWhatItWrote) {
     EXPECT_EQ(read.datagrams[i].payload, written[i].payload);
   }
   EXPECT_EQ(read.skipped.total(), 0u);
+}
+
+// The stream gives the same datagrams one at a time, and where the file is cut in a frame it
+// gives those before and then says why it stopped.
+TEST(AsterixPcap, StreamsTheSameDatagramsOneAtATime) {
+  const auto path = scratch("streamed.pcap");
+  const auto written = sample_datagrams();
+  {
+    PcapWriter writer(path);
+    for (const auto& d : written) writer.write(d);
+  }
+  std::ifstream in(path, std::ios::binary);
+  PcapStream stream(in);
+  ASSERT_FALSE(stream.error()) << *stream.error();
+  std::size_t i = 0;
+  while (const auto d = stream.next()) {
+    ASSERT_LT(i, written.size());
+    EXPECT_EQ(d->time_ns, written[i].time_ns);
+    EXPECT_EQ(d->source, written[i].source);
+    EXPECT_EQ(d->payload, written[i].payload);
+    ++i;
+  }
+  EXPECT_EQ(i, written.size());
+  EXPECT_FALSE(stream.error());
+
+  std::ifstream whole(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(whole)), std::istreambuf_iterator<char>());
+  bytes.resize(bytes.size() - 3);  // the last frame cut short
+  std::istringstream cut(bytes);
+  PcapStream short_of(cut);
+  std::size_t read = 0;
+  while (short_of.next()) ++read;
+  EXPECT_EQ(read, written.size() - 1);
+  ASSERT_TRUE(short_of.error());
+  EXPECT_NE(short_of.error()->find("past the end of the file"), std::string::npos);
 }
 
 TEST(AsterixPcap, RefusesWhatItCannotFrame) {

@@ -138,6 +138,7 @@ std::vector<AdsbReport> reports() {
   high.geometric_height_m = 10668.0;
   high.quality = AdsbQuality{2, 8, 1, 3, 9, 0, 2, 1};
   high.ground_vector = GroundVector{231.5, 271.2};
+  high.vertical_rate_mps = -7.62;  // 1 500 ft/min descending
 
   AdsbReport low = high;
   low.address = 0x4CA2B3;
@@ -148,6 +149,7 @@ std::vector<AdsbReport> reports() {
   low.position_items = PositionItems::low_resolution;
   low.geometric_height_m.reset();
   low.ground_vector.reset();
+  low.vertical_rate_mps.reset();
 
   AdsbReport ground = high;
   ground.address = 0x800123;
@@ -157,6 +159,7 @@ std::vector<AdsbReport> reports() {
   ground.longitude_deg = -43.2506;
   ground.geometric_height_m = -30.0;
   ground.ground_vector = GroundVector{8.2, 359.99};
+  ground.vertical_rate_mps = 0.0;
   return {high, low, ground};
 }
 
@@ -333,6 +336,12 @@ void check_report(const json& r, const AdsbReport& a) {
   EXPECT_EQ(number(r, q, "asterix.021_090_SILS"), a.quality.sil_supplement);
   EXPECT_EQ(number(r, q, "asterix.021_090_SDA"), a.quality.sda);
   EXPECT_EQ(number(r, q, "asterix.021_090_GVA"), a.quality.gva);
+  ASSERT_EQ(r.contains("asterix.021_157"), a.vertical_rate_mps.has_value());
+  if (a.vertical_rate_mps) {
+    EXPECT_EQ(number(r, "asterix.021_157", "asterix.021_157_RE"), 0);
+    EXPECT_NEAR(number(r, "asterix.021_157", "asterix.021_157_GVR"),
+                *a.vertical_rate_mps / kMetresPerFoot * 60.0, 3.125 + kPrinted);
+  }
   ASSERT_EQ(r.contains("asterix.021_160"), a.ground_vector.has_value());
   if (a.ground_vector) {
     EXPECT_EQ(number(r, "asterix.021_160", "asterix.021_160_RE"), 0);

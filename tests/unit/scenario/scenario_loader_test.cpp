@@ -375,6 +375,24 @@ TEST(ScenarioLoader, ReadsTheMapAnchorAndRefusesOneOffTheGlobe) {
             "test.yaml: anchor: missing field 'longitude_deg' (line 56)");
 }
 
+TEST(ScenarioLoader, ReadsTheAsterixDataSourceAndRefusesOnePastEightBits) {
+  const Scenario plain = parse_scenario(default_with("filter:\n", "filter:\n"), "test.yaml");
+  EXPECT_EQ(plain.asterix.sac, 0);
+  EXPECT_EQ(plain.asterix.sic, 1);
+  const Scenario s = parse_scenario(
+      default_with("filter:\n", "asterix: {sac: 25, sic: 200}\nfilter:\n"), "test.yaml");
+  EXPECT_EQ(s.asterix.sac, 25);
+  EXPECT_EQ(s.asterix.sic, 200);
+  EXPECT_EQ(rejection(default_with("filter:\n", "asterix: {sac: 256}\nfilter:\n")),
+            "test.yaml: asterix.sac: must be a whole number from 0 to 255 (8 bits), got 256 "
+            "(line 56)");
+  EXPECT_EQ(rejection(default_with("filter:\n", "asterix: {sic: -1}\nfilter:\n")),
+            "test.yaml: asterix.sic: must be a whole number from 0 to 255 (8 bits), got -1 "
+            "(line 56)");
+  EXPECT_EQ(rejection(default_with("filter:\n", "asterix: {sac: 1, cat: 62}\nfilter:\n")),
+            "test.yaml: asterix.cat: unknown field (allowed: sac, sic) (line 56)");
+}
+
 TEST(ScenarioLoader, RefusesImmSettingsThatCannotWork) {
   EXPECT_EQ(rejection(default_with("  initial_covariance_diag: 1.0",
                                    "  imm: {stay_probability: 0.9}\n"

@@ -13,6 +13,8 @@
 //   I021/140 geometric height     optional; 16 bits two's complement, LSB 6.25 ft
 //   I021/090 quality indicators   NUCr/NACv, NUCp/NIC; first extension NICbaro, SIL, NACp;
 //                                 second extension SIL-supplement, SDA, GVA
+//   I021/157 geometric vertical rate  optional; RE = 0, 15 bits two's complement, LSB 6.25
+//                                 ft/min (±102 400 ft/min); read with RE set as absent
 //   I021/160 airborne ground vector  optional; RE = 0, GS 15 bits unsigned, LSB 2^-14 NM/s
 //                                 (< 2 NM/s), TA 16 bits, LSB 360/2^16 deg (an angle: mod 360)
 //
@@ -68,6 +70,7 @@ struct AdsbReport {
   PositionItems position_items = PositionItems::high_resolution;
   std::optional<double> geometric_height_m;   ///< I021/140, [-1500, 150000) ft
   AdsbQuality quality;                        ///< I021/090
+  std::optional<double> vertical_rate_mps;    ///< I021/157, geometric, up positive
   std::optional<GroundVector> ground_vector;  ///< I021/160
 };
 

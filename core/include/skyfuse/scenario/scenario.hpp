@@ -157,6 +157,14 @@ struct GeoAnchor {
   double altitude_m = 480.0;
 };
 
+/// The surveillance network's ASTERIX data source (`asterix: {sac, sic}`; docs/asterix.md): the
+/// system area code of every record a run sends, and the system identification code of its
+/// system tracks (CAT062). A station's plots and reports carry the same SAC and its id as SIC.
+struct AsterixSource {
+  int sac = 0;  ///< [0, 255]
+  int sic = 1;  ///< [0, 255]
+};
+
 struct TrafficConfig;  // scenario/traffic_config.hpp
 
 struct Scenario {
@@ -171,6 +179,7 @@ struct Scenario {
   FilterConfig filter;
   ExchangeConfig exchange;
   GeoAnchor anchor;
+  AsterixSource asterix;
   /// Many aircraft instead of one `target` (scenario/traffic_config.hpp); shared so that a
   /// Scenario stays cheap to copy and to include.
   std::shared_ptr<const TrafficConfig> traffic;

@@ -25,11 +25,11 @@ namespace skyfuse::transport {
 
 class LiveScans final : public FedScans {
  public:
-  /// Listens on `listen`'s port, joining it where it is a multicast group, for station
-  /// `station_id`'s records. Throws as ScanFeed does, and std::runtime_error where the socket
-  /// cannot be opened.
-  LiveScans(const asterix::UdpEndpoint& listen, std::chrono::milliseconds wait, int station_id,
-            std::string_view sensor_kind, const GeoAnchor& anchor, double time_step_s);
+  /// Listens on `listen`'s port, joining it where it is a multicast group, for `station`'s
+  /// records. Throws as ScanFeed does, and std::runtime_error where the socket cannot be
+  /// opened.
+  LiveScans(const asterix::UdpEndpoint& listen, std::chrono::milliseconds wait,
+            const Scenario& scenario, const StationConfig& station);
   ~LiveScans() override;
   LiveScans(const LiveScans&) = delete;
   LiveScans& operator=(const LiveScans&) = delete;

@@ -37,12 +37,12 @@ AsterixFeedCounts count_asterix_feed(const std::filesystem::path& file);
 
 class ReplayedScans final : public FedScans {
  public:
-  /// Station `station_id`'s scans (SAC 0, SIC its id), of a sensor of `sensor_kind`, in `file`:
-  /// each record's time of day (I048/140, I021/071) names its round, k = round(t / dt).
-  /// Throws std::runtime_error naming the file where it cannot be read, std::invalid_argument
-  /// for a sensor ASTERIX does not carry (carried_by_asterix) or a station id past SIC's 255.
-  ReplayedScans(const std::filesystem::path& file, int station_id, std::string_view sensor_kind,
-                const GeoAnchor& anchor, double time_step_s);
+  /// `station`'s scans (the scenario's SAC, its id as SIC) in `file`: each record's time of day
+  /// (I048/140, I021/071) names its round, k = round(t / dt). Throws std::runtime_error naming
+  /// the file where it cannot be read, std::invalid_argument for a sensor ASTERIX does not
+  /// carry (carried_by_asterix) or a station id past SIC's 255.
+  ReplayedScans(const std::filesystem::path& file, const Scenario& scenario,
+                const StationConfig& station);
 
   /// Round k's scan, with `noise` as its R: empty where the file holds nothing of the round.
   Scan scan_at(std::uint64_t k, const DetectionNoise& noise) override;

@@ -20,16 +20,19 @@
 
 namespace skyfuse::transport {
 
-/// The network is one system (SDPS), whichever node sends its picture: one data source (SAC 0,
-/// no area assigned; SIC 1), so that nodes holding one picture send the same bytes.
-inline constexpr asterix::DataSource kSystemSource{0, 1};
+/// The network is one system (SDPS), whichever node sends its picture: one data source, the
+/// scenario's `asterix` (SAC 0, no area assigned, and SIC 1 unless it says), so that nodes
+/// holding one picture send the same bytes.
+asterix::DataSource system_source(const Scenario& scenario);
 
-/// Track `track` of a node's picture numbered `number`, at `time_of_day_s`: the position in
+/// Track `track` of a node's picture numbered `number`, from `source`, at `time_of_day_s`: the
+/// position in
 /// the scenario's east-north-up plane (I062/100) and as WGS-84 through `anchor` (I062/105,
 /// I062/130's height), the velocity, the accuracies from the covariance's position and
 /// velocity blocks, the address where the track holds one.
 asterix::SystemTrack system_track(const wire::PictureTrack& track, std::uint16_t number,
-                                  double time_of_day_s, const GeoAnchor& anchor);
+                                  asterix::DataSource source, double time_of_day_s,
+                                  const GeoAnchor& anchor);
 
 /// Round k's time of day: k dt seconds after midnight (a run starts at 00:00:00), modulo a day.
 double time_of_day_s(std::uint64_t k, double time_step_s);
@@ -38,8 +41,10 @@ double time_of_day_s(std::uint64_t k, double time_step_s);
 /// picture whether a round is sent or not).
 class PictureCat062 {
  public:
-  PictureCat062(const GeoAnchor& anchor, double time_step_s)
-      : anchor_(anchor), time_step_s_(time_step_s) {}
+  explicit PictureCat062(const Scenario& scenario)
+      : source_(system_source(scenario)),
+        anchor_(scenario.anchor),
+        time_step_s_(scenario.time_step_s) {}
 
   /// Round k's picture as CAT062 blocks, each within one unfragmented UDP datagram (65 507
   /// octets); none for a picture without tracks.
@@ -50,6 +55,7 @@ class PictureCat062 {
   std::size_t left_out() const { return left_out_; }
 
  private:
+  asterix::DataSource source_;
   GeoAnchor anchor_;
   double time_step_s_;
   asterix::TrackNumbers numbers_;
@@ -60,9 +66,8 @@ class PictureCat062 {
 /// (unicast or multicast).
 class PictureAsterixOut {
  public:
-  PictureAsterixOut(const asterix::UdpEndpoint& destination, const GeoAnchor& anchor,
-                    double time_step_s)
-      : cat062_(anchor, time_step_s), sender_(destination) {}
+  PictureAsterixOut(const asterix::UdpEndpoint& destination, const Scenario& scenario)
+      : cat062_(scenario), sender_(destination) {}
 
   void send(std::uint64_t k, const wire::PictureRound& round) {
     for (const asterix::Bytes& block : cat062_.blocks(k, round)) sender_.send(block);
@@ -84,6 +89,6 @@ std::string asterix_out_summary(const PictureAsterixOut& out);
 /// std::invalid_argument for a destination that is no IPv4 address and port, and
 /// std::runtime_error where no socket can be opened.
 std::unique_ptr<PictureAsterixOut> make_asterix_out(const std::string& destination,
-                                                    const GeoAnchor& anchor, double time_step_s);
+                                                    const Scenario& scenario);
 
 }  // namespace skyfuse::transport

@@ -35,13 +35,19 @@ struct ScanRecords {
 ///   (clockwise from north);
 /// - `range_azimuth_altitude` (a Mode S radar): CAT048, a roll-call plot, with the reported
 ///   altitude as I048/090's flight level and the address as I048/220;
-/// - `position_velocity` (ADS-B, Remote ID): CAT021, the position through `anchor` as WGS-84
-///   (I021/131) and geometric height (I021/140), the horizontal velocity (I021/160), the
-///   address (I021/080; anonymous where none), and NACp/NACv from the station's noise;
+/// - `position_velocity` (ADS-B, Remote ID): CAT021, the position through the scenario's
+///   `anchor` as WGS-84 (I021/131) and geometric height (I021/140), the horizontal velocity
+///   (I021/160) and the vertical rate (I021/157), the address (I021/080; anonymous where none),
+///   and NACp/NACv from the station's noise;
 /// - any other sensor (a 3-D radar's elevation, multilateration's time differences): none.
-/// The data source is SAC 0 and the station's id as SIC; every record is marked simulated.
+/// The data source is station_source's (the scenario's SAC, the station's id as SIC); every
+/// record is marked simulated.
 ScanRecords scan_records(const SimulatedScan& scan, const StationConfig& station,
-                         double time_of_day_s, const GeoAnchor& anchor);
+                         double time_of_day_s, const Scenario& scenario);
+
+/// Station `station_id`'s data source: the scenario's SAC (`asterix`), and its id as SIC;
+/// nullopt for an id past SIC's 255.
+std::optional<asterix::DataSource> station_source(const Scenario& scenario, int station_id);
 
 /// Whether a sensor kind's detections travel as CAT048 plots or CAT021 reports (scan_records).
 bool carried_by_asterix(std::string_view sensor_kind);
@@ -50,8 +56,8 @@ bool carried_by_asterix(std::string_view sensor_kind);
 /// station of `sensor_kind`, in the scenario's frame and units — range (m) and azimuth
 /// (counter-clockwise from east, rad) of a radar, the flight level as the altitude (m) and the
 /// address of a Mode S radar; a report's position in east-north-up through `anchor`, its
-/// velocity from the ground vector, and its address. No CAT021 item carried here holds a
-/// vertical speed: a report's vz is 0. A plot or report that cannot be one (a Mode S plot
+/// velocity from the ground vector and the vertical rate (0 where a report has none), and its
+/// address. A plot or report that cannot be one (a Mode S plot
 /// without a flight level, a report without a ground vector or height) is skipped and counted
 /// in `skipped`. nullopt for a sensor no item carries.
 std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,
@@ -63,6 +69,6 @@ std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::Ads
 /// item's resolution — the scan a station fed those records holds. Quantising it again gives
 /// the same bits. nullopt for a sensor no item carries.
 std::optional<Scan> quantised_as_asterix(const SimulatedScan& scan, const StationConfig& station,
-                                         const GeoAnchor& anchor);
+                                         const Scenario& scenario);
 
 }  // namespace skyfuse::transport

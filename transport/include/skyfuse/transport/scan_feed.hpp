@@ -6,7 +6,7 @@
 /// its own data source (SAC 0, SIC its id); each record's time of day (I048/140, I021/071)
 /// names its round, k = round(t / dt). Every record of the feed, of any source and category,
 /// tells how far the feed has come (latest_round): a live station takes its round once the
-/// feed has passed it.
+/// feed has passed it. The station's data source is the scenario's SAC and its id as SIC.
 
 #include <cstddef>
 #include <cstdint>
@@ -27,11 +27,10 @@ namespace skyfuse::transport {
 
 class ScanFeed {
  public:
-  /// Station `station_id`'s records, of a sensor of `sensor_kind`. Throws std::invalid_argument,
+  /// `station`'s records, in `scenario`'s frame and rounds. Throws std::invalid_argument,
   /// naming `option`, for a sensor ASTERIX does not carry (carried_by_asterix) or a station id
   /// past SIC's 255.
-  ScanFeed(std::string_view option, int station_id, std::string_view sensor_kind,
-           const GeoAnchor& anchor, double time_step_s);
+  ScanFeed(std::string_view option, const Scenario& scenario, const StationConfig& station);
 
   /// Decodes one datagram: what the decoder refused is counted by kind, this station's records
   /// are kept by round, except those of a round before `first_open` (already taken: late,
@@ -62,6 +61,7 @@ class ScanFeed {
   void passed(double time_of_day_s);
 
   int station_id_;
+  asterix::DataSource source_;
   std::string sensor_kind_;
   bool reports_;  // CAT021 (an ADS-B / Remote ID receiver); CAT048 otherwise
   GeoAnchor anchor_;
