@@ -766,9 +766,9 @@ int udp_sockets_bound_to(std::uint16_t port) {
 // Stations fed live (`--asterix-in GROUP:PORT`): a run's Mode S radars and Remote ID receivers
 // join a multicast group, and `skyfuse feed` sends them the scans an earlier run recorded, round
 // by round as sensors would, once every one of them listens; a plot of a later round from a
-// source no station has ends the feed, as a live feed's next round would. Every node's picture
-// equals, every round and bit for bit, the in-process run whose scans are quantised as the records
-// hold them — as when the same record is replayed from its file.
+// SIC of the network (SAC 25) that no station has ends the feed, as a live feed's next round would.
+// Every node's picture equals, every round and bit for bit, the in-process run whose scans are
+// quantised as the records hold them — as when the same record is replayed from its file.
 TEST(DdsPicture, StationsFedALiveFeedHoldTheQuantisedPictureBitForBit) {
   const auto dir = test_dir();
   const auto pcap = dir / "recorded.pcap";
@@ -825,7 +825,7 @@ TEST(DdsPicture, StationsFedALiveFeedHoldTheQuantisedPictureBitForBit) {
       << fed.output;
   asterix::UdpSender sender(group);
   asterix::RadarPlot next_round;
-  next_round.source = {0, 200};
+  next_round.source = {25, 200};  // uam-mixed's SAC: another area's clock tells nothing
   next_round.time_of_day_s =
       kFedSteps * load_scenario_file(bin("scenarios/uam-mixed.yaml")).time_step_s;
   next_round.detection = asterix::DetectionType::psr;

@@ -65,7 +65,7 @@ TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
     EXPECT_EQ(live.receive_buffer(), std::min(LiveScans::kReceiveBufferOctets, system_limit));
   }
   std::vector<std::vector<SimulatedScan>> rounds;
-  for (int k = kFirst; k < kFirst + 4; ++k) {
+  for (int k = kFirst; k < kFirst + 5; ++k) {
     rounds.push_back(simulated_scans_at(scenario, truth, kStations, 0, k));
   }
   std::size_t sent = 0;
@@ -108,17 +108,24 @@ TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
   EXPECT_TRUE(eventually([&] { return live.late() == expected(kFirst).detections.size(); }))
       << live.late();
 
-  // Another station's records of kFirst + 3 pass kFirst + 2, of which nothing of this station
-  // came: an empty scan, taken without the wait.
-  // Nor is this station's round kFirst + 2 from another network's area (SAC 0) taken.
+  // Another network's area (SAC 0) on the same group: its records under this station's SIC are
+  // not this station's, and its later rounds pass none of this network's: the station waits.
   Scenario elsewhere = scenario;
   elsewhere.asterix.sac = 0;
   send(kFirst + 2, kMe, elsewhere);
-  send(kFirst + 3, 8, scenario);  // station 9, a Remote ID receiver
+  send(kFirst + 3, 8, elsewhere);
   ASSERT_TRUE(eventually([&] { return live.datagrams() == sent; })) << live.summary();
   const Scan third = live.scan_at(kFirst + 2, noise);
   EXPECT_TRUE(third.detections.empty());
-  EXPECT_EQ(live.waited_out(), 1U);
+  EXPECT_EQ(live.waited_out(), 2U);
+
+  // This network's station 9 (a Remote ID receiver) at kFirst + 4 passes kFirst + 3, of which
+  // nothing of this station came: an empty scan, taken without the wait.
+  send(kFirst + 4, 8, scenario);
+  ASSERT_TRUE(eventually([&] { return live.datagrams() == sent; })) << live.summary();
+  const Scan fourth = live.scan_at(kFirst + 3, noise);
+  EXPECT_TRUE(fourth.detections.empty());
+  EXPECT_EQ(live.waited_out(), 2U);
   EXPECT_NE(live.summary().find("station 7's live feed"), std::string::npos) << live.summary();
 }
 

@@ -49,15 +49,20 @@ void ScanFeed::take(std::span<const std::uint8_t> datagram, std::uint64_t first_
     by_round[k].push_back(record);
     ++records_;
   };
+  // Only this network's records (its SAC) tell the time: another system on the same group may
+  // keep another clock.
+  const auto ours = [&](const asterix::DataSource& source) { return source.sac == source_.sac; };
   for (const asterix::RadarPlot& p : decoded.plots) {
-    passed(p.time_of_day_s);
+    if (ours(p.source)) passed(p.time_of_day_s);
     if (!reports_ && p.source == source_) keep(plots_, p.time_of_day_s, p);
   }
   for (const asterix::AdsbReport& r : decoded.reports) {
-    passed(r.time_of_applicability_s);
+    if (ours(r.source)) passed(r.time_of_applicability_s);
     if (reports_ && r.source == source_) keep(reports_by_round_, r.time_of_applicability_s, r);
   }
-  for (const asterix::SystemTrack& t : decoded.tracks) passed(t.time_of_track_s);
+  for (const asterix::SystemTrack& t : decoded.tracks) {
+    if (ours(t.source)) passed(t.time_of_track_s);
+  }
 }
 
 Scan ScanFeed::take_scan(std::uint64_t k, const DetectionNoise& noise) {

@@ -3,10 +3,10 @@
 /// A station's scans from a live UDP feed of ASTERIX (`--asterix-in HOST:PORT`): a thread
 /// receives every datagram as it comes and keeps the CAT048 plots or CAT021 reports of the
 /// station's own data source by round (scan_feed.hpp); the station, opening round k, takes the
-/// round's records once the feed has passed it — a record of a later round, of any source, has
-/// come — or once `wait` has gone by, with what came. A record of a round already taken is
-/// late: counted, not fused. The feed's time of day is the run's time (a run starts at
-/// midnight of the feed's day, as `--asterix-record` writes it).
+/// round's records once the feed has passed it — a record of a later round from the network's
+/// own area (SAC), of any station, has come — or once `wait` has gone by, with what came. A record
+/// of a round already taken is late: counted, not fused. The feed's time of day is the run's time
+/// (a run starts at midnight of the feed's day, as `--asterix-record` writes it).
 
 #include <atomic>
 #include <chrono>

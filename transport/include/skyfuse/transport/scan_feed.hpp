@@ -4,9 +4,10 @@
 /// round: what a file replayed (`--asterix-replay`, asterix_replay.hpp) and a live UDP feed
 /// (`--asterix-in`, asterix_live.hpp) both hand a station. The station's records are those of
 /// its own data source (SAC 0, SIC its id); each record's time of day (I048/140, I021/071)
-/// names its round, k = round(t / dt). Every record of the feed, of any source and category,
-/// tells how far the feed has come (latest_round): a live station takes its round once the
-/// feed has passed it. The station's data source is the scenario's SAC and its id as SIC.
+/// names its round, k = round(t / dt). Every record of the network's own area (its SAC), of
+/// any station or category, tells how far the feed has come (latest_round): a live station
+/// takes its round once the feed has passed it. The station's data source is the scenario's SAC and
+/// its id as SIC.
 
 #include <cstddef>
 #include <cstdint>
@@ -37,7 +38,7 @@ class ScanFeed {
   /// counted).
   void take(std::span<const std::uint8_t> datagram, std::uint64_t first_open = 0);
 
-  /// The latest round any record of the feed named, of whatever source; nullopt before any.
+  /// The latest round a record of the network's SAC named, of whatever SIC; nullopt before any.
   std::optional<std::uint64_t> latest_round() const { return latest_round_; }
 
   /// Round k's records as a scan, with `noise` as its R (empty where none came), and forgets
