@@ -129,11 +129,15 @@ function drawTrails(g, at, layered) {
 }
 
 // A station's square and label, the label left of it where the right would leave the canvas.
-function drawSite(g, [u, v], label) {
+// A station's square and its name; where `placed` is given, the name's box joins it, so that no
+// track's label is put over it.
+function drawSite(g, [u, v], label, placed = null) {
   g.fillStyle = COLORS.site;
   g.fillRect(u - 4, v - 4, 8, 8);
   const width = g.measureText(label).width;
-  g.fillText(label, u + 6 + width > g.canvas.width ? u - 6 - width : u + 6, v - 6);
+  const x = u + 6 + width > g.canvas.width ? u - 6 - width : u + 6;
+  g.fillText(label, x, v - 6);
+  placed?.push({ x0: x, y0: v - 6 - 11, x1: x + width, y1: v - 6 });
 }
 
 function drawMarker(g, [u, v], e) {
@@ -163,8 +167,9 @@ function drawScene() {
   const cy = (y0 + y1) / 2;
   const at = (p) => [canvas.width / 2 + (p.x - cx) * scale, canvas.height / 2 - (p.y - cy) * scale];
   g.font = "11px system-ui";
+  const placed = [];  // the labels drawn so far: a crowded track's goes where none is
   for (const s of view.sites.values()) {
-    drawSite(g, at(s), s.label);
+    drawSite(g, at(s), s.label, placed);
   }
   drawDetections(g, at, view);
   const layered = layeredEntities();
@@ -183,7 +188,7 @@ function drawScene() {
       g.stroke();
     }
     drawMarker(g, [u, v], e);
-    drawTrackLabel(g, [u, v], e);
+    drawTrackLabel(g, [u, v], e, placed);
   }
 }
 

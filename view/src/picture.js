@@ -3,7 +3,10 @@
 // a GOSPA plot and the count of tracks against aircraft. main.js hands this module the scene's
 // entities it recognises and the /skyfuse/picture messages.
 import uPlot from "uplot";
+import { placeLabel } from "./labels.js";
 import { legendShowsLatest, showLatestInLegend } from "./plots.js";
+
+const LABEL_HEIGHT = 11;  // px: the scene's font
 
 const PICTURE_COLORS = { confirmed: "#3373e6", tentative: "#f2b31a", aircraft: "#26b340",
   detection: "#59596680", falseAlarm: "#d93333a0" };
@@ -64,10 +67,12 @@ export function drawDetections(g, at, view) {
   }
 }
 
-export function drawTrackLabel(g, [u, v], e) {
+// `placed`: the boxes of the labels drawn so far in this drawing (labels.js).
+export function drawTrackLabel(g, [u, v], e, placed) {
   if (!e.label) return;
+  const [x, y] = placeLabel(placed, u, v, g.measureText(e.label).width, LABEL_HEIGHT);
   g.fillStyle = e.color;
-  g.fillText(e.label, u + 6, v + 4);
+  g.fillText(e.label, x, y);
 }
 
 const plots = { gospa: null, counts: null };
