@@ -28,6 +28,7 @@
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/picture_bundles.hpp"
 #include "skyfuse/transport/picture_cat062.hpp"
+#include "skyfuse/transport/picture_numbers.hpp"
 #include "skyfuse/transport/picture_scans.hpp"
 #include "skyfuse/transport/picture_track_writer.hpp"
 #include "skyfuse/transport/picture_tree_exchange.hpp"
@@ -116,19 +117,20 @@ class PictureCenter {
     }
     picture_.predict();
     picture_.update(k, scans_);
+    transport::number_picture(numbers_, picture_, k);
     const wire::PictureRound round = transport::picture_round_to_wire(
         picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
         static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size()));
     rounds_.write(round);
     if (asterix_out_) {
-      asterix_out_->send(k, round);
+      asterix_out_->send(k, round, numbers_);
       // The loop ends the process after its last round without returning: say it now.
       if (k + 1 == static_cast<std::uint64_t>(plan_.scenario.steps)) {
         spdlog::info("{}", transport::asterix_out_summary(*asterix_out_));
       }
     }
-    tracks_.publish(picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
-                    wire::CENTRAL);
+    tracks_.publish(picture_, numbers_, options_.run_id, static_cast<std::uint32_t>(k),
+                    kCenterSourceId, wire::CENTRAL);
     scans_in_.advance();
     return std::nullopt;
   }
@@ -153,6 +155,8 @@ class PictureCenter {
   transport::PictureTrackWriter tracks_;
   Picture picture_;
   // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
+  // The picture's short track numbers, given each round as every node gives them.
+  asterix::TrackNumbers numbers_;
   std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   std::vector<Scan> scans_;
 };

@@ -10,13 +10,14 @@
  *       track written after the reader first heard from it - its latest, then its next.
  *
  * FILE gets one CSV line per track received:
- *   step,source,track,status,settled,written_ns,matched_ns,received_ns,n,x0..x(n-1),p0_0,p0_1,...
- * status is confirmed or tentative (a run of one aircraft: its track 0, always confirmed), or
- * deleted when a picture dropped the track (its instance disposed: step empty, no values);
- * p is the covariance's upper triangle row by row. Values are printed by %.17g, which
- * round-trips a double exactly; matched_ns is when this reader matched the track's writer (wall
- * clock, as written_ns and received_ns). A track written before its writer matched came from
- * the writer's durable history. The first line is
+ *   step,source,track,number,status,settled,written_ns,matched_ns,received_ns,n,x0..x(n-1),
+ *   p0_0,p0_1,...
+ * number is the track's short number (0: none, as for one aircraft's track); status is confirmed or
+ * tentative (a run of one aircraft: its track 0, always confirmed), or deleted when a picture
+ * dropped the track (its instance disposed: step empty, no values); p is the covariance's upper
+ * triangle row by row. Values are printed by %.17g, which round-trips a double exactly; matched_ns
+ * is when this reader matched the track's writer (wall clock, as written_ns and received_ns). A
+ * track written before its writer matched came from the writer's durable history. The first line is
  *   # joined_ns=T
  * the wall-clock time just before the reader was created. */
 #include <dds/dds.h>
@@ -162,11 +163,12 @@ static dds_entity_t create_track_reader(dds_entity_t participant, bool keep_last
 
 static void write_track(FILE* out, const skyfuse_wire_TrackEstimate* t,
                         const dds_sample_info_t* info, dds_time_t matched, dds_time_t received) {
-  fprintf(out, "%" PRIu32 ",%" PRId32 ",%" PRIu64 ",%s,%d,%" PRId64 ",%" PRId64 ",%" PRId64
-               ",%" PRIu32,
-          t->step, t->source_id, t->track_id, t->confirmed ? "confirmed" : "tentative",
-          t->settled ? 1 : 0, (int64_t)info->source_timestamp, (int64_t)matched,
-          (int64_t)received, t->x._length);
+  fprintf(out,
+          "%" PRIu32 ",%" PRId32 ",%" PRIu64 ",%u,%s,%d,%" PRId64 ",%" PRId64 ",%" PRId64
+          ",%" PRIu32,
+          t->step, t->source_id, t->track_id, (unsigned)t->track_number,
+          t->confirmed ? "confirmed" : "tentative", t->settled ? 1 : 0,
+          (int64_t)info->source_timestamp, (int64_t)matched, (int64_t)received, t->x._length);
   for (uint32_t i = 0; i < t->x._length; ++i) fprintf(out, ",%.17g", t->x._buffer[i]);
   for (uint32_t i = 0; i < t->covariance._length; ++i)
     fprintf(out, ",%.17g", t->covariance._buffer[i]);
@@ -176,7 +178,7 @@ static void write_track(FILE* out, const skyfuse_wire_TrackEstimate* t,
 /* A track its writer disposed: only the key fields of the sample are valid. */
 static void write_deleted(FILE* out, const skyfuse_wire_TrackEstimate* t,
                           const dds_sample_info_t* info, dds_time_t matched, dds_time_t received) {
-  fprintf(out, ",%" PRId32 ",%" PRIu64 ",deleted,%d,%" PRId64 ",%" PRId64 ",%" PRId64 ",0\n",
+  fprintf(out, ",%" PRId32 ",%" PRIu64 ",0,deleted,%d,%" PRId64 ",%" PRId64 ",%" PRId64 ",0\n",
           t->source_id, t->track_id, t->settled ? 1 : 0, (int64_t)info->source_timestamp,
           (int64_t)matched, (int64_t)received);
 }

@@ -29,6 +29,7 @@
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/picture_cat062.hpp"
 #include "skyfuse/transport/picture_exchange.hpp"
+#include "skyfuse/transport/picture_numbers.hpp"
 #include "skyfuse/transport/picture_track_writer.hpp"
 #include "skyfuse/transport/picture_tree_exchange.hpp"
 #include "skyfuse/transport/scan_asterix.hpp"
@@ -181,9 +182,13 @@ class PictureStation {
                 loop_.count_drop(why, station_id, k);
               });
     picture_.fuse(k, reports);
+    // Numbered before the picture goes to a peer: the numbers it carries are the round's.
+    transport::number_picture(numbers_, picture_, k);
     if (lowest && lowest->first == options_.id && exchange_.any_other_picture(predicted)) {
-      states_out_.write(transport::picture_state_to_wire(
-          picture_, options_.node.run_id, static_cast<std::uint32_t>(k), options_.id));
+      wire::PictureState state = transport::picture_state_to_wire(
+          picture_, options_.node.run_id, static_cast<std::uint32_t>(k), options_.id);
+      transport::track_numbers_to_wire(numbers_, state);
+      states_out_.write(state);
     }
     publish_round(k, static_cast<std::uint32_t>(reports.size()));
     exchange_.advance();
@@ -201,6 +206,7 @@ class PictureStation {
     std::uint64_t digest = 0;  // of the picture after the round, as its sender computed it
     std::vector<typename Picture::TrackType> tracks;
     std::vector<BiasSums> biases;  // every station's registration, where the tracker registers
+    asterix::TrackNumbers::State numbers;  // the tracks' short numbers after the round
   };
 
   void take_states() {
@@ -209,13 +215,15 @@ class PictureStation {
       if (sample.run_id() != options_.node.run_id || sample.station_id() == options_.id) continue;
       auto tracks = transport::picture_state_from_wire(sample, picture_.filters());
       auto biases = transport::picture_biases_from_wire(sample);
-      if (!tracks || !biases) {
+      auto numbers = transport::track_numbers_from_wire(sample);
+      if (!tracks || !biases || !numbers) {
         spdlog::warn("step {}: a picture from station {} that is wrong; refused", sample.step(),
                      sample.station_id());
         continue;
       }
-      latest_ = PeerState{sample.step(), static_cast<int>(sample.station_id()),
-                          sample.picture_digest(), std::move(*tracks), std::move(*biases)};
+      latest_ = PeerState{sample.step(),           static_cast<int>(sample.station_id()),
+                          sample.picture_digest(), std::move(*tracks),
+                          std::move(*biases),      std::move(*numbers)};
     }
   }
 
@@ -240,14 +248,14 @@ class PictureStation {
         picture_, options_.node.run_id, step, options_.id, scans_fused);
     rounds_.write(round);
     if (asterix_out_) {
-      asterix_out_->send(k, round);
+      asterix_out_->send(k, round, numbers_);
     }
     // The loop ends the process after its last round without returning: say it now.
     if (k + 1 == static_cast<std::uint64_t>(plan_.scenario.steps)) {
       if (asterix_out_) spdlog::info("{}", transport::asterix_out_summary(*asterix_out_));
       if (fed_) spdlog::info("{}", fed_->summary());
     }
-    tracks_.publish(picture_, options_.node.run_id, step, options_.id, wire::PEER);
+    tracks_.publish(picture_, numbers_, options_.node.run_id, step, options_.id, wire::PEER);
   }
 
   // `candidate` with the latest picture a peer sent: its tracks and, where the tracker
@@ -270,6 +278,7 @@ class PictureStation {
     if (!restore_into(candidate)) return false;
     if (candidate.digest() != latest_->digest) return false;
     picture_ = std::move(candidate);
+    numbers_.restore(latest_->numbers);  // numbered as the sender did after the round
     ++resyncs_;
     spdlog::info("step {}: took station {}'s picture of the round", k, station);
     return true;
@@ -303,6 +312,7 @@ class PictureStation {
       return;
     }
     picture_ = std::move(candidate);
+    numbers_.restore(latest_->numbers);  // as after round k - 1: round k numbers on from them
     predicted_digest_ = lowest.second;
     ++resyncs_;
     spdlog::info("step {}: took station {}'s picture", k, lowest.first);
@@ -331,6 +341,8 @@ class PictureStation {
   transport::Writer<wire::PictureState> states_out_;
   transport::Reader<wire::PictureState> states_in_;
   Picture picture_;
+  // The picture's short track numbers, given each round as every peer gives them.
+  asterix::TrackNumbers numbers_;
   // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
   std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   // `--asterix-replay` or `--asterix-in`: this station's scans from a recorded or a live feed,

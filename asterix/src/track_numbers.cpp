@@ -50,6 +50,23 @@ void TrackNumbers::update(std::span<const std::uint64_t> ids, std::uint64_t roun
   }
 }
 
+TrackNumbers::State TrackNumbers::state() const {
+  State s;
+  s.numbers.assign(numbers_.begin(), numbers_.end());
+  s.held.assign(held_.begin(), held_.end());
+  s.free.assign(free_.begin(), free_.end());
+  s.next_unused = next_unused_;
+  return s;
+}
+
+void TrackNumbers::restore(const State& state) {
+  numbers_ = {state.numbers.begin(), state.numbers.end()};
+  held_ = {state.held.begin(), state.held.end()};
+  free_ = {state.free.begin(), state.free.end()};
+  next_unused_ = state.next_unused;
+  unnumbered_ = 0;
+}
+
 std::optional<std::uint16_t> TrackNumbers::number_of(std::uint64_t id) const {
   const auto at = numbers_.find(id);
   if (at == numbers_.end()) return std::nullopt;

@@ -29,12 +29,13 @@ constexpr int kSteps = 20;
 constexpr int kPictureDomain = 202;
 
 // A line of the reader's CSV:
-//   step,source,track,status,settled,written_ns,matched_ns,received_ns,n,x0..,p0_0,p0_1,..
+//   step,source,track,number,status,settled,written_ns,matched_ns,received_ns,n,x0..,p0_0,..
 // status "deleted": a disposed track, with only source, track and the times.
 struct ReceivedTrack {
   int step = -1;
   int source = 0;
   std::uint64_t track = 0;
+  unsigned number = 0;  // the short track number; 0: none
   std::string status;
   bool settled = false;
   long long written_ns = 0;
@@ -67,6 +68,8 @@ ReaderOutput read_reader_output(const std::filesystem::path& csv) {
     t.source = std::stoi(f);
     std::getline(fields, f, ',');
     t.track = std::stoull(f);
+    std::getline(fields, f, ',');
+    t.number = static_cast<unsigned>(std::stoul(f));
     std::getline(fields, t.status, ',');
     std::getline(fields, f, ',');
     t.settled = f == "1";
@@ -166,7 +169,8 @@ TEST(DdsInterop, ACycloneDdsReaderGetsEveryTrackAndALateJoinerEachSourcesLatestA
     std::map<std::pair<int, int>, int> seen;
     for (const ReceivedTrack& t : every.tracks) {
       EXPECT_FALSE(t.settled);
-      EXPECT_EQ(t.track, 0u) << file;  // one aircraft: its track 0, confirmed
+      EXPECT_EQ(t.track, 0u) << file;  // one aircraft: its track 0, confirmed, no number
+      EXPECT_EQ(t.number, 0u) << file;
       EXPECT_EQ(t.status, "confirmed") << file;
       EXPECT_EQ(difference_from_csv(t, csv), std::nullopt) << file;
       ++seen[{t.step, t.source}];
@@ -231,23 +235,6 @@ tracker:
   confirm: [2, 3]
   delete_after_misses: 5
   initiation: {min_stations: 2, velocity_std_mps: 60.0}
-metrics:
-  gospa_cutoff_m: 50.0
-stations:
-  - id: 1
-    position_m: [-4500.0, -4500.0, 60.0]
-    sensor: &radar {kind: range_azimuth_elevation, noise_std: [5.0, 0.0026, 0.0026]}
-  - {id: 2, position_m: [4500.0, -4500.0, 80.0], sensor: *radar}
-  - {id: 3, position_m: [4500.0, 4500.0, 70.0], sensor: *radar}
-  - {id: 4, position_m: [-4500.0, 4500.0, 90.0], sensor: *radar}
-measurement_noise:
-  scale: none
-filter:
-  kind: ekf
-  motion_model:
-    kind: constant_velocity_3d
-    process_noise_std: {position_m: 0.5, velocity_mps: 2.0}
-  initial_covariance_diag: 100.0
 )";
 
 // A node's row of picture_rounds.csv.
@@ -304,7 +291,7 @@ TEST(DdsInterop, ACycloneDdsReaderHoldsEveryNodesPictureAndALateOneTheLatestAtOn
     GTEST_SKIP() << "Cyclone DDS was not found when the build was configured";
   }
   const auto dir = test_dir();
-  std::ofstream(dir / "picture.yaml") << kPictureScenario;
+  std::ofstream(dir / "picture.yaml") << kPictureScenario << kFourRadarsAndAnEkf;
   const std::string domain = std::to_string(kPictureDomain);
   Process cyclone(
       {reader, "--domain", domain, "--out", (dir / "every.csv").string(), "--timeout-s", "150"},
@@ -362,6 +349,18 @@ TEST(DdsInterop, ACycloneDdsReaderHoldsEveryNodesPictureAndALateOneTheLatestAtOn
   }
   for (const auto& [key, got] : tracks) {
     EXPECT_TRUE(rounds.contains(key)) << "tracks of a round the run did not have";
+  }
+
+  // Each track with its short number, the same at every node of a round, one number a track.
+  std::map<std::pair<int, std::uint64_t>, unsigned> number_of;  // (step, track) -> number
+  for (const auto& [key, got] : tracks) {
+    std::set<unsigned> in_round;
+    for (const ReceivedTrack* t : got) {
+      EXPECT_GT(t->number, 0u) << "step " << key.first << " track " << t->track;
+      EXPECT_TRUE(in_round.insert(t->number).second) << "a number given twice, step " << key.first;
+      const auto [at, first] = number_of.emplace(std::pair{key.first, t->track}, t->number);
+      EXPECT_EQ(at->second, t->number) << "step " << key.first << ": nodes number alike";
+    }
   }
 
   // A track in a node's picture that the next round's does not hold was disposed; none other.

@@ -16,6 +16,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <numeric>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -1044,6 +1045,37 @@ INSTANTIATE_TEST_SUITE_P(
                       LossVariant{FilterVariant{"EkfThroughTheTree", nullptr, nullptr, 89}, true}),
     [](const ::testing::TestParamInfo<LossVariant>& param) { return param.param.filter.name; });
 
+// Aircraft that leave and appear before round 40 over four radars (kFourRadarsAndAnEkf), so
+// that numbers are given back and taken again: by the kill, a track's number is not its rank by
+// id, which is what a station numbering afresh after its restart would give.
+constexpr const char* kNumberingScenario = R"(name: numbering-history
+seed: 20261130
+time_step_s: 1.0
+steps: 80
+traffic:
+  targets:
+    - {initial_position_m: [-2000.0, -1500.0, 300.0], heading_deg: 30.0, speeds_kmh: [120]}
+    - {initial_position_m: [1500.0, 0.0, 200.0], heading_deg: 180.0, speeds_kmh: [90],
+       leaves_s: 6.0}
+    - {initial_position_m: [0.0, 2500.0, 400.0], heading_deg: 270.0, speeds_kmh: [150],
+       appears_s: 3.0}
+    - {initial_position_m: [-1000.0, 1000.0, 250.0], heading_deg: 90.0, speeds_kmh: [100],
+       leaves_s: 10.0}
+    - {initial_position_m: [2000.0, -2000.0, 350.0], heading_deg: 320.0, speeds_kmh: [110],
+       appears_s: 28.0}
+    - {initial_position_m: [-2500.0, 2000.0, 280.0], heading_deg: 135.0, speeds_kmh: [130],
+       appears_s: 30.0}
+detection:
+  probability: 0.95
+  max_range_m: 12000.0
+  min_elevation_deg: 0.0
+  clutter_per_scan: 0.0
+tracker:
+  confirm: [2, 3]
+  delete_after_misses: 3
+  initiation: {min_stations: 2, velocity_std_mps: 60.0}
+)";
+
 // A station killed before round 40 and started again before round 50: the others keep one
 // picture meanwhile; the restarted station starts with an empty picture, its first scan shows
 // it, the lowest station with tracks sends its picture and the restarted one takes it in the
@@ -1057,24 +1089,45 @@ struct RestartVariant {
   int domain;
   int victim;
   bool registered = false;
+  // A scenario's text (uam-city where none) whose numbering has a history by the kill: the
+  // restarted station's numbers are then its peers' only if it took theirs.
+  const char* scenario = nullptr;
 };
 class DdsPictureRestart : public ::testing::TestWithParam<RestartVariant> {};
 
 TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds) {
-  constexpr int kSteps = 80;
+  const int kill = 40;
+  const int back = kill + 10;
+  const int kSteps = kill + 40;
   const int victim = GetParam().victim;
   const auto dir = test_dir();
-  const std::string scenario =
-      GetParam().registered ? registered_scenario(dir).string() : std::string(kCity);
+  std::string scenario = GetParam().registered ? registered_scenario(dir).string() : kCity;
+  if (GetParam().scenario != nullptr) {
+    scenario = (dir / "numbering.yaml").string();
+    std::ofstream(scenario) << GetParam().scenario << kFourRadarsAndAnEkf;
+  }
   std::vector<std::string> args = {
       bin("skyfuse"), "run", "--scenario", scenario, "--stations", "4", "--steps",
-      std::to_string(kSteps), "--kill", fmt::format("{}@40", victim), "--restart",
-      fmt::format("{}@50", victim),
+      std::to_string(kSteps), "--kill", fmt::format("{}@{}", victim, kill), "--restart",
+      fmt::format("{}@{}", victim, back),
       // Rounds without the victim wait for their deadline: 250 ms, as the loss tests.
       "--round-deadline-ms", "250", "--domain", std::to_string(GetParam().domain), "--out",
       (dir / "out").string()};
   if (GetParam().tree) args.insert(args.end(), {"--exchange", "tree", "--fanout", "2"});
+  // Every node's CAT062, to see that the restarted station numbers the picture as its peers do.
+  asterix::UdpReceiver listener(0);
+  args.insert(args.end(), {"--asterix-out", fmt::format("127.0.0.1:{}", listener.port())});
+  std::vector<asterix::Bytes> sent;
+  std::atomic<bool> running = true;
+  std::thread listening([&] {
+    while (running) {
+      if (auto datagram = listener.receive(50)) sent.push_back(std::move(*datagram));
+    }
+  });
   const Completed run = run_to_completion(args, dir / "out.log", 180s);
+  std::this_thread::sleep_for(300ms);  // what is still on its way
+  running = false;
+  listening.join();
   ASSERT_EQ(run.status.code, 0) << run.output;
   EXPECT_EQ(run.output.find("was killed by signal"), std::string::npos) << run.output;
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
@@ -1089,15 +1142,45 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
   ASSERT_EQ(rounds.size(), static_cast<std::size_t>(kSteps));
   int rejoined = kSteps;
   for (int k = 0; k < kSteps; ++k) {
-    const bool down = k >= 40 && k < 50;
+    const bool down = k >= kill && k < back;
     EXPECT_EQ(rounds.at(k).size(), down ? 3U : 4U) << "step " << k;
     EXPECT_EQ(rounds.at(k).contains(victim), !down) << "step " << k;
-    if (k >= 50 && rejoined == kSteps && every_other_fused_all(rounds.at(k), victim, 4)) {
+    if (k >= back && rejoined == kSteps && every_other_fused_all(rounds.at(k), victim, 4)) {
       rejoined = k;
     }
   }
-  ASSERT_LE(rejoined, 60) << "the restarted station's scans reached every peer\n" << run.output;
+  ASSERT_LE(rejoined, back + 10) << "the restarted station's scans reached every peer\n"
+                                 << run.output;
   EXPECT_LE(agreed_for_good_from(rounds), rejoined + 2) << run.output;
+  // Once the victim is back and every station holds one picture again, every node's CAT062 of a
+  // round numbers its tracks alike: the restarted station took its peers' numbering with their
+  // picture.
+  const int agreed = agreed_for_good_from(rounds);
+  const double dt = load_scenario_file(scenario).time_step_s;
+  std::map<int, std::vector<std::vector<std::uint16_t>>> numbers_by_round;  // one list a node
+  for (const asterix::Bytes& datagram : sent) {
+    const asterix::Decoded decoded = asterix::decode_datagram(datagram);
+    if (decoded.tracks.empty()) continue;
+    const int k = static_cast<int>(std::llround(decoded.tracks[0].time_of_track_s / dt));
+    std::vector<std::uint16_t> numbers;
+    for (const asterix::SystemTrack& t : decoded.tracks) numbers.push_back(t.track_number);
+    numbers_by_round[k].push_back(std::move(numbers));
+  }
+  int rounds_checked = 0;
+  int rounds_with_history = 0;  // numbers other than 1, 2, ... in ascending track id
+  for (int k = std::max(agreed, back); k < kSteps; ++k) {  // from the restart on
+    const auto& copies = numbers_by_round[k];
+    ASSERT_EQ(copies.size(), 5U) << "four stations and the center, round " << k;
+    for (const auto& copy : copies) EXPECT_EQ(copy, copies[0]) << "round " << k;
+    std::vector<std::uint16_t> in_id_order(copies[0].size());
+    std::iota(in_id_order.begin(), in_id_order.end(), std::uint16_t{1});
+    if (copies[0] != in_id_order) ++rounds_with_history;
+    ++rounds_checked;
+  }
+  EXPECT_GE(rounds_checked, 15);
+  if (GetParam().scenario != nullptr) {
+    EXPECT_GT(rounds_with_history, 0) << "numbers a station starting afresh would give alike";
+  }
   // In the round it rejoined the restarted station fused nothing of its own: its picture stayed
   // empty, or was already the others' (the lowest station's picture of that round came before
   // it closed it). Tracks it started alone never became everyone's.
@@ -1111,7 +1194,9 @@ INSTANTIATE_TEST_SUITE_P(Exchanges, DdsPictureRestart,
                          ::testing::Values(RestartVariant{"Flat", false, 92, 2},
                                            RestartVariant{"Tree", true, 83, 2},
                                            RestartVariant{"TheLowestStation", false, 82, 1},
-                                           RestartVariant{"Registered", false, 85, 2, true}),
+                                           RestartVariant{"Registered", false, 85, 2, true},
+                                           RestartVariant{"NumbersWithHistory", false, 86, 2, false,
+                                                          kNumberingScenario}),
                          [](const ::testing::TestParamInfo<RestartVariant>& param) {
                            return param.param.name;
                          });

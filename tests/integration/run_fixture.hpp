@@ -87,4 +87,26 @@ std::unique_ptr<Process> start_long_run(
 void expect_refusals_listed_as_reported(const std::filesystem::path& out,
                                         const nlohmann::json& summary, int steps);
 
+// The end of a small picture scenario: GOSPA's cut-off, four 3-D radars on the corners of a
+// 9 km square and the EKF on constant velocity. A test's own scenario puts its traffic, detection
+// and tracker before it.
+inline constexpr const char* kFourRadarsAndAnEkf = R"(metrics:
+  gospa_cutoff_m: 50.0
+stations:
+  - id: 1
+    position_m: [-4500.0, -4500.0, 60.0]
+    sensor: &radar {kind: range_azimuth_elevation, noise_std: [5.0, 0.0026, 0.0026]}
+  - {id: 2, position_m: [4500.0, -4500.0, 80.0], sensor: *radar}
+  - {id: 3, position_m: [4500.0, 4500.0, 70.0], sensor: *radar}
+  - {id: 4, position_m: [-4500.0, 4500.0, 90.0], sensor: *radar}
+measurement_noise:
+  scale: none
+filter:
+  kind: ekf
+  motion_model:
+    kind: constant_velocity_3d
+    process_noise_std: {position_m: 0.5, velocity_mps: 2.0}
+  initial_covariance_diag: 100.0
+)";
+
 }  // namespace skyfuse::test

@@ -23,6 +23,7 @@
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
 #include "skyfuse/tracking/imm_modes.hpp"
+#include "skyfuse/transport/picture_numbers.hpp"
 #include "skyfuse/wire/skyfuse_picturePubSubTypes.h"
 #include "transport/picture_world.hpp"
 
@@ -330,6 +331,53 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   // An IMM's modes on a single-model track.
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].mode_probabilities({1.0}); }));
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].modes().resize(1); }));
+}
+
+// A whole picture carries its sender's short track numbers: a taker that restores them numbers
+// the next rounds as the sender does (TrackNumbers.ANodeThatTakesAPeersStateNumbers...); a
+// numbering that is wrong is refused.
+TEST(PictureWire, AWholePictureCarriesItsTrackNumbers) {
+  using Peer = test::PictureWorld::Peer;
+  const test::PictureWorld world(12);
+  Peer sender = world.empty_picture();
+  AssociationWork work;
+  asterix::TrackNumbers numbers(1, 65535, 3);
+  for (int k = 0; k < 12; ++k) {
+    world.play_round(sender, k, work);
+    number_picture(numbers, sender, static_cast<std::uint64_t>(k));
+  }
+  ASSERT_GE(sender.tracks().size(), 5U);
+  wire::PictureState sent = picture_state_to_wire(sender, 1, 11, 2);
+  track_numbers_to_wire(numbers, sent);
+  const wire::PictureState back = through_cdr(sent);
+  const auto state = track_numbers_from_wire(back);
+  ASSERT_TRUE(state.has_value());
+  EXPECT_EQ(*state, numbers.state());
+  EXPECT_EQ(state->numbers.size(), sender.tracks().size());
+  asterix::TrackNumbers taker(1, 65535, 3);
+  taker.restore(*state);
+  for (const auto& track : sender.tracks()) {
+    EXPECT_EQ(taker.number_of(track.id), numbers.number_of(track.id));
+    EXPECT_NE(taker.number_of(track.id), std::nullopt);
+  }
+
+  const auto refused = [&](const std::function<void(wire::PictureState&)>& forge) {
+    wire::PictureState wrong = back;
+    forge(wrong);
+    return !track_numbers_from_wire(wrong).has_value();
+  };
+  EXPECT_TRUE(refused([](auto& w) { w.track_numbers()[0].number(0); }));
+  EXPECT_TRUE(refused([](auto& w) { w.track_numbers()[1].number(w.track_numbers()[0].number()); }));
+  EXPECT_TRUE(refused([](auto& w) { w.track_numbers()[1].key(w.track_numbers()[0].key()); }));
+  EXPECT_TRUE(refused([](auto& w) { w.numbers_next(0); }));
+  EXPECT_TRUE(refused([](auto& w) { w.numbers_free({5, 5}); }));
+  EXPECT_TRUE(refused([](auto& w) {
+    w.numbers_held().resize(2);
+    w.numbers_held()[0].key(9);
+    w.numbers_held()[0].number(7);
+    w.numbers_held()[1].key(8);
+    w.numbers_held()[1].number(8);
+  }));
 }
 
 // A registering picture's state carries every station's registration sums: the taker holds

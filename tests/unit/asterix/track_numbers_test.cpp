@@ -60,6 +60,35 @@ TEST(TrackNumbers, NodesFedTheSamePicturesNumberThemAlike) {
   }
 }
 
+// A node that restarts at round 100 and takes its peer's state then numbers every later round
+// as the peer does; one that starts afresh does not.
+TEST(TrackNumbers, ANodeThatTakesAPeersStateNumbersTheNextRoundsAlike) {
+  TrackNumbers peer(1, 40, 2);
+  TrackNumbers restarted(1, 40, 2);
+  TrackNumbers afresh(1, 40, 2);
+  std::vector<std::uint64_t> ids;
+  int afresh_differs = 0;
+  for (std::uint64_t round = 0; round < 200; ++round) {
+    ids.clear();
+    for (std::uint64_t i = 0; i < 2 * round + 2; ++i) {
+      if (round >= i / 2 && round < i / 2 + 7 + i % 11) ids.push_back(1000 + i);
+    }
+    peer.update(ids, round);
+    if (round == 100) {
+      restarted.restore(peer.state());
+      EXPECT_EQ(restarted.state(), peer.state());
+    } else if (round > 100) {
+      restarted.update(ids, round);
+      afresh.update(ids, round);
+      for (const std::uint64_t id : ids) {
+        ASSERT_EQ(restarted.number_of(id), peer.number_of(id)) << "round " << round;
+        if (afresh.number_of(id) != peer.number_of(id)) ++afresh_differs;
+      }
+    }
+  }
+  EXPECT_GT(afresh_differs, 0) << "without the state, the numbers part";
+}
+
 TEST(TrackNumbers, MoreTracksThanNumbersLeaveTheNewestWithoutOneUntilOneFrees) {
   TrackNumbers numbers(1, 2, 1);
   numbers.update(std::vector<std::uint64_t>{1, 2, 3}, 0);

@@ -13,6 +13,8 @@
 #include <optional>
 #include <set>
 #include <span>
+#include <utility>
+#include <vector>
 
 namespace skyfuse::asterix {
 
@@ -33,6 +35,19 @@ class TrackNumbers {
 
   /// Tracks of the last round without a number: the numbers ran out.
   std::size_t unnumbered() const { return unnumbered_; }
+
+  /// Everything the numbering of the rounds to come depends on: what a node that restarts takes
+  /// from a peer, so that it numbers the next rounds as the peer does.
+  struct State {
+    std::vector<std::pair<std::uint64_t, std::uint16_t>> numbers;  ///< (track id, number)
+    std::vector<std::pair<std::uint64_t, std::uint16_t>> held;     ///< (free from round, number)
+    std::vector<std::uint16_t> free;                               ///< given back, ascending
+    std::uint32_t next_unused = 1;  ///< numbers from here on were never given
+    bool operator==(const State&) const = default;
+  };
+  State state() const;
+  /// Numbers as `state` says from now on (the range and hold-off stay this instance's).
+  void restore(const State& state);
 
  private:
   std::optional<std::uint16_t> take_lowest_free();

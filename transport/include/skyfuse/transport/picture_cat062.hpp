@@ -37,8 +37,8 @@ asterix::SystemTrack system_track(const wire::PictureTrack& track, std::uint16_t
 /// Round k's time of day: k dt seconds after midnight (a run starts at 00:00:00), modulo a day.
 double time_of_day_s(std::uint64_t k, double time_step_s);
 
-/// One node's pictures as CAT062 blocks. Give it every round (its numbering follows the
-/// picture whether a round is sent or not).
+/// One node's pictures as CAT062 blocks, numbered by the node's own numbering or, given every
+/// round (whether sent or not), by one of its own that follows the pictures by the same rule.
 class PictureCat062 {
  public:
   explicit PictureCat062(const Scenario& scenario)
@@ -49,6 +49,9 @@ class PictureCat062 {
   /// Round k's picture as CAT062 blocks, each within one unfragmented UDP datagram (65 507
   /// octets); none for a picture without tracks.
   std::vector<asterix::Bytes> blocks(std::uint64_t k, const wire::PictureRound& round);
+  /// As above, numbered by `numbers`: the node's, updated with this round's tracks.
+  std::vector<asterix::Bytes> blocks(std::uint64_t k, const wire::PictureRound& round,
+                                     const asterix::TrackNumbers& numbers);
 
   /// Tracks left out because an item could not hold a value (beyond I062/185's ±8 192 m/s,
   /// say), and tracks without a number (more than 65 535 at once), over every round.
@@ -69,8 +72,10 @@ class PictureAsterixOut {
   PictureAsterixOut(const asterix::UdpEndpoint& destination, const Scenario& scenario)
       : cat062_(scenario), sender_(destination) {}
 
-  void send(std::uint64_t k, const wire::PictureRound& round) {
-    for (const asterix::Bytes& block : cat062_.blocks(k, round)) sender_.send(block);
+  /// Round k's picture, numbered by the node's `numbers`.
+  void send(std::uint64_t k, const wire::PictureRound& round,
+            const asterix::TrackNumbers& numbers) {
+    for (const asterix::Bytes& block : cat062_.blocks(k, round, numbers)) sender_.send(block);
   }
 
   const asterix::UdpSender& sender() const { return sender_; }

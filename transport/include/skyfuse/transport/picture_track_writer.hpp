@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "skyfuse/asterix/track_numbers.hpp"
 #include "skyfuse/picture/track.hpp"
 #include "skyfuse/picture/track_filters.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -28,12 +29,13 @@ class PictureTrackWriter {
   explicit PictureTrackWriter(DdsNode& node)
       : writer_(node.make_writer<wire::TrackEstimate>({}, kPictureTrackProfile)) {}
 
-  /// Writes `table`'s tracks after round `step` (a TrackTable, a peer's or the center's) and
+  /// Writes `table`'s tracks after round `step` (a TrackTable, a peer's or the center's), each
+  /// with its short number in `numbers` (the node's, updated with this round's tracks), and
   /// unregisters those written before that it no longer holds; with no reader matched, writes
   /// none and unregisters every one written before.
   template <typename Table>
-  void publish(const Table& table, std::uint64_t run_id, std::uint32_t step, int source_id,
-               wire::TrackSource mode) {
+  void publish(const Table& table, const asterix::TrackNumbers& numbers, std::uint64_t run_id,
+               std::uint32_t step, int source_id, wire::TrackSource mode) {
     constexpr int N = Table::kDim;
     const auto tracks = table.tracks();
     std::vector<TrackId>& now = writing_;
@@ -55,6 +57,7 @@ class PictureTrackWriter {
       wire::TrackEstimate sample =
           to_wire<N>(table.estimates()[t], run_id, step, source_id, mode, tracks[t].updated_by);
       sample.track_id(tracks[t].id);
+      sample.track_number(numbers.number_of(tracks[t].id).value_or(0));
       sample.confirmed(tracks[t].status == TrackStatus::kConfirmed);
       if constexpr (ImmTrackState<typename Table::State>) {
         const auto& p = tracks[t].filter.filter().mode_probabilities();
