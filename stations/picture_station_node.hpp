@@ -237,7 +237,7 @@ class PictureStation {
                                                         const StationConfig& station,
                                                         const Scenario& scenario) {
     auto fed = transport::make_fed_scans(options.node, station, scenario);
-    if (fed) spdlog::info("{}", fed->summary());
+    if (fed) spdlog::info("{}", fed->started());
     return fed;
   }
 

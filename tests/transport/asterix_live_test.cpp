@@ -127,6 +127,7 @@ TEST(LiveScans, TakeTheRoundsOfTheFeedAsTheQuantisedScansAndCountWhatCameLate) {
   EXPECT_TRUE(fourth.detections.empty());
   EXPECT_EQ(live.waited_out(), 2U);
   EXPECT_NE(live.summary().find("station 7's live feed"), std::string::npos) << live.summary();
+  EXPECT_NE(live.started().find("waiting at most 300 ms"), std::string::npos) << live.started();
 }
 
 TEST(LiveScans, RefuseASensorNoItemCarriesAndAStationPastSic) {

@@ -67,6 +67,13 @@ std::size_t LiveScans::datagrams() const {
   return feed_.datagrams();
 }
 
+std::string LiveScans::started() const {
+  return fmt::format(
+      "station {} takes its scans from a live feed on port {} (receive buffer {} octets), "
+      "waiting at most {} ms for the feed to pass a round",
+      feed_.station_id(), receiver_.port(), receive_buffer_, wait_.count());
+}
+
 std::string LiveScans::summary() const {
   const std::lock_guard lock(mutex_);
   return fmt::format(

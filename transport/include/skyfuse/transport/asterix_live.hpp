@@ -35,6 +35,7 @@ class LiveScans final : public FedScans {
   LiveScans& operator=(const LiveScans&) = delete;
 
   Scan scan_at(std::uint64_t k, const DetectionNoise& noise) override;
+  std::string started() const override;
   std::string summary() const override;
 
   std::uint16_t port() const { return receiver_.port(); }

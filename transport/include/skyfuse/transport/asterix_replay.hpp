@@ -46,6 +46,7 @@ class ReplayedScans final : public FedScans {
 
   /// Round k's scan, with `noise` as its R: empty where the file holds nothing of the round.
   Scan scan_at(std::uint64_t k, const DetectionNoise& noise) override;
+  std::string started() const override { return summary(); }  // the file is read: its counts
   std::string summary() const override;
 
   std::size_t rounds() const { return scans_.size(); }

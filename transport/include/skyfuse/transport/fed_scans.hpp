@@ -20,6 +20,8 @@ class FedScans {
   virtual ~FedScans() = default;
   /// Round k's scan, with `noise` as its R; rounds are asked in ascending order.
   virtual Scan scan_at(std::uint64_t k, const DetectionNoise& noise) = 0;
+  /// Where the scans come from, in a line for the station's log as it starts.
+  virtual std::string started() const = 0;
   /// What the feed gave so far, in a line for the station's log.
   virtual std::string summary() const = 0;
 };
