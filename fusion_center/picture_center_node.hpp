@@ -117,7 +117,7 @@ class PictureCenter {
     }
     picture_.predict();
     picture_.update(k, scans_);
-    transport::number_picture(numbers_, picture_, k);
+    transport::number_picture(numbers_, picture_, k, numbered_ids_);
     const wire::PictureRound round = transport::picture_round_to_wire(
         picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
         static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size()));
@@ -157,6 +157,7 @@ class PictureCenter {
   // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
   // The picture's short track numbers, given each round as every node gives them.
   asterix::TrackNumbers numbers_;
+  std::vector<std::uint64_t> numbered_ids_;  // number_picture's, kept between rounds
   std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   std::vector<Scan> scans_;
 };

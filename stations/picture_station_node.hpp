@@ -183,7 +183,7 @@ class PictureStation {
               });
     picture_.fuse(k, reports);
     // Numbered before the picture goes to a peer: the numbers it carries are the round's.
-    transport::number_picture(numbers_, picture_, k);
+    transport::number_picture(numbers_, picture_, k, numbered_ids_);
     if (lowest && lowest->first == options_.id && exchange_.any_other_picture(predicted)) {
       wire::PictureState state = transport::picture_state_to_wire(
           picture_, options_.node.run_id, static_cast<std::uint32_t>(k), options_.id);
@@ -343,6 +343,7 @@ class PictureStation {
   Picture picture_;
   // The picture's short track numbers, given each round as every peer gives them.
   asterix::TrackNumbers numbers_;
+  std::vector<std::uint64_t> numbered_ids_;  // number_picture's, kept between rounds
   // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
   std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   // `--asterix-replay` or `--asterix-in`: this station's scans from a recorded or a live feed,

@@ -93,6 +93,19 @@ void read_udp(std::span<const std::uint8_t> ip, UdpDatagram& d) {
 
 }  // namespace
 
+bool starts_like_pcap(std::span<const std::uint8_t> first) {
+  if (first.size() < 4) return false;
+  const FileOrder little;
+  const FileOrder big{true};
+  for (const FileOrder& order : {little, big}) {
+    const std::uint32_t magic = order.u32(first, 0);
+    if (magic == kMagicMicroseconds || magic == kMagicNanoseconds || magic == kMagicPcapng) {
+      return true;
+    }
+  }
+  return false;
+}
+
 PcapStream::PcapStream(std::istream& in) : in_(in) {
   std::array<std::uint8_t, kFileHeaderOctets> header{};
   in_.read(reinterpret_cast<char*>(header.data()), header.size());

@@ -699,11 +699,8 @@ void expect_most_rounds_apart(const std::filesystem::path& recorded,
 TEST(DdsPicture, StationsFedTheirOwnRecordHoldTheQuantisedPictureBitForBit) {
   const auto dir = test_dir();
   const auto pcap = dir / "recorded.pcap";
-  const auto run_with = [&](const std::string& name, std::vector<std::string> extra,
-                            const std::string& domain) {
-    return run_fed_scenario(dir, name, std::move(extra), domain);
-  };
-  const Completed recorded = run_with("recorded", {"--asterix-record", pcap.string()}, "86");
+  const Completed recorded =
+      run_fed_scenario(dir, "recorded", {"--asterix-record", pcap.string()}, "86");
   ASSERT_EQ(recorded.status.code, 0) << recorded.output;
   // The feed: the record, and a malformed datagram of four kinds, which the decoder refuses
   // (each checked here) and the run counts in summary.json.
@@ -729,7 +726,7 @@ TEST(DdsPicture, StationsFedTheirOwnRecordHoldTheQuantisedPictureBitForBit) {
     }
     writer.close();
   }
-  const Completed fed = run_with("fed", {"--asterix-replay", feed.string()}, "87");
+  const Completed fed = run_fed_scenario(dir, "fed", {"--asterix-replay", feed.string()}, "87");
   ASSERT_EQ(fed.status.code, 0) << fed.output;
 
   const auto summary = nlohmann::json::parse(read_file(dir / "fed" / "summary.json"));
@@ -773,11 +770,8 @@ int udp_sockets_bound_to(std::uint16_t port) {
 TEST(DdsPicture, StationsFedALiveFeedHoldTheQuantisedPictureBitForBit) {
   const auto dir = test_dir();
   const auto pcap = dir / "recorded.pcap";
-  const auto run_with = [&](const std::string& name, std::vector<std::string> extra,
-                            const std::string& domain) {
-    return run_fed_scenario(dir, name, std::move(extra), domain);
-  };
-  const Completed recorded = run_with("recorded", {"--asterix-record", pcap.string()}, "88");
+  const Completed recorded =
+      run_fed_scenario(dir, "recorded", {"--asterix-record", pcap.string()}, "88");
   ASSERT_EQ(recorded.status.code, 0) << recorded.output;
   const asterix::PcapContents record = asterix::read_pcap(pcap);
   ASSERT_FALSE(record.error.has_value());
@@ -806,7 +800,8 @@ TEST(DdsPicture, StationsFedALiveFeedHoldTheQuantisedPictureBitForBit) {
   std::atomic<bool> finished = false;
   Completed live;
   std::thread running([&] {
-    live = run_with("live", {"--asterix-in", listen, "--asterix-in-wait-ms", "8000"}, "89");
+    live = run_fed_scenario(dir, "live", {"--asterix-in", listen, "--asterix-in-wait-ms", "8000"},
+                            "89");
     finished = true;
   });
   const auto listening = static_cast<int>(fed_stations.size());

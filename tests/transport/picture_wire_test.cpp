@@ -342,9 +342,10 @@ TEST(PictureWire, AWholePictureCarriesItsTrackNumbers) {
   Peer sender = world.empty_picture();
   AssociationWork work;
   asterix::TrackNumbers numbers(1, 65535, 3);
+  std::vector<std::uint64_t> ids;
   for (int k = 0; k < 12; ++k) {
     world.play_round(sender, k, work);
-    number_picture(numbers, sender, static_cast<std::uint64_t>(k));
+    number_picture(numbers, sender, static_cast<std::uint64_t>(k), ids);
   }
   ASSERT_GE(sender.tracks().size(), 5U);
   wire::PictureState sent = picture_state_to_wire(sender, 1, 11, 2);

@@ -19,18 +19,15 @@
 namespace skyfuse::transport {
 namespace {
 
+// Whether the file `in` reads starts like a pcap (asterix::starts_like_pcap); `in` is back at
+// its start afterwards.
 bool starts_like_pcap(std::istream& in) {
   std::array<std::uint8_t, 4> first{};
   in.read(reinterpret_cast<char*>(first.data()), first.size());
-  const bool whole = in.gcount() == static_cast<std::streamsize>(first.size());
+  const auto read = static_cast<std::size_t>(in.gcount());
   in.clear();
   in.seekg(0);
-  if (!whole) return false;
-  const std::uint32_t magic = static_cast<std::uint32_t>(first[0]) << 24U |
-                              static_cast<std::uint32_t>(first[1]) << 16U |
-                              static_cast<std::uint32_t>(first[2]) << 8U | first[3];
-  return magic == 0xA1B2C3D4U || magic == 0xD4C3B2A1U || magic == 0xA1B23C4DU ||
-         magic == 0x4D3CB2A1U || magic == 0x0A0D0D0AU;
+  return asterix::starts_like_pcap(std::span(first.data(), read));
 }
 
 // Hands each datagram of a feed file to `take`, one at a time: a pcap's (classic or its

@@ -37,9 +37,7 @@ void ScanFeed::passed(double time_of_day_s) {
 void ScanFeed::take(std::span<const std::uint8_t> datagram, std::uint64_t first_open) {
   ++datagrams_;
   const asterix::Decoded decoded = asterix::decode_datagram(datagram);
-  for (std::size_t kind = 0; kind < refusals_.by_kind.size(); ++kind) {
-    refusals_.by_kind[kind] += decoded.refusals.by_kind[kind];
-  }
+  refusals_ += decoded.refusals;
   const auto keep = [&](auto& by_round, double time_of_day_s, const auto& record) {
     const std::uint64_t k = round_of(time_of_day_s);
     if (k < first_open) {

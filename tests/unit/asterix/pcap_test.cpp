@@ -150,6 +150,14 @@ Bytes big_endian_raw_ipv4(std::uint8_t protocol, std::uint8_t flags) {
   return file;
 }
 
+TEST(AsterixPcap, TellsAPcapByItsFirstFourOctets) {
+  EXPECT_TRUE(starts_like_pcap(big_endian_raw_ipv4(17, 0)));        // big-endian microseconds
+  EXPECT_TRUE(starts_like_pcap(Bytes{0x4D, 0x3C, 0xB2, 0xA1}));     // little-endian nanoseconds
+  EXPECT_TRUE(starts_like_pcap(Bytes{0x0A, 0x0D, 0x0D, 0x0A, 0}));  // pcapng: refused by name
+  EXPECT_FALSE(starts_like_pcap(Bytes{48, 0, 11, 0xF0}));           // a CAT048 data block
+  EXPECT_FALSE(starts_like_pcap(Bytes{0xA1, 0xB2}));                // too short to say
+}
+
 TEST(AsterixPcap, ReadsOtherByteOrdersAndLinkTypes) {
   const auto read = read_pcap(big_endian_raw_ipv4(17, 0));
   ASSERT_FALSE(read.error) << *read.error;

@@ -6,11 +6,17 @@
 #include <cstdint>
 #include <istream>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "skyfuse/asterix/pcap.hpp"
 
 namespace skyfuse::asterix {
+
+/// Whether a file's first four octets are a pcap's magic number (classic, either byte order,
+/// micro- or nanosecond stamps) or pcapng's, which PcapStream refuses by name: a file that
+/// does not start so is something else (raw ASTERIX blocks, say).
+bool starts_like_pcap(std::span<const std::uint8_t> first);
 
 class PcapStream {
  public:

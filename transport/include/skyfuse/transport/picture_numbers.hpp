@@ -14,11 +14,12 @@
 
 namespace skyfuse::transport {
 
-/// Numbers round k's tracks of `table` (a TrackTable: ascending id) by `numbers`' rule.
+/// Numbers round k's tracks of `table` (a TrackTable: ascending id) by `numbers`' rule. `ids` is
+/// the caller's to keep between rounds, so that a node's round allocates nothing for it.
 template <typename Table>
-void number_picture(asterix::TrackNumbers& numbers, const Table& table, std::uint64_t k) {
-  std::vector<std::uint64_t> ids;
-  ids.reserve(table.tracks().size());
+void number_picture(asterix::TrackNumbers& numbers, const Table& table, std::uint64_t k,
+                    std::vector<std::uint64_t>& ids) {
+  ids.clear();
   for (const auto& track : table.tracks()) ids.push_back(track.id);
   numbers.update(ids, k);
 }
