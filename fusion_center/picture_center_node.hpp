@@ -1,10 +1,9 @@
 #pragma once
-// The center process of a run with many aircraft (picture_center.hpp) for one filter part on
-// one motion model (picture/picture_parts.hpp; the stations' sensors are values), compiled by
-// shard of the configuration groups (registry/filter_shards.hpp, picture_center_shard.cpp). It
-// hears each station's scan (`Sample` wire::PictureScan: the flat exchange) or each cluster's scans
-// as its aggregator relays them (wire::PictureBundle: the tree,
-// transport/picture_tree_exchange.hpp).
+// The center process of a run with many aircraft (picture_center.hpp). It hears each station's
+// scan (`Sample` wire::PictureScan: the flat exchange) or each cluster's scans as its aggregator
+// relays them (wire::PictureBundle: the tree, transport/picture_tree_exchange.hpp). Its picture,
+// the one part that knows the run's filter part and motion model, is behind an interface
+// (center_picture.hpp), so that this is compiled once (picture_center.cpp).
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -12,23 +11,18 @@
 
 #include <memory>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
 
+#include "center_picture.hpp"
 #include "center_process.hpp"
-#include "skyfuse/picture/central_picture.hpp"
-#include "skyfuse/picture/picture_parts.hpp"
-#include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
-#include "skyfuse/sim/picture_stations.hpp"
 #include "skyfuse/transport/node_loop.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/picture_bundles.hpp"
 #include "skyfuse/transport/picture_cat062.hpp"
-#include "skyfuse/transport/picture_numbers.hpp"
 #include "skyfuse/transport/picture_scans.hpp"
 #include "skyfuse/transport/picture_track_writer.hpp"
 #include "skyfuse/transport/picture_tree_exchange.hpp"
@@ -37,32 +31,28 @@ namespace skyfuse::center {
 
 using transport::RunEnd;
 
-template <typename Parts, typename Sample>
+template <typename Sample>
 class PictureCenter {
   static constexpr bool kTree = std::is_same_v<Sample, wire::PictureBundle>;
 
  public:
-  using Picture = CentralPicture<typename Parts::Center>;
-  static constexpr int N = Picture::kDim;
-
   // The endpoints are made in a fixed order: the loop's tick and input readers first.
   PictureCenter(const options::NodeOptions& options, PicturePlan plan)
       : options_(options),
         plan_(std::move(plan)),
         ids_(plan_.participant_ids()),
-        known_(known_stations<N>(plan_.scenario, plan_.stations, plan_.mc_run)),
+        picture_(make_center_picture(plan_)),
         node_(transport::node_config(options, "skyfuse-center")),
         loop_(node_, options, kCenterSourceId, "a fusion center", "picture scan",
               plan_.scenario.time_step_s,
               kTree ? std::vector<std::string>{transport::kPictureClustersPartition}
                     : std::vector<std::string>{}),
-        scans_in_(ids_, transport::StationSensorKinds(std::span<const KnownStation<N>>(known_)),
-                  options.run_id, plan_.scenario.tracker.association.max_detections_per_scan),
+        scans_in_(ids_, picture_->sensor_kinds(), options.run_id,
+                  plan_.scenario.tracker.association.max_detections_per_scan),
         writers_(kTree ? static_cast<int>(transport::picture_tree_layout(plan_).clusters())
                        : plan_.stations),
         rounds_(node_.make_writer<wire::PictureRound>()),
         tracks_(node_),
-        picture_(Parts::center(plan_.scenario), known_, plan_.scenario.tracker),
         asterix_out_(transport::make_asterix_out(options.asterix_out, plan_.scenario)) {}
 
   int run() {
@@ -107,7 +97,7 @@ class PictureCenter {
     scans_.resize(ids_.size());
     for (std::size_t i = 0; i < ids_.size(); ++i) {
       scans_[i].station_id = ids_[i];
-      scans_[i].noise = picture_.stations()[i].noise;
+      scans_[i].noise = picture_->noise(i);
       scans_[i].detections.clear();
       scans_[i].addresses.clear();
       if (const auto* scan = scans_in_.scan_of(ids_[i])) {
@@ -115,22 +105,18 @@ class PictureCenter {
         scans_[i].addresses = scan->addresses;
       }
     }
-    picture_.predict();
-    picture_.update(k, scans_);
-    transport::number_picture(numbers_, picture_, k, numbered_ids_);
-    const wire::PictureRound round = transport::picture_round_to_wire(
-        picture_, options_.run_id, static_cast<std::uint32_t>(k), kCenterSourceId,
-        static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size()));
+    const wire::PictureRound round =
+        picture_->update(k, scans_, numbers_, options_.run_id,
+                         static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size()));
     rounds_.write(round);
     if (asterix_out_) {
-      asterix_out_->send(k, round, numbers_);
+      asterix_out_->send(k, round);
       // The loop ends the process after its last round without returning: say it now.
       if (k + 1 == static_cast<std::uint64_t>(plan_.scenario.steps)) {
         spdlog::info("{}", transport::asterix_out_summary(*asterix_out_));
       }
     }
-    tracks_.publish(picture_, numbers_, options_.run_id, static_cast<std::uint32_t>(k),
-                    kCenterSourceId, wire::CENTRAL);
+    picture_->publish(tracks_, numbers_, options_.run_id, static_cast<std::uint32_t>(k));
     scans_in_.advance();
     return std::nullopt;
   }
@@ -142,7 +128,7 @@ class PictureCenter {
   const options::NodeOptions& options_;
   PicturePlan plan_;
   std::vector<int> ids_;  // the participants in scenario order, as the stations' known list
-  std::vector<KnownStation<N>> known_;
+  std::unique_ptr<CenterPicture> picture_;
   transport::DdsNode node_;
   transport::NodeLoop<Sample> loop_;
   transport::PictureScans scans_in_;
@@ -153,33 +139,11 @@ class PictureCenter {
             : std::nullopt;
   transport::Writer<wire::PictureRound> rounds_;
   transport::PictureTrackWriter tracks_;
-  Picture picture_;
   // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
+  std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   // The picture's short track numbers, given each round as every node gives them.
   asterix::TrackNumbers numbers_;
-  std::vector<std::uint64_t> numbered_ids_;  // number_picture's, kept between rounds
-  std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   std::vector<Scan> scans_;
 };
-
-/// Runs the center of `plan`, whose filter part and motion model lie in shard `Shard`.
-template <std::size_t Shard>
-int run_picture_center_in_shard(const options::NodeOptions& options, PicturePlan plan) {
-  int code = 1;
-  const bool ran = visit_picture_parts_in_shard<Shard>(
-      plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
-        if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
-          code = transport::make_lifelong<PictureCenter<Parts, wire::PictureBundle>>(
-                     options, std::move(plan))
-                     .run();
-        } else {
-          code = transport::make_lifelong<PictureCenter<Parts, wire::PictureScan>>(options,
-                                                                                   std::move(plan))
-                     .run();
-        }
-      });
-  if (!ran) throw std::logic_error("a picture center: no picture runs this filter and model");
-  return code;
-}
 
 }  // namespace skyfuse::center

@@ -244,11 +244,12 @@ class PictureStation {
   // The picture after round k, to the harness and to readers of its tracks.
   void publish_round(std::uint64_t k, std::uint32_t scans_fused) {
     const auto step = static_cast<std::uint32_t>(k);
-    const wire::PictureRound round = transport::picture_round_to_wire(
-        picture_, options_.node.run_id, step, options_.id, scans_fused);
+    wire::PictureRound round = transport::picture_round_to_wire(picture_, options_.node.run_id,
+                                                                step, options_.id, scans_fused);
+    transport::number_round(numbers_, round);
     rounds_.write(round);
     if (asterix_out_) {
-      asterix_out_->send(k, round, numbers_);
+      asterix_out_->send(k, round);
     }
     // The loop ends the process after its last round without returning: say it now.
     if (k + 1 == static_cast<std::uint64_t>(plan_.scenario.steps)) {

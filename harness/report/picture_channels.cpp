@@ -115,10 +115,9 @@ PictureChannels::PictureChannels(const PicturePlan& plan, std::uint64_t epoch_ns
   }
 }
 
-std::string PictureChannels::track_name(std::uint64_t id) const {
+std::string PictureChannels::track_name(const FrameTrack& track) {
   // A track past the numbers (more than 65 535 at once) keeps its long id.
-  const auto number = numbers_.number_of(id);
-  return number ? fmt::format("T{}", *number) : fmt::format("T{}", id);
+  return fmt::format("T{}", track.number != 0 ? track.number : track.id);
 }
 
 std::uint64_t PictureChannels::log_time_ns(int step) const {
@@ -139,12 +138,6 @@ std::vector<ChannelMessage> PictureChannels::frame_messages(const PictureFrame& 
 }
 
 void PictureChannels::follow(const PictureFrame& frame) {
-  // Every round comes through here once, sent or not, so the numbers are given as the ASTERIX
-  // record gives them.
-  std::vector<std::uint64_t> ids;
-  ids.reserve(frame.tracks.size());
-  for (const FrameTrack& t : frame.tracks) ids.push_back(t.id);
-  numbers_.update(ids, static_cast<std::uint64_t>(frame.step));
   // The trails take a point every kTrailEvery steps; a track gone takes its trail with it.
   const bool trail_step = frame.step % kTrailEvery == 0;
   std::map<std::uint64_t, std::vector<Vector3>> trails;
@@ -184,7 +177,7 @@ void PictureChannels::scene_messages(const PictureFrame& frame, std::uint64_t ns
     const Rgba c = t.confirmed ? kConfirmedColor : kTentativeColor;
     json e = entity(ns, fmt::format("track/{}", t.id));
     e["metadata"].push_back({{"key", "track_id"}, {"value", std::to_string(t.id)}});
-    const std::string name = track_name(t.id);
+    const std::string name = track_name(t);
     e["metadata"].push_back({{"key", "track_number"}, {"value", name.substr(1)}});
     e["spheres"].push_back(shape(t.position, Vector3::Constant(kTrackSize), c));
     e["spheres"].push_back(ellipsoid(t.position, t.position_covariance, c));
@@ -233,7 +226,7 @@ void PictureChannels::scene_messages(const PictureFrame& frame, std::uint64_t ns
   for (const FrameTrack& t : frame.tracks) {
     if (t.confirmed) {
       features.push_back(
-          geojson_point(plan_.scenario.anchor, t.position, {{"name", track_name(t.id)}}));
+          geojson_point(plan_.scenario.anchor, t.position, {{"name", track_name(t)}}));
     }
   }
   emit(

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "report/run_channels.hpp"
-#include "skyfuse/asterix/track_numbers.hpp"
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/metrics/picture_score.hpp"
 #include "skyfuse/sim/picture_detections.hpp"
@@ -24,6 +23,7 @@ namespace skyfuse::harness {
 /// One track of a round's picture, as drawn.
 struct FrameTrack {
   std::uint64_t id = 0;
+  std::uint16_t number = 0;  ///< the short number its node gave it (0: none)
   bool confirmed = false;
   Vector3 position = Vector3::Zero();
   Eigen::Matrix3d position_covariance = Eigen::Matrix3d::Identity();
@@ -86,8 +86,9 @@ class PictureChannels {
   /// The run's summary (summary.json's text) at the log time after the last step.
   ChannelMessage summary_message(std::string summary_json, int steps) const;
   std::uint64_t log_time_ns(int step) const;
-  /// A track's label: "T" and its short number (its long id past the numbers).
-  std::string track_name(std::uint64_t id) const;
+  /// A track's label: "T" and the short number its node gave it (its long id past the
+  /// numbers).
+  static std::string track_name(const FrameTrack& track);
 
   static constexpr int kTrailEvery = 10;
   static constexpr std::size_t kTrailPoints = 30;
@@ -106,9 +107,6 @@ class PictureChannels {
   bool trails_unsent_ = false;   ///< a trail took a point since the trails were last sent
   std::set<std::string> shown_;  ///< the tracks' and aircraft's entities of the last round
   std::set<std::string> gone_;   ///< entities gone since the last scene sent
-  /// The tracks' short numbers, given round by round as `--asterix-record` gives the first
-  /// station's (asterix/track_numbers.hpp): the labels a person reads.
-  asterix::TrackNumbers numbers_;
 };
 
 }  // namespace skyfuse::harness

@@ -50,6 +50,7 @@ PictureFrame picture_frame(int k, const std::vector<wire::PictureRound>& rounds,
   for (const wire::PictureTrack& t : first_peer->tracks()) {
     FrameTrack& track = frame.tracks.emplace_back();
     track.id = t.track_id();
+    track.number = t.number();
     track.confirmed = t.confirmed();
     const int n = static_cast<int>(t.x().size());
     track.position = Vector3(t.x()[0], t.x()[1], t.x()[2]);

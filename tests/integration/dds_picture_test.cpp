@@ -1109,9 +1109,12 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
       "--round-deadline-ms", "250", "--domain", std::to_string(GetParam().domain), "--out",
       (dir / "out").string()};
   if (GetParam().tree) args.insert(args.end(), {"--exchange", "tree", "--fanout", "2"});
-  // Every node's CAT062, to see that the restarted station numbers the picture as its peers do.
+  // Every node's CAT062, to see that the restarted station numbers the picture as its peers do,
+  // and that the harness's record holds the numbers each node gave.
   asterix::UdpReceiver listener(0);
-  args.insert(args.end(), {"--asterix-out", fmt::format("127.0.0.1:{}", listener.port())});
+  const auto pcap = dir / "picture.pcap";
+  args.insert(args.end(), {"--asterix-out", fmt::format("127.0.0.1:{}", listener.port()),
+                           "--asterix-record", pcap.string()});
   std::vector<asterix::Bytes> sent;
   std::atomic<bool> running = true;
   std::thread listening([&] {
@@ -1152,14 +1155,29 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
   // picture.
   const int agreed = agreed_for_good_from(rounds);
   const double dt = load_scenario_file(scenario).time_step_s;
-  std::map<int, std::vector<std::vector<std::uint16_t>>> numbers_by_round;  // one list a node
-  for (const asterix::Bytes& datagram : sent) {
+  // A datagram's round and its tracks' numbers.
+  const auto numbers_of = [&](const asterix::Bytes& datagram) {
     const asterix::Decoded decoded = asterix::decode_datagram(datagram);
-    if (decoded.tracks.empty()) continue;
-    const int k = static_cast<int>(std::llround(decoded.tracks[0].time_of_track_s / dt));
     std::vector<std::uint16_t> numbers;
     for (const asterix::SystemTrack& t : decoded.tracks) numbers.push_back(t.track_number);
-    numbers_by_round[k].push_back(std::move(numbers));
+    const int k = decoded.tracks.empty()
+                      ? -1
+                      : static_cast<int>(std::llround(decoded.tracks[0].time_of_track_s / dt));
+    return std::pair{k, numbers};
+  };
+  std::map<int, std::vector<std::vector<std::uint16_t>>> numbers_by_round;  // one list a node
+  for (const asterix::Bytes& datagram : sent) {
+    auto [k, numbers] = numbers_of(datagram);
+    if (k >= 0) numbers_by_round[k].push_back(std::move(numbers));
+  }
+  // The record's, by round and node (its source address names it).
+  const asterix::PcapContents record = asterix::read_pcap(pcap);
+  ASSERT_FALSE(record.error.has_value()) << *record.error;
+  std::map<int, std::map<int, std::vector<std::uint16_t>>> recorded;
+  for (const asterix::UdpDatagram& d : record.datagrams) {
+    if (d.source.port != 8600) continue;
+    auto [k, numbers] = numbers_of(d.payload);
+    if (k >= 0) recorded[k][d.source.address[2] * 256 + d.source.address[3]] = std::move(numbers);
   }
   int rounds_checked = 0;
   int rounds_with_history = 0;  // numbers other than 1, 2, ... in ascending track id
@@ -1167,6 +1185,12 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
     const auto& copies = numbers_by_round[k];
     ASSERT_EQ(copies.size(), 5U) << "four stations and the center, round " << k;
     for (const auto& copy : copies) EXPECT_EQ(copy, copies[0]) << "round " << k;
+    // The record's numbers are the nodes' own, the restarted station's too (a record that
+    // numbered each node's pictures itself would number the restarted one's afresh).
+    EXPECT_EQ(recorded[k].size(), 5U) << "round " << k;
+    for (const auto& [node, numbers] : recorded[k]) {
+      EXPECT_EQ(numbers, copies[0]) << "round " << k << ", node " << node << " in the record";
+    }
     std::vector<std::uint16_t> in_id_order(copies[0].size());
     std::iota(in_id_order.begin(), in_id_order.end(), std::uint16_t{1});
     if (copies[0] != in_id_order) ++rounds_with_history;

@@ -8,9 +8,12 @@
 
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <limits>
+#include <set>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "skyfuse/fusion/information_increment.hpp"
@@ -62,24 +65,24 @@ Sent a_round() {
   return sent;
 }
 
-// A whole picture through the generated type's serializer, as DDS would carry it.
-wire::PictureState through_cdr(wire::PictureState sample) {
-  wire::PictureStatePubSubType type;
+// A sample through its generated type's serializer, as DDS would carry it.
+template <typename PubSubType, typename Sample>
+Sample through_serializer(Sample sample) {
+  PubSubType type;
   eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&sample)());
   EXPECT_TRUE(type.serialize(&sample, &payload));
-  wire::PictureState back;
+  Sample back;
   EXPECT_TRUE(type.deserialize(&payload, &back));
   return back;
 }
-
-// The sample through the generated type's serializer, as DDS would carry it.
+wire::PictureState through_cdr(wire::PictureState sample) {
+  return through_serializer<wire::PictureStatePubSubType>(std::move(sample));
+}
 wire::PictureScan through_cdr(wire::PictureScan sample) {
-  wire::PictureScanPubSubType type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&sample)());
-  EXPECT_TRUE(type.serialize(&sample, &payload));
-  wire::PictureScan back;
-  EXPECT_TRUE(type.deserialize(&payload, &back));
-  return back;
+  return through_serializer<wire::PictureScanPubSubType>(std::move(sample));
+}
+wire::PictureRound through_cdr(wire::PictureRound sample) {
+  return through_serializer<wire::PictureRoundPubSubType>(std::move(sample));
 }
 
 TEST(PictureWire, ARoundArrivesAsSentThroughTheSerializer) {
@@ -333,20 +336,54 @@ TEST(PictureWire, AWholePictureArrivesBitForBitAndAWrongOneIsRefused) {
   EXPECT_TRUE(refused([](auto& w) { w.tracks()[0].modes().resize(1); }));
 }
 
+// Twelve rounds of `world`'s picture, numbered round by round by each of `numberings`.
+test::PictureWorld::Peer numbered_rounds(const test::PictureWorld& world,
+                                         std::initializer_list<asterix::TrackNumbers*> numberings) {
+  test::PictureWorld::Peer picture = world.empty_picture();
+  AssociationWork work;
+  std::vector<std::uint64_t> ids;
+  for (int k = 0; k < 12; ++k) {
+    world.play_round(picture, k, work);
+    for (asterix::TrackNumbers* numbers : numberings) {
+      number_picture(*numbers, picture, static_cast<std::uint64_t>(k), ids);
+    }
+  }
+  return picture;
+}
+
+// A node's picture to the harness carries each track's short number as the node gave it (what
+// its CAT062, the harness's record and labels show); a track the numbers ran out for carries 0.
+TEST(PictureWire, ARoundCarriesEachTracksNumberAsItsNodeGaveIt) {
+  const test::PictureWorld world(12);
+  asterix::TrackNumbers numbers(1, 65535, 3);
+  asterix::TrackNumbers three(1, 3, 3);  // fewer numbers than tracks
+  const test::PictureWorld::Peer picture = numbered_rounds(world, {&numbers, &three});
+  ASSERT_GE(picture.tracks().size(), 5U);
+  wire::PictureRound round = picture_round_to_wire(picture, 1, 11, 2, 12);
+  number_round(numbers, round);
+  const wire::PictureRound back = through_cdr(round);
+  ASSERT_EQ(back.tracks().size(), picture.tracks().size());
+  std::set<std::uint16_t> given;
+  for (const wire::PictureTrack& track : back.tracks()) {
+    EXPECT_EQ(track.number(), numbers.number_of(track.track_id()).value());
+    EXPECT_TRUE(given.insert(track.number()).second) << "a number per track";
+  }
+  number_round(three, round);
+  int without = 0;
+  for (const wire::PictureTrack& track : round.tracks()) {
+    EXPECT_EQ(track.number(), three.number_of(track.track_id()).value_or(0));
+    if (track.number() == 0) ++without;
+  }
+  EXPECT_EQ(without, static_cast<int>(picture.tracks().size()) - 3);
+}
+
 // A whole picture carries its sender's short track numbers: a taker that restores them numbers
 // the next rounds as the sender does (TrackNumbers.ANodeThatTakesAPeersStateNumbers...); a
 // numbering that is wrong is refused.
 TEST(PictureWire, AWholePictureCarriesItsTrackNumbers) {
-  using Peer = test::PictureWorld::Peer;
   const test::PictureWorld world(12);
-  Peer sender = world.empty_picture();
-  AssociationWork work;
   asterix::TrackNumbers numbers(1, 65535, 3);
-  std::vector<std::uint64_t> ids;
-  for (int k = 0; k < 12; ++k) {
-    world.play_round(sender, k, work);
-    number_picture(numbers, sender, static_cast<std::uint64_t>(k), ids);
-  }
+  const test::PictureWorld::Peer sender = numbered_rounds(world, {&numbers});
   ASSERT_GE(sender.tracks().size(), 5U);
   wire::PictureState sent = picture_state_to_wire(sender, 1, 11, 2);
   track_numbers_to_wire(numbers, sent);

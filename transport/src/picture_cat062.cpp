@@ -56,26 +56,17 @@ double time_of_day_s(std::uint64_t k, double time_step_s) {
 
 std::vector<asterix::Bytes> PictureCat062::blocks(std::uint64_t k,
                                                   const wire::PictureRound& round) {
-  std::vector<std::uint64_t> ids;
-  for (const wire::PictureTrack& t : round.tracks()) ids.push_back(t.track_id());
-  numbers_.update(ids, k);
-  return blocks(k, round, numbers_);
-}
-
-std::vector<asterix::Bytes> PictureCat062::blocks(std::uint64_t k, const wire::PictureRound& round,
-                                                  const asterix::TrackNumbers& numbers) {
   const double time_s = time_of_day_s(k, time_step_s_);
   // Each track encoded once; one it cannot hold is left out, not its whole block.
   std::vector<asterix::Bytes> records;
   for (const wire::PictureTrack& t : round.tracks()) {
     if (t.x().size() < 6) continue;
-    const auto number = numbers.number_of(t.track_id());
-    if (!number) {
+    if (t.number() == 0) {
       ++left_out_;  // more tracks than numbers
       continue;
     }
     asterix::Encoded record =
-        asterix::encode_cat062_record(system_track(t, *number, source_, time_s, anchor_));
+        asterix::encode_cat062_record(system_track(t, t.number(), source_, time_s, anchor_));
     if (!record) {
       ++left_out_;
       continue;

@@ -5,6 +5,12 @@
 
 namespace skyfuse::transport {
 
+void number_round(const asterix::TrackNumbers& numbers, wire::PictureRound& round) {
+  for (wire::PictureTrack& track : round.tracks()) {
+    track.number(numbers.number_of(track.track_id()).value_or(0));
+  }
+}
+
 void track_numbers_to_wire(const asterix::TrackNumbers& numbers, wire::PictureState& sample) {
   const asterix::TrackNumbers::State state = numbers.state();
   const auto pairs = [](const auto& from, std::vector<wire::PictureTrackNumber>& to) {

@@ -2,8 +2,9 @@
 /// \file
 /// A node's picture as ASTERIX CAT062 system tracks (docs/asterix.md), round by round: what
 /// `--asterix-out HOST:PORT` sends over UDP from a station or the center and what
-/// `skyfuse run --asterix-record` writes into a pcap — the same bytes from the same picture, as
-/// each numbers its tracks by the same rule (asterix/track_numbers.hpp) from the same rounds.
+/// `skyfuse run --asterix-record` writes into a pcap — the same bytes from the same picture, each
+/// track under the number its node gave it (wire::PictureTrack::number,
+/// transport/picture_numbers.hpp).
 
 #include <cstddef>
 #include <cstdint>
@@ -13,7 +14,6 @@
 #include <vector>
 
 #include "skyfuse/asterix/cat062.hpp"
-#include "skyfuse/asterix/track_numbers.hpp"
 #include "skyfuse/asterix/udp.hpp"
 #include "skyfuse/traffic/geodesy.hpp"
 #include "skyfuse/wire/skyfuse_picture.h"
@@ -37,8 +37,7 @@ asterix::SystemTrack system_track(const wire::PictureTrack& track, std::uint16_t
 /// Round k's time of day: k dt seconds after midnight (a run starts at 00:00:00), modulo a day.
 double time_of_day_s(std::uint64_t k, double time_step_s);
 
-/// One node's pictures as CAT062 blocks, numbered by the node's own numbering or, given every
-/// round (whether sent or not), by one of its own that follows the pictures by the same rule.
+/// One node's pictures as CAT062 blocks, each track under the number the node gave it.
 class PictureCat062 {
  public:
   explicit PictureCat062(const Scenario& scenario)
@@ -49,9 +48,6 @@ class PictureCat062 {
   /// Round k's picture as CAT062 blocks, each within one unfragmented UDP datagram (65 507
   /// octets); none for a picture without tracks.
   std::vector<asterix::Bytes> blocks(std::uint64_t k, const wire::PictureRound& round);
-  /// As above, numbered by `numbers`: the node's, updated with this round's tracks.
-  std::vector<asterix::Bytes> blocks(std::uint64_t k, const wire::PictureRound& round,
-                                     const asterix::TrackNumbers& numbers);
 
   /// Tracks left out because an item could not hold a value (beyond I062/185's ±8 192 m/s,
   /// say), and tracks without a number (more than 65 535 at once), over every round.
@@ -61,7 +57,6 @@ class PictureCat062 {
   asterix::DataSource source_;
   GeoAnchor anchor_;
   double time_step_s_;
-  asterix::TrackNumbers numbers_;
   std::size_t left_out_ = 0;
 };
 
@@ -72,10 +67,9 @@ class PictureAsterixOut {
   PictureAsterixOut(const asterix::UdpEndpoint& destination, const Scenario& scenario)
       : cat062_(scenario), sender_(destination) {}
 
-  /// Round k's picture, numbered by the node's `numbers`.
-  void send(std::uint64_t k, const wire::PictureRound& round,
-            const asterix::TrackNumbers& numbers) {
-    for (const asterix::Bytes& block : cat062_.blocks(k, round, numbers)) sender_.send(block);
+  /// Round k's picture, its tracks numbered (transport::number_round).
+  void send(std::uint64_t k, const wire::PictureRound& round) {
+    for (const asterix::Bytes& block : cat062_.blocks(k, round)) sender_.send(block);
   }
 
   const asterix::UdpSender& sender() const { return sender_; }

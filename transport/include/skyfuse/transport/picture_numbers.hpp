@@ -3,7 +3,8 @@
 /// A node's short track numbers (asterix/track_numbers.hpp): given to its picture's tracks each
 /// round, by the same rule at every node, and sent in the whole picture a peer takes
 /// (wire::PictureState), so that a station that restarts numbers the next rounds as its peers
-/// do. The node's CAT062 (`--asterix-out`) and its tracks on `skyfuse_track` carry them.
+/// do. The node's picture to the harness (wire::PictureRound), its CAT062 (`--asterix-out`) and
+/// its tracks on `skyfuse_track` carry them.
 
 #include <cstdint>
 #include <optional>
@@ -23,6 +24,10 @@ void number_picture(asterix::TrackNumbers& numbers, const Table& table, std::uin
   for (const auto& track : table.tracks()) ids.push_back(track.id);
   numbers.update(ids, k);
 }
+
+/// Each track of `round` given its number in `numbers` (0 where it holds none): what the node's
+/// CAT062 sends and the harness records and labels.
+void number_round(const asterix::TrackNumbers& numbers, wire::PictureRound& round);
 
 /// `numbers`' state into `sample`.
 void track_numbers_to_wire(const asterix::TrackNumbers& numbers, wire::PictureState& sample);
