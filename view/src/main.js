@@ -213,9 +213,11 @@ function drawScene3d() {
     const depth = sy * dx + cy * dy;
     return [across, -(dz * cp + depth * sp)];
   };
-  const projected = points.map(project);
-  const span = Math.max(...projected.map(([u, v]) => Math.max(Math.abs(u), Math.abs(v))), 1);
-  const scale = 0.45 * Math.min(canvas.width, canvas.height) / span;
+  // Fitted to what any turn about the vertical can show, so that the scale stays put while the
+  // scene turns: the ground's radius across, tilted by the pitch and with the heights down.
+  const radius = Math.max(...points.map((p) => Math.hypot(p.x - mid[0], p.y - mid[1])), 1);
+  const halfHeight = Math.max(...points.map((p) => Math.abs(p.z - mid[2])));
+  const scale = 0.9 * Math.min(canvas.width / 2 / radius, canvas.height / 2 / (radius * sp + halfHeight * cp));
   const at = (p) => {
     const [u, v] = project(p);
     return [canvas.width / 2 + u * scale, canvas.height / 2 + v * scale];
