@@ -417,6 +417,46 @@ TEST(DdsPicture, ThroughTheTreeEveryNodeHoldsTheInProcessPictureBitForBit) {
   EXPECT_LT(summary.at("max_state_gap_center_vs_p2p").get<double>(), 1e-9);
 }
 
+// Every datagram sent to a free loopback port while it listens, received on a thread of its own
+// (a run's `--asterix-out`).
+class DatagramListener {
+ public:
+  DatagramListener()
+      : thread_([this] {
+          while (running_) {
+            if (auto datagram = receiver_.receive(50)) received_.push_back(std::move(*datagram));
+          }
+        }) {}
+  DatagramListener(const DatagramListener&) = delete;
+  DatagramListener& operator=(const DatagramListener&) = delete;
+  ~DatagramListener() { stop(); }
+
+  std::uint16_t port() const { return receiver_.port(); }
+  /// What came, once what is still on its way has arrived (the receiver's next waits).
+  std::vector<asterix::Bytes> received() {
+    std::this_thread::sleep_for(300ms);
+    stop();
+    return std::move(received_);
+  }
+
+ private:
+  void stop() {
+    running_ = false;
+    if (thread_.joinable()) thread_.join();
+  }
+
+  asterix::UdpReceiver receiver_{0};
+  std::atomic<bool> running_ = true;
+  std::vector<asterix::Bytes> received_;
+  std::thread thread_;  // last: it starts once the rest exists
+};
+
+// The node a record's datagram is from: its source address is 127.0.(id / 256).(id % 256)
+// (harness/report/picture_asterix.hpp).
+int node_of(const asterix::UdpDatagram& datagram) {
+  return datagram.source.address[2] * 256 + datagram.source.address[3];
+}
+
 // `--asterix-record`: every node's picture each round as CAT062 in a pcap. Every station holds
 // the same picture and numbers it by the same rule, so the four stations' datagrams of a round
 // are the same bytes; the project's decoder reads every record back, as many as the picture's
@@ -428,24 +468,14 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsPictureAsTheSameBytes) {
   constexpr int kSteps = 30;
   const auto dir = test_dir();
   const auto pcap = dir / "picture.pcap";
-  asterix::UdpReceiver listener(0);
-  std::vector<asterix::Bytes> sent;
-  std::atomic<bool> running = true;
-  std::thread listening([&] {
-    while (running) {
-      if (auto datagram = listener.receive(50)) sent.push_back(std::move(*datagram));
-    }
-  });
+  DatagramListener listener;
   const Completed run =
       run_to_completion({bin("skyfuse"), "run", "--scenario", kCity, "--stations",
                          std::to_string(kStations), "--steps", std::to_string(kSteps), "--domain",
                          "84", "--out", (dir / "out").string(), "--asterix-record", pcap.string(),
                          "--asterix-out", "127.0.0.1:" + std::to_string(listener.port())},
                         dir / "out.log", 180s);
-  // What is still on its way arrives within the listener's next waits.
-  std::this_thread::sleep_for(300ms);
-  running = false;
-  listening.join();
+  const std::vector<asterix::Bytes> sent = listener.received();
   ASSERT_EQ(run.status.code, 0) << run.output;
   const asterix::PcapContents file = asterix::read_pcap(pcap);
   ASSERT_FALSE(file.error.has_value()) << *file.error;
@@ -467,8 +497,7 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsPictureAsTheSameBytes) {
   std::map<std::int64_t, std::map<int, asterix::Bytes>> rounds;
   for (const asterix::UdpDatagram& d : file.datagrams) {
     if (d.source.port != 8600) continue;
-    const int node = d.source.address[2] * 256 + d.source.address[3];
-    EXPECT_TRUE(rounds[d.time_ns].emplace(node, d.payload).second) << "one datagram a node";
+    EXPECT_TRUE(rounds[d.time_ns].emplace(node_of(d), d.payload).second) << "one datagram a node";
   }
   std::size_t records = 0;
   for (const auto& [time_ns, nodes] : rounds) {
@@ -1111,21 +1140,12 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
   if (GetParam().tree) args.insert(args.end(), {"--exchange", "tree", "--fanout", "2"});
   // Every node's CAT062, to see that the restarted station numbers the picture as its peers do,
   // and that the harness's record holds the numbers each node gave.
-  asterix::UdpReceiver listener(0);
+  DatagramListener listener;
   const auto pcap = dir / "picture.pcap";
   args.insert(args.end(), {"--asterix-out", fmt::format("127.0.0.1:{}", listener.port()),
                            "--asterix-record", pcap.string()});
-  std::vector<asterix::Bytes> sent;
-  std::atomic<bool> running = true;
-  std::thread listening([&] {
-    while (running) {
-      if (auto datagram = listener.receive(50)) sent.push_back(std::move(*datagram));
-    }
-  });
   const Completed run = run_to_completion(args, dir / "out.log", 180s);
-  std::this_thread::sleep_for(300ms);  // what is still on its way
-  running = false;
-  listening.join();
+  const std::vector<asterix::Bytes> sent = listener.received();
   ASSERT_EQ(run.status.code, 0) << run.output;
   EXPECT_EQ(run.output.find("was killed by signal"), std::string::npos) << run.output;
   const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
@@ -1177,7 +1197,7 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
   for (const asterix::UdpDatagram& d : record.datagrams) {
     if (d.source.port != 8600) continue;
     auto [k, numbers] = numbers_of(d.payload);
-    if (k >= 0) recorded[k][d.source.address[2] * 256 + d.source.address[3]] = std::move(numbers);
+    if (k >= 0) recorded[k][node_of(d)] = std::move(numbers);
   }
   int rounds_checked = 0;
   int rounds_with_history = 0;  // numbers other than 1, 2, ... in ascending track id

@@ -9,6 +9,7 @@ import { McapIndexedReader } from "@mcap/core";
 import uPlot from "uplot";
 import "uplot/dist/uPlot.min.css";
 import "./page.css";
+import { labelBox } from "./labels.js";
 import { legendShowsLatest, showLatestInLegend } from "./plots.js";
 import { drawDetections, drawPicturePlots, drawTrackLabel, emptyPicture, onPicture, onPictureDeletion,
   onPictureEntity } from "./picture.js";
@@ -128,16 +129,15 @@ function drawTrails(g, at, layered) {
   }
 }
 
-// A station's square and label, the label left of it where the right would leave the canvas.
-// A station's square and its name; where `placed` is given, the name's box joins it, so that no
-// track's label is put over it.
+// A station's square and its name, left of it where the right would leave the canvas; where
+// `placed` is given, the name's box joins it, so that no track's label is put over it.
 function drawSite(g, [u, v], label, placed = null) {
   g.fillStyle = COLORS.site;
   g.fillRect(u - 4, v - 4, 8, 8);
   const width = g.measureText(label).width;
   const x = u + 6 + width > g.canvas.width ? u - 6 - width : u + 6;
   g.fillText(label, x, v - 6);
-  placed?.push({ x0: x, y0: v - 6 - 11, x1: x + width, y1: v - 6 });
+  placed?.push(labelBox(x, v - 6, width));
 }
 
 function drawMarker(g, [u, v], e) {

@@ -3,10 +3,8 @@
 // a GOSPA plot and the count of tracks against aircraft. main.js hands this module the scene's
 // entities it recognises and the /skyfuse/picture messages.
 import uPlot from "uplot";
-import { placeLabel } from "./labels.js";
+import { LABEL_HEIGHT, placeLabel } from "./labels.js";
 import { legendShowsLatest, showLatestInLegend } from "./plots.js";
-
-const LABEL_HEIGHT = 11;  // px: the scene's font
 
 const PICTURE_COLORS = { confirmed: "#3373e6", tentative: "#f2b31a", aircraft: "#26b340",
   detection: "#59596680", falseAlarm: "#d93333a0" };
