@@ -158,9 +158,13 @@ TEST(PictureRun, JpdaWithTheUnscentedFilterKeepsOnePictureToo) {
   expect_guarantees(run_picture(scenario, truth.targets, 4, 0));
 }
 
+// Under the test's own name: ctest runs the tests of this file in parallel processes, and two
+// writing one file tore its rows (CI, stop 69).
 std::filesystem::path write_traffic_file(const GeoAnchor& anchor, double start, int minutes) {
+  const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
   const std::filesystem::path path =
-      std::filesystem::path(::testing::TempDir()) / "skyfuse_picture_run_states.csv";
+      std::filesystem::path(::testing::TempDir()) /
+      fmt::format("skyfuse_{}_{}_states.csv", test->test_suite_name(), test->name());
   test::write_opensky_states(path, anchor, start, minutes);
   return path;
 }
