@@ -5,10 +5,11 @@
 
 #include <algorithm>
 #include <deque>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
-#include "picture_station_shards.hpp"
+#include "picture_station_node.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
@@ -51,12 +52,25 @@ const std::vector<TargetTruth>& lifelong_truth(const PicturePlan& plan,
 
 int run_on(const StationOptions& options, const PicturePlan& plan,
            const std::vector<TargetTruth>& truth, transport::DdsNode& node) {
-  return with_filter_shard(plan.scenario.filter, [&](auto shard) {
-    return run_picture_station_in_shard<decltype(shard)::value>(options, plan, truth, node);
-  });
+  if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
+    return transport::make_lifelong<PictureStation<transport::PictureTreeExchange>>(options, plan,
+                                                                                    truth, node)
+        .run();
+  }
+  return transport::make_lifelong<PictureStation<transport::PictureExchange>>(options, plan, truth,
+                                                                              node)
+      .run();
 }
 
 }  // namespace
+
+std::unique_ptr<StationPicture> make_station_picture(const PicturePlan& plan) {
+  auto picture = with_filter_shard(plan.scenario.filter, [&](auto shard) {
+    return make_station_picture_in_shard<decltype(shard)::value>(plan);
+  });
+  if (!picture) throw std::logic_error("a picture station: no picture runs this filter and model");
+  return picture;
+}
 
 int run_picture_station(const StationOptions& options, const PicturePlan& plan) {
   check_plan(options, plan, {options.id});

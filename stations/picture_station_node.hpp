@@ -1,9 +1,8 @@
 #pragma once
-// The station process of a run with many aircraft (picture_station.hpp) for one filter part on
-// one motion model (picture/picture_parts.hpp; the stations' sensors are values) and one
-// exchange (flat: transport/picture_exchange.hpp; tree: transport/picture_tree_exchange.hpp),
-// compiled by shard of the configuration groups (registry/filter_shards.hpp,
-// picture_station_shard.cpp).
+// The station process of a run with many aircraft (picture_station.hpp) on one exchange (flat:
+// transport/picture_exchange.hpp; tree: transport/picture_tree_exchange.hpp), compiled once:
+// its picture, which knows the configuration's track type, is a StationPicture
+// (station_picture.hpp), compiled by shard of the configuration groups.
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -16,9 +15,7 @@
 #include <thread>
 #include <vector>
 
-#include "skyfuse/picture/peer_picture.hpp"
 #include "skyfuse/picture/picture_digest.hpp"
-#include "skyfuse/picture/picture_parts.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/sim/picture_stations.hpp"
@@ -33,19 +30,16 @@
 #include "skyfuse/transport/picture_track_writer.hpp"
 #include "skyfuse/transport/picture_tree_exchange.hpp"
 #include "skyfuse/transport/scan_asterix.hpp"
+#include "station_picture.hpp"
 #include "station_process.hpp"
 
 namespace skyfuse::station {
 
 using transport::RunEnd;
 
-template <typename Parts, template <typename> class ExchangeOf>
+template <typename Exchange>
 class PictureStation {
  public:
-  using Tracks = typename Parts::Peer;
-  static constexpr int N = Tracks::kDim;
-  using Picture = PeerPicture<Tracks>;
-  using Exchange = ExchangeOf<Tracks>;
   using Sample = typename Exchange::Sample;
 
   // The endpoints are made in a fixed order: the loop's tick and input readers first. `node` is
@@ -56,7 +50,7 @@ class PictureStation {
       : options_(options),
         plan_(std::move(plan)),
         truth_(truth),
-        known_(known_stations<N>(plan_.scenario, plan_.stations, plan_.mc_run)),
+        picture_(make_station_picture(plan_)),
         me_(index_of(plan_, options.id)),
         detection_(plan_.participants()[me_].detection.value()),
         truth_sensor_(make_picture_sensor<kKinematicsDim>(plan_.participants()[me_])),
@@ -64,13 +58,12 @@ class PictureStation {
         loop_(node_, options.node, options.id, fmt::format("station {}", options.id),
               "picture scan", plan_.scenario.time_step_s,
               Exchange::input_partitions(plan_, options.id)),
-        exchange_(
-            Exchange::of_station(node_, known_, plan_, options.id, options.node, loop_.inputs())),
+        exchange_(Exchange::of_station(node_, picture_->round_stations(), plan_, options.id,
+                                       options.node, loop_.inputs())),
         rounds_(node_.make_writer<wire::PictureRound>()),
         tracks_(node_),
         states_out_(node_.make_writer<wire::PictureState>()),
         states_in_(node_.make_reader<wire::PictureState>()),
-        picture_(Parts::peer(plan_.scenario), known_, plan_.scenario.tracker),
         asterix_out_(transport::make_asterix_out(options.node.asterix_out, plan_.scenario)),
         fed_(fed_scans(options, plan_.participants()[me_], plan_.scenario)) {
     // What it sends to itself never crosses the simulated link: the exchange keeps it as it
@@ -109,15 +102,16 @@ class PictureStation {
 
   // Predicts the picture, scans, assigns the scan to the predicted tracks and publishes it.
   RunEnd open_round(std::uint64_t k) {
-    picture_.predict();
-    predicted_digest_ = picture_.digest();
+    picture_->predict();
+    predicted_digest_ = picture_->digest();
     const StationConfig& station = plan_.participants()[me_];
-    const Scan scan = fed_ ? fed_->scan_at(k, known_[me_].noise)
-                           : simulate_scan(station.id, truth_sensor_, station.position_m,
-                                           known_[me_].noise, detection_, truth_,
-                                           static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
-    exchange_.publish(static_cast<std::uint32_t>(k), scan,
-                      picture_.report(known_[me_], scan, work_), predicted_digest_);
+    const DetectionNoise& noise = picture_->noise(me_);
+    const Scan scan =
+        fed_ ? fed_->scan_at(k, noise)
+             : simulate_scan(station.id, truth_sensor_, station.position_m, noise, detection_,
+                             truth_, static_cast<int>(k), plan_.scenario.seed, plan_.mc_run);
+    exchange_.publish(picture_->sample(me_, scan, options_.node.run_id,
+                                       static_cast<std::uint32_t>(k), predicted_digest_));
     return std::nullopt;
   }
 
@@ -175,22 +169,18 @@ class PictureStation {
     // come back to (PictureRoundScans::lowest), and as the lowest it would hand them to all.
     const bool waits_for_picture =
         parted && predicted == empty_digest_ && lowest->second != empty_digest_;
-    const auto reports =
-        waits_for_picture
-            ? std::vector<typename Picture::Report>{}
-            : exchange_.reports(picture_, predicted, [&](int station_id, DropKind why) {
-                loop_.count_drop(why, station_id, k);
-              });
-    picture_.fuse(k, reports);
+    const std::size_t fused =
+        picture_->fuse(k, exchange_, predicted, waits_for_picture,
+                       [&](int station_id, DropKind why) { loop_.count_drop(why, station_id, k); });
     // Numbered before the picture goes to a peer: the numbers it carries are the round's.
-    transport::number_picture(numbers_, picture_, k, numbered_ids_);
+    picture_->number(numbers_, k);
     if (lowest && lowest->first == options_.id && exchange_.any_other_picture(predicted)) {
-      wire::PictureState state = transport::picture_state_to_wire(
-          picture_, options_.node.run_id, static_cast<std::uint32_t>(k), options_.id);
+      wire::PictureState state =
+          picture_->state(options_.node.run_id, static_cast<std::uint32_t>(k), options_.id);
       transport::track_numbers_to_wire(numbers_, state);
       states_out_.write(state);
     }
-    publish_round(k, static_cast<std::uint32_t>(reports.size()));
+    publish_round(k, static_cast<std::uint32_t>(fused));
     exchange_.advance();
     return std::nullopt;
   }
@@ -199,13 +189,12 @@ class PictureStation {
   transport::ProcessCounts counts() const { return {resyncs_, 0}; }
 
  private:
-  // The latest whole picture a peer sent, kept until a newer one comes.
+  // The latest whole picture a peer sent, kept until a newer one comes (its tracks and
+  // registration kept by picture_, StationPicture::keep_peer_picture).
   struct PeerState {
     std::uint64_t step = 0;
     int station_id = 0;
     std::uint64_t digest = 0;  // of the picture after the round, as its sender computed it
-    std::vector<typename Picture::TrackType> tracks;
-    std::vector<BiasSums> biases;  // every station's registration, where the tracker registers
     asterix::TrackNumbers::State numbers;  // the tracks' short numbers after the round
   };
 
@@ -213,17 +202,14 @@ class PictureStation {
     wire::PictureState sample;
     while (states_in_.take(sample)) {
       if (sample.run_id() != options_.node.run_id || sample.station_id() == options_.id) continue;
-      auto tracks = transport::picture_state_from_wire(sample, picture_.filters());
-      auto biases = transport::picture_biases_from_wire(sample);
       auto numbers = transport::track_numbers_from_wire(sample);
-      if (!tracks || !biases || !numbers) {
+      if (!numbers || !picture_->keep_peer_picture(sample)) {
         spdlog::warn("step {}: a picture from station {} that is wrong; refused", sample.step(),
                      sample.station_id());
         continue;
       }
-      latest_ = PeerState{sample.step(),           static_cast<int>(sample.station_id()),
-                          sample.picture_digest(), std::move(*tracks),
-                          std::move(*biases),      std::move(*numbers)};
+      latest_ = PeerState{sample.step(), static_cast<int>(sample.station_id()),
+                          sample.picture_digest(), std::move(*numbers)};
     }
   }
 
@@ -244,8 +230,8 @@ class PictureStation {
   // The picture after round k, to the harness and to readers of its tracks.
   void publish_round(std::uint64_t k, std::uint32_t scans_fused) {
     const auto step = static_cast<std::uint32_t>(k);
-    wire::PictureRound round = transport::picture_round_to_wire(picture_, options_.node.run_id,
-                                                                step, options_.id, scans_fused);
+    wire::PictureRound round =
+        picture_->round(options_.node.run_id, step, options_.id, scans_fused);
     transport::number_round(numbers_, round);
     rounds_.write(round);
     if (asterix_out_) {
@@ -256,29 +242,25 @@ class PictureStation {
       if (asterix_out_) spdlog::info("{}", transport::asterix_out_summary(*asterix_out_));
       if (fed_) spdlog::info("{}", fed_->summary());
     }
-    tracks_.publish(picture_, numbers_, options_.node.run_id, step, options_.id, wire::PEER);
+    picture_->publish(tracks_, numbers_, options_.node.run_id, step, options_.id);
   }
 
-  // `candidate` with the latest picture a peer sent: its tracks and, where the tracker
-  // registers, every station's registration (a picture without them would correct the next
-  // scans otherwise than its sender). False where the registration is not this run's.
-  bool restore_into(Picture& candidate) const {
-    candidate.restore(latest_->tracks);
-    if (!picture_.registers()) return true;
-    if (candidate.restore_biases(latest_->biases)) return true;
-    spdlog::warn("step {}: station {}'s picture holds no registration of this run's stations",
-                 latest_->step, latest_->station_id);
-    return false;
+  // Takes the latest picture a peer sent as this station's, predicted where `predict`, if its
+  // digest is then `digest`; says so where its registration is not this run's.
+  StationPicture::Taken take_latest(bool predict, std::uint64_t digest) {
+    const auto taken = picture_->take_peer_picture(predict, digest);
+    if (taken == StationPicture::Taken::kNoRegistration) {
+      spdlog::warn("step {}: station {}'s picture holds no registration of this run's stations",
+                   latest_->step, latest_->station_id);
+    }
+    return taken;
   }
 
   // Takes station `station`'s picture after round k as this station's, if it came and holds
   // what its digest says.
   bool take_finished_round_of(int station, std::uint64_t k) {
     if (!latest_ || latest_->station_id != station || latest_->step != k) return false;
-    Picture candidate = picture_;
-    if (!restore_into(candidate)) return false;
-    if (candidate.digest() != latest_->digest) return false;
-    picture_ = std::move(candidate);
+    if (take_latest(false, latest_->digest) != StationPicture::Taken::kTaken) return false;
     numbers_.restore(latest_->numbers);  // numbered as the sender did after the round
     ++resyncs_;
     spdlog::info("step {}: took station {}'s picture of the round", k, station);
@@ -305,14 +287,11 @@ class PictureStation {
   // next round tries again) or does not predict to the digest.
   void take_picture_of(const std::pair<int, std::uint64_t>& lowest, std::uint64_t k) {
     if (!latest_ || latest_->station_id != lowest.first || latest_->step + 1 != k) return;
-    Picture candidate = picture_;
-    if (!restore_into(candidate)) return;
-    candidate.predict();
-    if (candidate.digest() != lowest.second) {
+    const auto taken = take_latest(true, lowest.second);
+    if (taken == StationPicture::Taken::kOtherDigest) {
       spdlog::warn("step {}: station {}'s picture does not predict to its scan's", k, lowest.first);
-      return;
     }
-    picture_ = std::move(candidate);
+    if (taken != StationPicture::Taken::kTaken) return;
     numbers_.restore(latest_->numbers);  // as after round k - 1: round k numbers on from them
     predicted_digest_ = lowest.second;
     ++resyncs_;
@@ -330,7 +309,8 @@ class PictureStation {
   const StationOptions& options_;
   PicturePlan plan_;
   const std::vector<TargetTruth>& truth_;
-  std::vector<KnownStation<N>> known_;
+  // The picture first: the exchange is made of its stations.
+  std::unique_ptr<StationPicture> picture_;
   std::size_t me_;
   DetectionConfig detection_;
   PictureSensor<kKinematicsDim> truth_sensor_;  // this station's sensor, on the truth
@@ -341,10 +321,8 @@ class PictureStation {
   transport::PictureTrackWriter tracks_;
   transport::Writer<wire::PictureState> states_out_;
   transport::Reader<wire::PictureState> states_in_;
-  Picture picture_;
   // The picture's short track numbers, given each round as every peer gives them.
   asterix::TrackNumbers numbers_;
-  std::vector<std::uint64_t> numbered_ids_;  // number_picture's, kept between rounds
   // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
   std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   // `--asterix-replay` or `--asterix-in`: this station's scans from a recorded or a live feed,
@@ -354,34 +332,11 @@ class PictureStation {
   // compared with the others', and computed once a round rather than at each use.
   std::uint64_t predicted_digest_ = 0;
   const std::uint64_t empty_digest_ = empty_picture_digest();
-  AssociationWork work_;
   std::optional<PeerState> latest_;
   bool parted_last_round_ = false;  // this picture was not the lowest station's last round
   // A restarted station that has not yet waited for the lowest station's picture.
   bool awaiting_first_picture_ = options_.rejoin_step.has_value();
   std::uint32_t resyncs_ = 0;  // rounds in which this station took another's picture
 };
-
-/// Runs the station of `plan` whose filter part and motion model lie in shard `Shard`.
-template <std::size_t Shard>
-int run_picture_station_in_shard(const StationOptions& options, PicturePlan plan,
-                                 const std::vector<TargetTruth>& truth, transport::DdsNode& node) {
-  int code = 1;
-  const bool ran = visit_picture_parts_in_shard<Shard>(
-      plan.scenario, [&]<typename Parts>(std::type_identity<Parts>) {
-        const auto run = [&]<template <typename> class ExchangeOf> {
-          code = transport::make_lifelong<PictureStation<Parts, ExchangeOf>>(
-                     options, std::move(plan), truth, node)
-                     .run();
-        };
-        if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
-          run.template operator()<transport::PictureTreeExchange>();
-        } else {
-          run.template operator()<transport::PictureExchange>();
-        }
-      });
-  if (!ran) throw std::logic_error("a picture station: no picture runs this filter and model");
-  return code;
-}
 
 }  // namespace skyfuse::station

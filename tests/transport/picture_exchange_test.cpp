@@ -8,6 +8,7 @@
 #include <chrono>
 #include <memory>
 
+#include "skyfuse/transport/picture_round_reports.hpp"
 #include "support/process.hpp"
 #include "transport/picture_world.hpp"
 
@@ -17,7 +18,7 @@ namespace {
 using namespace std::chrono_literals;
 using test::eventually;
 using World = test::PictureWorld;
-using Exchange = PictureExchange<World::Tracks>;
+using Exchange = PictureExchange;
 // Each test its own domain and run: ctest runs them at once, and a test's stations hearing the
 // other's (same ids, same run) once bound the wrong writer to a station and left a round short.
 constexpr int kDomain = 97;
@@ -30,6 +31,7 @@ struct StationNode {
   std::unique_ptr<Exchange> exchange;
   std::unique_ptr<Reader<wire::PictureScan>> in;
   World::Peer picture;
+  PictureRoundReports<World::Tracks> reports;
   std::uint64_t refused = 0;
 
   // Takes every sample waiting into the exchange.
@@ -51,9 +53,10 @@ std::vector<StationNode> station_nodes(const World& world, int domain = kDomain)
     config.domain_id = domain;
     config.name = "picture-station-" + std::to_string(station.id);
     auto node = std::make_unique<DdsNode>(config);
-    auto exchange = std::make_unique<Exchange>(*node, world.stations, kRunId, kBound);
+    auto exchange = std::make_unique<Exchange>(*node, world.round_stations(), kRunId, kBound);
     auto in = std::make_unique<Reader<wire::PictureScan>>(node->make_reader<wire::PictureScan>());
-    nodes.push_back({std::move(node), std::move(exchange), std::move(in), world.empty_picture()});
+    nodes.push_back({std::move(node), std::move(exchange), std::move(in), world.empty_picture(),
+                     PictureRoundReports<World::Tracks>(world.stations)});
   }
   return nodes;
 }
@@ -95,12 +98,13 @@ TEST(PictureExchange, ThreeStationsOverLoopbackDdsHoldTheInProcessPictureBitForB
   AssociationWork work;
   std::size_t associated = 0;
   for (int k = 0; k < kRounds; ++k) {
-    const auto own_reports = world.publish_round(nodes, reference, k, work);
+    const auto own_reports = world.publish_round(nodes, reference, k, work, kRunId);
     ASSERT_TRUE(all_complete(nodes))
         << "round " << k << ": station 1 still misses " << nodes[0].exchange->missing().size();
     reference.fuse(k, own_reports);
     for (StationNode& n : nodes) {
-      const auto reports = n.exchange->reports(n.picture, n.picture.digest(), kNoRefusal);
+      const auto reports =
+          n.reports.reports(*n.exchange, n.picture, n.picture.digest(), kNoRefusal);
       ASSERT_EQ(reports.size(), world.stations.size()) << "round " << k;
       n.picture.fuse(k, reports);
       n.exchange->advance();
@@ -117,7 +121,7 @@ TEST(PictureExchange, ThreeStationsOverLoopbackDdsHoldTheInProcessPictureBitForB
   }
   for (const StationNode& n : nodes) {
     EXPECT_EQ(n.refused, 0U);
-    EXPECT_EQ(n.exchange->other_pictures(), 0U);
+    EXPECT_EQ(n.reports.other_pictures(), 0U);
   }
   EXPECT_GE(reference.tracks().size(), 5U) << "every aircraft tracked";
   EXPECT_GT(associated, 100U) << "the rounds associated detections to tracks";
@@ -143,12 +147,12 @@ TEST(PictureExchange, AScanNamingATrackThePictureDoesNotHoldIsLeftOutAndCounted)
       n.picture.predict();
       const Scan scan = world.scan(s, k);
       const auto report = n.picture.report(world.stations[s], scan, work);
-      if (s != 2) {
-        n.exchange->publish(step, scan, report, n.picture.digest());
-        continue;
-      }
       wire::PictureScan sample = to_wire<World::Model::kDim>(world.stations[s].sensor, scan, report,
                                                              kRunId, step, n.picture.digest());
+      if (s != 2) {
+        n.exchange->publish(sample);
+        continue;
+      }
       if (forged) {
         // A detection of the scan assigned to a track id past every one the picture holds.
         ASSERT_FALSE(sample.associations().empty() && sample.unassociated().empty());
@@ -167,11 +171,11 @@ TEST(PictureExchange, AScanNamingATrackThePictureDoesNotHoldIsLeftOutAndCounted)
     ASSERT_TRUE(all_complete(nodes)) << "round " << k;
     for (StationNode& n : nodes) {
       std::vector<int> refused;
-      const auto reports =
-          n.exchange->reports(n.picture, n.picture.digest(), [&](int station_id, DropKind why) {
-            EXPECT_EQ(why, DropKind::kOutOfRange);
-            refused.push_back(station_id);
-          });
+      const auto reports = n.reports.reports(*n.exchange, n.picture, n.picture.digest(),
+                                             [&](int station_id, DropKind why) {
+                                               EXPECT_EQ(why, DropKind::kOutOfRange);
+                                               refused.push_back(station_id);
+                                             });
       if (forged) {
         EXPECT_EQ(refused, std::vector<int>{world.stations[2].id});
         ASSERT_EQ(reports.size(), 2U);

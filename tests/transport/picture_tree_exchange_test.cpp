@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "skyfuse/transport/picture_round_reports.hpp"
 #include "support/process.hpp"
 #include "transport/picture_world.hpp"
 
@@ -21,7 +22,7 @@ namespace {
 using namespace std::chrono_literals;
 using test::eventually;
 using World = test::PictureWorld;
-using Exchange = PictureTreeExchange<World::Tracks>;
+using Exchange = PictureTreeExchange;
 constexpr int kDomain = 87;
 constexpr std::uint64_t kRunId = 0x5eed'0000'0087ULL;
 constexpr std::size_t kBound = 64;
@@ -48,6 +49,7 @@ struct StationNode {
   std::unique_ptr<Exchange> exchange;
   std::unique_ptr<Reader<wire::PictureBundle>> in;
   World::Peer picture;
+  PictureRoundReports<World::Tracks> reports;
   std::uint64_t refused = 0;
   std::uint64_t received = 0;
 
@@ -74,9 +76,10 @@ std::vector<StationNode> station_nodes(const World& world, const ClusterLayout& 
     auto in = std::make_unique<Reader<wire::PictureBundle>>(
         node->make_reader<wire::PictureBundle>(Exchange::input_partitions(layout, station.id)));
     auto exchange =
-        std::make_unique<Exchange>(*node, world.stations, kRunId, kBound, layout, station.id,
-                                   std::chrono::microseconds(30s), in.get());
-    nodes.push_back({std::move(node), std::move(exchange), std::move(in), world.empty_picture()});
+        std::make_unique<Exchange>(*node, world.round_stations(), kRunId, kBound, layout,
+                                   station.id, std::chrono::microseconds(30s), in.get());
+    nodes.push_back({std::move(node), std::move(exchange), std::move(in), world.empty_picture(),
+                     PictureRoundReports<World::Tracks>(world.stations)});
   }
   return nodes;
 }
@@ -108,7 +111,7 @@ TEST(PictureTreeExchange, ThreeStationsInTwoClustersHoldTheInProcessPictureBitFo
   AssociationWork work;
   std::size_t associated = 0;
   for (int k = 0; k < kRounds; ++k) {
-    const auto own_reports = world.publish_round(nodes, reference, k, work);
+    const auto own_reports = world.publish_round(nodes, reference, k, work, kRunId);
     ASSERT_TRUE(eventually(
         [&] {
           bool all = true;
@@ -125,8 +128,8 @@ TEST(PictureTreeExchange, ThreeStationsInTwoClustersHoldTheInProcessPictureBitFo
     reference.fuse(k, own_reports);
     for (StationNode& n : nodes) {
       ASSERT_EQ(n.exchange->station_count(), 3U);
-      const auto reports = n.exchange->reports(
-          n.picture, n.picture.digest(),
+      const auto reports = n.reports.reports(
+          *n.exchange, n.picture, n.picture.digest(),
           [](int id, DropKind why) { ADD_FAILURE() << id << ": " << to_string(why); });
       ASSERT_EQ(reports.size(), world.stations.size()) << "round " << k;
       n.picture.fuse(k, reports);

@@ -15,6 +15,8 @@
 #include "skyfuse/scenario/measurement_simulation.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
 #include "skyfuse/traffic/scan_simulation.hpp"
+#include "skyfuse/transport/picture_round_scans.hpp"
+#include "skyfuse/transport/picture_wire.hpp"
 
 namespace skyfuse::test {
 
@@ -52,6 +54,11 @@ struct PictureWorld {
     return Tracks(Model(1.0, {0.5, 1.0}), Vector<Model::kDim>::Constant(100.0));
   }
 
+  // The world's stations as the exchanges screen their samples.
+  transport::RoundStations round_stations() const {
+    return transport::RoundStations::of(std::span<const Station>(stations));
+  }
+
   // An empty picture of the world's filter, at every peer the same.
   Peer empty_picture(const TrackerConfig& config = {}) const {
     return Peer(track_filters(), stations, config);
@@ -75,12 +82,13 @@ struct PictureWorld {
     peer.fuse(static_cast<std::uint64_t>(k), reports);
   }
 
-  // Round k's start at every node of `nodes` (each with a `picture` and an `exchange`): it
-  // predicts its picture, scans and publishes its report against it. `reference`, an
-  // in-process peer, predicts too; each station's own report against it is returned.
+  // Round k of run `run_id`'s start at every node of `nodes` (each with a `picture` and an
+  // `exchange`): it predicts its picture, scans and publishes its report against it.
+  // `reference`, an in-process peer, predicts too; each station's own report against it is
+  // returned.
   template <typename Nodes>
   std::vector<Peer::Report> publish_round(Nodes& nodes, Peer& reference, int k,
-                                          AssociationWork& work) const {
+                                          AssociationWork& work, std::uint64_t run_id) const {
     reference.predict();
     std::vector<Peer::Report> own_reports;
     for (std::size_t s = 0; s < nodes.size(); ++s) {
@@ -88,8 +96,9 @@ struct PictureWorld {
       n.picture.predict();
       const Scan station_scan = scan(s, k);
       own_reports.push_back(reference.report(stations[s], station_scan, work));
-      n.exchange->publish(static_cast<std::uint32_t>(k), station_scan,
-                          n.picture.report(stations[s], station_scan, work), n.picture.digest());
+      n.exchange->publish(transport::to_wire<Model::kDim>(
+          stations[s].sensor, station_scan, n.picture.report(stations[s], station_scan, work),
+          run_id, static_cast<std::uint32_t>(k), n.picture.digest()));
     }
     return own_reports;
   }

@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "skyfuse/options/node_options.hpp"
-#include "skyfuse/picture/scan.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/transport/dds_node.hpp"
@@ -29,12 +28,9 @@
 
 namespace skyfuse::transport {
 
-template <typename Tracks>
-class PictureExchange : public PictureRoundScans<Tracks> {
+class PictureExchange : public PictureRoundScans {
  public:
   using Sample = wire::PictureScan;
-  using Report = typename PictureRoundScans<Tracks>::Report;
-  using Station = typename PictureRoundScans<Tracks>::Station;
 
   /// Where the station's reader of samples listens: the topic's default partition.
   static std::vector<std::string> input_partitions(const PicturePlan& /*plan*/, int /*id*/) {
@@ -43,14 +39,13 @@ class PictureExchange : public PictureRoundScans<Tracks> {
 
   /// The exchange of `node` among `stations` (every participant of the run), for run `run_id`;
   /// a sample of more than `max_detections` is refused.
-  PictureExchange(DdsNode& node, std::span<const Station> stations, std::uint64_t run_id,
+  PictureExchange(DdsNode& node, const RoundStations& stations, std::uint64_t run_id,
                   std::size_t max_detections)
-      : PictureRoundScans<Tracks>(stations, run_id, max_detections),
-        stations_(static_cast<int>(stations.size())),
-        run_id_(run_id),
+      : PictureRoundScans(stations, run_id, max_detections),
+        stations_(static_cast<int>(stations.ids.size())),
         out_(node.make_writer<wire::PictureScan>()) {}
   /// The exchange of a station of `plan` (any id: every station does the same).
-  static PictureExchange of_station(DdsNode& node, std::span<const Station> stations,
+  static PictureExchange of_station(DdsNode& node, const RoundStations& stations,
                                     const PicturePlan& plan, int /*id*/,
                                     const options::NodeOptions& options,
                                     Reader<wire::PictureScan>& /*inputs*/) {
@@ -71,12 +66,9 @@ class PictureExchange : public PictureRoundScans<Tracks> {
   /// publish() keeps them as they go out (a simulated link must not lose them).
   WriterId own_writer() const { return out_.id(); }
 
-  /// Publishes this station's round `step`: `scan`, and `report` of it against the predicted
-  /// picture whose digest is `picture_digest`.
-  void publish(std::uint32_t step, const Scan& scan, const Report& report,
-               std::uint64_t picture_digest) {
-    const wire::PictureScan sample = to_wire<Tracks::kDim>(
-        this->station(report.station_id).sensor, scan, report, run_id_, step, picture_digest);
+  /// Publishes this station's sample of a round: its scan and its report against the predicted
+  /// picture (picture_wire.hpp's to_wire).
+  void publish(const wire::PictureScan& sample) {
     out_.write(sample);
     this->scans().receive(sample, out_.id());
   }
@@ -93,7 +85,6 @@ class PictureExchange : public PictureRoundScans<Tracks> {
 
  private:
   int stations_;
-  std::uint64_t run_id_;
   Writer<wire::PictureScan> out_;
 };
 

@@ -42,7 +42,6 @@
 
 #include "skyfuse/core/sorted_ids.hpp"
 #include "skyfuse/options/node_options.hpp"
-#include "skyfuse/picture/scan.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
 #include "skyfuse/tracking/cluster_layout.hpp"
@@ -62,13 +61,11 @@ inline ClusterLayout picture_tree_layout(const PicturePlan& plan) {
                        static_cast<std::size_t>(plan.scenario.exchange.fanout));
 }
 
-template <typename Tracks>
-class PictureTreeExchange : public PictureRoundScans<Tracks> {
-  using Base = PictureRoundScans<Tracks>;
+class PictureTreeExchange : public PictureRoundScans {
+  using Base = PictureRoundScans;
 
  public:
   using Sample = wire::PictureBundle;
-  using Report = typename Base::Report;
   using SystemTime = std::chrono::system_clock::time_point;
 
   /// Where a station's reader of bundles listens: every cluster's scans; an aggregator also its
@@ -92,10 +89,9 @@ class PictureTreeExchange : public PictureRoundScans<Tracks> {
   /// refused, and an aggregator sends its cluster's scans `collect_span` after its own at the
   /// latest. `inputs`: the station's reader of bundles (made in input_partitions()), which a
   /// stand-in moves; none: this station stands in for nobody.
-  PictureTreeExchange(DdsNode& node, std::span<const typename Base::Station> stations,
-                      std::uint64_t run_id, std::size_t max_detections, ClusterLayout layout,
-                      int id, std::chrono::microseconds collect_span,
-                      Reader<wire::PictureBundle>* inputs)
+  PictureTreeExchange(DdsNode& node, const RoundStations& stations, std::uint64_t run_id,
+                      std::size_t max_detections, ClusterLayout layout, int id,
+                      std::chrono::microseconds collect_span, Reader<wire::PictureBundle>* inputs)
       : Base(stations, run_id, max_detections),
         layout_(std::move(layout)),
         id_(id),
@@ -104,17 +100,15 @@ class PictureTreeExchange : public PictureRoundScans<Tracks> {
         stand_in_(inputs != nullptr && layout_.members(cluster_).size() >= 2 &&
                   layout_.members(cluster_)[1] == id),
         inputs_(inputs),
-        run_id_(run_id),
         collect_span_(collect_span),
         screen_(layout_, run_id),
-        cluster_scans_(layout_, cluster_, StationSensorKinds(stations), run_id, max_detections),
+        cluster_scans_(layout_, cluster_, stations.kinds, run_id, max_detections),
         out_(node.make_writer<wire::PictureBundle>({aggregating_
                                                         ? std::string(kPictureClustersPartition)
                                                         : cluster_up_partition(cluster_)})) {}
   /// Station `id`'s exchange in the run of `plan` and `options`: an aggregator's stage ends at
   /// half the round's deadline.
-  static PictureTreeExchange of_station(DdsNode& node,
-                                        std::span<const typename Base::Station> stations,
+  static PictureTreeExchange of_station(DdsNode& node, const RoundStations& stations,
                                         const PicturePlan& plan, int id,
                                         const options::NodeOptions& options,
                                         Reader<wire::PictureBundle>& inputs) {
@@ -151,13 +145,11 @@ class PictureTreeExchange : public PictureRoundScans<Tracks> {
   /// loop skips them, since send_cluster() keeps them as they go out.
   WriterId own_writer() const { return out_.id(); }
 
-  /// Sends this station's round `step` (`scan`, and `report` of it against the predicted picture
-  /// whose digest is `picture_digest`) to its aggregator, or keeps it for its cluster's bundle.
-  void publish(std::uint32_t step, const Scan& scan, const Report& report,
-               std::uint64_t picture_digest) {
-    const wire::PictureScan sample = to_wire<Tracks::kDim>(
-        this->station(report.station_id).sensor, scan, report, run_id_, step, picture_digest);
-    step_ = step;
+  /// Sends this station's sample of a round (its scan and its report against the predicted
+  /// picture, picture_wire.hpp's to_wire) to its aggregator, or keeps it for its cluster's
+  /// bundle.
+  void publish(const wire::PictureScan& sample) {
+    step_ = sample.step();
     if (relaying()) {
       cluster_scans_.keep(sample);
       collect_by_ = std::chrono::system_clock::now() + collect_span_;
@@ -249,7 +241,6 @@ class PictureTreeExchange : public PictureRoundScans<Tracks> {
   bool standing_in_ = false;
   bool heard_aggregator_ = false;  // its cluster's aggregator's bundle, the round now closing
   int aggregator_silent_ = 0;      // rounds without it
-  std::uint64_t run_id_;
   std::chrono::microseconds collect_span_;
   ClusterBundleScreen screen_;
   ClusterScans cluster_scans_;
