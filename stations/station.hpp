@@ -1,7 +1,7 @@
 #pragma once
-// The station process's rounds, compiled once per fusion (station_fusions.hpp) and exchange, by
-// shard of the configuration groups in station_rounds_shard.cpp: the sensor and the filter part's
-// rule are behind the station's sensing (station_sensing.hpp), compiled apart.
+// The station process's rounds (station_rounds.hpp), compiled once per fusion
+// (station_fusions.hpp) and exchange, in station_rounds_shard.cpp: the sensor and the filter
+// part's rule are behind the station's sensing (station_sensing.hpp), compiled apart.
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "flat_exchange.hpp"
-#include "skyfuse/registry/filter_shards.hpp"
 #include "skyfuse/registry/registry.hpp"
 #include "skyfuse/transport/dds_node.hpp"
 #include "skyfuse/transport/node_loop.hpp"
@@ -188,10 +187,21 @@ class Station {
   std::uint32_t resyncs_ = 0;  // rounds fused onto another station's prior
 };
 
-// Runs station `me` of the run's exchange over `Fusion`, with its `sensing`; the exit code.
+}  // namespace detail
+
 template <typename Fusion>
-int run_station_of(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
-                   std::unique_ptr<typename Fusion::Sensing> sensing, transport::DdsNode& node) {
+int run_station_rounds(const StationOptions& options, const RunPlan& plan, const StationConfig& me,
+                       std::unique_ptr<AnyStationSensing> any_sensing, transport::DdsNode& node) {
+  using detail::Station;
+  using Sensing = typename Fusion::Sensing;
+  auto* typed = dynamic_cast<Sensing*>(any_sensing.get());
+  if (typed == nullptr) {
+    throw std::logic_error(fmt::format("station {}: its sensing was not made for filter {} on {}",
+                                       me.id, plan.scenario.filter.kind,
+                                       plan.scenario.filter.motion_model.kind));
+  }
+  any_sensing.release();
+  std::unique_ptr<Sensing> sensing(typed);
   if (plan.scenario.exchange.kind == ExchangeConfig::Kind::kTree) {
     // load_any_plan refuses the tree for a filter whose fusion cannot sum partial sums yet.
     if constexpr (requires { &Fusion::admit_contribution; }) {
@@ -205,30 +215,6 @@ int run_station_of(const StationOptions& options, const RunPlan& plan, const Sta
   return transport::make_lifelong<Station<Fusion, FlatExchange<Fusion>>>(options, plan, me,
                                                                          std::move(sensing), node)
       .run();
-}
-
-}  // namespace detail
-
-// The filter part and the model pick the fusion; the sensor is the sensing's business.
-template <std::size_t Shard>
-int run_station_rounds_in_shard(const StationOptions& options, const RunPlan& plan,
-                                const StationConfig& me, std::unique_ptr<AnyStationSensing> sensing,
-                                transport::DdsNode& node) {
-  int code = options::kExitError;
-  visit_group_in_shard<Shard>(plan.scenario.filter, [&]<typename Filter, typename Model>(
-                                                        std::type_identity<Filter>,
-                                                        std::type_identity<Model>) {
-    using Fusion = typename StationFusionOf<Filter, Model>::type;
-    using Sensing = typename Fusion::Sensing;
-    auto* typed = dynamic_cast<Sensing*>(sensing.get());
-    if (typed == nullptr) {
-      throw std::logic_error(fmt::format("station {}: its sensing was not made for filter {} on {}",
-                                         me.id, Filter::kKind, Model::kKind));
-    }
-    sensing.release();
-    code = detail::run_station_of<Fusion>(options, plan, me, std::unique_ptr<Sensing>(typed), node);
-  });
-  return code;
 }
 
 }  // namespace skyfuse::station

@@ -15,6 +15,7 @@
 #include "skyfuse/transport/node_plan.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
+#include "station_fusions.hpp"
 #include "station_rounds.hpp"
 #include "station_sensing.hpp"
 
@@ -46,9 +47,16 @@ int run_one_aircraft_station(const StationOptions& options, const RunPlan& plan,
     node = &transport::make_lifelong<transport::DdsNode>(
         transport::node_config(options.node, fmt::format("skyfuse-station-{}", me.id)));
   }
+  // The filter part and the model pick the fusion; the sensor is the sensing's business.
   return with_filter_shard(plan.scenario.filter, [&](auto shard) {
-    return run_station_rounds_in_shard<decltype(shard)::value>(options, plan, me,
-                                                               std::move(sensing), *node);
+    int code = options::kExitError;
+    visit_group_in_shard<decltype(shard)::value>(
+        plan.scenario.filter, [&]<typename Filter, typename Model>(std::type_identity<Filter>,
+                                                                   std::type_identity<Model>) {
+          code = run_station_rounds<StationFusion<Filter, Model>>(options, plan, me,
+                                                                  std::move(sensing), *node);
+        });
+    return code;
   });
 }
 
