@@ -1,6 +1,7 @@
 // CAT021 ed. 2.6: the items encode_cat021_record writes, read back from a walked record.
 #include <cmath>
 
+#include "identification.hpp"
 #include "item_fields.hpp"
 #include "skyfuse/asterix/byte_reader.hpp"
 #include "skyfuse/asterix/cat021.hpp"
@@ -108,6 +109,12 @@ Cat021Decoded decode_cat021_record(const WalkedRecord& record) {
         v.ground_speed_mps = first * std::ldexp(1.0, -14) * kMetresPerNauticalMile;
         v.track_angle_deg = fields::get_angle16(in);
         r.ground_vector = v;
+        break;
+      }
+      case 170: {
+        auto callsign = fields::get_identification(in);
+        if (!callsign) return {std::nullopt, Refusal::value_out_of_range};
+        if (!callsign->empty()) r.callsign = std::move(*callsign);  // eight spaces: none
         break;
       }
       default:  // an item AdsbReport does not carry: measured by the walker, skipped here

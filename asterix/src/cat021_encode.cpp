@@ -2,6 +2,7 @@
 #include <cmath>
 #include <string>
 
+#include "identification.hpp"
 #include "item_fields.hpp"
 #include "record_builder.hpp"
 #include "skyfuse/asterix/cat021.hpp"
@@ -108,6 +109,8 @@ Encoded encode_cat021_record(const AdsbReport& r) {
   if (r.vertical_rate_mps) put_vertical_rate(record.item(157), *r.vertical_rate_mps);
 
   if (r.ground_vector) put_ground_vector(record.item(160), *r.ground_vector);
+
+  if (r.callsign) fields::put_identification(record.item(170), "I021/170", *r.callsign);
 
   return std::move(record).finish();
 }

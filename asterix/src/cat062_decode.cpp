@@ -1,6 +1,7 @@
 // CAT062 ed. 1.19: the items encode_cat062_record writes, read back from a walked record.
 #include <cmath>
 
+#include "identification.hpp"
 #include "item_fields.hpp"
 #include "skyfuse/asterix/byte_reader.hpp"
 #include "skyfuse/asterix/cat062.hpp"
@@ -110,6 +111,14 @@ Cat062Decoded decode_cat062_record(const WalkedRecord& record) {
       case 60:
         t.mode3a = static_cast<std::uint16_t>(in.get(2) & 07777u);
         break;
+      case 245: {
+        const auto sti = in.get(1) >> 6;
+        auto callsign = fields::get_identification(in);
+        if (!callsign) return {std::nullopt, Refusal::value_out_of_range};
+        // STI 3 is "invalid"; eight spaces are no identification.
+        if (sti != 3 && !callsign->empty()) t.callsign = std::move(*callsign);
+        break;
+      }
       case 380:
         t.address = read_address(item.bytes);
         break;

@@ -1,6 +1,7 @@
 // CAT062 ed. 1.19 items, written in UAP order (cat062.hpp lists them with their resolutions).
 #include <cmath>
 
+#include "identification.hpp"
 #include "item_fields.hpp"
 #include "record_builder.hpp"
 #include "skyfuse/asterix/cat062.hpp"
@@ -88,6 +89,12 @@ Encoded encode_cat062_record(const SystemTrack& t) {
   i185.put_quantity("I062/185 VY", t.vy_mps, 0.25, 2, Signedness::twos_complement);
 
   if (t.mode3a) fields::put_mode3a(record.item(60), "I062/060", *t.mode3a);
+
+  if (t.callsign) {
+    auto& i245 = record.item(245);
+    i245.put(0x00, 1);  // STI 0: downlinked from the target; spare bits 0
+    fields::put_identification(i245, "I062/245", *t.callsign);
+  }
 
   if (t.address) {
     auto& i380 = record.item(380);

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "skyfuse/asterix/cat021.hpp"
@@ -28,6 +30,19 @@ Bytes encoded_item(Encoded (*encode)(const T&), std::span<const UapEntry> uap, c
   const auto record = encode(value);
   EXPECT_TRUE(record) << (record.error ? record.error->item + ": " + record.error->reason : "");
   return item_of(record.bytes, uap, item);
+}
+
+/// A callsign of 1 to 8 characters of ICAO's 6-bit set (A-Z, 0-9, space) that ends in one
+/// that is not a space, as a decoder gives it back (it drops the padding).
+template <typename Rng>
+std::string random_callsign(Rng& rng) {
+  static constexpr std::string_view kSet = "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 ";
+  const std::size_t length = 1 + rng() % 8;
+  std::string callsign;
+  for (std::size_t i = 0; i < length; ++i) {
+    callsign.push_back(kSet[rng() % (i + 1 == length ? kSet.size() - 1 : kSet.size())]);
+  }
+  return callsign;
 }
 
 /// 12:34:56.5 UTC: 45296.5 s = 5 797 952 / 128 s = 0x587840 LSB.

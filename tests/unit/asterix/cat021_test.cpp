@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -120,6 +121,40 @@ TEST(AsterixCat021, AWholeRecordsFspec) {
   EXPECT_EQ(Bytes(record.bytes.begin(), record.bytes.begin() + 4), (Bytes{0xCB, 0x19, 0x61, 0x08}));
   // FSPEC 4 + 010 2 + 040 2 + 071 3 + 131 8 + 080 3 + 073 3 + 140 2 + 090 3 + 160 4.
   EXPECT_EQ(record.bytes.size(), 34u);
+  // + 170 (FRN 29): the fourth octet 0x09 (160, FX), a fifth 0x80.
+  r.callsign = "KLM1023";
+  const auto identified = encode_cat021_record(r);
+  ASSERT_TRUE(identified);
+  EXPECT_EQ(Bytes(identified.bytes.begin(), identified.bytes.begin() + 5),
+            (Bytes{0xCB, 0x19, 0x61, 0x09, 0x80}));
+  EXPECT_EQ(identified.bytes.size(), 34u + 1u + 6u);
+}
+
+// I021/170: eight 6-bit characters, padded with spaces: K L M 1 0 2 3 space = 11 12 13 49 48
+// 50 51 32. Eight spaces read back as no callsign; a code outside the set refuses the report.
+TEST(AsterixCat021, TargetIdentificationInSixBitCharacters) {
+  auto r = sample_report();
+  EXPECT_TRUE(item(r, 170).empty());
+  r.callsign = "KLM1023";
+  EXPECT_EQ(item(r, 170), (Bytes{0x2C, 0xC3, 0x71, 0xC3, 0x2C, 0xE0}));
+  r.callsign = "klm1023";
+  EXPECT_FALSE(encode_cat021_record(r));
+
+  r.callsign = "KLM1023";
+  const AdsbReport reports[] = {r};
+  const auto block = encode_cat021(reports);
+  ASSERT_TRUE(block);
+  EXPECT_EQ(decode_datagram(block.bytes).reports.at(0).callsign, "KLM1023");
+  const auto offset = block.bytes.size() - 6;  // 170 is the last item written here
+  Bytes blank = block.bytes;
+  const Bytes spaces{0x82, 0x08, 0x20, 0x82, 0x08, 0x20};
+  std::copy(spaces.begin(), spaces.end(), blank.begin() + static_cast<std::ptrdiff_t>(offset));
+  EXPECT_FALSE(decode_datagram(blank).reports.at(0).callsign.has_value());
+  Bytes bad = block.bytes;
+  bad[offset + 5] = 0x3F;  // the last character's code 63: outside the set
+  const auto decoded_bad = decode_datagram(bad);
+  EXPECT_TRUE(decoded_bad.reports.empty());
+  EXPECT_EQ(decoded_bad.refusals.total(), 1u);
 }
 
 void expect_round_trip(const AdsbReport& in) {
@@ -149,6 +184,7 @@ void expect_round_trip(const AdsbReport& in) {
     EXPECT_NEAR(*out.geometric_height_m, *in.geometric_height_m, 3.125 * kMetresPerFoot + 1e-9);
   }
   EXPECT_EQ(out.quality, in.quality);
+  EXPECT_EQ(out.callsign, in.callsign);
   ASSERT_EQ(out.vertical_rate_mps.has_value(), in.vertical_rate_mps.has_value());
   if (in.vertical_rate_mps) {
     EXPECT_NEAR(*out.vertical_rate_mps, *in.vertical_rate_mps,
@@ -189,6 +225,7 @@ TEST(AsterixCat021, RoundTripsWithinEachItemsResolution) {
                     static_cast<std::uint8_t>(rng() % 4),  static_cast<std::uint8_t>(rng() % 4)};
     if ((rng() & 1) != 0) r.ground_vector = GroundVector{u(rng) * 3000.0, (u(rng) - 0.5) * 720.0};
     if ((rng() & 1) != 0) r.vertical_rate_mps = (u(rng) - 0.5) * 1000.0;  // ±500 m/s
+    if ((rng() & 1) != 0) r.callsign = testing::random_callsign(rng);
     expect_round_trip(r);
   }
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -103,6 +104,56 @@ TEST(AsterixCat062, OptionalIdentityItems) {
   EXPECT_FALSE(encode_cat062_record(t));
 }
 
+// I062/245: STI 0 (downlinked from the target) and 6 spare bits, then eight 6-bit characters,
+// padded with spaces: K L M 1 0 2 3 space = 11 12 13 49 48 50 51 32.
+TEST(AsterixCat062, TargetIdentificationInSixBitCharacters) {
+  auto t = sample_track();
+  EXPECT_TRUE(item(t, 245).empty());
+  t.callsign = "KLM1023";
+  EXPECT_EQ(item(t, 245), (Bytes{0x00, 0x2C, 0xC3, 0x71, 0xC3, 0x2C, 0xE0}));
+  t.callsign = "ABC";  // 1 2 3, then five spaces (32)
+  EXPECT_EQ(item(t, 245), (Bytes{0x00, 0x04, 0x20, 0xE0, 0x82, 0x08, 0x20}));
+  // Outside ICAO's set (no lower case, no punctuation), longer than 8, or nothing to send.
+  for (const char* refused : {"klm1023", "KLM-1023", "ABCDEFGHI", "", "   "}) {
+    t.callsign = refused;
+    EXPECT_FALSE(encode_cat062_record(t)) << "'" << refused << "'";
+  }
+}
+
+// A received I062/245 whose STI says "invalid", or whose characters are eight spaces, gives no
+// callsign; one holding a code outside the set refuses the record.
+TEST(AsterixCat062, AnInvalidOrBlankIdentificationIsNoCallsignAndABadCodeIsRefused) {
+  auto t = sample_track();
+  t.callsign = "KLM1023";
+  const SystemTrack tracks[] = {t};
+  const auto block = encode_cat062(tracks);
+  ASSERT_TRUE(block);
+  const Bytes i245 = item(t, 245);
+  const auto at = std::search(block.bytes.begin(), block.bytes.end(), i245.begin(), i245.end());
+  ASSERT_NE(at, block.bytes.end());
+  const auto offset = static_cast<std::size_t>(at - block.bytes.begin());
+  EXPECT_EQ(decode_datagram(block.bytes).tracks.at(0).callsign, "KLM1023");
+
+  Bytes invalid = block.bytes;
+  invalid[offset] = 0xC0;  // STI 3
+  const auto decoded_invalid = decode_datagram(invalid);
+  ASSERT_EQ(decoded_invalid.tracks.size(), 1u);
+  EXPECT_FALSE(decoded_invalid.tracks[0].callsign.has_value());
+
+  Bytes blank = block.bytes;
+  const Bytes spaces{0x82, 0x08, 0x20, 0x82, 0x08, 0x20};  // eight times 32
+  std::copy(spaces.begin(), spaces.end(), blank.begin() + static_cast<std::ptrdiff_t>(offset + 1));
+  const auto decoded_blank = decode_datagram(blank);
+  ASSERT_EQ(decoded_blank.tracks.size(), 1u);
+  EXPECT_FALSE(decoded_blank.tracks[0].callsign.has_value());
+
+  Bytes bad = block.bytes;
+  bad[offset + 1] = 0x00;  // the first character's code 0: outside the set
+  const auto decoded_bad = decode_datagram(bad);
+  EXPECT_TRUE(decoded_bad.tracks.empty());
+  EXPECT_EQ(decoded_bad.refusals.total(), 1u);
+}
+
 TEST(AsterixCat062, GeometricAltitudeIn6Point25Feet) {
   auto t = sample_track();
   t.geometric_altitude_m = 3048.0;  // 10 000 ft = 1600 LSB = 0x0640
@@ -151,13 +202,14 @@ TEST(AsterixCat062, AWholeRecordAndBlock) {
 TEST(AsterixCat062, EveryOptionalItemInOneFspec) {
   auto t = sample_track();
   t.mode3a = 07123;
+  t.callsign = "KLM1023";
   t.address = 0x4CA2B3;
   t.geometric_altitude_m = 3048.0;
   t.accuracy = TrackAccuracy{};
   const auto record = encode_cat062_record(t);
   ASSERT_TRUE(record);
-  // + 060 (FRN 9), 380 (11), 130 (18), 500 (27): 0xBF, 0x5D, 0x11, 0x04.
-  EXPECT_EQ(Bytes(record.bytes.begin(), record.bytes.begin() + 4), (Bytes{0xBF, 0x5D, 0x11, 0x04}));
+  // + 060 (FRN 9), 245 (10), 380 (11), 130 (18), 500 (27): 0xBF, 0x7D, 0x11, 0x04.
+  EXPECT_EQ(Bytes(record.bytes.begin(), record.bytes.begin() + 4), (Bytes{0xBF, 0x7D, 0x11, 0x04}));
 }
 
 // Decoding what was encoded gives every value back within half its item's LSB.
@@ -182,6 +234,7 @@ void expect_round_trip(const SystemTrack& in) {
   EXPECT_NEAR(out.vx_mps, in.vx_mps, 0.125 + 1e-9);
   EXPECT_NEAR(out.vy_mps, in.vy_mps, 0.125 + 1e-9);
   EXPECT_EQ(out.mode3a, in.mode3a);
+  EXPECT_EQ(out.callsign, in.callsign);
   EXPECT_EQ(out.address, in.address);
   ASSERT_EQ(out.geometric_altitude_m.has_value(), in.geometric_altitude_m.has_value());
   if (in.geometric_altitude_m) {
@@ -223,6 +276,7 @@ TEST(AsterixCat062, RoundTripsWithinEachItemsResolution) {
     t.status.last_message = (rng() & 1) != 0;
     if ((rng() & 1) != 0) t.mode3a = static_cast<std::uint16_t>(rng() & 07777);
     if ((rng() & 1) != 0) t.address = static_cast<std::uint32_t>(rng() & 0xFFFFFF);
+    if ((rng() & 1) != 0) t.callsign = testing::random_callsign(rng);
     if ((rng() & 1) != 0) t.geometric_altitude_m = (u(rng) * 40000.0 - 400.0);
     if ((rng() & 1) != 0) {
       t.accuracy = TrackAccuracy{u(rng) * 1000, u(rng) * 1000, (u(rng) - 0.5) * 1e5,

@@ -63,6 +63,7 @@ std::vector<SystemTrack> tracks() {
   addressed.vy_mps = 64.1;
   addressed.mode3a = 07123;
   addressed.address = 0xE80456;
+  addressed.callsign = "KLM1023";
   addressed.geometric_altitude_m = 3352.8;
   addressed.status.altitude_source = 3;
   addressed.accuracy = TrackAccuracy{12.3, 7.4, -20.0, 1.1, 0.6, 30.0};
@@ -139,6 +140,7 @@ std::vector<AdsbReport> reports() {
   high.quality = AdsbQuality{2, 8, 1, 3, 9, 0, 2, 1};
   high.ground_vector = GroundVector{231.5, 271.2};
   high.vertical_rate_mps = -7.62;  // 1 500 ft/min descending
+  high.callsign = "QFA1";
 
   AdsbReport low = high;
   low.address = 0x4CA2B3;
@@ -150,6 +152,7 @@ std::vector<AdsbReport> reports() {
   low.geometric_height_m.reset();
   low.ground_vector.reset();
   low.vertical_rate_mps.reset();
+  low.callsign.reset();
 
   AdsbReport ground = high;
   ground.address = 0x800123;
@@ -169,6 +172,16 @@ std::vector<AdsbReport> reports() {
 std::vector<json> as_list(const json& value) {
   if (value.is_array()) return value.get<std::vector<json>>();
   return {value};
+}
+
+std::string text(const json& record, const std::string& item, const std::string& field) {
+  return record.at(item).at(field).get<std::string>();
+}
+
+// A callsign as the item carries it: padded with spaces to its 8 characters.
+std::string padded(std::string callsign) {
+  callsign.resize(8, ' ');
+  return callsign;
 }
 
 double number(const json& record, const std::string& item, const std::string& field) {
@@ -222,6 +235,11 @@ void check_track(const json& r, const SystemTrack& t) {
   ASSERT_EQ(r.contains("asterix.062_060"), t.mode3a.has_value());
   if (t.mode3a) {
     EXPECT_EQ(number(r, "asterix.062_060", "asterix.062_060_MODE3A"), *t.mode3a);
+  }
+  ASSERT_EQ(r.contains("asterix.062_245"), t.callsign.has_value());
+  if (t.callsign) {
+    EXPECT_EQ(number(r, "asterix.062_245", "asterix.062_245_STI"), 0);  // downlinked
+    EXPECT_EQ(padded(*t.callsign), text(r, "asterix.062_245", "asterix.062_245_CHR"));
   }
   ASSERT_EQ(r.contains("asterix.062_380"), t.address.has_value());
   if (t.address) {
@@ -304,6 +322,10 @@ void check_report(const json& r, const AdsbReport& a) {
   EXPECT_NEAR(number(r, "asterix.021_073", "asterix.021_073_VALUE"), a.time_of_reception_s,
               1.0 / 256 + kPrinted);
   EXPECT_EQ(number(r, "asterix.021_080", "asterix.021_080_VALUE"), a.address);
+  ASSERT_EQ(r.contains("asterix.021_170"), a.callsign.has_value());
+  if (a.callsign) {
+    EXPECT_EQ(padded(*a.callsign), text(r, "asterix.021_170", "asterix.021_170_VALUE"));
+  }
   const bool low = a.position_items != PositionItems::high_resolution;
   const bool high = a.position_items != PositionItems::low_resolution;
   ASSERT_EQ(r.contains("asterix.021_130"), low);

@@ -17,6 +17,8 @@
 //                                 ft/min (±102 400 ft/min); read with RE set as absent
 //   I021/160 airborne ground vector  optional; RE = 0, GS 15 bits unsigned, LSB 2^-14 NM/s
 //                                 (< 2 NM/s), TA 16 bits, LSB 360/2^16 deg (an angle: mod 360)
+//   I021/170 target identification  optional; 8 characters of ICAO's 6-bit set (A-Z, 0-9,
+//                                 space), the callsign the aircraft broadcasts
 //
 // Which of 130/131 is written is the caller's choice (PositionItems); the decoder takes 131
 // when both are present. Every other item of the edition's UAP is skipped.
@@ -24,6 +26,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 
 #include "skyfuse/asterix/bytes.hpp"
 #include "skyfuse/asterix/data_source.hpp"
@@ -72,6 +75,8 @@ struct AdsbReport {
   AdsbQuality quality;                        ///< I021/090
   std::optional<double> vertical_rate_mps;    ///< I021/157, geometric, up positive
   std::optional<GroundVector> ground_vector;  ///< I021/160
+  /// I021/170, without its trailing spaces: 1 to 8 of A-Z, 0-9 and space.
+  std::optional<std::string> callsign;
 };
 
 Encoded encode_cat021_record(const AdsbReport& report);

@@ -9,6 +9,8 @@
 //   I062/100 Cartesian position    2 × 24 bits two's complement, LSB 0.5 m
 //   I062/185 Cartesian velocity    2 × 16 bits two's complement, LSB 0.25 m/s
 //   I062/060 Mode 3/A code         optional; 12-bit octal code, V/G/CH = 0
+//   I062/245 target identification optional; STI 0 (downlinked from the target), then 8
+//                                  characters of ICAO's 6-bit set (A-Z, 0-9, space)
 //   I062/380 aircraft derived data optional; subfield #1 ADR only (24-bit address)
 //   I062/040 track number          16 bits
 //   I062/080 track status          1 to 4 octets, as far as the flags set need
@@ -24,6 +26,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 
 #include "skyfuse/asterix/bytes.hpp"
 #include "skyfuse/asterix/data_source.hpp"
@@ -77,6 +80,7 @@ struct SystemTrack {
   double vx_mps = 0.0;         ///< I062/185, [-8192, 8191.75] m/s
   double vy_mps = 0.0;
   std::optional<std::uint16_t> mode3a;         ///< I062/060, the code's octal digits (07777 max)
+  std::optional<std::string> callsign;         ///< I062/245, without its trailing spaces
   std::optional<std::uint32_t> address;        ///< I062/380 ADR, 24 bits
   std::optional<double> geometric_altitude_m;  ///< I062/130, [-1500, 150000] ft
   std::optional<TrackAccuracy> accuracy;       ///< I062/500
