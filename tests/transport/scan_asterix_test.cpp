@@ -34,6 +34,7 @@ TEST(ScanAsterix, EveryDetectionSurvivesWithinItsItemsResolutionAndQuantisesToTh
   constexpr int kStations = 10;
   std::size_t plots = 0;
   std::size_t reports = 0;
+  std::size_t identified = 0;
   for (int k = 20; k < 24; ++k) {
     const auto scans = simulated_scans_at(scenario, truth, kStations, 0, k);
     for (std::size_t s = 0; s < scans.size(); ++s) {
@@ -46,6 +47,16 @@ TEST(ScanAsterix, EveryDetectionSurvivesWithinItsItemsResolutionAndQuantisesToTh
       const auto& q = once->detections;
       ASSERT_EQ(q.size(), z.size());
       EXPECT_EQ(once->addresses, scan.scan.addresses);
+      // A report carries its callsign (I021/170); a plot does not (CAT048's I048/240 is not
+      // written).
+      if (scan.sensor_kind == "position_velocity") {
+        EXPECT_EQ(once->identifications, scan.scan.identifications);
+        for (const Identification id : once->identifications) {
+          identified += id != kNoIdentification ? 1U : 0U;
+        }
+      } else {
+        EXPECT_TRUE(once->identifications.empty());
+      }
       EXPECT_EQ(once->station_id, station.id);
       for (std::size_t j = 0; j < z.size(); ++j) {
         ASSERT_EQ(q[j].size(), z[j].size());
@@ -83,6 +94,7 @@ TEST(ScanAsterix, EveryDetectionSurvivesWithinItsItemsResolutionAndQuantisesToTh
   }
   EXPECT_GT(plots, 50U);
   EXPECT_GT(reports, 50U);
+  EXPECT_GT(identified, 50U) << "every addressed simulated aircraft has a callsign";
 }
 
 TEST(ScanAsterix, SkipsAPlotOrReportThatCannotBeADetectionAndCountsIt) {

@@ -25,10 +25,15 @@ double azimuth_rad(double bearing_deg) {
   return std::remainder(90.0 - bearing_deg, 360.0) / kDegPerRad;
 }
 
-// A scan of which no detection has an address holds none (picture/scan.hpp).
+// A scan of which no detection has an address (an identification) holds none
+// (picture/scan.hpp).
 void drop_addresses_if_none(Scan& scan) {
   if (std::ranges::all_of(scan.addresses, [](Address a) { return a == kNoAddress; })) {
     scan.addresses.clear();
+  }
+  if (std::ranges::all_of(scan.identifications,
+                          [](Identification i) { return i == kNoIdentification; })) {
+    scan.identifications.clear();
   }
 }
 
@@ -95,6 +100,10 @@ ScanRecords broadcast_reports(const SimulatedScan& scan, const StationConfig& st
     report.ground_vector =
         asterix::GroundVector{std::hypot(z(3), z(4)), std::atan2(z(3), z(4)) * kDegPerRad};
     report.vertical_rate_mps = z(5);
+    if (const Identification id = identification_at(scan.scan.identifications, j);
+        id != kNoIdentification) {
+      report.callsign = callsign_of(id);
+    }
     add(out, asterix::encode_cat021_record(report));
   }
   return out;
@@ -166,6 +175,9 @@ std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::Ads
         report.vertical_rate_mps.value_or(0.0);
     scan.detections.push_back(z);
     scan.addresses.push_back(report.address_type == 3 ? kNoAddress : report.address);
+    scan.identifications.push_back(
+        report.callsign ? identification_of(*report.callsign).value_or(kNoIdentification)
+                        : kNoIdentification);
   }
   drop_addresses_if_none(scan);
   return scan;

@@ -65,6 +65,8 @@ constexpr std::array<std::string_view, kColumnCount> kColumnNames = {
 struct ColumnIndex {
   std::array<std::size_t, kColumnCount> of{};
   std::size_t fields = 0;
+  /// OpenSky's `callsign`, where the file has it (the reader needs none).
+  std::optional<std::size_t> callsign;
 };
 
 std::string_view trimmed(std::string_view text) {
@@ -122,6 +124,9 @@ ColumnIndex find_columns(const std::string& header, const Place& place) {
     }
     index.of[column] = static_cast<std::size_t>(found - names.begin());
   }
+  if (const auto found = std::find(names.begin(), names.end(), "callsign"); found != names.end()) {
+    index.callsign = static_cast<std::size_t>(found - names.begin());
+  }
   return index;
 }
 
@@ -168,6 +173,8 @@ struct Row {
   std::optional<double> latitude_deg, longitude_deg, altitude_m;
   std::optional<double> speed_mps, heading_deg, vertical_rate_mps;
   std::optional<double> last_position_update_s;
+  /// Its callsign, where the field holds one air traffic's formats can carry.
+  Identification identification = kNoIdentification;
 };
 
 Row parse_row(const std::vector<std::string>& fields, const ColumnIndex& columns,
@@ -191,6 +198,9 @@ Row parse_row(const std::vector<std::string>& fields, const ColumnIndex& columns
   row.heading_deg = optional_number(fields, columns, kHeading, place);
   row.vertical_rate_mps = optional_number(fields, columns, kVertrate, place);
   row.last_position_update_s = optional_number(fields, columns, kLastposupdate, place);
+  if (columns.callsign) {
+    row.identification = identification_of(fields[*columns.callsign]).value_or(kNoIdentification);
+  }
   return row;
 }
 
@@ -354,6 +364,8 @@ RecordedTraffic read_opensky_states(const std::filesystem::path& path, const Geo
   RecordedTraffic traffic;
   // Ordered by icao24, so that the targets come out in a fixed order whatever the file's.
   std::map<std::string, std::vector<Sample>> aircraft;
+  // Each aircraft's callsign: the first its rows give.
+  std::map<std::string, Identification> identifications;
   std::optional<double> previous_time_s;
   double start_time_s = options.start_time_s;
   while (std::getline(in, line)) {
@@ -370,6 +382,8 @@ RecordedTraffic read_opensky_states(const std::filesystem::path& path, const Geo
     previous_time_s = row.time_s;
     if (std::isnan(start_time_s)) start_time_s = row.time_s;
 
+    if (row.identification != kNoIdentification)
+      identifications.try_emplace(row.icao24, row.identification);
     if (row.on_ground) {
       ++traffic.rows_on_ground;
       continue;
@@ -412,6 +426,9 @@ RecordedTraffic read_opensky_states(const std::filesystem::path& path, const Geo
       std::string label =
           presence_number == 1 ? icao24 : fmt::format("{}#{}", icao24, presence_number);
       TargetTruth target = resample(std::move(label), presence, options);
+      if (const auto known = identifications.find(icao24); known != identifications.end()) {
+        target.identification = known->second;
+      }
       if (!target.states.empty()) traffic.targets.push_back(std::move(target));
     }
   }

@@ -58,28 +58,41 @@ TargetTruth generated_aircraft(const TrafficGeneratorConfig& g, std::uint64_t se
   return fly(fmt::format("G{}", index), path, time_step_s, first, steps + 1);
 }
 
-// The address aircraft `index` of the truth reports: a recorded aircraft's own ICAO 24-bit
-// address (its label's first six hex digits), a simulated one's from the block 0xF00000.
-Address own_address(const TargetTruth& target, std::size_t index) {
+// A recorded aircraft's own ICAO 24-bit address (its label's first six hex digits); none for a
+// simulated one.
+Address recorded_address(const TargetTruth& target) {
   unsigned long icao24 = 0;
   const std::string hex = target.label.substr(0, target.label.find('#'));
   if (hex.size() == 6 &&
-      std::from_chars(hex.data(), hex.data() + hex.size(), icao24, 16).ptr == hex.data() + 6 &&
-      icao24 != 0) {
+      std::from_chars(hex.data(), hex.data() + hex.size(), icao24, 16).ptr == hex.data() + 6) {
     return static_cast<Address>(icao24);
   }
-  return static_cast<Address>(0xF00000U + index);
+  return kNoAddress;
+}
+
+// A simulated aircraft's callsign: "SF" and its address's six hex digits (SFF00011).
+Identification simulated_identification(Address address) {
+  return *identification_of(fmt::format("SF{:06X}", address));
 }
 
 // Gives each aircraft its address, with probability `share` (each drawn from its own stream
-// of `seed`, so that one aircraft's draw never shifts another's).
+// of `seed`, so that one aircraft's draw never shifts another's), and a simulated one its
+// callsign; an aircraft without an address reports no callsign either.
 void equip(std::vector<TargetTruth>& targets, double share, std::uint64_t seed) {
   for (std::size_t t = 0; t < targets.size(); ++t) {
     if (share < 1.0) {
       CounterRng rng({seed, 0, 0, static_cast<std::uint64_t>(t), NoiseStream::kEquipage});
-      if (rng.uniform() >= share) continue;
+      if (rng.uniform() >= share) {
+        targets[t].identification = kNoIdentification;
+        continue;
+      }
     }
-    targets[t].address = own_address(targets[t], t);
+    // A simulated aircraft's address is from the block 0xF00000.
+    const Address recorded = recorded_address(targets[t]);
+    targets[t].address = recorded != kNoAddress ? recorded : static_cast<Address>(0xF00000U + t);
+    if (recorded == kNoAddress) {
+      targets[t].identification = simulated_identification(targets[t].address);
+    }
   }
 }
 

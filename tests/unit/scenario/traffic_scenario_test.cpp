@@ -1,6 +1,7 @@
 // Scenarios with many aircraft: what the loader takes from `traffic:`, `detection:`,
 // `tracker:` and `metrics:`, what it refuses, and the truth the traffic gives.
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -171,9 +172,14 @@ TEST(TrafficScenario, TakesCooperativeSensorsAndTheShareOfAircraftWithAnAddress)
   std::size_t equipped = 0;
   std::vector<Address> addresses;
   for (const TargetTruth& t : truth.targets) {
-    if (t.address == kNoAddress) continue;
+    if (t.address == kNoAddress) {
+      EXPECT_EQ(t.identification, kNoIdentification) << "no callsign without an address";
+      continue;
+    }
     ++equipped;
     addresses.push_back(t.address);
+    // A simulated aircraft's callsign is "SF" and its address's six hex digits.
+    EXPECT_EQ(callsign_of(t.identification), fmt::format("SF{:06X}", t.address));
   }
   EXPECT_GT(equipped, 0U);
   EXPECT_LT(equipped, truth.targets.size());

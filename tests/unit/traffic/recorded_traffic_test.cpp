@@ -30,6 +30,7 @@ struct StateRow {
   std::optional<double> lat, lon, velocity, heading, vertrate;
   bool onground = false;
   std::optional<double> baroaltitude, geoaltitude, lastposupdate;
+  std::string callsign = "DLH4AB  ";  // as OpenSky writes it: padded to 8
 };
 
 std::string field(const std::optional<double>& value) {
@@ -37,11 +38,11 @@ std::string field(const std::optional<double>& value) {
 }
 
 std::string csv_line(const StateRow& row) {
-  return fmt::format("{},{},{},{},{},{},{},DLH4AB  ,{},false,false,1000,{},{},{},{}", row.time,
+  return fmt::format("{},{},{},{},{},{},{},{},{},false,false,1000,{},{},{},{}", row.time,
                      row.icao24, field(row.lat), field(row.lon), field(row.velocity),
-                     field(row.heading), field(row.vertrate), row.onground ? "true" : "false",
-                     field(row.baroaltitude), field(row.geoaltitude), field(row.lastposupdate),
-                     row.time);
+                     field(row.heading), field(row.vertrate), row.callsign,
+                     row.onground ? "true" : "false", field(row.baroaltitude),
+                     field(row.geoaltitude), field(row.lastposupdate), row.time);
 }
 
 /// Writes `lines` under the test's own name in GoogleTest's temporary directory.
@@ -369,6 +370,28 @@ TEST(RecordedTraffic, SingleSamplesAreDroppedAndTargetsSortedByLabel) {
   EXPECT_EQ(traffic.targets[1].label, "c0ffee");
 }
 
+// An aircraft's callsign is the first its rows give that air traffic's formats can carry (up to
+// 8 of A-Z, 0-9 and space; lower case taken as upper case); none where no row gives one.
+TEST(RecordedTraffic, EachAircraftTakesTheFirstCallsignItsRowsGive) {
+  const GeoAnchor anchor;
+  std::vector<StateRow> rows;
+  for (const double t : {0.0, 10.0, 20.0}) {
+    for (const char* icao24 : {"3c6444", "4ca7b3", "a1b2c3"}) {
+      StateRow row = row_at(anchor, kT0 + t, kStart + t * kVelocity, kVelocity);
+      row.icao24 = icao24;
+      if (row.icao24 == "4ca7b3") row.callsign = t == 0.0 ? "" : t == 10.0 ? "ein12 " : "EIN99";
+      if (row.icao24 == "a1b2c3") row.callsign = "N-123";  // no such character in the set
+      rows.push_back(row);
+    }
+  }
+  const RecordedTraffic traffic =
+      read_opensky_states(write_states(rows), anchor, steps_of(1.0, 20));
+  ASSERT_EQ(traffic.targets.size(), 3U);
+  EXPECT_EQ(callsign_of(traffic.targets[0].identification), "DLH4AB");
+  EXPECT_EQ(callsign_of(traffic.targets[1].identification), "EIN12");
+  EXPECT_EQ(traffic.targets[2].identification, kNoIdentification);
+}
+
 TEST(RecordedTraffic, OnlyTheRunsWindowIsKept) {
   const GeoAnchor anchor;
   RecordedTrafficOptions options = steps_of(1.0, 15);
@@ -398,6 +421,7 @@ TEST(RecordedTraffic, ColumnsAreFoundByNameInAnyOrder) {
   const RecordedTraffic traffic = read_opensky_states(write_file(lines), anchor, steps_of(1, 60));
   ASSERT_EQ(traffic.targets.size(), 1U);
   expect_near(traffic.targets[0].at(33).head<3>(), kStart + 33.0 * kVelocity, 0.01);
+  EXPECT_EQ(traffic.targets[0].identification, kNoIdentification) << "no callsign column";
 }
 
 /// Reading `path` throws a std::runtime_error that starts "<path>:<line>: " and holds each of

@@ -177,6 +177,46 @@ TEST(ScanSimulation, AReceiverOfRecordedBroadcastsHearsEachAsSentAndNothingBetwe
   }
 }
 
+// A cooperative sensor lists each detection's identification with its address, through the
+// shuffle: an aircraft's own, a false alarm's none; a scan none of whose detections has one
+// lists none. The detections and addresses are those of the same scan without identifications.
+TEST(ScanSimulation, ACooperativeSensorListsEachDetectionsIdentificationWithItsAddress) {
+  auto truths = hovering({{1000, 0, 300}, {2000, 500, 300}, {-800, 900, 200}}, 40);
+  truths[0].address = 0x3c6444;
+  truths[0].identification = *identification_of("DLH4AB");
+  truths[1].address = 0x4b1801;  // addressed, no callsign
+  truths[2].address = 0xF00002;
+  truths[2].identification = *identification_of("SFF00002");
+  DetectionConfig config;
+  config.reports_address = true;
+  config.probability = 0.8;
+  config.clutter_per_scan = 1.5;
+  config.field_of_view.max_range_m = 20000.0;
+  const Sensor sensor(kSite);
+  auto anonymous = truths;
+  for (TargetTruth& t : anonymous) t.identification = kNoIdentification;
+  std::size_t identified = 0;
+  for (int k = 0; k < 40; ++k) {
+    ScanOrigins origins;
+    const Scan scan =
+        simulate_scan(3, sensor, kSite, radar_noise(), config, truths, k, 5, 0, &origins);
+    const Scan plain = simulate_scan(3, sensor, kSite, radar_noise(), config, anonymous, k, 5, 0);
+    EXPECT_TRUE(same_detections(scan.detections, plain.detections)) << "step " << k;
+    EXPECT_EQ(scan.addresses, plain.addresses) << "step " << k;
+    EXPECT_TRUE(plain.identifications.empty());
+    if (scan.identifications.empty()) continue;
+    ASSERT_EQ(scan.identifications.size(), scan.detections.size());
+    for (std::size_t i = 0; i < scan.detections.size(); ++i) {
+      const int from = origins.target[i];
+      const Identification expected =
+          from < 0 ? kNoIdentification : truths[static_cast<std::size_t>(from)].identification;
+      EXPECT_EQ(scan.identifications[i], expected) << "step " << k << ", detection " << i;
+      identified += expected != kNoIdentification ? 1U : 0U;
+    }
+  }
+  EXPECT_GT(identified, 40U) << "about 2 x 0.8 x 40 identified detections";
+}
+
 // A biased radar: every detection of an aircraft is the unbiased one plus the station's
 // offsets, drawn with the same noise; its clock's offset is the aircraft where it is that much
 // later.

@@ -14,6 +14,7 @@
 
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/picture/address.hpp"
+#include "skyfuse/picture/identification.hpp"
 
 namespace skyfuse {
 
@@ -45,6 +46,9 @@ struct Scan {
   /// Each detection's address (picture/address.hpp), in detection order; empty when none
   /// has one (a primary radar's scan).
   std::vector<Address> addresses{};
+  /// Each detection's identification (picture/identification.hpp), in detection order; empty
+  /// when none has one. The tracker does not read it.
+  std::vector<Identification> identifications{};
 };
 
 /// Whether two detections hold the same values, bit for bit (any sizes).

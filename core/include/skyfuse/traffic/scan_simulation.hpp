@@ -5,6 +5,7 @@
 /// (detection_model.hpp), as a pure function of (seed, run, station, step), so any process
 /// order gives the same bits.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -45,7 +46,8 @@ Vector<Sensor::kMeasDim> replayed(const HeardBroadcast& heard) {
 /// 9-entry state) stands at `site`, at `step`: each target present and in the field of view
 /// detected with probability P_D (its value h(x) + nu, nu ~ N(0, R)), then the false alarms,
 /// then all of them shuffled. A cooperative sensor (`detection.reports_address`) hears only the
-/// targets with an address and lists each detection's address (a false alarm's is none). A
+/// targets with an address and lists each detection's address and identification (a false
+/// alarm's are none; a scan in which none has an identification lists none). A
 /// receiver of recorded broadcasts (`detection.replays_broadcasts`) takes each aircraft's own
 /// report of the step instead of drawing one. A station's bias (`detection.bias`) moves each
 /// aircraft's detection by its clock offset and its components' offsets before the noise; a
@@ -100,7 +102,10 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
       for (int i = 0; i < M; ++i) z(i) += std::sqrt(noise(i, i)) * rng.normal();
     }
     scan.detections.emplace_back(Sensor::to_reported(z));
-    if (cooperative) scan.addresses.push_back(truths[t].address);
+    if (cooperative) {
+      scan.addresses.push_back(truths[t].address);
+      scan.identifications.push_back(truths[t].identification);
+    }
     origin.push_back(static_cast<int>(t));
   }
 
@@ -116,7 +121,10 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
         }
       }
       scan.detections.emplace_back(Sensor::to_reported(sensor.predict(x)));
-      if (cooperative) scan.addresses.push_back(kNoAddress);
+      if (cooperative) {
+        scan.addresses.push_back(kNoAddress);
+        scan.identifications.push_back(kNoIdentification);
+      }
       origin.push_back(-1);
     }
   }
@@ -126,8 +134,15 @@ Scan simulate_scan(int station_id, const Sensor& sensor, const Vector3& site,
   for (std::size_t i = scan.detections.size(); i > 1; --i) {
     const auto j = static_cast<std::size_t>(order.next_u64() % i);
     std::swap(scan.detections[i - 1], scan.detections[j]);
-    if (cooperative) std::swap(scan.addresses[i - 1], scan.addresses[j]);
+    if (cooperative) {
+      std::swap(scan.addresses[i - 1], scan.addresses[j]);
+      std::swap(scan.identifications[i - 1], scan.identifications[j]);
+    }
     std::swap(origin[i - 1], origin[j]);
+  }
+  if (std::ranges::all_of(scan.identifications,
+                          [](Identification i) { return i == kNoIdentification; })) {
+    scan.identifications.clear();
   }
   if (origins != nullptr) *origins = {std::move(origin), missed};
   return scan;

@@ -12,6 +12,7 @@
 
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/picture/address.hpp"
+#include "skyfuse/picture/identification.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
 namespace skyfuse {
@@ -38,6 +39,9 @@ struct TargetTruth {
   /// The address it reports to cooperative sensors (picture/address.hpp); kNoAddress for
   /// an aircraft that carries no transponder nor broadcast, which only primary radars see.
   Address address = kNoAddress;
+  /// The callsign it reports with its address (picture/identification.hpp): a recorded
+  /// aircraft's from its file, a simulated one's made of its address; none without an address.
+  Identification identification = kNoIdentification;
   /// A recorded aircraft's own reports, one at each step it sent one, in step order
   /// (traffic/recorded_traffic.hpp); empty for a simulated aircraft, whose reports a cooperative
   /// sensor draws from its kinematics instead.

@@ -38,7 +38,8 @@ struct ScanRecords {
 /// - `position_velocity` (ADS-B, Remote ID): CAT021, the position through the scenario's
 ///   `anchor` as WGS-84 (I021/131) and geometric height (I021/140), the horizontal velocity
 ///   (I021/160) and the vertical rate (I021/157), the address (I021/080; anonymous where none),
-///   and NACp/NACv from the station's noise;
+///   the callsign (I021/170, where the detection has one), and NACp/NACv from the station's
+///   noise;
 /// - any other sensor (a 3-D radar's elevation, multilateration's time differences): none.
 /// The data source is station_source's (the scenario's SAC, the station's id as SIC); every
 /// record is marked simulated.
@@ -56,10 +57,10 @@ bool carried_by_asterix(std::string_view sensor_kind);
 /// station of `sensor_kind`, in the scenario's frame and units — range (m) and azimuth
 /// (counter-clockwise from east, rad) of a radar, the flight level as the altitude (m) and the
 /// address of a Mode S radar; a report's position in east-north-up through `anchor`, its
-/// velocity from the ground vector and the vertical rate (0 where a report has none), and its
-/// address. A plot or report that cannot be one (a Mode S plot
-/// without a flight level, a report without a ground vector or height) is skipped and counted
-/// in `skipped`. nullopt for a sensor no item carries.
+/// velocity from the ground vector and the vertical rate (0 where a report has none), its
+/// address and its callsign (I021/170, where it has one). A plot or report that cannot be one (a
+/// Mode S plot without a flight level, a report without a ground vector or height) is skipped and
+/// counted in `skipped`. nullopt for a sensor no item carries.
 std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,
                                   std::span<const asterix::RadarPlot> plots, std::size_t& skipped);
 std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::AdsbReport> reports,
