@@ -22,6 +22,7 @@
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
 #include "skyfuse/transport/picture_bundles.hpp"
+#include "skyfuse/transport/picture_callsigns.hpp"
 #include "skyfuse/transport/picture_cat062.hpp"
 #include "skyfuse/transport/picture_scans.hpp"
 #include "skyfuse/transport/picture_track_writer.hpp"
@@ -100,14 +101,19 @@ class PictureCenter {
       scans_[i].noise = picture_->noise(i);
       scans_[i].detections.clear();
       scans_[i].addresses.clear();
+      scans_[i].identifications.clear();
       if (const auto* scan = scans_in_.scan_of(ids_[i])) {
         scans_[i].detections = scan->detections;
         scans_[i].addresses = scan->addresses;
+        scans_[i].identifications = scan->identifications;
       }
     }
-    const wire::PictureRound round =
+    wire::PictureRound round =
         picture_->update(k, scans_, numbers_, options_.run_id,
                          static_cast<std::uint32_t>(ids_.size() - scans_in_.missing().size()));
+    // The callsigns of the round's scans, by ascending station id as the peers learn them.
+    transport::learn_round(callsigns_, scans_in_);
+    transport::identify_round(callsigns_, round);
     rounds_.write(round);
     if (asterix_out_) {
       asterix_out_->send(k, round);
@@ -143,6 +149,8 @@ class PictureCenter {
   std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   // The picture's short track numbers, given each round as every node gives them.
   asterix::TrackNumbers numbers_;
+  // The callsigns of the aircraft's addresses, learnt as the peers learn them.
+  transport::CallsignBook callsigns_;
   std::vector<Scan> scans_;
 };
 

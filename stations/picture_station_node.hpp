@@ -24,6 +24,7 @@
 #include "skyfuse/transport/node_loop.hpp"
 #include "skyfuse/transport/node_presence.hpp"
 #include "skyfuse/transport/node_setup.hpp"
+#include "skyfuse/transport/picture_callsigns.hpp"
 #include "skyfuse/transport/picture_cat062.hpp"
 #include "skyfuse/transport/picture_exchange.hpp"
 #include "skyfuse/transport/picture_numbers.hpp"
@@ -172,12 +173,15 @@ class PictureStation {
     const std::size_t fused =
         picture_->fuse(k, exchange_, predicted, waits_for_picture,
                        [&](int station_id, DropKind why) { loop_.count_drop(why, station_id, k); });
+    // The callsigns the round's scans give, as every peer that fused them learns them.
+    if (!waits_for_picture) transport::learn_round(callsigns_, exchange_);
     // Numbered before the picture goes to a peer: the numbers it carries are the round's.
     picture_->number(numbers_, k);
     if (lowest && lowest->first == options_.id && exchange_.any_other_picture(predicted)) {
       wire::PictureState state =
           picture_->state(options_.node.run_id, static_cast<std::uint32_t>(k), options_.id);
       transport::track_numbers_to_wire(numbers_, state);
+      transport::callsigns_to_wire(callsigns_, state);
       states_out_.write(state);
     }
     publish_round(k, static_cast<std::uint32_t>(fused));
@@ -195,7 +199,8 @@ class PictureStation {
     std::uint64_t step = 0;
     int station_id = 0;
     std::uint64_t digest = 0;  // of the picture after the round, as its sender computed it
-    asterix::TrackNumbers::State numbers;  // the tracks' short numbers after the round
+    asterix::TrackNumbers::State numbers;        // the tracks' short numbers after the round
+    transport::CallsignBook::Entries callsigns;  // the callsigns it had learnt
   };
 
   void take_states() {
@@ -203,13 +208,14 @@ class PictureStation {
     while (states_in_.take(sample)) {
       if (sample.run_id() != options_.node.run_id || sample.station_id() == options_.id) continue;
       auto numbers = transport::track_numbers_from_wire(sample);
-      if (!numbers || !picture_->keep_peer_picture(sample)) {
+      auto callsigns = transport::callsigns_from_wire(sample);
+      if (!numbers || !callsigns || !picture_->keep_peer_picture(sample)) {
         spdlog::warn("step {}: a picture from station {} that is wrong; refused", sample.step(),
                      sample.station_id());
         continue;
       }
       latest_ = PeerState{sample.step(), static_cast<int>(sample.station_id()),
-                          sample.picture_digest(), std::move(*numbers)};
+                          sample.picture_digest(), std::move(*numbers), std::move(*callsigns)};
     }
   }
 
@@ -233,6 +239,7 @@ class PictureStation {
     wire::PictureRound round =
         picture_->round(options_.node.run_id, step, options_.id, scans_fused);
     transport::number_round(numbers_, round);
+    transport::identify_round(callsigns_, round);
     rounds_.write(round);
     if (asterix_out_) {
       asterix_out_->send(k, round);
@@ -262,6 +269,7 @@ class PictureStation {
     if (!latest_ || latest_->station_id != station || latest_->step != k) return false;
     if (take_latest(false, latest_->digest) != StationPicture::Taken::kTaken) return false;
     numbers_.restore(latest_->numbers);  // numbered as the sender did after the round
+    callsigns_.restore(latest_->callsigns);
     ++resyncs_;
     spdlog::info("step {}: took station {}'s picture of the round", k, station);
     return true;
@@ -292,7 +300,8 @@ class PictureStation {
       spdlog::warn("step {}: station {}'s picture does not predict to its scan's", k, lowest.first);
     }
     if (taken != StationPicture::Taken::kTaken) return;
-    numbers_.restore(latest_->numbers);  // as after round k - 1: round k numbers on from them
+    numbers_.restore(latest_->numbers);      // as after round k - 1: round k numbers on from them
+    callsigns_.restore(latest_->callsigns);  // and learns this round's on top
     predicted_digest_ = lowest.second;
     ++resyncs_;
     spdlog::info("step {}: took station {}'s picture", k, lowest.first);
@@ -323,6 +332,8 @@ class PictureStation {
   transport::Reader<wire::PictureState> states_in_;
   // The picture's short track numbers, given each round as every peer gives them.
   asterix::TrackNumbers numbers_;
+  // The callsigns of the aircraft's addresses, learnt as every peer learns them.
+  transport::CallsignBook callsigns_;
   // `--asterix-out`: the picture each round as CAT062 over UDP; null without it.
   std::unique_ptr<transport::PictureAsterixOut> asterix_out_;
   // `--asterix-replay` or `--asterix-in`: this station's scans from a recorded or a live feed,

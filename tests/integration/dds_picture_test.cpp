@@ -566,6 +566,8 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsPictureAsTheSameBytes) {
 // elevation no CAT048 item carries. The project's decoder reads every detection the stations
 // simulated back, within each item's resolution; tshark finds no record malformed. (Each
 // item's decoding by tshark against the encoder's value: tests/unit/asterix/wireshark_test.cpp.)
+// The reports carry their aircraft's callsigns (I021/170), and every node's CAT062 names each
+// addressed track by its aircraft's (I062/245), the stations' all the same bytes.
 TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
   constexpr int kStations = 10;
   constexpr int kSteps = 20;
@@ -590,7 +592,23 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
   constexpr double kNauticalMileM = 1852.0;
   std::size_t plots = 0;
   std::size_t reports = 0;
+  std::size_t identified_tracks = 0;
+  std::map<std::int64_t, std::vector<asterix::Bytes>> station_pictures;  // by round
   for (const asterix::UdpDatagram& d : file.datagrams) {
+    if (d.source.port == 8600) {
+      if (node_of(d) != 0) station_pictures[d.time_ns].push_back(d.payload);
+      // Every node's tracks: an addressed one named by the callsign its aircraft reports
+      // (a simulated aircraft's: "SF" and its address's hex digits), learnt from the scans.
+      for (const asterix::SystemTrack& t : asterix::decode_datagram(d.payload).tracks) {
+        if (!t.address) {
+          EXPECT_FALSE(t.callsign.has_value());
+          continue;
+        }
+        EXPECT_EQ(t.callsign, fmt::format("SF{:06X}", *t.address));
+        ++identified_tracks;
+      }
+      continue;
+    }
     if (d.source.port != 8601) continue;
     const int station = d.source.address[3];
     const int k = static_cast<int>(std::llround(static_cast<double>(d.time_ns - kEpochNs) / dt_ns));
@@ -634,6 +652,9 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
                     kNauticalMileM / 16384.0 / 2.0 + 1e-9);
         ASSERT_TRUE(r.vertical_rate_mps.has_value());
         EXPECT_NEAR(*r.vertical_rate_mps, z[j](5), 3.125 * kFootM / 60.0 + 1e-12);
+        const Identification id = identification_at(scan.scan.identifications, j);
+        EXPECT_EQ(r.callsign,
+                  id == kNoIdentification ? std::nullopt : std::optional(callsign_of(id)));
         EXPECT_EQ(r.quality.nacp, 9) << "a σ of 10 m: 24.5 m at 95 %, below NACp 9's 30 m";
         EXPECT_EQ(r.quality.nucr_or_nacv, 2) << "a σ of 1 m/s: 2.4 m/s, below NACv 2's 3 m/s";
         ++reports;
@@ -657,6 +678,13 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
   EXPECT_EQ(reports, simulated_reports);
   EXPECT_GT(plots, 50U);
   EXPECT_GT(reports, 50U);
+  EXPECT_GT(identified_tracks, 100U) << "I062/245 in every node's addressed tracks";
+  // A round without tracks (the first, before any is started) sends no datagram.
+  EXPECT_GE(station_pictures.size(), static_cast<std::size_t>(kSteps - 5));
+  for (const auto& [time_ns, payloads] : station_pictures) {
+    ASSERT_EQ(payloads.size(), static_cast<std::size_t>(kStations)) << time_ns;
+    for (const asterix::Bytes& payload : payloads) EXPECT_EQ(payload, payloads.front()) << time_ns;
+  }
   EXPECT_NE(run.output.find("detections left out"), std::string::npos) << run.output;
 
   if (!std::filesystem::exists("/usr/bin/tshark")) {

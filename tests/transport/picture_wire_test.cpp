@@ -26,6 +26,7 @@
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/tracking/ekf_increment_rule.hpp"
 #include "skyfuse/tracking/imm_modes.hpp"
+#include "skyfuse/transport/picture_callsigns.hpp"
 #include "skyfuse/transport/picture_numbers.hpp"
 #include "skyfuse/wire/skyfuse_picturePubSubTypes.h"
 #include "transport/picture_world.hpp"
@@ -125,6 +126,78 @@ TEST(PictureWire, EachDetectionsAddressAndTheRefusedCountArriveAsSent) {
   const auto [refused, refused_why] = picture_scan_from_wire(short_of_one, Sensor::kKind, kBound);
   EXPECT_FALSE(refused.has_value()) << "addresses neither none nor one per detection";
   EXPECT_EQ(refused_why, DropKind::kOutOfRange);
+}
+
+// Each detection's callsign arrives as sent beside its address; a list that is neither none
+// nor one per detection, or an identification that is no callsign, refuses the sample.
+TEST(PictureWire, EachDetectionsIdentificationArrivesAsSent) {
+  Sent sent = a_round();
+  sent.scan.addresses = {0xABCDEF, kNoAddress, 0x123456, 0xF00011};
+  sent.scan.identifications = {*identification_of("KLM1023"), kNoIdentification, kNoIdentification,
+                               *identification_of("SFF00011")};
+  const wire::PictureScan sample =
+      through_cdr(to_wire<6>(radar(), sent.scan, sent.report, 1, 3, 0));
+  const auto [received, why] = picture_scan_from_wire(sample, Sensor::kKind, kBound);
+  ASSERT_TRUE(received.has_value());
+  EXPECT_EQ(received->identifications, sent.scan.identifications);
+
+  const auto refused = [&](const std::function<void(wire::PictureScan&)>& forge) {
+    wire::PictureScan wrong = sample;
+    forge(wrong);
+    const auto [scan, wrong_why] = picture_scan_from_wire(wrong, Sensor::kKind, kBound);
+    return !scan.has_value() && wrong_why == DropKind::kOutOfRange;
+  };
+  EXPECT_TRUE(refused([](auto& w) { w.identifications().pop_back(); }));
+  EXPECT_TRUE(refused([](auto& w) { w.identifications()[0] = 0x6B6C6D0000000000ULL; }))
+      << "lower case";
+  EXPECT_TRUE(refused([](auto& w) { w.identifications()[0] = 0x4100410000000000ULL; }))
+      << "a character after the padding";
+  EXPECT_TRUE(refused([](auto& w) { w.identifications()[0] = 0x4120000000000000ULL; }))
+      << "ends in a space";
+}
+
+// A node's book of callsigns: the newest a round's scans give for an address replaces the one
+// before; a detection without an address or a callsign teaches nothing; a round's tracks are
+// named by their addresses; the book travels in the whole picture, and a wrong one is refused.
+TEST(PictureWire, ANodesCallsignsNameItsTracksAndTravelWithTheWholePicture) {
+  CallsignBook book;
+  const std::vector<Address> addresses{0x3C6444, kNoAddress, 0x4B1801, 0xF00002};
+  book.learn(addresses,
+             std::vector<Identification>{*identification_of("DLH4AB"), *identification_of("NOADDR"),
+                                         kNoIdentification, *identification_of("SFF00002")});
+  book.learn(addresses, {});  // none has a callsign
+  book.learn(std::vector<Address>{0x3C6444},
+             std::vector<Identification>{*identification_of("DLH5")});
+  EXPECT_EQ(callsign_of(book.of(0x3C6444)), "DLH5");
+  EXPECT_EQ(book.of(0x4B1801), kNoIdentification);
+  EXPECT_EQ(book.of(kNoAddress), kNoIdentification);
+  EXPECT_EQ(book.entries().size(), 2U);
+
+  wire::PictureRound round;
+  round.tracks().resize(3);
+  round.tracks()[0].address(0xF00002);
+  round.tracks()[1].address(0x4B1801);
+  identify_round(book, round);
+  EXPECT_EQ(callsign_of(round.tracks()[0].identification()), "SFF00002");
+  EXPECT_EQ(round.tracks()[1].identification(), kNoIdentification);
+  EXPECT_EQ(round.tracks()[2].identification(), kNoIdentification);
+  EXPECT_EQ(through_cdr(round).tracks()[0].identification(), round.tracks()[0].identification());
+
+  wire::PictureState state;
+  callsigns_to_wire(book, state);
+  const wire::PictureState back = through_cdr(state);
+  const auto entries = callsigns_from_wire(back);
+  ASSERT_TRUE(entries.has_value());
+  EXPECT_EQ(*entries, book.entries());
+  const auto refused = [&](const std::function<void(wire::PictureState&)>& forge) {
+    wire::PictureState wrong = back;
+    forge(wrong);
+    return !callsigns_from_wire(wrong).has_value();
+  };
+  EXPECT_TRUE(refused([](auto& w) { std::swap(w.callsigns()[0], w.callsigns()[1]); }));
+  EXPECT_TRUE(refused([](auto& w) { w.callsigns()[0].address(0); }));
+  EXPECT_TRUE(refused([](auto& w) { w.callsigns()[0].identification(0); }));
+  EXPECT_TRUE(refused([](auto& w) { w.callsigns()[0].identification(0x6100000000000000ULL); }));
 }
 
 TEST(PictureWire, AnEmptyScanArrivesEmpty) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "skyfuse/asterix/data_block.hpp"
+#include "skyfuse/picture/identification.hpp"
 #include "skyfuse/transport/wire_conversion.hpp"
 
 namespace skyfuse::transport {
@@ -47,6 +48,10 @@ asterix::SystemTrack system_track(const wire::PictureTrack& track, std::uint16_t
                                std::sqrt(c(3, 3)), std::sqrt(c(4, 4)), std::sqrt(c(2, 2))};
   }
   if (track.address() != 0) out.address = track.address();
+  // A node sends only callsigns it checked (picture_callsigns.hpp); another is left out.
+  if (track.identification() != kNoIdentification && valid_identification(track.identification())) {
+    out.callsign = callsign_of(track.identification());
+  }
   return out;
 }
 

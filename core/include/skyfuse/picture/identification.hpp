@@ -47,6 +47,15 @@ inline std::string callsign_of(Identification identification) {
   return callsign;
 }
 
+/// Whether `identification` is one identification_of gives, or kNoIdentification: upper-case
+/// letters, digits and spaces, then zero octets only, not ending in a space.
+inline bool valid_identification(Identification identification) {
+  if (identification == kNoIdentification) return true;
+  const std::string callsign = callsign_of(identification);
+  const auto packed = identification_of(callsign);
+  return packed && *packed == identification && callsign.back() != ' ';
+}
+
 /// The identification of entry j of `identifications` (per detection), where an empty list
 /// means that none has one.
 inline Identification identification_at(std::span<const Identification> identifications,

@@ -29,7 +29,8 @@ asterix::DataSource system_source(const Scenario& scenario);
 /// position in
 /// the scenario's east-north-up plane (I062/100) and as WGS-84 through `anchor` (I062/105,
 /// I062/130's height), the velocity, the accuracies from the covariance's position and
-/// velocity blocks, the address where the track holds one.
+/// velocity blocks, the address where the track holds one, and the callsign the node learnt for
+/// that address (I062/245; picture_callsigns.hpp).
 asterix::SystemTrack system_track(const wire::PictureTrack& track, std::uint16_t number,
                                   asterix::DataSource source, double time_of_day_s,
                                   const GeoAnchor& anchor);

@@ -65,6 +65,7 @@ wire::PictureScan to_wire(const PictureSensor<N>& sensor, const Scan& scan,
   sample.picture_digest(picture_digest);
   sample.addresses(scan.addresses);
   sample.refused_addresses(static_cast<std::uint32_t>(report.refused_addresses));
+  sample.identifications(scan.identifications);
   return sample;
 }
 
@@ -79,12 +80,15 @@ struct ReceivedScan {
   std::uint32_t dropped = 0;
   std::vector<Address> addresses;  ///< per detection, in scan order; empty: none has one
   std::uint32_t refused_addresses = 0;
+  /// per detection, in scan order; empty: none has one
+  std::vector<Identification> identifications;
   /// The same scan, bit for bit.
   bool operator==(const ReceivedScan& other) const {
     return station_id == other.station_id && step == other.step &&
            picture_digest == other.picture_digest && dropped == other.dropped &&
            addresses == other.addresses && refused_addresses == other.refused_addresses &&
-           associations == other.associations && unassociated == other.unassociated &&
+           identifications == other.identifications && associations == other.associations &&
+           unassociated == other.unassociated &&
            std::equal(detections.begin(), detections.end(), other.detections.begin(),
                       other.detections.end(), same_detection);
   }
@@ -142,7 +146,8 @@ std::optional<DropKind> detections_from_wire(const wire::PictureScan& sample,
 /// takes, picture/picture_sensor.hpp) with at most `max_detections` detections, or why it is
 /// refused:
 ///  - kOutOfRange: another sensor kind or measurement dimension, values not a whole number of
-///    detections, more detections than the bound, addresses neither none nor one per detection, an
+///    detections, more detections than the bound, addresses (or identifications) neither none
+///    nor one per detection, an identification that is no callsign (valid_identification), an
 ///    index beyond the scan, associations not in strictly ascending (track id, detection) (a pair
 ///    twice), a weight not in (0, 1], a detection whose weights sum past 1, unassociated indices
 ///    not strictly ascending, a detection both associated and unassociated, or a detection its
@@ -173,6 +178,13 @@ inline std::pair<std::optional<ReceivedScan>, std::optional<DropKind>> picture_s
   }
   received.addresses = sample.addresses();
   received.refused_addresses = sample.refused_addresses();
+  if (!sample.identifications().empty() && sample.identifications().size() != count) {
+    return refuse(DropKind::kOutOfRange);
+  }
+  for (const Identification id : sample.identifications()) {
+    if (!valid_identification(id)) return refuse(DropKind::kOutOfRange);
+  }
+  received.identifications = sample.identifications();
   // Each detection's weights over the tracks it went to sum to at most 1 (a probability; 1 for
   // GNN's one track), and an unassociated detection went to none.
   constexpr double kRoundingOfASum = 1e-9;
