@@ -1,4 +1,5 @@
 // CAT048 ed. 1.31: the items encode_cat048_record writes, read back from a walked record.
+#include "identification.hpp"
 #include "item_fields.hpp"
 #include "skyfuse/asterix/byte_reader.hpp"
 #include "skyfuse/asterix/cat048.hpp"
@@ -41,6 +42,12 @@ Cat048Decoded decode_cat048_record(const WalkedRecord& record) {
       case 220:
         p.address = in.get(3);
         break;
+      case 240: {
+        auto callsign = fields::get_identification(in);
+        if (!callsign) return {std::nullopt, Refusal::value_out_of_range};
+        if (!callsign->empty()) p.callsign = std::move(*callsign);  // eight spaces: none
+        break;
+      }
       case 161:
         p.track_number = static_cast<std::uint16_t>(in.get(2) & 0x0FFFu);
         break;

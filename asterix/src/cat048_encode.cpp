@@ -1,6 +1,7 @@
 // CAT048 ed. 1.31 items, written in UAP order (cat048.hpp lists them with their resolutions).
 #include <string>
 
+#include "identification.hpp"
 #include "item_fields.hpp"
 #include "record_builder.hpp"
 #include "skyfuse/asterix/cat048.hpp"
@@ -44,6 +45,8 @@ Encoded encode_cat048_record(const RadarPlot& p) {
   }
 
   if (p.address) fields::put_address(record.item(220), "I048/220", *p.address);
+
+  if (p.callsign) fields::put_identification(record.item(240), "I048/240", *p.callsign);
 
   // I048/161: 4 spare bits, then the track number in 12 bits.
   if (p.track_number) {

@@ -566,8 +566,9 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsPictureAsTheSameBytes) {
 // elevation no CAT048 item carries. The project's decoder reads every detection the stations
 // simulated back, within each item's resolution; tshark finds no record malformed. (Each
 // item's decoding by tshark against the encoder's value: tests/unit/asterix/wireshark_test.cpp.)
-// The reports carry their aircraft's callsigns (I021/170), and every node's CAT062 names each
-// addressed track by its aircraft's (I062/245), the stations' all the same bytes.
+// The plots and reports carry their aircraft's callsigns (I048/240, I021/170), and every node's
+// CAT062 names each addressed track by its aircraft's (I062/245), the stations' all the same
+// bytes.
 TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
   constexpr int kStations = 10;
   constexpr int kSteps = 20;
@@ -631,6 +632,9 @@ TEST(DdsPicture, TheAsterixRecordHoldsEveryStationsScanAsPlotsAndReports) {
         EXPECT_NEAR(*p.flight_level * 100.0 * kFootM, z[j](2), 12.5 * kFootM + 1e-9);
         ASSERT_TRUE(p.address.has_value());
         EXPECT_EQ(*p.address, scan.scan.addresses.at(j));
+        const Identification id = identification_at(scan.scan.identifications, j);
+        EXPECT_EQ(p.callsign,
+                  id == kNoIdentification ? std::nullopt : std::optional(callsign_of(id)));
         ++plots;
       }
     } else if (scan.sensor_kind == "position_velocity") {

@@ -47,15 +47,10 @@ TEST(ScanAsterix, EveryDetectionSurvivesWithinItsItemsResolutionAndQuantisesToTh
       const auto& q = once->detections;
       ASSERT_EQ(q.size(), z.size());
       EXPECT_EQ(once->addresses, scan.scan.addresses);
-      // A report carries its callsign (I021/170); a plot does not (CAT048's I048/240 is not
-      // written).
-      if (scan.sensor_kind == "position_velocity") {
-        EXPECT_EQ(once->identifications, scan.scan.identifications);
-        for (const Identification id : once->identifications) {
-          identified += id != kNoIdentification ? 1U : 0U;
-        }
-      } else {
-        EXPECT_TRUE(once->identifications.empty());
+      // A report carries its callsign (I021/170), a Mode S plot its (I048/240).
+      EXPECT_EQ(once->identifications, scan.scan.identifications);
+      for (const Identification id : once->identifications) {
+        identified += id != kNoIdentification ? 1U : 0U;
       }
       EXPECT_EQ(once->station_id, station.id);
       for (std::size_t j = 0; j < z.size(); ++j) {

@@ -62,6 +62,10 @@ ScanRecords radar_plots(const SimulatedScan& scan, asterix::DataSource source, d
       plot.flight_level = z(2) / kFootM / 100.0;
       const Address address = address_of(scan.scan.addresses, j);
       if (address != kNoAddress) plot.address = address;
+      if (const Identification id = identification_at(scan.scan.identifications, j);
+          id != kNoIdentification) {
+        plot.callsign = callsign_of(id);
+      }
     }
     add(out, asterix::encode_cat048_record(plot));
   }
@@ -150,6 +154,9 @@ std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,
     if (mode_s) {
       z(2) = *plot.flight_level * 100.0 * kFootM;
       scan.addresses.push_back(plot.address.value_or(kNoAddress));
+      scan.identifications.push_back(
+          plot.callsign ? identification_of(*plot.callsign).value_or(kNoIdentification)
+                        : kNoIdentification);
     }
     scan.detections.push_back(z);
   }

@@ -81,6 +81,24 @@ TEST(AsterixCat048, AWholeRecord) {
   EXPECT_EQ(encode_cat048_record(sample_plot()).bytes[0], 0xF0);
 }
 
+// I048/240: eight 6-bit characters, padded with spaces (K L M 1 0 2 3 space = 11 12 13 49 48
+// 50 51 32), FRN 9, between the address (8) and the track number (11).
+TEST(AsterixCat048, AircraftIdentificationInSixBitCharacters) {
+  auto p = sample_plot();
+  EXPECT_TRUE(item(p, 240).empty());
+  p.address = 0x3C6586;
+  p.callsign = "KLM1023";
+  EXPECT_EQ(item(p, 240), (Bytes{0x2C, 0xC3, 0x71, 0xC3, 0x2C, 0xE0}));
+  p.track_number = 3000;
+  const auto record = encode_cat048_record(p);
+  ASSERT_TRUE(record);
+  EXPECT_EQ(Bytes(record.bytes.begin(), record.bytes.begin() + 2), (Bytes{0xF1, 0xD0}));
+  p.callsign = "KLM 1023X";  // nine characters
+  EXPECT_FALSE(encode_cat048_record(p));
+  p.callsign = "klm1023";
+  EXPECT_FALSE(encode_cat048_record(p));
+}
+
 void expect_round_trip(const RadarPlot& in) {
   const RadarPlot plots[] = {in};
   const auto block = encode_cat048(plots);
@@ -103,6 +121,7 @@ void expect_round_trip(const RadarPlot& in) {
     EXPECT_NEAR(*out.flight_level, *in.flight_level, 0.125 + 1e-9);
   }
   EXPECT_EQ(out.address, in.address);
+  EXPECT_EQ(out.callsign, in.callsign);
   EXPECT_EQ(out.track_number, in.track_number);
 }
 
@@ -121,6 +140,7 @@ TEST(AsterixCat048, RoundTripsWithinEachItemsResolution) {
     if ((rng() & 1) != 0) p.mode3a = static_cast<std::uint16_t>(rng() & 07777);
     if ((rng() & 1) != 0) p.flight_level = (u(rng) - 0.5) * 4000.0;
     if ((rng() & 1) != 0) p.address = static_cast<std::uint32_t>(rng() & 0xFFFFFF);
+    if ((rng() & 1) != 0) p.callsign = testing::random_callsign(rng);
     if ((rng() & 1) != 0) p.track_number = static_cast<std::uint16_t>(rng() & 0xFFF);
     expect_round_trip(p);
   }

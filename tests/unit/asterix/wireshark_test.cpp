@@ -106,6 +106,7 @@ std::vector<RadarPlot> plots() {
   mode_s.mode3a = 01234;
   mode_s.flight_level = 350.25;
   mode_s.address = 0x3C6586;
+  mode_s.callsign = "BAW123";
   mode_s.track_number = 3000;
 
   RadarPlot primary;
@@ -297,6 +298,10 @@ void check_plot(const json& r, const RadarPlot& p) {
     // Wireshark 4.0 reads the 14-bit two's complement field unsigned (see the top of the file).
     const double expected = *p.flight_level < 0 ? *p.flight_level + 4096 : *p.flight_level;
     EXPECT_NEAR(shown, expected, 0.125 + kPrinted);
+  }
+  ASSERT_EQ(r.contains("asterix.048_240"), p.callsign.has_value());
+  if (p.callsign) {
+    EXPECT_EQ(padded(*p.callsign), text(r, "asterix.048_240", "asterix.048_240_VALUE"));
   }
   ASSERT_EQ(r.contains("asterix.048_220"), p.address.has_value());
   if (p.address) {

@@ -11,6 +11,8 @@
 //   I048/070 Mode 3/A code      optional; 12-bit octal code, V/G/L = 0
 //   I048/090 flight level       optional; 14 bits two's complement, LSB 1/4 FL, V/G = 0
 //   I048/220 aircraft address   optional; 24 bits
+//   I048/240 aircraft identification  optional; 8 characters of ICAO's 6-bit set (A-Z, 0-9,
+//                               space), the callsign a Mode S transponder downlinks
 //   I048/161 track number       optional; 12 bits
 //
 // The decoder reads these items and skips every other item of the edition's UAP.
@@ -18,6 +20,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 
 #include "skyfuse/asterix/bytes.hpp"
 #include "skyfuse/asterix/data_source.hpp"
@@ -50,6 +53,7 @@ struct RadarPlot {
   std::optional<std::uint16_t> mode3a;        ///< I048/070, the code's octal digits (07777 max)
   std::optional<double> flight_level;         ///< I048/090, [-2048, 2047.75] FL (hundreds of ft)
   std::optional<std::uint32_t> address;       ///< I048/220, 24 bits
+  std::optional<std::string> callsign;        ///< I048/240, without its trailing spaces
   std::optional<std::uint16_t> track_number;  ///< I048/161, 12 bits
 };
 

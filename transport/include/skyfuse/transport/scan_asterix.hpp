@@ -34,7 +34,8 @@ struct ScanRecords {
 /// - `range_azimuth` (a 2-D primary radar): CAT048, a PSR plot, I048/040's range and azimuth
 ///   (clockwise from north);
 /// - `range_azimuth_altitude` (a Mode S radar): CAT048, a roll-call plot, with the reported
-///   altitude as I048/090's flight level and the address as I048/220;
+///   altitude as I048/090's flight level, the address as I048/220 and the callsign as
+///   I048/240 (where the detection has one);
 /// - `position_velocity` (ADS-B, Remote ID): CAT021, the position through the scenario's
 ///   `anchor` as WGS-84 (I021/131) and geometric height (I021/140), the horizontal velocity
 ///   (I021/160) and the vertical rate (I021/157), the address (I021/080; anonymous where none),
@@ -55,12 +56,12 @@ bool carried_by_asterix(std::string_view sensor_kind);
 
 /// The inverse: decoded plots (CAT048) or reports (CAT021) as the detections of a scan of a
 /// station of `sensor_kind`, in the scenario's frame and units — range (m) and azimuth
-/// (counter-clockwise from east, rad) of a radar, the flight level as the altitude (m) and the
-/// address of a Mode S radar; a report's position in east-north-up through `anchor`, its
-/// velocity from the ground vector and the vertical rate (0 where a report has none), its
-/// address and its callsign (I021/170, where it has one). A plot or report that cannot be one (a
-/// Mode S plot without a flight level, a report without a ground vector or height) is skipped and
-/// counted in `skipped`. nullopt for a sensor no item carries.
+/// (counter-clockwise from east, rad) of a radar, the flight level as the altitude (m), the
+/// address and the callsign of a Mode S radar; a report's position in east-north-up through
+/// `anchor`, its velocity from the ground vector and the vertical rate (0 where a report has none),
+/// its address and its callsign (I021/170, where it has one). A plot or report that cannot be one
+/// (a Mode S plot without a flight level, a report without a ground vector or height) is skipped
+/// and counted in `skipped`. nullopt for a sensor no item carries.
 std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,
                                   std::span<const asterix::RadarPlot> plots, std::size_t& skipped);
 std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::AdsbReport> reports,
