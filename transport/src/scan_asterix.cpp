@@ -27,7 +27,7 @@ double azimuth_rad(double bearing_deg) {
 
 // A scan of which no detection has an address (an identification) holds none
 // (picture/scan.hpp).
-void drop_addresses_if_none(Scan& scan) {
+void drop_identities_if_none(Scan& scan) {
   if (std::ranges::all_of(scan.addresses, [](Address a) { return a == kNoAddress; })) {
     scan.addresses.clear();
   }
@@ -160,7 +160,7 @@ std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,
     }
     scan.detections.push_back(z);
   }
-  drop_addresses_if_none(scan);
+  drop_identities_if_none(scan);
   return scan;
 }
 
@@ -186,7 +186,7 @@ std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::Ads
         report.callsign ? identification_of(*report.callsign).value_or(kNoIdentification)
                         : kNoIdentification);
   }
-  drop_addresses_if_none(scan);
+  drop_identities_if_none(scan);
   return scan;
 }
 

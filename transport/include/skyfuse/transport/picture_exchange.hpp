@@ -42,7 +42,6 @@ class PictureExchange : public PictureRoundScans {
   PictureExchange(DdsNode& node, const RoundStations& stations, std::uint64_t run_id,
                   std::size_t max_detections)
       : PictureRoundScans(stations, run_id, max_detections),
-        stations_(static_cast<int>(stations.ids.size())),
         out_(node.make_writer<wire::PictureScan>()) {}
   /// The exchange of a station of `plan` (any id: every station does the same).
   static PictureExchange of_station(DdsNode& node, const RoundStations& stations,
@@ -56,11 +55,11 @@ class PictureExchange : public PictureRoundScans {
   /// Every station's writer and reader matched, this one's own included (`in`: the node's
   /// reader of the topic).
   bool matched(const Reader<wire::PictureScan>& in) const {
-    return in.matched() >= stations_ && out_.matched() >= stations_;
+    return in.matched() >= stations() && out_.matched() >= stations();
   }
   std::string describe_matched(const Reader<wire::PictureScan>& in) const {
-    return fmt::format("picture scan writers {}/{}, readers {}/{}", in.matched(), stations_,
-                       out_.matched(), stations_);
+    return fmt::format("picture scan writers {}/{}, readers {}/{}", in.matched(), stations(),
+                       out_.matched(), stations());
   }
   /// This station's writer, whose samples its own reader hears too: the loop skips them, since
   /// publish() keeps them as they go out (a simulated link must not lose them).
@@ -84,7 +83,8 @@ class PictureExchange : public PictureRoundScans {
   std::optional<std::chrono::system_clock::time_point> wake_at() const { return std::nullopt; }
 
  private:
-  int stations_;
+  int stations() const { return static_cast<int>(station_count()); }
+
   Writer<wire::PictureScan> out_;
 };
 

@@ -40,11 +40,10 @@ class PictureRoundScans {
   /// The scans of `stations` (every participant of the run) in run `run_id`; a sample of more
   /// than `max_detections` is refused.
   PictureRoundScans(const RoundStations& stations, std::uint64_t run_id, std::size_t max_detections)
-      : station_count_(stations.ids.size()),
-        scans_(stations.ids, stations.kinds, run_id, max_detections) {}
+      : scans_(stations.ids, stations.kinds, run_id, max_detections) {}
 
   /// The run's stations.
-  std::size_t station_count() const { return station_count_; }
+  std::size_t station_count() const { return scans_.station_ids().size(); }
   /// Every station's sample of the current step is in.
   bool complete() const { return scans_.complete(); }
   /// The stations whose sample of the current step is still missing.
@@ -88,7 +87,6 @@ class PictureRoundScans {
   PictureScans& scans() { return scans_; }
 
  private:
-  std::size_t station_count_;
   PictureScans scans_;
   std::uint64_t empty_digest_ = empty_picture_digest();
 };
