@@ -153,8 +153,8 @@ class DetectionEncoding {
     const auto& scan = checked.first;
     const auto& station = *std::find_if(round.stations.begin(), round.stations.end(),
                                         [&](const auto& s) { return s.id == scan->station_id; });
-    report = *round.picture.report_of(station, scan->detections, scan->addresses,
-                                      scan->associations, scan->unassociated, scan->dropped);
+    report = *round.picture.report_of(station, transport::published(*scan), scan->associations,
+                                      scan->unassociated, scan->dropped);
   }
 };
 

@@ -102,10 +102,12 @@ class PictureCenter {
       scans_[i].detections.clear();
       scans_[i].addresses.clear();
       scans_[i].identifications.clear();
+      scans_[i].reported_std.clear();
       if (const auto* scan = scans_in_.scan_of(ids_[i])) {
         scans_[i].detections = scan->detections;
         scans_[i].addresses = scan->addresses;
         scans_[i].identifications = scan->identifications;
+        scans_[i].reported_std = scan->reported_std;
       }
     }
     wire::PictureRound round =

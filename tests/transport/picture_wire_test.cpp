@@ -305,44 +305,46 @@ TEST(PictureWire, EachStationsSampleIsCheckedAgainstItsOwnSensor) {
   EXPECT_EQ(picture_scan_from_wire(relabelled, kinds, kBound).second, DropKind::kOutOfRange);
 }
 
-// Five aircraft crossing in front of three radars, P_D 0.9 and two false alarms a scan: every
-// peer that rebuilds every station's report from the station's sample holds, round after round,
-// the picture of a peer that fused the stations' own reports, bit for bit.
-TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBitForBit) {
+// A peer that rebuilds every station's report from the station's sample (`scan_of` station
+// index s's scan of round k), beside a peer that fuses the stations' own reports, round after
+// round: each round both hold the same picture, bit for bit. Returns the last round's digest.
+std::uint64_t expect_rebuilt_reports_hold_the_stations_picture(
+    const test::PictureWorld& world, int rounds,
+    const std::function<Scan(std::size_t, int)>& scan_of) {
   using Peer = test::PictureWorld::Peer;
-  constexpr int kRounds = 20;
-  const test::PictureWorld world(kRounds);
   const auto& stations = world.stations;
   const StationSensorKinds kinds{std::span<const test::PictureWorld::Station>(stations)};
   Peer own = world.empty_picture();      // fuses the stations' own reports
   Peer rebuilt = world.empty_picture();  // fuses the reports rebuilt from the wire
   AssociationWork work;
   std::size_t updates = 0;
-  for (int k = 0; k < kRounds; ++k) {
+  for (int k = 0; k < rounds; ++k) {
     own.predict();
     rebuilt.predict();
     std::vector<Peer::Report> sent;
     std::vector<Peer::Report> received;
     for (std::size_t s = 0; s < stations.size(); ++s) {
       const auto& station = stations[s];
-      const Scan scan = world.scan(s, k);
+      const Scan scan = scan_of(s, k);
       sent.push_back(own.report(station, scan, work));
       updates += sent.back().updates.size();
       const auto [scan_back, why] = picture_scan_from_wire(
           through_cdr(to_wire<6>(station.sensor, scan, sent.back(), 1,
                                  static_cast<std::uint32_t>(k), own.digest())),
           kinds, kBound);
-      ASSERT_TRUE(scan_back.has_value()) << "round " << k;
+      EXPECT_TRUE(scan_back.has_value()) << "round " << k;
+      if (!scan_back) return 0;
       EXPECT_EQ(scan_back->picture_digest, rebuilt.digest()) << "the same predicted picture";
-      auto report =
-          rebuilt.report_of(station, scan_back->detections, scan_back->addresses,
-                            scan_back->associations, scan_back->unassociated, scan_back->dropped);
-      ASSERT_TRUE(report.has_value()) << "round " << k;
+      auto report = rebuilt.report_of(station, published(*scan_back), scan_back->associations,
+                                      scan_back->unassociated, scan_back->dropped);
+      EXPECT_TRUE(report.has_value()) << "round " << k;
+      if (!report) return 0;
       received.push_back(std::move(*report));
     }
     own.fuse(static_cast<std::uint64_t>(k), sent);
     rebuilt.fuse(static_cast<std::uint64_t>(k), received);
-    ASSERT_EQ(own.tracks().size(), rebuilt.tracks().size()) << "round " << k;
+    EXPECT_EQ(own.tracks().size(), rebuilt.tracks().size()) << "round " << k;
+    if (own.tracks().size() != rebuilt.tracks().size()) return 0;
     EXPECT_EQ(own.digest(), rebuilt.digest()) << "round " << k;
     for (std::size_t t = 0; t < own.tracks().size(); ++t) {
       EXPECT_EQ(own.tracks()[t].id, rebuilt.tracks()[t].id);
@@ -354,6 +356,69 @@ TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBit
   }
   EXPECT_GE(own.tracks().size(), 5U) << "every aircraft tracked";
   EXPECT_GT(updates, 100U) << "the rounds associated detections to tracks";
+  return own.digest();
+}
+
+// Five aircraft crossing in front of three radars, P_D 0.9 and two false alarms a scan: every
+// peer that rebuilds every station's report from the station's sample holds, round after round,
+// the picture of a peer that fused the stations' own reports, bit for bit.
+TEST(PictureWire, PeersRebuildingEveryReportFromTheWireHoldTheStationsPictureBitForBit) {
+  constexpr int kRounds = 20;
+  const test::PictureWorld world(kRounds);
+  expect_rebuilt_reports_hold_the_stations_picture(
+      world, kRounds, [&](std::size_t s, int k) { return world.scan(s, k); });
+}
+
+// The same, each detection's report stating its own σ of some values (Scan::reported_std, as an
+// ADS-B report's NACp does): the stated σ travel with the sample, every peer rebuilds each
+// report with them and holds the stations' picture bit for bit — and that picture is not the
+// one of the station's own noise, so the stated σ were used.
+TEST(PictureWire, StatedSigmasTravelWithTheScanAndEveryPeerUsesThem) {
+  constexpr int kRounds = 20;
+  const test::PictureWorld world(kRounds);
+  const auto stated = [&](std::size_t s, int k) {
+    Scan scan = world.scan(s, k);
+    for (std::size_t j = 0; j < scan.detections.size(); ++j) {
+      Detection std_of = Detection::Zero(scan.detections[j].size());
+      // Range stated 1.5 to 3 times the station's σ; the angles left to the station's noise.
+      std_of(0) = (1.5 + 0.5 * static_cast<double>(j % 4)) * std::sqrt(scan.noise(0, 0));
+      scan.reported_std.push_back(std_of);
+    }
+    const wire::PictureScan sample = to_wire<6>(world.stations[s].sensor, scan, Report{}, 1, 0, 0);
+    EXPECT_EQ(sample.reported_std().size(), scan.detections.size() * 3U);
+    return scan;
+  };
+  const std::uint64_t plain = expect_rebuilt_reports_hold_the_stations_picture(
+      world, kRounds, [&](std::size_t s, int k) { return world.scan(s, k); });
+  const std::uint64_t with_stated =
+      expect_rebuilt_reports_hold_the_stations_picture(world, kRounds, stated);
+  EXPECT_NE(plain, with_stated) << "the stated σ changed the updates";
+}
+
+// Stated σ neither none nor one set per detection, negative or not finite: the sample is refused.
+TEST(PictureWire, WrongStatedSigmasAreRefused) {
+  const test::PictureWorld world(2);
+  const StationSensorKinds kinds{std::span<const test::PictureWorld::Station>(world.stations)};
+  Scan scan = world.scan(0, 0);
+  ASSERT_GE(scan.detections.size(), 2U);
+  for (const Detection& z : scan.detections)
+    scan.reported_std.push_back(Detection::Constant(z.size(), 2.0));
+  const wire::PictureScan good =
+      through_cdr(to_wire<6>(world.stations[0].sensor, scan, Report{}, 1, 0, 0));
+  const auto [received, why] = picture_scan_from_wire(good, kinds, kBound);
+  ASSERT_TRUE(received.has_value());
+  ASSERT_EQ(received->reported_std.size(), scan.detections.size());
+  EXPECT_TRUE(same_detection(received->reported_std[1], scan.reported_std[1]));
+
+  wire::PictureScan short_by_one = good;
+  short_by_one.reported_std().pop_back();
+  EXPECT_EQ(picture_scan_from_wire(short_by_one, kinds, kBound).second, DropKind::kOutOfRange);
+  wire::PictureScan negative = good;
+  negative.reported_std()[4] = -1.0;
+  EXPECT_EQ(picture_scan_from_wire(negative, kinds, kBound).second, DropKind::kOutOfRange);
+  wire::PictureScan not_finite = good;
+  not_finite.reported_std()[2] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(picture_scan_from_wire(not_finite, kinds, kBound).second, DropKind::kNonFinite);
 }
 
 // A station's whole picture, sent to a peer that has parted from it: taken back through the
@@ -631,8 +696,8 @@ TEST(PictureWire, AReportNamingATrackThePictureLacksIsNotRebuilt) {
   const std::vector<Detection> detections = {Detection(Vector3(1005.0, 0.0, 0.1))};
   const std::vector<ReportedPair> known_track = {{7, 0, 1.0}};
   const std::vector<ReportedPair> unknown_track = {{8, 0, 1.0}};
-  EXPECT_TRUE(picture.report_of(station, detections, {}, known_track, {}, 0).has_value());
-  EXPECT_FALSE(picture.report_of(station, detections, {}, unknown_track, {}, 0).has_value());
+  EXPECT_TRUE(picture.report_of(station, {detections}, known_track, {}, 0).has_value());
+  EXPECT_FALSE(picture.report_of(station, {detections}, unknown_track, {}, 0).has_value());
 }
 
 }  // namespace

@@ -124,6 +124,66 @@ TEST(ScanAsterix, SkipsAPlotOrReportThatCannotBeADetectionAndCountsIt) {
 // A feed file read back: the scans of a station's records, as a pcap of datagrams and as raw
 // data blocks one after another, are the same — and are the quantised scans the records were
 // made of, round by round.
+// A report's quality indicators (I021/090) state its σ: NACp 9 bounds the 95 % horizontal
+// position error by 30 m and NACv 2 the horizontal velocity's by 3 m/s, so σ per axis is each
+// bound over √χ²₂(0.95); the height and vertical rate keep the station's noise (0), and so does
+// a report whose categories are unknown (0). A scan of reports stating nothing states nothing.
+TEST(ScanAsterix, AReportsQualityIndicatorsStateItsSigma) {
+  const GeoAnchor anchor{48.3538, 11.7861, 448.0};
+  asterix::AdsbReport stating;
+  stating.latitude_deg = anchor.latitude_deg;
+  stating.longitude_deg = anchor.longitude_deg;
+  stating.geometric_height_m = 500.0;
+  stating.ground_vector = asterix::GroundVector{50.0, 45.0};
+  stating.quality.nacp = 9;
+  stating.quality.nucr_or_nacv = 2;
+  asterix::AdsbReport silent = stating;
+  silent.quality.nacp = 0;
+  silent.quality.nucr_or_nacv = 0;
+  std::size_t skipped = 0;
+  const std::vector<asterix::AdsbReport> both{stating, silent};
+  const auto scan = scan_of_reports(9, both, anchor, skipped);
+  ASSERT_TRUE(scan.has_value());
+  ASSERT_EQ(scan->reported_std.size(), 2U);
+  const Detection& stated = scan->reported_std[0];
+  ASSERT_EQ(stated.size(), 6);
+  EXPECT_DOUBLE_EQ(stated(0), 30.0 / 2.447746830680816);
+  EXPECT_DOUBLE_EQ(stated(1), 30.0 / 2.447746830680816);
+  EXPECT_EQ(stated(2), 0.0);
+  EXPECT_DOUBLE_EQ(stated(3), 3.0 / 2.447746830680816);
+  EXPECT_DOUBLE_EQ(stated(4), 3.0 / 2.447746830680816);
+  EXPECT_EQ(stated(5), 0.0);
+  EXPECT_TRUE(scan->reported_std[1].isZero());
+
+  // As a station's R: the stated axes' variances are the stated σ², the others the station's.
+  Covariance<6> station = Covariance<6>::Identity() * 100.0;
+  station(0, 1) = station(1, 0) = 20.0;
+  const Covariance<6> r = reported_noise<6>(station, stated);
+  EXPECT_NEAR(r(0, 0), stated(0) * stated(0), 1e-12);
+  EXPECT_NEAR(r(3, 3), stated(3) * stated(3), 1e-12);
+  EXPECT_EQ(r(2, 2), 100.0);
+  EXPECT_NEAR(r(0, 1) / std::sqrt(r(0, 0) * r(1, 1)), 0.2, 1e-15) << "the correlation kept";
+  EXPECT_TRUE(reported_noise<6>(station, scan->reported_std[1]) == station);
+
+  const std::vector<asterix::AdsbReport> none{silent};
+  const auto quiet = scan_of_reports(9, none, anchor, skipped);
+  ASSERT_TRUE(quiet.has_value());
+  EXPECT_TRUE(quiet->reported_std.empty());
+
+  // uam-mixed's Remote ID receivers (σ 10 m, 1 m/s) broadcast NACp 9 and NACv 2: a station fed
+  // their reports takes those bounds' σ.
+  const Scenario scenario = uam_mixed();
+  const auto truth = build_traffic_truth(scenario).targets;
+  const auto scans = simulated_scans_at(scenario, truth, 10, 0, 20);
+  const SimulatedScan& remote_id = scans[8];
+  ASSERT_EQ(remote_id.sensor_kind, "position_velocity");
+  ASSERT_FALSE(remote_id.scan.detections.empty());
+  const auto fed = quantised_as_asterix(remote_id, scenario.stations[8], scenario);
+  ASSERT_TRUE(fed.has_value());
+  ASSERT_EQ(fed->reported_std.size(), fed->detections.size());
+  for (const Detection& s : fed->reported_std) EXPECT_TRUE(s == stated);
+}
+
 TEST(ReplayedScans, APcapAndARawFileOfTheSameRecordsGiveTheQuantisedScans) {
   const Scenario scenario = uam_mixed();
   const auto truth = build_traffic_truth(scenario).targets;

@@ -37,6 +37,22 @@ void drop_identities_if_none(Scan& scan) {
   }
 }
 
+// The σ a report's quality indicators (I021/090) state of each value of a `position_velocity`
+// detection (east, north, up, and their rates), 0 where they state none: NACp bounds the 95 %
+// horizontal position error and NACv the horizontal velocity's, and σ per axis is the bound over
+// √χ²₂(0.95) (asterix/quality.hpp) — the bound itself, so a σ no smaller than the aircraft's.
+// Nothing bounds the height or the vertical rate here: those keep the station's noise.
+Detection stated_std(const asterix::AdsbQuality& quality) {
+  Detection std_of = Detection::Zero(6);
+  if (const auto epu = asterix::epu_of_nacp(quality.nacp)) {
+    std_of(0) = std_of(1) = *epu / asterix::kHorizontal95;
+  }
+  if (const auto error = asterix::error_of_nacv(quality.nucr_or_nacv)) {
+    std_of(3) = std_of(4) = *error / asterix::kHorizontal95;
+  }
+  return std_of;
+}
+
 void add(ScanRecords& out, asterix::Encoded encoded) {
   if (encoded) {
     out.records.push_back(std::move(encoded.bytes));
@@ -185,8 +201,12 @@ std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::Ads
     scan.identifications.push_back(
         report.callsign ? identification_of(*report.callsign).value_or(kNoIdentification)
                         : kNoIdentification);
+    scan.reported_std.push_back(stated_std(report.quality));
   }
   drop_identities_if_none(scan);
+  if (std::ranges::all_of(scan.reported_std, [](const Detection& s) { return s.isZero(); })) {
+    scan.reported_std.clear();
+  }
   return scan;
 }
 

@@ -35,13 +35,14 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
       associations_.push_back({station.id, pair.detection, this->tracks()[t].id});
       const Detection& raw = scans[s].detections[pair.detection];
       // As every peer learns it (peer_picture_impl.hpp): ascending station, then pair.
-      if (pair.weight == 1.0 && this->registers()) learned.push_back({s, t, &raw});
+      const Detection& reported = reported_std_at(scans[s].reported_std, pair.detection);
+      if (pair.weight == 1.0 && this->registers()) learned.push_back({s, t, &raw, &reported});
       std::visit(
           [&]<typename Sensor>(const Sensor& sensor) {
             constexpr int M = Sensor::kMeasDim;
             // As a peer's update corrects it (PeerPicture::add_update_of).
             Vector<M> z = fixed_detection<M>(raw);
-            Covariance<M> noise = fixed_noise<M>(station.noise);
+            Covariance<M> noise = reported_noise<M>(fixed_noise<M>(station.noise), reported);
             if (registration.corrects(s)) {
               const auto correction =
                   registration.of(s).correction(sensor, this->estimates()[t].mean);
@@ -56,7 +57,8 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
       weights_[t].push_back(station.weight);
     }
     for (const std::uint32_t j : association.unassociated) {
-      unassociated_[s].push_back({j, scans[s].detections[j], address_of(scans[s].addresses, j)});
+      unassociated_[s].push_back({j, scans[s].detections[j], address_of(scans[s].addresses, j),
+                                  reported_std_at(scans[s].reported_std, j)});
     }
   }
   this->learn_biases(learned);

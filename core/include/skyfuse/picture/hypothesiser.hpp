@@ -75,6 +75,7 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
                  const IdentityMask& mask, HypothesiserWork& work, Hypotheses& out) {
   constexpr int M = Sensor::kMeasDim;
   const Covariance<M> noise = fixed_noise<M>(scan.noise);
+  const bool reports_own_noise = !scan.reported_std.empty();
   const std::size_t taken = std::min(scan.detections.size(), max_detections);
   out.tracks = priors.size();
   out.detections = taken;
@@ -88,7 +89,7 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
   for (std::uint32_t j = 0; j < taken; ++j) {
     if (mask.skips_detection(j)) continue;
     const Vector<M> z = fixed_detection<M>(scan.detections[j]);
-    const auto fix = fix_position(scan.station_id, j, sensor, z, noise);
+    const auto fix = fix_position(scan.station_id, j, sensor, z, detection_noise<M>(scan, j));
     // A detection whose fix is degenerate is compared with every track.
     const Vector3 position = fix ? fix->position : sensor.position_of(z);
     const double std_m = fix ? std::sqrt(fix->covariance.trace()) : kDegenerateFixStdM;
@@ -110,7 +111,8 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
     const double radius = reach * (track_std + widest);
     const Matrix<M, N> h = sensor.jacobian(prior.mean);
     const Vector<M> predicted = sensor.predict(prior.mean);
-    Covariance<M> s = h * prior.covariance * h.transpose() + noise;
+    const Covariance<M> projected = h * prior.covariance * h.transpose();
+    Covariance<M> s = projected + noise;
     symmetrize(s);
     SmallCholesky<M> s_factor;
     if (!s_factor.compute(s)) continue;  // a track with no usable S takes nothing this round
@@ -123,6 +125,21 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
       if (track_holds_address && mask.is_addressed(c->index)) continue;
       const Vector<M> nu =
           sensor.residual(fixed_detection<M>(scan.detections[c->index]), predicted);
+      if (reports_own_noise) {
+        // A detection whose report states its own σ has an S of its own.
+        Covariance<M> own = projected + detection_noise<M>(scan, c->index);
+        symmetrize(own);
+        SmallCholesky<M> own_factor;
+        if (!own_factor.compute(own)) continue;
+        const double nis = nu.dot(own_factor.solve(nu));
+        if (nis <= gate) {
+          const double own_normaliser =
+              with_densities ? -0.5 * (log_2pi_m + own_factor.log_determinant()) : 0.0;
+          out.pairs.push_back(
+              {static_cast<int>(t), static_cast<int>(c->index), nis, own_normaliser - 0.5 * nis});
+        }
+        continue;
+      }
       const double nis = nu.dot(s_factor.solve(nu));
       if (nis <= gate) {
         if (with_densities && !normalised) {

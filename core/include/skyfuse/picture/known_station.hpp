@@ -24,11 +24,13 @@ struct KnownStation {
 };
 
 /// One station's detection a round paired with a track of weight 1, as a registration learns
-/// from it: the station's and the track's indices in the table, and the detection as measured.
+/// from it: the station's and the track's indices in the table, the detection as measured, and
+/// the σ its report states (Scan::reported_std; null or empty: the station's noise).
 struct PairedDetection {
   std::size_t station = 0;
   std::size_t track = 0;
   const Detection* z = nullptr;
+  const Detection* reported_std = nullptr;
 };
 
 }  // namespace skyfuse

@@ -54,12 +54,21 @@ struct StationReport {
   int station_id = 0;
   std::vector<Update> updates;      ///< ascending track id
   std::vector<ReportedPair> pairs;  ///< ascending track id, then detection
-  /// Each pair's detection as the station measured it, for its registration (empty where
-  /// nothing registers).
+  /// Each pair's detection as the station measured it, and the σ its report states (empty:
+  /// the station's noise), for its registration (both empty where nothing registers).
   std::vector<Detection> paired_detections;
+  std::vector<Detection> paired_reported_std;
   std::vector<UnassociatedDetection> unassociated;  ///< ascending detection index
   std::size_t dropped = 0;            ///< detections beyond the assignment's bound, left out
   std::size_t refused_addresses = 0;  ///< addressed detections refused as possible spoofs
+};
+
+/// What a station published of its scan's detections, in scan order: their values, and each
+/// one's address and the σ its report states (Scan; each empty where no detection has one).
+struct PublishedDetections {
+  std::span<const Detection> values;
+  std::span<const Address> addresses{};
+  std::span<const Detection> reported_std{};
 };
 
 template <typename Tracks>
@@ -77,14 +86,13 @@ class PeerPicture : public TrackTable<Tracks> {
   Report report(const Station& station, const Scan& scan, AssociationWork& work) const;
 
   /// Station `station`'s report rebuilt from what it published (transport/picture_wire.hpp):
-  /// its detections and their addresses (empty: none has one), its pairs (ascending track id, then
+  /// its detections (with their addresses and stated σ), its pairs (ascending track id, then
   /// detection) and its unassociated detections' indices, each track's contribution computed here
   /// against this (predicted) picture's track — the station's own arithmetic on the same inputs, so
   /// its bits when this picture is the station's. Nothing when a pair names a track this picture
   /// does not hold: this picture is not the station's. Every index is within `detections` (the
   /// receiver checked it: picture_scan_from_wire).
-  std::optional<Report> report_of(const Station& station, std::span<const Detection> detections,
-                                  std::span<const Address> addresses,
+  std::optional<Report> report_of(const Station& station, const PublishedDetections& detections,
                                   std::span<const ReportedPair> pairs,
                                   std::span<const std::uint32_t> unassociated,
                                   std::size_t dropped) const;
@@ -100,14 +108,13 @@ class PeerPicture : public TrackTable<Tracks> {
   // `Pair`: a WeightedPair (the station's own association) or a ReportedPair (a published one).
   template <typename Pair>
   void add_update(Report& report, const Station& station, const typename Table::TrackType& track,
-                  std::span<const Pair> pairs, std::span<const Detection> detections,
-                  std::span<const Address> addresses) const;
+                  std::span<const Pair> pairs, const PublishedDetections& detections) const;
   // add_update with the station's sensor, `Sensor`, and its noise as they are.
   template <typename Pair, typename Sensor>
   void add_update_of(Report& report, int station_id, const Sensor& sensor,
                      const Covariance<Sensor::kMeasDim>& noise,
                      const typename Table::TrackType& track, std::span<const Pair> pairs,
-                     std::span<const Detection> detections) const;
+                     const PublishedDetections& detections) const;
   double weight_of(int station_id) const;
 
   std::vector<char> hit_;

@@ -32,19 +32,19 @@ auto PeerPicture<Tracks>::report(const Station& station, const Scan& scan,
     std::size_t end = first;
     while (end < pairs.size() && pairs[end].track == pairs[first].track) ++end;
     add_update(report, station, tracks[static_cast<std::size_t>(pairs[first].track)],
-               pairs.subspan(first, end - first), std::span<const Detection>(scan.detections),
-               std::span<const Address>(scan.addresses));
+               pairs.subspan(first, end - first),
+               PublishedDetections{scan.detections, scan.addresses, scan.reported_std});
     first = end;
   }
   for (const std::uint32_t j : association.unassociated) {
-    report.unassociated.push_back({j, scan.detections[j], address_of(scan.addresses, j)});
+    report.unassociated.push_back({j, scan.detections[j], address_of(scan.addresses, j),
+                                   reported_std_at(scan.reported_std, j)});
   }
   return report;
 }
 
 template <typename Tracks>
-auto PeerPicture<Tracks>::report_of(const Station& station, std::span<const Detection> detections,
-                                    std::span<const Address> addresses,
+auto PeerPicture<Tracks>::report_of(const Station& station, const PublishedDetections& detections,
                                     std::span<const ReportedPair> pairs,
                                     std::span<const std::uint32_t> unassociated,
                                     std::size_t dropped) const -> std::optional<Report> {
@@ -59,12 +59,12 @@ auto PeerPicture<Tracks>::report_of(const Station& station, std::span<const Dete
     next = std::lower_bound(next, tracks.end(), pair->track,
                             [](const auto& track, TrackId wanted) { return track.id < wanted; });
     if (next == tracks.end() || next->id != pair->track) return std::nullopt;
-    add_update(report, station, *next, std::span<const ReportedPair>(pair, end), detections,
-               addresses);
+    add_update(report, station, *next, std::span<const ReportedPair>(pair, end), detections);
     pair = end;
   }
   for (const std::uint32_t j : unassociated) {
-    report.unassociated.push_back({j, detections[j], address_of(addresses, j)});
+    report.unassociated.push_back({j, detections.values[j], address_of(detections.addresses, j),
+                                   reported_std_at(detections.reported_std, j)});
   }
   return report;
 }
@@ -94,7 +94,7 @@ RoundOutcome PeerPicture<Tracks>::fuse(std::uint64_t step, std::span<const Repor
         // A report names only this picture's tracks (report_of gives none otherwise).
         if (next == this->tracks().end() || next->id != report.pairs[p].track) break;
         learned.push_back({station, static_cast<std::size_t>(next - this->tracks().begin()),
-                           &report.paired_detections[p]});
+                           &report.paired_detections[p], &report.paired_reported_std[p]});
       }
     }
     this->learn_biases(learned);
@@ -142,8 +142,7 @@ template <typename Pair>
 void PeerPicture<Tracks>::add_update(Report& report, const Station& station,
                                      const typename Table::TrackType& track,
                                      std::span<const Pair> pairs,
-                                     std::span<const Detection> detections,
-                                     std::span<const Address> addresses) const {
+                                     const PublishedDetections& detections) const {
   const std::size_t updates = report.updates.size();
   std::visit(
       [&]<typename Sensor>(const Sensor& sensor) {
@@ -151,9 +150,11 @@ void PeerPicture<Tracks>::add_update(Report& report, const Station& station,
                       track, pairs, detections);
       },
       station.sensor);
-  if (addresses.empty() || report.updates.size() == updates) return;
+  if (detections.addresses.empty() || report.updates.size() == updates) return;
   for (const Pair& pair : pairs) {
-    if (pair.weight > 0.5) report.updates.back().address = address_of(addresses, pair.detection);
+    if (pair.weight > 0.5) {
+      report.updates.back().address = address_of(detections.addresses, pair.detection);
+    }
   }
 }
 
@@ -163,7 +164,7 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
                                         const Covariance<Sensor::kMeasDim>& noise,
                                         const typename Table::TrackType& track,
                                         std::span<const Pair> pairs,
-                                        std::span<const Detection> detections) const {
+                                        const PublishedDetections& detections) const {
   constexpr int M = Sensor::kMeasDim;
   typename Report::Update update;
   update.track = track.id;
@@ -175,13 +176,18 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
   if (this->registration().corrects(s)) {
     correction = this->registration().of(s).correction(sensor, this->estimates()[index].mean);
   }
-  const Covariance<M> r = correction ? Covariance<M>(noise + correction->noise) : noise;
   const auto paired = [&](const Pair& pair) {
-    if (this->registers()) report.paired_detections.push_back(detections[pair.detection]);
+    if (!this->registers()) return;
+    report.paired_detections.push_back(detections.values[pair.detection]);
+    report.paired_reported_std.push_back(reported_std_at(detections.reported_std, pair.detection));
   };
   const auto contribute = [&](const Pair& pair, Contribution& out) {
-    const Detection& raw = detections[pair.detection];
+    const Detection& raw = detections.values[pair.detection];
     const Vector<M> z = fixed_detection<M>(raw);
+    // The detection's own R where its report states its σ (Scan::reported_std).
+    const Covariance<M> own =
+        reported_noise<M>(noise, reported_std_at(detections.reported_std, pair.detection));
+    const Covariance<M> r = correction ? Covariance<M>(own + correction->noise) : own;
     const StationObservation<Sensor> observation{station_id, sensor,
                                                  correction ? correction->applied(z) : z, r};
     return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;

@@ -10,6 +10,9 @@
 /// fixed_noise): the same bits as a scan typed by its sensor.
 
 #include <Eigen/Core>
+#include <cmath>
+#include <cstddef>
+#include <span>
 #include <vector>
 
 #include "skyfuse/core/types.hpp"
@@ -49,7 +52,40 @@ struct Scan {
   /// Each detection's identification (picture/identification.hpp), in detection order; empty
   /// when none has one. The tracker does not read it.
   std::vector<Identification> identifications{};
+  /// Each detection's own σ of each of its values where its report states one (an ADS-B
+  /// report's NACp and NACv, I021/090), 0 for a value it says nothing of, in detection order;
+  /// empty when no detection's report states any. Its R is then detection_noise's.
+  std::vector<Detection> reported_std{};
 };
+
+/// Detection j's reported σ (Scan::reported_std), or an empty one where the scan has none.
+inline const Detection& reported_std_at(std::span<const Detection> reported, std::size_t j) {
+  static const Detection kNone;
+  return reported.empty() ? kNone : reported[j];
+}
+
+/// The R of a detection of a station of noise `noise` whose report states its own σ of some
+/// values (`reported`, 0 for a value it says nothing of; empty: none): each such value's row
+/// and column rescaled so that its variance is the reported σ², its correlations with the
+/// others kept, so that R stays positive definite. `noise` itself where nothing is reported.
+template <int M>
+Covariance<M> reported_noise(const Covariance<M>& noise, const Detection& reported) {
+  if (reported.size() == 0) return noise;
+  Covariance<M> r = noise;
+  for (int i = 0; i < M; ++i) {
+    if (reported(i) <= 0.0) continue;
+    const double scale = reported(i) / std::sqrt(noise(i, i));
+    r.row(i) *= scale;
+    r.col(i) *= scale;
+  }
+  return r;
+}
+
+/// Detection j of `scan`'s R: its station's, as its report states it (reported_noise).
+template <int M>
+Covariance<M> detection_noise(const Scan& scan, std::size_t j) {
+  return reported_noise<M>(fixed_noise<M>(scan.noise), reported_std_at(scan.reported_std, j));
+}
 
 /// Whether two detections hold the same values, bit for bit (any sizes).
 inline bool same_detection(const Detection& a, const Detection& b) {

@@ -52,11 +52,13 @@ struct RoundOutcome {
   std::size_t started = 0;
 };
 
-/// One station's unassociated detection, as it publishes it: index in its scan, value, address.
+/// One station's unassociated detection, as it publishes it: index in its scan, value, address,
+/// and the σ its report states (Scan::reported_std; empty: none).
 struct UnassociatedDetection {
   std::uint32_t detection = 0;
   Detection z;
   Address address = kNoAddress;
+  Detection reported_std{};
 };
 
 template <typename Tracks>

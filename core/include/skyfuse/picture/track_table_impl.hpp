@@ -121,12 +121,13 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
           constexpr int M = Sensor::kMeasDim;
           // A registered station's fix carries what its offsets' estimate does not know yet.
           const bool registered = registration_.corrects(s);
-          const Covariance<M> noise =
-              fixed_noise<M>(registered ? registration_.fix_noise(s, station) : station.noise);
+          const Covariance<M> station_noise = fixed_noise<M>(station.noise);
           for (const UnassociatedDetection& d : unassociated_of(s)) {
             // A track that took this address this round has the aircraft already.
             if (d.address != kNoAddress && book_.track_of(d.address)) continue;
             const Detection z = registered ? registration_.offsets_removed(s, station, d.z) : d.z;
+            Covariance<M> noise = reported_noise<M>(station_noise, d.reported_std);
+            if (registered) noise += fixed_noise<M>(registration_.offsets_noise(s, station));
             if (auto fix =
                     fix_position(station.id, d.detection, sensor, fixed_detection<M>(z), noise)) {
               fix->address = d.address;

@@ -69,10 +69,11 @@ class PictureRoundReports {
         reassigned_.noise = known.noise;
         reassigned_.detections = scan->detections;
         reassigned_.addresses = scan->addresses;
+        reassigned_.reported_std = scan->reported_std;
         out.push_back(picture.report(known, reassigned_, work_));
         continue;
       }
-      auto report = picture.report_of(known, scan->detections, scan->addresses, scan->associations,
+      auto report = picture.report_of(known, published(*scan), scan->associations,
                                       scan->unassociated, scan->dropped);
       if (report) {
         out.push_back(std::move(*report));

@@ -66,6 +66,10 @@ wire::PictureScan to_wire(const PictureSensor<N>& sensor, const Scan& scan,
   sample.addresses(scan.addresses);
   sample.refused_addresses(static_cast<std::uint32_t>(report.refused_addresses));
   sample.identifications(scan.identifications);
+  std::vector<double>& reported = sample.reported_std();
+  reported.reserve(scan.reported_std.size() * static_cast<std::size_t>(m));
+  for (const Detection& s : scan.reported_std)
+    reported.insert(reported.end(), s.data(), s.data() + m);
   return sample;
 }
 
@@ -82,6 +86,8 @@ struct ReceivedScan {
   std::uint32_t refused_addresses = 0;
   /// per detection, in scan order; empty: none has one
   std::vector<Identification> identifications;
+  /// each detection's stated σ per value (Scan::reported_std), in scan order; empty: none
+  std::vector<Detection> reported_std;
   /// The same scan, bit for bit.
   bool operator==(const ReceivedScan& other) const {
     return station_id == other.station_id && step == other.step &&
@@ -90,9 +96,17 @@ struct ReceivedScan {
            identifications == other.identifications && associations == other.associations &&
            unassociated == other.unassociated &&
            std::equal(detections.begin(), detections.end(), other.detections.begin(),
-                      other.detections.end(), same_detection);
+                      other.detections.end(), same_detection) &&
+           std::equal(reported_std.begin(), reported_std.end(), other.reported_std.begin(),
+                      other.reported_std.end(), same_detection);
   }
 };
+
+/// What `scan` published of its detections, as a peer rebuilds its report from them
+/// (PeerPicture::report_of).
+inline PublishedDetections published(const ReceivedScan& scan) {
+  return {scan.detections, scan.addresses, scan.reported_std};
+}
 
 /// The sensor kind of each station of a run, by id, as a receiver checks its samples against.
 class StationSensorKinds {
@@ -140,6 +154,27 @@ std::optional<DropKind> detections_from_wire(const wire::PictureScan& sample,
   }
   return std::nullopt;
 }
+// Each detection's stated σ (Scan::reported_std) of `sample`, whose `count` detections hold
+// measurement_dim values each, into `out`, or why not: neither none nor one per detection, or a
+// σ that is negative (kOutOfRange) or not finite (kNonFinite).
+inline std::optional<DropKind> reported_std_from_wire(const wire::PictureScan& sample,
+                                                      std::size_t count,
+                                                      std::vector<Detection>& out) {
+  const std::vector<double>& values = sample.reported_std();
+  if (values.empty()) return std::nullopt;
+  const std::size_t m = sample.measurement_dim();
+  if (values.size() != count * m) return DropKind::kOutOfRange;
+  for (const double s : values) {
+    if (!std::isfinite(s)) return DropKind::kNonFinite;
+    if (s < 0.0) return DropKind::kOutOfRange;
+  }
+  out.reserve(count);
+  for (std::size_t j = 0; j < count; ++j) {
+    out.emplace_back(
+        Eigen::Map<const Detection>(values.data() + j * m, static_cast<Eigen::Index>(m)));
+  }
+  return std::nullopt;
+}
 }  // namespace detail
 
 /// The scan a sample carries for a station whose sensor is of kind `sensor_kind` (one a picture
@@ -147,12 +182,13 @@ std::optional<DropKind> detections_from_wire(const wire::PictureScan& sample,
 /// refused:
 ///  - kOutOfRange: another sensor kind or measurement dimension, values not a whole number of
 ///    detections, more detections than the bound, addresses (or identifications) neither none
-///    nor one per detection, an identification that is no callsign (valid_identification), an
+///    nor one per detection, stated σ neither none nor one set per detection or negative, an
+///    identification that is no callsign (valid_identification), an
 ///    index beyond the scan, associations not in strictly ascending (track id, detection) (a pair
 ///    twice), a weight not in (0, 1], a detection whose weights sum past 1, unassociated indices
 ///    not strictly ascending, a detection both associated and unassociated, or a detection its
 ///    sensor cannot report;
-///  - kNonFinite: a value or a weight that is not finite.
+///  - kNonFinite: a value, a stated σ or a weight that is not finite.
 /// Whether each track id is one of the receiver's picture is the receiver's to check.
 inline std::pair<std::optional<ReceivedScan>, std::optional<DropKind>> picture_scan_from_wire(
     const wire::PictureScan& sample, std::string_view sensor_kind, std::size_t max_detections) {
@@ -185,6 +221,9 @@ inline std::pair<std::optional<ReceivedScan>, std::optional<DropKind>> picture_s
     if (!valid_identification(id)) return refuse(DropKind::kOutOfRange);
   }
   received.identifications = sample.identifications();
+  if (const auto wrong = detail::reported_std_from_wire(sample, count, received.reported_std)) {
+    return refuse(*wrong);
+  }
   // Each detection's weights over the tracks it went to sum to at most 1 (a probability; 1 for
   // GNN's one track), and an unassociated detection went to none.
   constexpr double kRoundingOfASum = 1e-9;

@@ -59,7 +59,9 @@ bool carried_by_asterix(std::string_view sensor_kind);
 /// (counter-clockwise from east, rad) of a radar, the flight level as the altitude (m), the
 /// address and the callsign of a Mode S radar; a report's position in east-north-up through
 /// `anchor`, its velocity from the ground vector and the vertical rate (0 where a report has none),
-/// its address and its callsign (I021/170, where it has one). A plot or report that cannot be one
+/// its address, its callsign (I021/170, where it has one) and the σ its quality indicators state
+/// (I021/090: NACp of the horizontal position, NACv of the horizontal velocity, each bound over
+/// √χ²₂(0.95); Scan::reported_std). A plot or report that cannot be one
 /// (a Mode S plot without a flight level, a report without a ground vector or height) is skipped
 /// and counted in `skipped`. nullopt for a sensor no item carries.
 std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,

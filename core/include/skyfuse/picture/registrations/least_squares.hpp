@@ -65,6 +65,8 @@ class LeastSquaresRegistration {
                    std::span<const GaussianState<N>> estimates, Scan& scan,
                    std::vector<GaussianState<N>>& priors) const {
     const StationBias<N>& bias = biases_[s];
+    // Only a reference's reports state their own σ (Scan::reported_std), and a reference is
+    // not corrected: the offsets' noise is added to the station's R alone.
     scan = raw;
     for (Detection& z : scan.detections) z = bias.offsets_removed(station.sensor, z);
     scan.noise += bias.offsets_noise(station.sensor);
@@ -77,12 +79,12 @@ class LeastSquaresRegistration {
   }
 
   /// Station index `s`'s detection `z` as an initiation fix takes it (no track, so no clock's
-  /// correction), and the noise of that fix: R plus what the offsets' estimate does not know.
+  /// correction), and what the fix's noise adds to R: what the offsets' estimate does not know.
   Detection offsets_removed(std::size_t s, const Station& station, const Detection& z) const {
     return biases_[s].offsets_removed(station.sensor, z);
   }
-  DetectionNoise fix_noise(std::size_t s, const Station& station) const {
-    return station.noise + biases_[s].offsets_noise(station.sensor);
+  DetectionNoise offsets_noise(std::size_t s, const Station& station) const {
+    return biases_[s].offsets_noise(station.sensor);
   }
 
   /// Teaches the estimates one round's pairs of weight 1 (ascending station, then pair, every
@@ -113,10 +115,10 @@ class LeastSquaresRegistration {
       }
       const PairedDetection* reference = reference_of_[pair.track];
       if (reference == nullptr) continue;
-      biases_[pair.station].learn(
-          station.sensor,
-          reported_state(stations[reference->station], *reference->z, estimates[pair.track]),
-          *pair.z, station.noise);
+      biases_[pair.station].learn(station.sensor,
+                                  reported_state(stations[reference->station], *reference->z,
+                                                 reference->reported_std, estimates[pair.track]),
+                                  *pair.z, station.noise);
     }
   }
 
@@ -161,11 +163,11 @@ class LeastSquaresRegistration {
         sensor);
   }
 
-  // The aircraft where its own report `z` (of reference station `source`) puts it: the report's
-  // position and velocity with its noise, the track's prior for whatever else the state holds
-  // (no sensor with a bias reads it).
+  // The aircraft where its own report `z` (of reference station `source`, stating its own σ
+  // `stated` where not null) puts it: the report's position and velocity with its noise, the
+  // track's prior for whatever else the state holds (no sensor with a bias reads it).
   static GaussianState<N> reported_state(const Station& source, const Detection& z,
-                                         const GaussianState<N>& prior) {
+                                         const Detection* stated, const GaussianState<N>& prior) {
     GaussianState<N> reported = prior;
     std::visit(
         [&]<typename S>(const S&) {
@@ -175,7 +177,9 @@ class LeastSquaresRegistration {
             reported.mean.template head<M>() = fixed_detection<M>(z);
             reported.covariance.template topRows<M>().setZero();
             reported.covariance.template leftCols<M>().setZero();
-            reported.covariance.template topLeftCorner<M, M>() = fixed_noise<M>(source.noise);
+            reported.covariance.template topLeftCorner<M, M>() =
+                stated == nullptr ? fixed_noise<M>(source.noise)
+                                  : reported_noise<M>(fixed_noise<M>(source.noise), *stated);
           }
         },
         source.sensor);
