@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <filesystem>
-#include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 #include "report/picture_report.hpp"
 #include "report/registration_report.hpp"
@@ -13,10 +13,10 @@
 #include "skyfuse/options/node_options.hpp"
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
-#include "skyfuse/scenario/associator_choice.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/monte_carlo.hpp"
 #include "skyfuse/sim/picture_run.hpp"
+#include "skyfuse/sim/sweep_plan.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
 
 namespace skyfuse::harness {
@@ -53,28 +53,14 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
 
 namespace {
 
-// Keeps the stations of `scenario` whose ids `ids` lists, in the scenario's order.
-void keep_only_stations(Scenario& scenario, const std::vector<int>& ids) {
-  for (const int id : ids) {
-    if (std::none_of(scenario.stations.begin(), scenario.stations.end(),
-                     [&](const StationConfig& s) { return s.id == id; })) {
-      throw std::invalid_argument(
-          fmt::format("--only-stations: scenario '{}' has no station {}", scenario.name, id));
-    }
-  }
-  std::erase_if(scenario.stations, [&](const StationConfig& s) {
-    return std::find(ids.begin(), ids.end(), s.id) == ids.end();
-  });
-  validate_scenario(scenario, "--only-stations");
-}
-
-// A scenario with many aircraft: its picture, run in-process --runs times with the first
-// --max-stations stations (all by default), on --threads workers.
-int run_picture_sweep(const SweepOptions& options, const Scenario& scenario, int stations,
+// Many aircraft: their picture, run in-process --runs times, on --threads workers.
+int run_picture_sweep(const PictureSweep& sweep, const SweepOptions& options,
                       const std::filesystem::path& out_dir) {
-  const TrafficTruth truth = build_traffic_truth(scenario, options.traffic_file);
+  const Scenario& scenario = sweep.scenario;
+  const TrafficTruth truth = build_traffic_truth(scenario, sweep.traffic_file);
   PictureReport report{scenario, truth, {}};
-  report.runs = run_picture_runs(scenario, truth.targets, options.runs, stations, options.threads);
+  report.runs =
+      run_picture_runs(scenario, truth.targets, options.runs, sweep.stations, options.threads);
   print_picture_table(report, stdout);
   print_registration_table(report, stdout);
   write_picture_csv(report, out_dir / "picture.csv");
@@ -88,38 +74,12 @@ int run_picture_sweep(const SweepOptions& options, const Scenario& scenario, int
   return picture_guarantees_held(report) ? 0 : 1;
 }
 
-}  // namespace
-
-int run_sweep(const SweepOptions& options) {
-  Scenario scenario = load_scenario_or_default(options.scenario_path);
-  if (options.seed) scenario.seed = *options.seed;
-  if (options.associator) set_associator(scenario, *options.associator, "--associator");
-  apply_exchange_overrides(scenario, options.exchange, options.fanout);
-  if (options.steps) {
-    scenario.steps = *options.steps;
-    validate_scenario(scenario, "--steps");
-  }
-  if (!options.only_stations.empty()) keep_only_stations(scenario, options.only_stations);
-  const int available = static_cast<int>(scenario.stations.size());
-  const int max_stations = options.max_stations == 0 ? available : options.max_stations;
-  if (max_stations > available) {
-    throw std::invalid_argument(
-        fmt::format("--max-stations: {} exceeds the {} stations of scenario '{}'", max_stations,
-                    available, scenario.name));
-  }
-  const std::filesystem::path out_dir(options.out_dir);
-  std::filesystem::create_directories(out_dir);
-  if (scenario.has_many_targets())
-    return run_picture_sweep(options, scenario, max_stations, out_dir);
-  if (!options.traffic_file.empty()) {
-    throw std::invalid_argument(fmt::format(
-        "--traffic-file: scenario '{}' has one target; the option is for one with 'traffic'",
-        scenario.name));
-  }
+// One aircraft: central and peer-to-peer for every speed and M = 1..max, --runs times each.
+int run_one_aircraft_sweep(const OneAircraftSweep& sweep, const SweepOptions& options,
+                           const std::filesystem::path& out_dir) {
   const std::vector<MonteCarloSummary> rows =
-      run_sweep_rows(scenario, options.runs, max_stations, options.threads);
-
-  const SweepReport report{scenario, rows};
+      run_sweep_rows(sweep.scenario, options.runs, sweep.max_stations, options.threads);
+  const SweepReport report{sweep.scenario, rows};
   print_sweep_table(report, stdout);
   write_sweep_csv(report, out_dir / "sweep.csv");
   write_sweep_json(report, out_dir / "sweep.json");
@@ -133,6 +93,34 @@ int run_sweep(const SweepOptions& options) {
     }
   }
   return 0;
+}
+
+}  // namespace
+
+int run_sweep(const SweepOptions& options) {
+  SweepOverrides overrides;
+  overrides.seed = options.seed;
+  overrides.steps = options.steps;
+  overrides.exchange = options.exchange;
+  overrides.fanout = options.fanout;
+  overrides.associator = options.associator;
+  overrides.only_stations = options.only_stations;
+  if (options.max_stations != 0) overrides.max_stations = options.max_stations;
+  overrides.traffic_file = options.traffic_file;
+  // The sweep's kind is its plan's (sim/sweep_plan.hpp).
+  const SweepPlan plan =
+      make_sweep_plan(load_scenario_or_default(options.scenario_path), overrides);
+  const std::filesystem::path out_dir(options.out_dir);
+  std::filesystem::create_directories(out_dir);
+  return std::visit(
+      [&](const auto& sweep) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(sweep)>, PictureSweep>) {
+          return run_picture_sweep(sweep, options, out_dir);
+        } else {
+          return run_one_aircraft_sweep(sweep, options, out_dir);
+        }
+      },
+      plan);
 }
 
 }  // namespace skyfuse::harness
