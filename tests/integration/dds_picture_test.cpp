@@ -1132,6 +1132,15 @@ tracker:
   initiation: {min_stations: 2, velocity_std_mps: 60.0}
 )";
 
+// The same traffic, every aircraft with an address (and so a callsign: "SF" and its address).
+const std::string kCallsignScenarioText = [] {
+  std::string text = kNumberingScenario;
+  const std::string traffic = "traffic:\n";
+  text.replace(text.find(traffic), traffic.size(), traffic + "  equipped_share: 1.0\n");
+  return text;
+}();
+const char* const kCallsignScenario = kCallsignScenarioText.c_str();
+
 // A station killed before round 40 and started again before round 50: the others keep one
 // picture meanwhile; the restarted station starts with an empty picture, its first scan shows
 // it, the lowest station with tracks sends its picture and the restarted one takes it in the
@@ -1148,7 +1157,33 @@ struct RestartVariant {
   // A scenario's text (uam-city where none) whose numbering has a history by the kill: the
   // restarted station's numbers are then its peers' only if it took theirs.
   const char* scenario = nullptr;
+  // Its stations and filter (kFourRadarsAndAnEkf where none).
+  const char* stations = nullptr;
 };
+
+// Three of kFourRadarsAndAnEkf's radars and a Remote ID receiver that hears each aircraft in
+// one round of two: a restarted station that did not take the callsigns its peers learnt with
+// their picture would name fewer tracks than they do until it had heard every aircraft again.
+constexpr const char* kThreeRadarsAndAReceiver = R"(metrics:
+  gospa_cutoff_m: 50.0
+stations:
+  - id: 1
+    position_m: [-4500.0, -4500.0, 60.0]
+    sensor: &radar {kind: range_azimuth_elevation, noise_std: [5.0, 0.0026, 0.0026]}
+  - {id: 2, position_m: [4500.0, -4500.0, 80.0], sensor: *radar}
+  - {id: 3, position_m: [4500.0, 4500.0, 70.0], sensor: *radar}
+  - id: 4
+    sensor: {kind: position_velocity, noise_std: [10.0, 10.0, 10.0, 1.0, 1.0, 1.0]}
+    detection: {probability: 0.5, clutter_per_scan: 0.0, reports_address: true}
+measurement_noise:
+  scale: none
+filter:
+  kind: ekf
+  motion_model:
+    kind: constant_velocity_3d
+    process_noise_std: {position_m: 0.5, velocity_mps: 2.0}
+  initial_covariance_diag: 100.0
+)";
 class DdsPictureRestart : public ::testing::TestWithParam<RestartVariant> {};
 
 TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds) {
@@ -1160,7 +1195,9 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
   std::string scenario = GetParam().registered ? registered_scenario(dir).string() : kCity;
   if (GetParam().scenario != nullptr) {
     scenario = (dir / "numbering.yaml").string();
-    std::ofstream(scenario) << GetParam().scenario << kFourRadarsAndAnEkf;
+    std::ofstream(scenario) << GetParam().scenario
+                            << (GetParam().stations != nullptr ? GetParam().stations
+                                                               : kFourRadarsAndAnEkf);
   }
   std::vector<std::string> args = {
       bin("skyfuse"), "run", "--scenario", scenario, "--stations", "4", "--steps",
@@ -1207,17 +1244,20 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
   // picture.
   const int agreed = agreed_for_good_from(rounds);
   const double dt = load_scenario_file(scenario).time_step_s;
-  // A datagram's round and its tracks' numbers.
+  // A datagram's round and its tracks' numbers, each with its callsign ("" for none).
+  using Named = std::pair<std::uint16_t, std::string>;
   const auto numbers_of = [&](const asterix::Bytes& datagram) {
     const asterix::Decoded decoded = asterix::decode_datagram(datagram);
-    std::vector<std::uint16_t> numbers;
-    for (const asterix::SystemTrack& t : decoded.tracks) numbers.push_back(t.track_number);
+    std::vector<Named> numbers;
+    for (const asterix::SystemTrack& t : decoded.tracks) {
+      numbers.emplace_back(t.track_number, t.callsign.value_or(""));
+    }
     const int k = decoded.tracks.empty()
                       ? -1
                       : static_cast<int>(std::llround(decoded.tracks[0].time_of_track_s / dt));
     return std::pair{k, numbers};
   };
-  std::map<int, std::vector<std::vector<std::uint16_t>>> numbers_by_round;  // one list a node
+  std::map<int, std::vector<std::vector<Named>>> numbers_by_round;  // one list a node
   for (const asterix::Bytes& datagram : sent) {
     auto [k, numbers] = numbers_of(datagram);
     if (k >= 0) numbers_by_round[k].push_back(std::move(numbers));
@@ -1225,7 +1265,7 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
   // The record's, by round and node (its source address names it).
   const asterix::PcapContents record = asterix::read_pcap(pcap);
   ASSERT_FALSE(record.error.has_value()) << *record.error;
-  std::map<int, std::map<int, std::vector<std::uint16_t>>> recorded;
+  std::map<int, std::map<int, std::vector<Named>>> recorded;
   for (const asterix::UdpDatagram& d : record.datagrams) {
     if (d.source.port != 8600) continue;
     auto [k, numbers] = numbers_of(d.payload);
@@ -1233,6 +1273,7 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
   }
   int rounds_checked = 0;
   int rounds_with_history = 0;  // numbers other than 1, 2, ... in ascending track id
+  std::size_t named = 0;        // tracks named by a callsign, over the rounds checked
   for (int k = std::max(agreed, back); k < kSteps; ++k) {  // from the restart on
     const auto& copies = numbers_by_round[k];
     ASSERT_EQ(copies.size(), 5U) << "four stations and the center, round " << k;
@@ -1243,14 +1284,22 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
     for (const auto& [node, numbers] : recorded[k]) {
       EXPECT_EQ(numbers, copies[0]) << "round " << k << ", node " << node << " in the record";
     }
-    std::vector<std::uint16_t> in_id_order(copies[0].size());
-    std::iota(in_id_order.begin(), in_id_order.end(), std::uint16_t{1});
-    if (copies[0] != in_id_order) ++rounds_with_history;
+    for (std::size_t i = 0; i < copies[0].size(); ++i) {
+      if (copies[0][i].first != i + 1) {
+        ++rounds_with_history;
+        break;
+      }
+    }
+    named += static_cast<std::size_t>(
+        std::ranges::count_if(copies[0], [](const Named& n) { return !n.second.empty(); }));
     ++rounds_checked;
   }
   EXPECT_GE(rounds_checked, 15);
   if (GetParam().scenario != nullptr) {
     EXPECT_GT(rounds_with_history, 0) << "numbers a station starting afresh would give alike";
+  }
+  if (GetParam().stations != nullptr) {
+    EXPECT_GT(named, 0U) << "the receiver's callsigns named tracks, at every node alike";
   }
   // In the round it rejoined the restarted station fused nothing of its own: its picture stayed
   // empty, or was already the others' (the lowest station's picture of that round came before
@@ -1261,16 +1310,15 @@ TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds)
       << victims << " in round " << rejoined << "; the others' " << others;
 }
 
-INSTANTIATE_TEST_SUITE_P(Exchanges, DdsPictureRestart,
-                         ::testing::Values(RestartVariant{"Flat", false, 92, 2},
-                                           RestartVariant{"Tree", true, 83, 2},
-                                           RestartVariant{"TheLowestStation", false, 82, 1},
-                                           RestartVariant{"Registered", false, 85, 2, true},
-                                           RestartVariant{"NumbersWithHistory", false, 86, 2, false,
-                                                          kNumberingScenario}),
-                         [](const ::testing::TestParamInfo<RestartVariant>& param) {
-                           return param.param.name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Exchanges, DdsPictureRestart,
+    ::testing::Values(RestartVariant{"Flat", false, 92, 2}, RestartVariant{"Tree", true, 83, 2},
+                      RestartVariant{"TheLowestStation", false, 82, 1},
+                      RestartVariant{"Registered", false, 85, 2, true},
+                      RestartVariant{"NumbersWithHistory", false, 86, 2, false, kNumberingScenario},
+                      RestartVariant{"CallsignsAndNumbers", false, 104, 2, false, kCallsignScenario,
+                                     kThreeRadarsAndAReceiver}),
+    [](const ::testing::TestParamInfo<RestartVariant>& param) { return param.param.name; });
 
 // On the wall clock (uam-metro: 10 Hz scans): the nodes run their rounds on their own clocks
 // and the harness records every round with the pictures that came. How many rounds are in time
