@@ -129,15 +129,39 @@ function drawTrails(g, at, layered) {
   }
 }
 
-// A station's square and its name, left of it where the right would leave the canvas; where
-// `placed` is given, the name's box joins it, so that no track's label is put over it.
+// A sensor kind as the scenes name it: short, so that the stations' names crowd the tracks less.
+const SENSOR_NAMES = {
+  range_azimuth_elevation: "3-D radar", range_azimuth: "2-D radar", range_azimuth_altitude: "Mode S",
+  position_velocity: "ADS-B", multilateration: "mlat", tdoa_range_difference: "TDOA",
+  tdoa_relative_constant_acceleration: "TDOA",
+};
+const siteName = (label) => label.replace(/\(([a-z0-9_]+)\)/, (all, kind) => `(${SENSOR_NAMES[kind] ?? kind})`);
+
+// A station's square, and where its name goes: right of it, or left where the right would leave
+// the canvas. Where `placed` is given, the name's box joins it, so that no track's label is put
+// over it. The name itself is drawn last (drawSiteNames).
 function drawSite(g, [u, v], label, placed = null) {
   g.fillStyle = COLORS.site;
   g.fillRect(u - 4, v - 4, 8, 8);
   const width = g.measureText(label).width;
   const x = u + 6 + width > g.canvas.width ? u - 6 - width : u + 6;
-  g.fillText(label, x, v - 6);
   placed?.push(labelBox(x, v - 6, width));
+  return { label, x, y: v - 6 };
+}
+
+// The stations' names, over everything else on a halo of the scene's background, so that no
+// ellipse, trail, marker or false alarm drawn near a station hides its name.
+function drawSiteNames(g, names) {
+  g.save();
+  g.lineJoin = "round";
+  g.lineWidth = 3;
+  g.strokeStyle = "#ffffff";
+  g.fillStyle = COLORS.site;
+  for (const { label, x, y } of names) {
+    g.strokeText(label, x, y);
+    g.fillText(label, x, y);
+  }
+  g.restore();
 }
 
 function drawMarker(g, [u, v], e) {
@@ -168,9 +192,7 @@ function drawScene() {
   const at = (p) => [canvas.width / 2 + (p.x - cx) * scale, canvas.height / 2 - (p.y - cy) * scale];
   g.font = "11px system-ui";
   const placed = [];  // the labels drawn so far: a crowded track's goes where none is
-  for (const s of view.sites.values()) {
-    drawSite(g, at(s), s.label, placed);
-  }
+  const names = [...view.sites.values()].map((s) => drawSite(g, at(s), siteName(s.label), placed));
   drawDetections(g, at, view);
   const layered = layeredEntities();
   drawTrails(g, at, layered);
@@ -190,6 +212,7 @@ function drawScene() {
     drawMarker(g, [u, v], e);
     drawTrackLabel(g, [u, v], e, placed);
   }
+  drawSiteNames(g, names);
 }
 
 // The 3-D view: the scene turned by `yaw` about the vertical and tilted by `pitch`, projected
@@ -234,10 +257,10 @@ function drawScene3d() {
     g.setLineDash([]);
   };
   g.font = "11px system-ui";
-  for (const s of view.sites.values()) {
+  const names = [...view.sites.values()].map((s) => {
     dropLine(s, COLORS.site);
-    drawSite(g, at(s), s.label.split(" ")[0]);
-  }
+    return drawSite(g, at(s), s.label.split(" ")[0]);
+  });
   const layered = layeredEntities();
   drawTrails(g, at, layered);
   for (const e of layered) {
@@ -245,6 +268,7 @@ function drawScene3d() {
     if (e.layer === 2) dropLine(e, e.color);
     drawMarker(g, at(e), e);
   }
+  drawSiteNames(g, names);
 }
 
 function enableTurning() {
