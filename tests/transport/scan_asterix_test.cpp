@@ -13,6 +13,7 @@
 #include <string>
 
 #include "skyfuse/asterix/data_block.hpp"
+#include "skyfuse/asterix/datagram.hpp"
 #include "skyfuse/asterix/pcap.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/traffic/traffic_truth.hpp"
@@ -182,6 +183,23 @@ TEST(ScanAsterix, AReportsQualityIndicatorsStateItsSigma) {
   ASSERT_TRUE(fed.has_value());
   ASSERT_EQ(fed->reported_std.size(), fed->detections.size());
   for (const Detection& s : fed->reported_std) EXPECT_TRUE(s == stated);
+
+  // A receiver less sure of north than of east broadcasts the bound that holds on both: σ 20 m
+  // north is 49 m at 95 %, NACp 8 (under 92.6 m), where east's 10 m alone would say NACp 9.
+  StationConfig lopsided = scenario.stations[8];
+  lopsided.sensor.noise_std(1) = 20.0;
+  const ScanRecords records = scan_records(remote_id, lopsided, 0.0, scenario);
+  ASSERT_EQ(records.category, asterix::kCat021);
+  ASSERT_FALSE(records.records.empty());
+  std::optional<asterix::EncodeError> error;
+  const auto blocks =
+      asterix::encode_blocks(records.category, records.records, asterix::kMaxUdpPayload, error);
+  ASSERT_FALSE(error.has_value());
+  asterix::Decoded decoded;
+  for (const asterix::Bytes& block : blocks) asterix::decode_datagram(block, decoded);
+  ASSERT_FALSE(decoded.reports.empty());
+  EXPECT_EQ(decoded.reports[0].quality.nacp, 8);
+  EXPECT_EQ(decoded.reports[0].quality.nucr_or_nacv, 2);
 }
 
 TEST(ReplayedScans, APcapAndARawFileOfTheSameRecordsGiveTheQuantisedScans) {

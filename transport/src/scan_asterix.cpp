@@ -94,10 +94,12 @@ ScanRecords broadcast_reports(const SimulatedScan& scan, const StationConfig& st
   ScanRecords out{asterix::kCat021, {}, 0};
   asterix::AdsbQuality quality;
   // The bounds an aircraft with the station's errors would broadcast: 95 % of a circular
-  // error of σ per axis (asterix/quality.hpp).
-  quality.nacp = asterix::nacp_of_epu(asterix::kHorizontal95 * station.sensor.noise_std(0));
+  // error of σ per axis (asterix/quality.hpp), of the larger of east's and north's σ, so that
+  // the bound holds on both.
+  const auto& std_of = station.sensor.noise_std;
+  quality.nacp = asterix::nacp_of_epu(asterix::kHorizontal95 * std::max(std_of(0), std_of(1)));
   quality.nucr_or_nacv =
-      asterix::nacv_of_error(asterix::kHorizontal95 * station.sensor.noise_std(3));
+      asterix::nacv_of_error(asterix::kHorizontal95 * std::max(std_of(3), std_of(4)));
   for (std::size_t j = 0; j < scan.scan.detections.size(); ++j) {
     const Detection& z = scan.scan.detections[j];
     asterix::AdsbReport report;
