@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 #include <span>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -129,6 +130,16 @@ void play_and_check(const std::vector<Station>& stations, const std::vector<Targ
   }
 }
 
+// A peer per station and the center, empty, with the tests' motion model and tracker.
+std::pair<std::vector<Peer>, Center> empty_network(const std::vector<Station>& stations) {
+  const Model motion(kTimeStepS, {0.5, 1.0});
+  const Vector<N> initial_variance = Vector<N>::Constant(100.0);
+  const TrackerConfig config;
+  return {std::vector<Peer>(stations.size(),
+                            Peer(PeerTracks(motion, initial_variance), stations, config)),
+          Center(CenterStackedTracks<Model>(motion, initial_variance), stations, config)};
+}
+
 // The confirmed tracks at the end: one, on the aircraft, within `within_m`.
 void expect_one_confirmed_track_on(const Peer& peer, const TargetTruth& aircraft, double within_m) {
   const Vector<kKinematicsDim>& truth = aircraft.states.back();
@@ -147,12 +158,7 @@ TEST(MixedPicture, ARadarAndAPositionVelocityStationShareOnePicture) {
   const std::vector<Station> stations = mixed_stations();
   ASSERT_EQ(measurement_dim<N>(stations[0].sensor), 3);
   ASSERT_EQ(measurement_dim<N>(stations[1].sensor), 6);
-  const Model motion(kTimeStepS, {0.5, 1.0});
-  const Vector<N> initial_variance = Vector<N>::Constant(100.0);
-  const TrackerConfig config;
-  std::vector<Peer> peers(stations.size(),
-                          Peer(PeerTracks(motion, initial_variance), stations, config));
-  Center center(CenterStackedTracks<Model>(motion, initial_variance), stations, config);
+  auto [peers, center] = empty_network(stations);
   DetectionConfig sees;
   sees.field_of_view.max_range_m = 20000.0;
   sees.field_of_view.min_elevation_rad = 0.0;
@@ -186,12 +192,7 @@ TEST(MixedPicture, TwoDimensionalRadarsShareAPictureWithA3dRadar) {
 
   std::vector<TargetTruth> truths = one_aircraft();
   for (auto& x : truths.front().states) x(2) += 70.0;  // 420 m and climbing slowly
-  const Model motion(kTimeStepS, {0.5, 1.0});
-  const Vector<N> initial_variance = Vector<N>::Constant(100.0);
-  const TrackerConfig config;
-  std::vector<Peer> peers(stations.size(),
-                          Peer(PeerTracks(motion, initial_variance), stations, config));
-  Center center(CenterStackedTracks<Model>(motion, initial_variance), stations, config);
+  auto [peers, center] = empty_network(stations);
   DetectionConfig sees;
   sees.field_of_view.max_range_m = 20000.0;
   sees.clutter_per_scan = 2.0;
@@ -205,6 +206,36 @@ TEST(MixedPicture, TwoDimensionalRadarsShareAPictureWithA3dRadar) {
     if (track.status != TrackStatus::kConfirmed) continue;
     EXPECT_LT(std::abs(track.filter.mean(2) - truths.front().states.back()(2)), 20.0)
         << "not the band's 300 m";
+  }
+}
+
+// Two 2-D radars alone: nothing measures the aircraft's height, so every node bounds it by the
+// band the radars assume (picture/height_bound.hpp). Every track's height variance ends each
+// round at most the band's, the peers hold one picture and the center stays within 1e-9.
+TEST(MixedPicture, TwoDimensionalRadarsAloneKeepTheirTracksHeightWithinTheBand) {
+  const HeightBand band{330.0, 390.0};  // σ 17 m: less than the slant ranges tell
+  const double angle_std = 0.2 * std::numbers::pi / 180.0;
+  Covariance<2> radar_2d_noise = Covariance<2>::Zero();
+  radar_2d_noise.diagonal() << 10.0 * 10.0, angle_std * angle_std;
+  const std::vector<Station> stations = {
+      {1, Radar2d(Vector3(-3000.0, -2000.0, 30.0), band), radar_2d_noise, 1.0, {}},
+      {2, Radar2d(Vector3(4000.0, 3000.0, 20.0), band), radar_2d_noise, 1.0, {}}};
+  const std::vector<TargetTruth> truths = one_aircraft();
+  auto [peers, center] = empty_network(stations);
+  DetectionConfig sees;
+  sees.field_of_view.max_range_m = 20000.0;
+
+  Played played;
+  play_and_check(stations, truths, sees, peers, center, played);
+  EXPECT_LT(played.worst_gap, 1e-9);
+  ASSERT_FALSE(peers[0].tracks().empty());
+  for (const auto& track : peers[0].tracks()) {
+    EXPECT_LE(track.filter.covariance(2, 2), band.variance_m2() * (1.0 + 1e-12)) << track.id;
+    // The bound held it: the radars' slant ranges alone leave more.
+    EXPECT_NEAR(track.filter.covariance(2, 2), band.variance_m2(), 1e-9 * band.variance_m2());
+  }
+  for (const auto& track : center.tracks()) {
+    EXPECT_LE(track.filter.covariance(2, 2), band.variance_m2() * (1.0 + 1e-12)) << track.id;
   }
 }
 

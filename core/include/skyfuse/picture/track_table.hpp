@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -30,6 +31,7 @@
 
 #include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/picture/associator.hpp"
+#include "skyfuse/picture/height_bound.hpp"
 #include "skyfuse/picture/hypothesiser.hpp"
 #include "skyfuse/picture/identity.hpp"
 #include "skyfuse/picture/initiation.hpp"
@@ -74,7 +76,8 @@ class TrackTable {
         stations_(std::move(stations)),
         config_(config),
         associator_(find_associator(config.association.associator)),
-        registration_(config.registration, stations_) {
+        registration_(config.registration, stations_),
+        height_band_(assumed_height_band(std::span<const Station>(stations_))) {
     if (associator_ == nullptr) {
       throw std::invalid_argument("tracker.associator: '" + config.association.associator +
                                   "' is none of " + associator_names());
@@ -185,6 +188,7 @@ class TrackTable {
   std::vector<Address> addresses_;  // tracks_[i].address, for the gate search's mask
   AddressBook book_;                // the tracks that hold an address, by address
   LeastSquaresRegistration<kDim> registration_;
+  std::optional<HeightBand> height_band_;  // the 2-D radars' (height_bound.hpp); none: no bound
 };
 
 }  // namespace skyfuse

@@ -88,6 +88,10 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
   // What this round taught each station's registration corrects the next round's detections.
   registration_.settle();
   learn_addresses(offered);
+  // A track's height no less known than the band the 2-D radars assume (height_bound.hpp).
+  if (height_band_) {
+    for (TrackType& track : tracks_) bound_height(track.filter, *height_band_);
+  }
   refresh_estimates();
   RoundOutcome outcome;
   std::size_t kept = 0;

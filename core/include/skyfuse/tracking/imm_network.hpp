@@ -186,6 +186,12 @@ class CentralImm {
   template <template <int> class SensorT, int N>
   NumericalStatus update(std::span<const StationObservation<SensorT<N>>> observations);
 
+  /// Takes `states` and `probabilities` as its own: the height bound of a picture's 2-D radars
+  /// (picture/height_bound.hpp), as a peer's. `probabilities` must sum to 1.
+  void restore(const typename Filter::ModeStates& states,
+               const Vector<Filter::kModes>& probabilities) {
+    imm_.restore(states, probabilities);
+  }
   const Filter& filter() const { return imm_; }
   /// Each mode's NIS of the stacked measurement in the last update (against its own prior).
   const Vector<Filter::kModes>& mode_nis() const { return mode_nis_; }
