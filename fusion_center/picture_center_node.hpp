@@ -97,18 +97,7 @@ class PictureCenter {
     // A station whose scan did not arrive scanned nothing, as far as the center knows.
     scans_.resize(ids_.size());
     for (std::size_t i = 0; i < ids_.size(); ++i) {
-      scans_[i].station_id = ids_[i];
-      scans_[i].noise = picture_->noise(i);
-      scans_[i].detections.clear();
-      scans_[i].addresses.clear();
-      scans_[i].identifications.clear();
-      scans_[i].reported_std.clear();
-      if (const auto* scan = scans_in_.scan_of(ids_[i])) {
-        scans_[i].detections = scan->detections;
-        scans_[i].addresses = scan->addresses;
-        scans_[i].identifications = scan->identifications;
-        scans_[i].reported_std = scan->reported_std;
-      }
+      transport::assign_scan(scans_[i], ids_[i], picture_->noise(i), scans_in_.scan_of(ids_[i]));
     }
     wire::PictureRound round =
         picture_->update(k, scans_, numbers_, options_.run_id,

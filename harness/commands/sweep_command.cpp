@@ -28,24 +28,25 @@ void add_sweep_command(CLI::App& app, SweepOptions& options) {
   cmd->add_option("--runs", options.runs, "Monte-Carlo runs per (M, speed)")
       ->check(options::whole_number_in(1, 1000000))
       ->capture_default_str();
-  cmd->add_option("--max-stations", options.max_stations,
+  SweepOverrides& overrides = options.overrides;
+  cmd->add_option("--max-stations", overrides.max_stations,
                   "Largest M; runs M = 1..M_max using the first M stations (default: all)")
       ->check(options::whole_number_in(1, 100000));
-  cmd->add_option("--only-stations", options.only_stations,
+  cmd->add_option("--only-stations", overrides.only_stations,
                   "Only the scenario's stations of these ids (e.g. 1,2,3): the same run seen by "
                   "some of its sensors (default: every station)")
       ->delimiter(',');
   cmd->add_option("--out", options.out_dir, "Folder for sweep.csv, sweep.json and sweep.png")
       ->capture_default_str();
-  cmd->add_option("--seed", options.seed, "Override the scenario's seed");
-  cmd->add_option("--steps", options.steps, "Override the scenario's number of steps")
+  cmd->add_option("--seed", overrides.seed, "Override the scenario's seed");
+  cmd->add_option("--steps", overrides.steps, "Override the scenario's number of steps")
       ->check(options::whole_number_in(1, 100000000));
   cmd->add_option("--threads", options.threads, "Worker threads (default: one per core)")
       ->check(options::whole_number_in(0, 1024));
-  options::add_exchange_options(*cmd, options.exchange, options.fanout);
-  options::add_associator_option(*cmd, options.associator);
+  options::add_exchange_options(*cmd, overrides.exchange, overrides.fanout);
+  options::add_associator_option(*cmd, overrides.associator);
   cmd->add_flag("!--no-plot", options.plot, "Skip the PNG plot");
-  cmd->add_option("--traffic-file", options.traffic_file,
+  cmd->add_option("--traffic-file", overrides.traffic_file,
                   "An OpenSky state-vector CSV to fly instead of the scenario's recorded file "
                   "(a scenario with 'traffic: recorded')")
       ->check(CLI::ExistingFile);
@@ -98,18 +99,9 @@ int run_one_aircraft_sweep(const OneAircraftSweep& sweep, const SweepOptions& op
 }  // namespace
 
 int run_sweep(const SweepOptions& options) {
-  SweepOverrides overrides;
-  overrides.seed = options.seed;
-  overrides.steps = options.steps;
-  overrides.exchange = options.exchange;
-  overrides.fanout = options.fanout;
-  overrides.associator = options.associator;
-  overrides.only_stations = options.only_stations;
-  if (options.max_stations != 0) overrides.max_stations = options.max_stations;
-  overrides.traffic_file = options.traffic_file;
   // The sweep's kind is its plan's (sim/sweep_plan.hpp).
   const SweepPlan plan =
-      make_sweep_plan(load_scenario_or_default(options.scenario_path), overrides);
+      make_sweep_plan(load_scenario_or_default(options.scenario_path), options.overrides);
   const std::filesystem::path out_dir(options.out_dir);
   std::filesystem::create_directories(out_dir);
   return std::visit(

@@ -1161,29 +1161,21 @@ struct RestartVariant {
   const char* stations = nullptr;
 };
 
-// Three of kFourRadarsAndAnEkf's radars and a Remote ID receiver that hears each aircraft in
-// one round of two: a restarted station that did not take the callsigns its peers learnt with
-// their picture would name fewer tracks than they do until it had heard every aircraft again.
-constexpr const char* kThreeRadarsAndAReceiver = R"(metrics:
-  gospa_cutoff_m: 50.0
-stations:
-  - id: 1
-    position_m: [-4500.0, -4500.0, 60.0]
-    sensor: &radar {kind: range_azimuth_elevation, noise_std: [5.0, 0.0026, 0.0026]}
-  - {id: 2, position_m: [4500.0, -4500.0, 80.0], sensor: *radar}
-  - {id: 3, position_m: [4500.0, 4500.0, 70.0], sensor: *radar}
-  - id: 4
-    sensor: {kind: position_velocity, noise_std: [10.0, 10.0, 10.0, 1.0, 1.0, 1.0]}
-    detection: {probability: 0.5, clutter_per_scan: 0.0, reports_address: true}
-measurement_noise:
-  scale: none
-filter:
-  kind: ekf
-  motion_model:
-    kind: constant_velocity_3d
-    process_noise_std: {position_m: 0.5, velocity_mps: 2.0}
-  initial_covariance_diag: 100.0
-)";
+// Three of kFourRadarsAndAnEkf's radars and, for its fourth, a Remote ID receiver that hears
+// each aircraft in one round of two: a restarted station that did not take the callsigns its
+// peers learnt with their picture would name fewer tracks than they do until it had heard every
+// aircraft again.
+const std::string kThreeRadarsAndAReceiverText = [] {
+  std::string text = kFourRadarsAndAnEkf;
+  const std::string fourth = "  - {id: 4, position_m: [-4500.0, 4500.0, 90.0], sensor: *radar}\n";
+  text.replace(
+      text.find(fourth), fourth.size(),
+      "  - id: 4\n"
+      "    sensor: {kind: position_velocity, noise_std: [10.0, 10.0, 10.0, 1.0, 1.0, 1.0]}\n"
+      "    detection: {probability: 0.5, clutter_per_scan: 0.0, reports_address: true}\n");
+  return text;
+}();
+const char* const kThreeRadarsAndAReceiver = kThreeRadarsAndAReceiverText.c_str();
 class DdsPictureRestart : public ::testing::TestWithParam<RestartVariant> {};
 
 TEST_P(DdsPictureRestart, ARestartedStationRejoinsWithThePictureWithinTwoRounds) {

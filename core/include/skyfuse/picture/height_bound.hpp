@@ -70,11 +70,15 @@ requires requires(const ImmState& s) {
   s.filter().mode_states();
 }
 bool bound_height(ImmState& state, const HeightBand& band) {
+  // Most rounds no mode's height is looser than the band: nothing is copied then.
+  const auto loose = [&](const auto&... mode) {
+    return ((mode.covariance(2, 2) > band.variance_m2()) || ...);
+  };
+  if (!std::apply(loose, state.filter().mode_states())) return false;
   auto modes = state.filter().mode_states();
-  const bool changed =
-      std::apply([&](auto&... mode) { return (bound_height(mode, band) | ...); }, modes);
-  if (changed) state.restore(modes, state.filter().mode_probabilities());
-  return changed;
+  std::apply([&](auto&... mode) { (bound_height(mode, band), ...); }, modes);
+  state.restore(modes, state.filter().mode_probabilities());
+  return true;
 }
 
 }  // namespace skyfuse

@@ -89,7 +89,8 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
   for (std::uint32_t j = 0; j < taken; ++j) {
     if (mask.skips_detection(j)) continue;
     const Vector<M> z = fixed_detection<M>(scan.detections[j]);
-    const auto fix = fix_position(scan.station_id, j, sensor, z, detection_noise<M>(scan, j));
+    const auto fix = fix_position(scan.station_id, j, sensor, z,
+                                  reported_noise<M>(noise, reported_std_at(scan.reported_std, j)));
     // A detection whose fix is degenerate is compared with every track.
     const Vector3 position = fix ? fix->position : sensor.position_of(z);
     const double std_m = fix ? std::sqrt(fix->covariance.trace()) : kDegenerateFixStdM;
@@ -127,7 +128,8 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
           sensor.residual(fixed_detection<M>(scan.detections[c->index]), predicted);
       if (reports_own_noise) {
         // A detection whose report states its own σ has an S of its own.
-        Covariance<M> own = projected + detection_noise<M>(scan, c->index);
+        Covariance<M> own =
+            projected + reported_noise<M>(noise, reported_std_at(scan.reported_std, c->index));
         symmetrize(own);
         SmallCholesky<M> own_factor;
         if (!own_factor.compute(own)) continue;

@@ -69,6 +69,7 @@ void route_addressed(std::span<const GaussianState<N>> priors, const AddressBook
   constexpr int M = Sensor::kMeasDim;
   out.clear();
   if (scan.addresses.empty() || book.empty()) return;
+  const Covariance<M> noise = fixed_noise<M>(scan.noise);
   for (std::size_t j = 0; j < taken; ++j) {
     const std::optional<int> track = book.track_of(scan.addresses[j]);
     if (!track) continue;
@@ -78,8 +79,9 @@ void route_addressed(std::span<const GaussianState<N>> priors, const AddressBook
       out.track_taken.assign(priors.size(), 0);
     }
     out.detection_decided[j] = 1;
-    const std::optional<double> nis = measurement_nis(
-        priors[t], sensor, fixed_detection<M>(scan.detections[j]), detection_noise<M>(scan, j));
+    const std::optional<double> nis =
+        measurement_nis(priors[t], sensor, fixed_detection<M>(scan.detections[j]),
+                        reported_noise<M>(noise, reported_std_at(scan.reported_std, j)));
     // A second detection of one address in one scan is refused too: an aircraft answers once.
     if (!nis || *nis > sanity_gate || out.track_taken[t] != 0) {
       ++out.refused;

@@ -54,7 +54,7 @@ struct Scan {
   std::vector<Identification> identifications{};
   /// Each detection's own σ of each of its values where its report states one (an ADS-B
   /// report's NACp and NACv, I021/090), 0 for a value it says nothing of, in detection order;
-  /// empty when no detection's report states any. Its R is then detection_noise's.
+  /// empty when no detection's report states any. Its R is then reported_noise's.
   std::vector<Detection> reported_std{};
 };
 
@@ -79,12 +79,6 @@ Covariance<M> reported_noise(const Covariance<M>& noise, const Detection& report
     r.col(i) *= scale;
   }
   return r;
-}
-
-/// Detection j of `scan`'s R: its station's, as its report states it (reported_noise).
-template <int M>
-Covariance<M> detection_noise(const Scan& scan, std::size_t j) {
-  return reported_noise<M>(fixed_noise<M>(scan.noise), reported_std_at(scan.reported_std, j));
 }
 
 /// Whether two detections hold the same values, bit for bit (any sizes).

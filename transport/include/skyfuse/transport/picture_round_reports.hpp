@@ -65,11 +65,7 @@ class PictureRoundReports {
       const Station& known = station(id);
       if (scan->picture_digest != picture_digest) {
         ++other_pictures_;
-        reassigned_.station_id = id;
-        reassigned_.noise = known.noise;
-        reassigned_.detections = scan->detections;
-        reassigned_.addresses = scan->addresses;
-        reassigned_.reported_std = scan->reported_std;
+        assign_scan(reassigned_, id, known.noise, scan);
         out.push_back(picture.report(known, reassigned_, work_));
         continue;
       }

@@ -102,6 +102,25 @@ struct ReceivedScan {
   }
 };
 
+/// `received` as the scan of station `station_id`, of noise `noise`, into `out` (its storage kept
+/// from round to round); a scan of no detections where `received` is null (it did not arrive).
+inline void assign_scan(Scan& out, int station_id, const DetectionNoise& noise,
+                        const ReceivedScan* received) {
+  out.station_id = station_id;
+  out.noise = noise;
+  if (received == nullptr) {
+    out.detections.clear();
+    out.addresses.clear();
+    out.identifications.clear();
+    out.reported_std.clear();
+    return;
+  }
+  out.detections = received->detections;
+  out.addresses = received->addresses;
+  out.identifications = received->identifications;
+  out.reported_std = received->reported_std;
+}
+
 /// What `scan` published of its detections, as a peer rebuilds its report from them
 /// (PeerPicture::report_of).
 inline PublishedDetections published(const ReceivedScan& scan) {

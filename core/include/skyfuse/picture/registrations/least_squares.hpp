@@ -177,9 +177,8 @@ class LeastSquaresRegistration {
             reported.mean.template head<M>() = fixed_detection<M>(z);
             reported.covariance.template topRows<M>().setZero();
             reported.covariance.template leftCols<M>().setZero();
-            reported.covariance.template topLeftCorner<M, M>() =
-                stated == nullptr ? fixed_noise<M>(source.noise)
-                                  : reported_noise<M>(fixed_noise<M>(source.noise), *stated);
+            reported.covariance.template topLeftCorner<M, M>() = reported_noise<M>(
+                fixed_noise<M>(source.noise), stated != nullptr ? *stated : Detection());
           }
         },
         source.sensor);
