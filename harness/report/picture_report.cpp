@@ -142,6 +142,7 @@ void write_picture_json(const PictureReport& report, const std::filesystem::path
                     {"false_alarms", run.false_alarms},
                     {"dropped_detections", run.dropped},
                     {"refused_addresses", run.refused_addresses},
+                    {"merged_tracks", run.merged_tracks},
                     {"confirmed_at_end", run.confirmed_at_end},
                     {"tentative_at_end", run.tentative_at_end}});
     if (!run.registration.empty()) {

@@ -156,10 +156,16 @@ TrackerConfig read_tracker(const YamlField& field) {
     }
   }
   if (const auto identity = field.optional("identity")) {
-    identity->allow_only({"sanity_gate_probability"});
+    identity->allow_only({"sanity_gate_probability", "merge_probability"});
     if (const auto f = identity->optional("sanity_gate_probability")) {
       t.identity.sanity_gate_probability = read_probability(*f);
       if (t.identity.sanity_gate_probability >= 1.0) f->fail("must be < 1");
+    }
+    if (const auto f = identity->optional("merge_probability")) {
+      t.identity.merge_probability = f->non_negative_number();  // 0: no merge
+      if (t.identity.merge_probability >= 1.0) {
+        f->fail(fmt::format("must be in [0, 1) (0: no merge), got {}", f->text()));
+      }
     }
   }
   if (const auto init = field.optional("initiation")) {

@@ -139,7 +139,10 @@ class PictureRun {
       result_.dropped += reports_.back().dropped;
       result_.refused_addresses += reports_.back().refused_addresses;
     }
-    for (Peer& peer : peers_) peer.fuse(step, reports_);
+    for (Peer& peer : peers_) {
+      const RoundOutcome outcome = peer.fuse(step, reports_);
+      if (&peer == &peers_.front()) result_.merged_tracks += outcome.merged;
+    }
     center_->update(step, scans_);
     result_.peer_digests.push_back(peers_.front().digest());
     result_.center_digests.push_back(center_->digest());

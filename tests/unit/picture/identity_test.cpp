@@ -293,6 +293,63 @@ TEST(Identity, AnUnaddressedTrackTakesTheAddressOfItsDetectionAtEveryPeerAndTheC
   EXPECT_EQ(peers[0].digest(), peers[1].digest());
 }
 
+// One aircraft held twice, by its addressed track (1) and by an unaddressed one a few metres off
+// (2) that its broadcast did not gate with, beside an unaddressed track crossing it (3).
+Peer held_twice(const TrackerConfig& config) {
+  Peer peer(PeerTracks(Network::motion(), Network::variance()), radar_and_receiver(), config);
+  std::vector<Peer::TrackType> tracks;
+  const auto add = [&](TrackId id, const Vector3& p, const Vector3& v, Address address) {
+    GaussianState<N> x;
+    x.mean << p, v;
+    x.covariance = Covariance<N>::Zero();
+    x.covariance.diagonal() << 25.0, 25.0, 25.0, 1.0, 1.0, 1.0;
+    Peer::TrackType track{id, TrackStatus::kConfirmed, {}, x, {}};
+    track.address = address;
+    tracks.push_back(track);
+  };
+  add(1, Vector3(0.0, 0.0, 300.0), Vector3(30.0, 0.0, 0.0), kAircraft);
+  add(2, Vector3(5.0, -3.0, 304.0), Vector3(30.5, 0.0, 0.0), kNoAddress);
+  add(3, Vector3(2.0, 4.0, 300.0), Vector3(0.0, 30.0, 0.0), kNoAddress);
+  peer.restore(std::move(tracks));
+  return peer;
+}
+
+TEST(Identity, AnUnaddressedTrackHoldingAnAddressedTracksAircraftIsDroppedAtEveryNode) {
+  const std::vector<Station> stations = radar_and_receiver();
+  const std::vector<Scan> nothing = {Scan{1, radar_noise(), {}, {}},
+                                     Scan{2, broadcast_noise(), {}, {}}};
+  for (const double merge : {0.99, 0.0}) {
+    TrackerConfig config;
+    config.identity.merge_probability = merge;
+    std::vector<Peer> peers = {held_twice(config), held_twice(config)};
+    Center center(CenterStackedTracks<Model>(Network::motion(), Network::variance()), stations,
+                  config);
+    center.restore({peers[0].tracks().begin(), peers[0].tracks().end()});
+    for (Peer& peer : peers) peer.predict();
+    center.predict();
+    std::vector<Peer::Report> reports;
+    AssociationWork work;
+    for (std::size_t s = 0; s < stations.size(); ++s) {
+      reports.push_back(peers[s].report(stations[s], nothing[s], work));
+    }
+    const std::size_t dropped = merge > 0.0 ? 1 : 0;
+    for (Peer& peer : peers) EXPECT_EQ(peer.fuse(7, reports).merged, dropped) << merge;
+    EXPECT_EQ(center.update(7, nothing).merged, dropped) << merge;
+
+    const std::vector<TrackId> kept =
+        merge > 0.0 ? std::vector<TrackId>{1, 3} : std::vector<TrackId>{1, 2, 3};
+    const auto ids = [](const auto& node) {
+      std::vector<TrackId> out;
+      for (const auto& track : node.tracks()) out.push_back(track.id);
+      return out;
+    };
+    EXPECT_EQ(ids(peers[0]), kept) << "merge probability " << merge;
+    EXPECT_EQ(ids(center), kept) << "merge probability " << merge;
+    EXPECT_EQ(peers[0].digest(), peers[1].digest());
+    EXPECT_EQ(peers[0].tracks()[0].address, kAircraft) << "the aircraft keeps its addressed track";
+  }
+}
+
 TEST(Identity, AnAddressChangesThePicturesDigestAndNoAddressLeavesItAsBefore) {
   const TrackerConfig config;
   Peer addressed = three_tracks(config);

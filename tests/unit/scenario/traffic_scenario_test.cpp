@@ -161,12 +161,22 @@ TEST(TrafficScenario, TakesCooperativeSensorsAndTheShareOfAircraftWithAnAddress)
                     "detection: {clutter_per_scan: 0.0, reports_address: true}}");
   yaml = yaml.replace(yaml.find("traffic:\n"), 9, "traffic:\n  equipped_share: 0.6\n");
   yaml = yaml.replace(yaml.find("tracker:\n"), 9,
-                      "tracker:\n  identity: {sanity_gate_probability: 0.99999}\n");
+                      "tracker:\n  identity: {sanity_gate_probability: 0.99999, "
+                      "merge_probability: 0.95}\n");
   const Scenario s = parse_scenario(yaml, "test.yaml");
   EXPECT_TRUE(s.stations[1].detection->reports_address);
   EXPECT_FALSE(s.stations[0].detection->reports_address);
   EXPECT_DOUBLE_EQ(s.traffic->equipped_share, 0.6);
   EXPECT_DOUBLE_EQ(s.tracker.identity.sanity_gate_probability, 0.99999);
+  EXPECT_DOUBLE_EQ(s.tracker.identity.merge_probability, 0.95);
+  EXPECT_DOUBLE_EQ(load_scenario_file(kUamCity).tracker.identity.merge_probability, 0.99)
+      << "the default";
+  for (const char* bad : {"1.0", "-0.1"}) {
+    std::string refused = read_text(kUamCity);
+    refused.replace(refused.find("tracker:\n"), 9,
+                    std::string("tracker:\n  identity: {merge_probability: ") + bad + "}\n");
+    EXPECT_NE(rejection(refused).find("merge_probability"), std::string::npos) << bad;
+  }
 
   const TrafficTruth truth = build_traffic_truth(s);
   std::size_t equipped = 0;

@@ -41,6 +41,7 @@
 #include "skyfuse/picture/registrations/least_squares.hpp"
 #include "skyfuse/picture/track.hpp"
 #include "skyfuse/picture/track_management.hpp"
+#include "skyfuse/picture/track_merge.hpp"
 #include "skyfuse/picture/tracker_config.hpp"
 #include "skyfuse/scenario/truth.hpp"
 
@@ -52,6 +53,9 @@ struct RoundOutcome {
   std::size_t confirmed = 0;  ///< tentative tracks confirmed this round
   std::size_t deleted = 0;
   std::size_t started = 0;
+  /// Tracks without an address dropped as holding the aircraft of a track with one
+  /// (track_merge.hpp).
+  std::size_t merged = 0;
 };
 
 /// One station's unassociated detection, as it publishes it: index in its scan, value, address,
@@ -89,6 +93,9 @@ class TrackTable {
           chi_square_quantile(config.identity.sanity_gate_probability, m);
     }
     join_gate_ = join_gate(config.initiation);
+    if (config.identity.merge_probability > 0.0) {
+      merge_gate_ = chi_square_quantile(config.identity.merge_probability, kMergeDim);
+    }
   }
 
   std::span<const TrackType> tracks() const { return tracks_; }
@@ -160,7 +167,8 @@ class TrackTable {
  protected:
   /// Gives each unaddressed track the address its hit offered (offered[i], kNoAddress for
   /// none: the first station's of weight above 1/2, identity.hpp), manages every track (hit[i]:
-  /// whether track i was updated this round), then starts tracks from `unassociated` (per
+  /// whether track i was updated this round), drops the unaddressed tracks that hold an
+  /// addressed track's aircraft (track_merge.hpp), then starts tracks from `unassociated` (per
   /// station, ascending station id as stations(); each ascending). For the pictures' own
   /// rounds (peer_picture.hpp, central_picture.hpp), compiled with them.
   template <typename UnassociatedOf>
@@ -170,6 +178,8 @@ class TrackTable {
  private:
   void refresh_estimates();
   void refresh_addresses();
+  // Drops the tracks track_merge.hpp finds held twice; how many.
+  std::size_t drop_tracks_held_twice();
   // Gives each unaddressed track the address offered to it this round, in picture order, unless
   // a track holds it already (one taken earlier in this loop included).
   void learn_addresses(std::span<const Address> offered);
@@ -181,6 +191,7 @@ class TrackTable {
   std::array<double, kMaxDetectionDim + 1> gates_{};         // by a sensor's values a detection
   std::array<double, kMaxDetectionDim + 1> sanity_gates_{};  // identity's, likewise
   double join_gate_ = 0.0;                                   // initiation's (initiation.hpp)
+  double merge_gate_ = 0.0;                                  // track_merge.hpp's; 0: no merge
   const Associator* associator_;
   std::vector<TrackType> tracks_;
   std::vector<GaussianState<kDim>> estimates_;

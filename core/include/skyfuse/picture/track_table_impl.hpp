@@ -115,6 +115,7 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
   }
   tracks_.erase(tracks_.begin() + static_cast<std::ptrdiff_t>(kept), tracks_.end());
   estimates_.resize(kept);
+  outcome.merged = drop_tracks_held_twice();
   refresh_addresses();
 
   fixes_.clear();
@@ -147,6 +148,27 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
   }
   refresh_addresses();
   return outcome;
+}
+
+template <typename Tracks>
+std::size_t TrackTable<Tracks>::drop_tracks_held_twice() {
+  if (merge_gate_ <= 0.0) return 0;
+  const std::vector<char> dropped =
+      tracks_held_twice(std::span<const TrackType>(tracks_),
+                        std::span<const GaussianState<kDim>>(estimates_), merge_gate_);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+    if (dropped[i]) continue;
+    if (kept != i) {
+      tracks_[kept] = std::move(tracks_[i]);
+      estimates_[kept] = estimates_[i];
+    }
+    ++kept;
+  }
+  const std::size_t merged = tracks_.size() - kept;
+  tracks_.erase(tracks_.begin() + static_cast<std::ptrdiff_t>(kept), tracks_.end());
+  estimates_.resize(kept);
+  return merged;
 }
 
 template <typename Tracks>

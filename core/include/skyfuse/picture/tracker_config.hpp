@@ -31,6 +31,10 @@ struct IdentityConfig {
   /// its address, or be refused as a possible spoof: far wider than the association's gate,
   /// so that only a report that cannot be the track's aircraft fails it.
   double sanity_gate_probability = 1.0 - 1e-6;
+  /// Of the chi-square(6) test on two confirmed tracks' positions and velocities by which a
+  /// track without an address that holds the same aircraft as one with an address is dropped
+  /// (picture/track_merge.hpp); 0: never.
+  double merge_probability = 0.99;
 };
 
 struct InitiationConfig {

@@ -44,6 +44,9 @@ struct PictureRunResult {
   std::size_t dropped = 0;  ///< detections beyond the assignment's bound
   /// Addressed detections refused as possible spoofs (picture/identity.hpp).
   std::size_t refused_addresses = 0;
+  /// Tracks without an address dropped as holding the aircraft of a track with one
+  /// (picture/track_merge.hpp), the first peer's.
+  std::size_t merged_tracks = 0;
   /// NEES of the confirmed tracks associated with an aircraft, averaged; dof per sample.
   double anees = 0.0;
   int nees_dof = 0;
