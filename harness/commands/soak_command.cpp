@@ -7,6 +7,7 @@
 #include "skyfuse/options/number_checks.hpp"
 #include "skyfuse/options/scenario_option.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/run_kind.hpp"
 #include "skyfuse/sim/soak.hpp"
 
 namespace skyfuse::harness {
@@ -27,7 +28,7 @@ void add_soak_command(CLI::App& app, SoakOptions& options) {
 
 int run_soak(const SoakOptions& options) {
   const Scenario scenario = load_scenario_or_default(options.scenario_path);
-  require_one_target(scenario, "soak runs");
+  require_one_aircraft(scenario, "soak runs");
   const int stations =
       options.stations == 0 ? static_cast<int>(scenario.stations.size()) : options.stations;
   if (stations > static_cast<int>(scenario.stations.size())) {

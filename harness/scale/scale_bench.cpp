@@ -18,6 +18,7 @@
 #include "run/simulated_hosts.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
+#include "skyfuse/sim/run_kind.hpp"
 #include "skyfuse/transport/shutdown.hpp"
 
 namespace skyfuse::harness {
@@ -337,7 +338,8 @@ int run_scale_bench(const ScaleBenchOptions& o) {
       o.scenario_path, many ? ManyAircraft::kDefaultScenario : OneAircraft::kDefaultScenario,
       o.stations);
   // Refused before anything runs, as the station counts are.
-  if (many != bench.scenario.has_many_targets()) {
+  const RunOf asked = many ? RunOf::kManyAircraft : RunOf::kOneAircraft;
+  if (run_of(bench.scenario) != asked) {
     throw std::invalid_argument(
         many ? fmt::format("--aircraft: scenario '{}' has one target; give one with 'traffic' "
                            "(default scenarios/{})",

@@ -25,15 +25,18 @@ double azimuth_rad(double bearing_deg) {
   return std::remainder(90.0 - bearing_deg, 360.0) / kDegPerRad;
 }
 
-// A scan of which no detection has an address (an identification) holds none
+// A scan of which no detection has an address (an identification, a stated σ) holds none
 // (picture/scan.hpp).
-void drop_identities_if_none(Scan& scan) {
+void drop_what_no_detection_has(Scan& scan) {
   if (std::ranges::all_of(scan.addresses, [](Address a) { return a == kNoAddress; })) {
     scan.addresses.clear();
   }
   if (std::ranges::all_of(scan.identifications,
                           [](Identification i) { return i == kNoIdentification; })) {
     scan.identifications.clear();
+  }
+  if (std::ranges::all_of(scan.reported_std, [](const Detection& s) { return s.isZero(); })) {
+    scan.reported_std.clear();
   }
 }
 
@@ -178,7 +181,7 @@ std::optional<Scan> scan_of_plots(int station_id, std::string_view sensor_kind,
     }
     scan.detections.push_back(z);
   }
-  drop_identities_if_none(scan);
+  drop_what_no_detection_has(scan);
   return scan;
 }
 
@@ -205,10 +208,7 @@ std::optional<Scan> scan_of_reports(int station_id, std::span<const asterix::Ads
                         : kNoIdentification);
     scan.reported_std.push_back(stated_std(report.quality));
   }
-  drop_identities_if_none(scan);
-  if (std::ranges::all_of(scan.reported_std, [](const Detection& s) { return s.isZero(); })) {
-    scan.reported_std.clear();
-  }
+  drop_what_no_detection_has(scan);
   return scan;
 }
 

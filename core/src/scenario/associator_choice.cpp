@@ -36,11 +36,6 @@ void check_associator(const Scenario& scenario) {
 }
 
 void set_associator(Scenario& scenario, const std::string& name, const char* option) {
-  if (!scenario.has_many_targets()) {
-    throw std::invalid_argument(fmt::format(
-        "{}: scenario '{}' has one aircraft, known before the run: there is nothing to associate",
-        option, scenario.name));
-  }
   Scenario changed = scenario;
   changed.tracker.association.associator = name;
   try {

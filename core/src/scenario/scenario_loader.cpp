@@ -721,12 +721,4 @@ Scenario load_scenario_or_default(const std::string& path) {
   return path.empty() ? load_default_scenario() : load_scenario_file(path);
 }
 
-void require_one_target(const Scenario& scenario, std::string_view what) {
-  if (!scenario.has_many_targets()) return;
-  throw std::invalid_argument(
-      fmt::format("scenario '{}' has many aircraft ('traffic'): `skyfuse sweep` runs it "
-                  "in-process; {} keep one aircraft so far",
-                  scenario.name, what));
-}
-
 }  // namespace skyfuse

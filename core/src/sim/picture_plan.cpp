@@ -7,11 +7,12 @@
 
 #include "skyfuse/scenario/associator_choice.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
+#include "skyfuse/sim/run_kind.hpp"
 
 namespace skyfuse {
 
 PicturePlan make_picture_plan(Scenario scenario, const RunOverrides& overrides) {
-  if (!scenario.has_many_targets()) {
+  if (run_of(scenario) != RunOf::kManyAircraft) {
     throw std::logic_error("make_picture_plan: scenario '" + scenario.name + "' has one target");
   }
   if (overrides.speed_kmh) {

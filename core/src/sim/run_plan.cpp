@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/run_kind.hpp"
 
 namespace skyfuse {
 
@@ -50,18 +51,13 @@ int apply_stations_and_steps(Scenario& scenario, const RunOverrides& overrides) 
 }
 
 RunPlan make_run_plan(Scenario scenario, const RunOverrides& overrides) {
-  require_one_target(scenario, "station and center processes");
+  require_one_aircraft(scenario, "station and center processes");
   if (overrides.aircraft) {
     throw std::invalid_argument(fmt::format(
         "--aircraft: scenario '{}' has one target; the option is for one with generated traffic",
         scenario.name));
   }
-  if (overrides.associator) {
-    throw std::invalid_argument(fmt::format(
-        "--associator: scenario '{}' has one aircraft, known before the run: there is nothing "
-        "to associate",
-        scenario.name));
-  }
+  if (overrides.associator) refuse_associator_for_one_aircraft(scenario, "--associator");
   RunPlan plan;
   plan.stations = apply_stations_and_steps(scenario, overrides);
   if (overrides.speed_kmh) {

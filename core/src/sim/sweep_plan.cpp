@@ -8,6 +8,7 @@
 
 #include "skyfuse/scenario/associator_choice.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
+#include "skyfuse/sim/run_kind.hpp"
 
 namespace skyfuse {
 namespace {
@@ -31,7 +32,6 @@ void keep_only_stations(Scenario& scenario, const std::vector<int>& ids) {
 
 SweepPlan make_sweep_plan(Scenario scenario, const SweepOverrides& overrides) {
   if (overrides.seed) scenario.seed = *overrides.seed;
-  if (overrides.associator) set_associator(scenario, *overrides.associator, "--associator");
   apply_exchange_overrides(scenario, overrides.exchange, overrides.fanout);
   if (overrides.steps) {
     scenario.steps = *overrides.steps;
@@ -45,9 +45,11 @@ SweepPlan make_sweep_plan(Scenario scenario, const SweepOverrides& overrides) {
         fmt::format("--max-stations: {} exceeds the {} stations of scenario '{}'", stations,
                     available, scenario.name));
   }
-  if (scenario.has_many_targets()) {
+  if (run_of(scenario) == RunOf::kManyAircraft) {
+    if (overrides.associator) set_associator(scenario, *overrides.associator, "--associator");
     return PictureSweep{std::move(scenario), stations, overrides.traffic_file};
   }
+  if (overrides.associator) refuse_associator_for_one_aircraft(scenario, "--associator");
   if (!overrides.traffic_file.empty()) {
     throw std::invalid_argument(fmt::format(
         "--traffic-file: scenario '{}' has one target; the option is for one with 'traffic'",

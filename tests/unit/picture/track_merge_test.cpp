@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <span>
@@ -39,10 +40,15 @@ std::vector<GaussianState<N>> estimates_of(const std::vector<TestTrack>& tracks)
   return out;
 }
 
+// Which of `tracks` are held twice.
 std::vector<char> held_twice(const std::vector<TestTrack>& tracks, double gate) {
   const std::vector<GaussianState<N>> estimates = estimates_of(tracks);
-  return tracks_held_twice(std::span<const TestTrack>(tracks),
-                           std::span<const GaussianState<N>>(estimates), gate);
+  MergeWork work;
+  const std::size_t found = find_tracks_held_twice(
+      std::span<const TestTrack>(tracks), std::span<const GaussianState<N>>(estimates), gate, work);
+  EXPECT_EQ(found,
+            static_cast<std::size_t>(std::count(work.dropped.begin(), work.dropped.end(), 1)));
+  return work.dropped;
 }
 
 TEST(TrackMerge, TheDistanceIsThePositionAndVelocityDifferenceUnderBothSpreads) {

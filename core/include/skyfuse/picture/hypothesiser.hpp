@@ -119,38 +119,35 @@ void hypothesise(std::span<const GaussianState<N>> priors, const Sensor& sensor,
     if (!s_factor.compute(s)) continue;  // a track with no usable S takes nothing this round
     auto from = std::lower_bound(work.candidates.begin(), work.candidates.end(), p.x() - radius,
                                  [](const auto& c, double east) { return c.east < east; });
-    double log_normaliser = 0.0;  // -1/2 log det(2 pi S), once a pair of this track gates
+    double log_normaliser = 0.0;  // of the shared S
     bool normalised = false;
     for (auto c = from; c != work.candidates.end() && c->east <= p.x() + radius; ++c) {
       if ((c->position - p).norm() > reach * (track_std + c->std_m)) continue;
       if (track_holds_address && mask.is_addressed(c->index)) continue;
       const Vector<M> nu =
           sensor.residual(fixed_detection<M>(scan.detections[c->index]), predicted);
+      double nis = 0.0;
+      double normaliser = 0.0;  // -1/2 log det(2 pi S)
       if (reports_own_noise) {
-        // A detection whose report states its own σ has an S of its own.
+        // A detection whose report states its own σ has an S of its own (Scan::reported_std).
         Covariance<M> own =
             projected + reported_noise<M>(noise, reported_std_at(scan.reported_std, c->index));
         symmetrize(own);
         SmallCholesky<M> own_factor;
         if (!own_factor.compute(own)) continue;
-        const double nis = nu.dot(own_factor.solve(nu));
-        if (nis <= gate) {
-          const double own_normaliser =
-              with_densities ? -0.5 * (log_2pi_m + own_factor.log_determinant()) : 0.0;
-          out.pairs.push_back(
-              {static_cast<int>(t), static_cast<int>(c->index), nis, own_normaliser - 0.5 * nis});
-        }
-        continue;
-      }
-      const double nis = nu.dot(s_factor.solve(nu));
-      if (nis <= gate) {
-        if (with_densities && !normalised) {
+        nis = nu.dot(own_factor.solve(nu));
+        if (with_densities) normaliser = -0.5 * (log_2pi_m + own_factor.log_determinant());
+      } else {
+        nis = nu.dot(s_factor.solve(nu));
+        if (with_densities && !normalised && nis <= gate) {
           log_normaliser = -0.5 * (log_2pi_m + s_factor.log_determinant());
-          normalised = true;
+          normalised = true;  // the track's S: once, when a pair of it first gates
         }
-        out.pairs.push_back(
-            {static_cast<int>(t), static_cast<int>(c->index), nis, log_normaliser - 0.5 * nis});
+        normaliser = log_normaliser;
       }
+      if (nis > gate) continue;
+      out.pairs.push_back(
+          {static_cast<int>(t), static_cast<int>(c->index), nis, normaliser - 0.5 * nis});
     }
   }
 }

@@ -48,54 +48,68 @@ double merge_distance(const GaussianState<N>& a, const GaussianState<N>& b) {
   return difference.dot(factor.solve(difference));
 }
 
-/// For each of `tracks` (picture order, `estimates` theirs), whether it is a confirmed track
-/// without an address whose estimate lies within `gate` (merge_distance) of a confirmed track's
-/// with an address: the tracks a round's close drops. `gate` ≤ 0: none.
-template <typename TrackType, int N>
-std::vector<char> tracks_held_twice(std::span<const TrackType> tracks,
-                                    std::span<const GaussianState<N>> estimates, double gate) {
-  std::vector<char> dropped(tracks.size(), 0);
-  if (!(gate > 0.0)) return dropped;
-  // The addressed tracks by east, so that each unaddressed track looks only at those within
-  // reach: d² over [p; v] is at least |Δp|² / trace(P₁ + P₂) over the position blocks.
+/// What find_tracks_held_twice keeps from round to round, so that a round allocates nothing
+/// once the picture has grown.
+struct MergeWork {
+  /// An addressed confirmed track: its east, the trace of its position block, its index.
   struct Holder {
     double east = 0.0;
-    double position_spread = 0.0;  // trace of the position block
+    double position_spread = 0.0;
     std::size_t index = 0;
   };
+  std::vector<Holder> holders;
+  /// dropped[t]: whether track t is held twice (the answer).
+  std::vector<char> dropped;
+};
+
+/// Sets work.dropped[t] for each of `tracks` (picture order, `estimates` theirs): whether it is a
+/// confirmed track without an address whose estimate lies within `gate` (merge_distance) of a
+/// confirmed track's with an address, one a round's close drops. Returns how many are; none
+/// where `gate` ≤ 0 (the merge off).
+template <typename TrackType, int N>
+std::size_t find_tracks_held_twice(std::span<const TrackType> tracks,
+                                   std::span<const GaussianState<N>> estimates, double gate,
+                                   MergeWork& work) {
+  work.dropped.assign(tracks.size(), 0);
+  if (!(gate > 0.0)) return 0;
+  // The addressed tracks by east, so that each unaddressed track looks only at those within
+  // reach: d² over [p; v] is at least |Δp|² / trace(P₁ + P₂) over the position blocks.
   const auto position_spread = [&](std::size_t t) {
     return estimates[t].covariance.template topLeftCorner<3, 3>().trace();
   };
-  std::vector<Holder> holders;
+  std::vector<MergeWork::Holder>& holders = work.holders;
+  holders.clear();
   double widest = 0.0;
   for (std::size_t t = 0; t < tracks.size(); ++t) {
     if (tracks[t].status != TrackStatus::kConfirmed || tracks[t].address == kNoAddress) continue;
     holders.push_back({estimates[t].mean(0), position_spread(t), t});
     widest = std::max(widest, holders.back().position_spread);
   }
-  if (holders.empty()) return dropped;
-  std::sort(holders.begin(), holders.end(), [](const Holder& a, const Holder& b) {
+  if (holders.empty()) return 0;
+  std::sort(holders.begin(), holders.end(), [](const auto& a, const auto& b) {
     return a.east < b.east || (a.east == b.east && a.index < b.index);
   });
+  std::size_t found = 0;
   for (std::size_t t = 0; t < tracks.size(); ++t) {
     if (tracks[t].status != TrackStatus::kConfirmed || tracks[t].address != kNoAddress) continue;
     const double own = position_spread(t);
     const double reach = std::sqrt(gate * (own + widest));
     const double east = estimates[t].mean(0);
     auto h = std::lower_bound(holders.begin(), holders.end(), east - reach,
-                              [](const Holder& a, double e) { return a.east < e; });
+                              [](const auto& a, double e) { return a.east < e; });
     for (; h != holders.end() && h->east <= east + reach; ++h) {
       const double apart =
           (estimates[t].mean.template head<3>() - estimates[h->index].mean.template head<3>())
               .squaredNorm();
       if (apart > gate * (own + h->position_spread)) continue;
       if (merge_distance(estimates[t], estimates[h->index]) <= gate) {
-        dropped[t] = 1;
+        work.dropped[t] = 1;
+        ++found;
         break;
       }
     }
   }
-  return dropped;
+  return found;
 }
 
 }  // namespace skyfuse

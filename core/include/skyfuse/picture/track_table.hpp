@@ -178,8 +178,10 @@ class TrackTable {
  private:
   void refresh_estimates();
   void refresh_addresses();
-  // Drops the tracks track_merge.hpp finds held twice; how many.
-  std::size_t drop_tracks_held_twice();
+  // Removes the tracks for which drop(i) holds (it may change track i first, as management
+  // does), the others kept in order with their estimates; how many it removed.
+  template <typename Drop>
+  std::size_t erase_tracks_if(Drop drop);
   // Gives each unaddressed track the address offered to it this round, in picture order, unless
   // a track holds it already (one taken earlier in this loop included).
   void learn_addresses(std::span<const Address> offered);
@@ -192,6 +194,7 @@ class TrackTable {
   std::array<double, kMaxDetectionDim + 1> sanity_gates_{};  // identity's, likewise
   double join_gate_ = 0.0;                                   // initiation's (initiation.hpp)
   double merge_gate_ = 0.0;                                  // track_merge.hpp's; 0: no merge
+  MergeWork merge_work_;
   const Associator* associator_;
   std::vector<TrackType> tracks_;
   std::vector<GaussianState<kDim>> estimates_;

@@ -94,28 +94,22 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
   }
   refresh_estimates();
   RoundOutcome outcome;
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < tracks_.size(); ++i) {
+  outcome.deleted = erase_tracks_if([&](std::size_t i) {
     if (hit[i]) ++outcome.hit;
     TrackType& track = tracks_[i];
     const double position_variance =
         estimates_[i].covariance.template topLeftCorner<3, 3>().trace();
     const TrackFate fate = manage_track(track.history, track.status, position_variance, hit[i] != 0,
                                         config_.management);
-    if (fate == TrackFate::kDeleted) {
-      ++outcome.deleted;
-      continue;
-    }
     if (fate == TrackFate::kConfirmed) ++outcome.confirmed;
-    if (kept != i) {
-      tracks_[kept] = std::move(tracks_[i]);
-      estimates_[kept] = estimates_[i];
-    }
-    ++kept;
+    return fate == TrackFate::kDeleted;
+  });
+  // One aircraft, one track (track_merge.hpp); nothing to merge where no track holds an address.
+  if (!book_.empty() && find_tracks_held_twice(std::span<const TrackType>(tracks_),
+                                               std::span<const GaussianState<kDim>>(estimates_),
+                                               merge_gate_, merge_work_) > 0) {
+    outcome.merged = erase_tracks_if([&](std::size_t i) { return merge_work_.dropped[i] != 0; });
   }
-  tracks_.erase(tracks_.begin() + static_cast<std::ptrdiff_t>(kept), tracks_.end());
-  estimates_.resize(kept);
-  outcome.merged = drop_tracks_held_twice();
   refresh_addresses();
 
   fixes_.clear();
@@ -151,24 +145,21 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
 }
 
 template <typename Tracks>
-std::size_t TrackTable<Tracks>::drop_tracks_held_twice() {
-  if (merge_gate_ <= 0.0) return 0;
-  const std::vector<char> dropped =
-      tracks_held_twice(std::span<const TrackType>(tracks_),
-                        std::span<const GaussianState<kDim>>(estimates_), merge_gate_);
+template <typename Drop>
+std::size_t TrackTable<Tracks>::erase_tracks_if(Drop drop) {
   std::size_t kept = 0;
   for (std::size_t i = 0; i < tracks_.size(); ++i) {
-    if (dropped[i]) continue;
+    if (drop(i)) continue;
     if (kept != i) {
       tracks_[kept] = std::move(tracks_[i]);
       estimates_[kept] = estimates_[i];
     }
     ++kept;
   }
-  const std::size_t merged = tracks_.size() - kept;
+  const std::size_t erased = tracks_.size() - kept;
   tracks_.erase(tracks_.begin() + static_cast<std::ptrdiff_t>(kept), tracks_.end());
   estimates_.resize(kept);
-  return merged;
+  return erased;
 }
 
 template <typename Tracks>

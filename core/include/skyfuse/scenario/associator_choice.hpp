@@ -14,8 +14,9 @@ namespace skyfuse {
 /// Throws std::invalid_argument saying why `scenario` (with traffic) cannot run its associator.
 void check_associator(const Scenario& scenario);
 
-/// `scenario`'s tracker with associator `name`, checked (std::invalid_argument, naming the
-/// option `option`, where it cannot run). The traffic config is shared: it is copied first.
+/// `scenario`'s tracker (a scenario with traffic: the plan makers call it for many aircraft
+/// only) with associator `name`, checked (std::invalid_argument, naming the option `option`,
+/// where it cannot run). The traffic config is shared: it is copied first.
 void set_associator(Scenario& scenario, const std::string& name, const char* option);
 
 }  // namespace skyfuse

@@ -33,10 +33,6 @@ Scenario load_default_scenario();
 /// The file at `path`, or the default scenario when `path` is empty (what `--scenario` means).
 Scenario load_scenario_or_default(const std::string& path);
 
-/// Throws std::invalid_argument if `scenario` has many aircraft ('traffic'), which `what` (e.g.
-/// "station and center processes") does not run yet; the message says what does.
-void require_one_target(const Scenario& scenario, std::string_view what);
-
 /// Refuses anything a run cannot use: unknown station ids, a station closer to the target
 /// than `kMinStationSeparationM` at any step of any listed speed, and so on. parse_scenario
 /// calls it; it is public so that scenarios built in code can be checked the same way.

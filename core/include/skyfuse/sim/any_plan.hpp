@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// A run's plan of either kind. Whether a run follows one aircraft (RunPlan) or many
-/// (PicturePlan) is decided here, once, by its scenario: many when it has 'traffic'. Every entry
+/// (PicturePlan) is decided here, once, by its scenario's kind (run_kind.hpp). Every entry
 /// point that runs a plan — `skyfuse run`, a station process, the center process — visits it
 /// rather than asking the scenario again.
 
@@ -10,6 +10,7 @@
 
 #include "skyfuse/scenario/scenario.hpp"
 #include "skyfuse/sim/picture_plan.hpp"
+#include "skyfuse/sim/run_kind.hpp"
 #include "skyfuse/sim/run_plan.hpp"
 
 namespace skyfuse {
@@ -19,7 +20,9 @@ using AnyPlan = std::variant<RunPlan, PicturePlan>;
 /// The plan of `scenario` with `overrides`, of the kind the scenario is; throws
 /// std::invalid_argument for an override that kind does not take.
 inline AnyPlan make_plan(Scenario scenario, const RunOverrides& overrides) {
-  if (scenario.has_many_targets()) return make_picture_plan(std::move(scenario), overrides);
+  if (run_of(scenario) == RunOf::kManyAircraft) {
+    return make_picture_plan(std::move(scenario), overrides);
+  }
   return make_run_plan(std::move(scenario), overrides);
 }
 

@@ -19,7 +19,7 @@ namespace skyfuse {
 /// so it holds nothing beside what every plan holds.
 struct PicturePlan : CommonPlan {};
 
-/// Applies the overrides to `scenario` (which has_many_targets()); throws
+/// Applies the overrides to `scenario` (a run of many aircraft, run_kind.hpp); throws
 /// std::invalid_argument naming an option a run of many aircraft does not take (a speed: each
 /// aircraft flies its own) or a value out of range. The exchange is flat unless the scenario or
 /// `--exchange` asks for the tree.

@@ -66,9 +66,9 @@ struct PictureRunResult {
 /// (transport/scan_asterix.hpp), say. None by default.
 using ScanFilter = std::function<void(std::size_t station, Scan& scan)>;
 
-/// Runs `scenario` (has_many_targets()) with its first `stations` stations against `truth`,
-/// Monte-Carlo run `run`; `on_step` hears of each step's figures, and `scan_filter`, where
-/// given, has each simulated scan first.
+/// Runs `scenario` (a run of many aircraft, sim/run_kind.hpp) with its first `stations` stations
+/// against `truth`, Monte-Carlo run `run`; `on_step` hears of each step's figures, and
+/// `scan_filter`, where given, has each simulated scan first.
 PictureRunResult run_picture(const Scenario& scenario, const std::vector<TargetTruth>& truth,
                              int stations, std::uint64_t run,
                              const std::function<void(const PictureStep&)>& on_step = {},

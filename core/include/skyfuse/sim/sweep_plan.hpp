@@ -1,7 +1,7 @@
 #pragma once
 /// \file
 /// What a sweep is (`skyfuse sweep`): Monte-Carlo runs, in-process, of a scenario after its
-/// overrides. Its kind is decided here, once, by the scenario, as make_plan (sim/any_plan.hpp)
+/// overrides. Its kind is the scenario's (sim/run_kind.hpp), as make_plan (sim/any_plan.hpp)
 /// decides a run's: one aircraft sweeps every speed the scenario lists over M = 1..max stations
 /// (a run's plan fixes one speed and one M, so a sweep is no RunPlan); many aircraft run their
 /// picture with the first max stations. An override the kind does not take is refused by name.

@@ -21,7 +21,7 @@ struct TrafficTruth {
   std::optional<RecordedTraffic> recorded;
 };
 
-/// The aircraft of `scenario` (which has_many_targets()) over its steps 0..steps. A recorded
+/// The aircraft of `scenario` (one with 'traffic') over its steps 0..steps. A recorded
 /// file is read from `recorded_file` if given, otherwise from the scenario's own, relative to
 /// the scenario file. The generator's aircraft are the same in every Monte-Carlo run: a
 /// function of the scenario's seed.
