@@ -1,0 +1,148 @@
+#pragma once
+/// \file
+/// A track's error correlated with the biases its registered stations have not learnt yet: the
+/// Schmidt, or "consider", update (docs/registration.md, "NEES").
+///
+/// A registered station's detection, corrected by its settled biases b̂, still carries the
+/// error of that estimate, δb = b − b̂ ~ N(0, Σ): z − G b̂ = h(x) + G δb + ν. That error is one
+/// and the same in every detection the station makes, so it is no white noise: a track that took
+/// it as such (R + G Σ Gᵀ in each detection) believes it averaged it away over a hundred
+/// detections, and it has not. Here the track keeps, for each registered station whose
+/// detections it took, the cross-covariance of its error with that station's bias error, in the
+/// bias's standardised coordinates u (δb = L u, Σ = L Lᵀ, so u ~ N(0, I)): C̃ = Cov(x − x̂, u).
+///
+/// An update is the joint one of [x; u₁ … u_k] in information form — each station's detection
+/// adds [H G̃]ᵀ R⁻¹ [H G̃] (G̃ = G L), which still add up across stations, so that every peer and
+/// the center sum the same increments — of which the track keeps its own mean and covariance and
+/// the new C̃, but not what it learnt of u: the registration, not the track, estimates the biases
+/// (the Schmidt–Kalman filter's rule; its x-part is the joint update's exactly). The prior of u
+/// is N(0, I) at every update, whatever the registration settled since, so C̃ keeps the
+/// correlation as the bias's uncertainty shrinks and the joint prior stays positive definite.
+
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+#include "skyfuse/core/small_cholesky.hpp"
+#include "skyfuse/core/status.hpp"
+#include "skyfuse/core/types.hpp"
+#include "skyfuse/fusion/information_increment.hpp"
+
+namespace skyfuse {
+
+/// At most a state of kMaxConsideredState entries and kMaxConsideredBias biases per station.
+inline constexpr int kMaxConsideredState = 16;
+inline constexpr int kMaxConsideredBias = 4;
+
+using ConsideredCross = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor,
+                                      kMaxConsideredState, kMaxConsideredBias>;
+using ConsideredBiasBlock = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor,
+                                          kMaxConsideredBias, kMaxConsideredBias>;
+using ConsideredBiasVector =
+    Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxConsideredBias, 1>;
+
+/// A track's error against one registered station's standardised bias error: C̃ (N × D).
+struct ConsideredBias {
+  int station_id = 0;
+  ConsideredCross cross;
+  bool operator==(const ConsideredBias&) const = default;
+};
+
+/// A track's, ascending station id.
+using ConsideredBiases = std::vector<ConsideredBias>;
+
+/// What a registered station's detections of a track add to the joint of the track and that
+/// station's u beyond their information increment: Hᵀ R⁻¹ G̃ (N × D), G̃ᵀ R⁻¹ G̃ and
+/// G̃ᵀ R⁻¹ (ν + H x̂) — a weighed sum of them for several detections (JPDA's).
+struct ConsideredTerms {
+  int station_id = 0;
+  ConsideredCross cross;
+  ConsideredBiasBlock bias;
+  ConsideredBiasVector vector;
+
+  /// Zero terms of `state_dim` × `bias_dim`, to sum detections' into.
+  void set_zero(int station, int state_dim, int bias_dim) {
+    station_id = station;
+    cross.setZero(state_dim, bias_dim);
+    bias.setZero(bias_dim, bias_dim);
+    vector.setZero(bias_dim);
+  }
+  void add_weighted(const ConsideredTerms& one, double weight) {
+    cross += weight * one.cross;
+    bias += weight * one.bias;
+    vector += weight * one.vector;
+  }
+};
+
+/// Detection `z` (already corrected by the settled biases, noise `noise`: the station's own,
+/// without G Σ Gᵀ) of the track of prior `prior`, from a station whose standardised bias
+/// Jacobian at the prior mean is `g_scaled` (G L): its terms, linearised as its increment is
+/// (information_increment.hpp: the same H, innovation and factor of R). False where R does not
+/// factor.
+template <int N, typename Sensor>
+bool considered_terms(int station_id, const GaussianState<N>& prior, const Sensor& sensor,
+                      const Vector<Sensor::kMeasDim>& z, const Covariance<Sensor::kMeasDim>& noise,
+                      const Matrix<Sensor::kMeasDim, Eigen::Dynamic>& g_scaled,
+                      ConsideredTerms& out) {
+  constexpr int M = Sensor::kMeasDim;
+  SmallCholesky<M> r_factor;
+  if (!r_factor.compute(noise)) return false;
+  const Matrix<M, N> h = sensor.jacobian(prior.mean);
+  const Vector<M> innovation = sensor.residual(z, sensor.predict(prior.mean));
+  const auto d = g_scaled.cols();
+  Matrix<M, Eigen::Dynamic> r_inv_g(M, d);
+  for (Eigen::Index c = 0; c < d; ++c) r_inv_g.col(c) = r_factor.solve(g_scaled.col(c));
+  out.station_id = station_id;
+  out.cross = h.transpose() * r_inv_g;
+  out.bias = g_scaled.transpose() * r_inv_g;
+  out.bias = 0.5 * (out.bias + out.bias.transpose()).eval();
+  out.vector = r_inv_g.transpose() * (innovation + h * prior.mean);
+  return true;
+}
+
+/// The joint update (the file's comment) of a track of mean `mean` and covariance `covariance`
+/// (N entries) holding `considered`: `delta_information` and `delta_vector`, the sum of every
+/// station's weighed increment, and `terms`, the registered stations' (ascending station id,
+/// weights[i] belongs to terms[i]). Writes the posterior mean and covariance over the prior's,
+/// and `considered` becomes the posterior's C̃ for every station it held or `terms` names, in
+/// ascending station id. On failure nothing is written.
+NumericalStatus fuse_considered(Eigen::Ref<Eigen::VectorXd> mean,
+                                Eigen::Ref<Eigen::MatrixXd> covariance,
+                                ConsideredBiases& considered,
+                                const Eigen::Ref<const Eigen::MatrixXd>& delta_information,
+                                const Eigen::Ref<const Eigen::VectorXd>& delta_vector,
+                                std::span<const ConsideredTerms> terms,
+                                std::span<const double> weights);
+
+/// The same for a Gaussian of fixed size, with its increments as fuse_increments takes them
+/// (increments[i] weighed by increment_weights[i]).
+template <int N, typename Increments>
+NumericalStatus fuse_considered(GaussianState<N>& state, ConsideredBiases& considered,
+                                const Increments& increments,
+                                std::span<const double> increment_weights,
+                                std::span<const ConsideredTerms> terms,
+                                std::span<const double> term_weights) {
+  Covariance<N> information = Covariance<N>::Zero();
+  Vector<N> vector = Vector<N>::Zero();
+  for (std::size_t i = 0; i < increments.size(); ++i) {
+    information.noalias() += increment_weights[i] * increments[i].delta_information;
+    vector.noalias() += increment_weights[i] * increments[i].delta_vector;
+  }
+  Eigen::VectorXd mean = state.mean;
+  Eigen::MatrixXd covariance = state.covariance;
+  const NumericalStatus status =
+      fuse_considered(mean, covariance, considered, information, vector, terms, term_weights);
+  if (status != NumericalStatus::kOk) return status;
+  state.mean = mean;
+  state.covariance = covariance;
+  return status;
+}
+
+/// A track's C̃ carried through its time update: F C̃, F the motion's Jacobian at the prior mean
+/// (u does not move).
+inline void predict_considered(const Eigen::Ref<const Eigen::MatrixXd>& transition,
+                               ConsideredBiases& considered) {
+  for (ConsideredBias& c : considered) c.cross = (transition * c.cross).eval();
+}
+
+}  // namespace skyfuse
