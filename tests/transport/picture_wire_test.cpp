@@ -577,6 +577,15 @@ TEST(PictureWire, ARegisteringPictureArrivesWithEveryStationsRegistration) {
   ASSERT_TRUE(tracks.has_value());
   ASSERT_TRUE(biases.has_value());
 
+  // Each EKF track's cross-covariances with the bias errors (registration/
+  // considered_biases.hpp) travel with it, bit for bit.
+  std::size_t considering = 0;
+  for (std::size_t t = 0; t < sender.tracks().size(); ++t) {
+    EXPECT_EQ((*tracks)[t].considered, sender.tracks()[t].considered) << "track " << t;
+    if (!sender.tracks()[t].considered.empty()) ++considering;
+  }
+  EXPECT_GT(considering, 0U) << "registered stations' detections made the tracks keep some";
+
   Peer taker = world.empty_picture(config);
   taker.restore(std::move(*tracks));
   ASSERT_TRUE(taker.restore_biases(*biases));
@@ -603,6 +612,21 @@ TEST(PictureWire, ARegisteringPictureArrivesWithEveryStationsRegistration) {
     w.biases()[0].information_vector()[0] = std::numeric_limits<double>::infinity();
   }));
   EXPECT_TRUE(refused([](auto& w) { w.biases()[1].station_id(w.biases()[0].station_id()); }));
+  // A track's cross-covariances of a size no state and biases have, not finite, out of order.
+  std::size_t t = 0;
+  while (t < back.tracks().size() && back.tracks()[t].considered().size() < 2) ++t;
+  ASSERT_LT(t, back.tracks().size()) << "a track kept two stations'";
+  const auto track_refused = [&](const std::function<void(wire::PictureStateTrack&)>& forge) {
+    wire::PictureState wrong = back;
+    forge(wrong.tracks()[t]);
+    return !picture_state_from_wire(wrong, test::PictureWorld::track_filters()).has_value();
+  };
+  EXPECT_TRUE(track_refused([](auto& w) { w.considered()[0].cross().pop_back(); }));
+  EXPECT_TRUE(track_refused([](auto& w) { w.considered()[0].cross().clear(); }));
+  EXPECT_TRUE(track_refused(
+      [](auto& w) { w.considered()[0].cross()[0] = std::numeric_limits<double>::quiet_NaN(); }));
+  EXPECT_TRUE(
+      track_refused([](auto& w) { w.considered()[1].station_id(w.considered()[0].station_id()); }));
   // Sums the wire takes but the taker's stations are not: one missing, or of another station.
   Peer other = world.empty_picture(config);
   std::vector<BiasSums> missing = *biases;

@@ -3,6 +3,7 @@
 #include <span>
 #include <type_traits>
 #include <variant>
+#include <vector>
 
 #include "skyfuse/picture/track_filters.hpp"
 #include "skyfuse/registry/registry.hpp"
@@ -23,6 +24,49 @@ bool CenterStackedTracks<Model>::update(State& state,
   if (report.status != NumericalStatus::kOk) return false;
   state = updated;
   return true;
+}
+
+template <typename Model>
+bool CenterStackedTracks<Model>::update_considered(
+    State& state, ConsideredBiases& considered,
+    std::span<const PictureObservation<kDim>> observations,
+    std::span<const ConsideredObservation> registered, std::span<const double> weights) {
+  // Each observation's increment and, for a registered station's, its terms, as a peer's
+  // report computes them (PeerPicture::add_update_of), against this track's prior.
+  std::vector<InformationIncrement<kDim>> increments(observations.size());
+  std::vector<ConsideredTerms> terms;
+  std::vector<double> term_weights;
+  auto next = registered.begin();
+  for (std::size_t i = 0; i < observations.size(); ++i) {
+    const bool ok = std::visit(
+        [&](const auto& o) {
+          if (compute_increment(o.station_id, state, o.sensor, o.z, o.noise, increments[i]) !=
+              NumericalStatus::kOk) {
+            return false;
+          }
+          if (next == registered.end() || next->observation != i) return true;
+          ConsideredTerms one;
+          if (!considered_terms(o.station_id, state, o.sensor, o.z, o.noise,
+                                Matrix<std::decay_t<decltype(o.sensor)>::kMeasDim, Eigen::Dynamic>(
+                                    next->g_scaled),
+                                one)) {
+            return false;
+          }
+          ++next;
+          // A station with several detections of the track (JPDA's) adds theirs up.
+          if (!terms.empty() && terms.back().station_id == one.station_id) {
+            terms.back().add_weighted(one, 1.0);
+          } else {
+            terms.push_back(std::move(one));
+            term_weights.push_back(weights[i]);
+          }
+          return true;
+        },
+        observations[i]);
+    if (!ok) return false;
+  }
+  return fuse_considered(state, considered, std::span<const InformationIncrement<kDim>>(increments),
+                         weights, terms, term_weights) == NumericalStatus::kOk;
 }
 
 // A new motion model in the registry needs its line below.

@@ -148,6 +148,8 @@ TEST(RegisteredPicture, PeersLearnOneEstimateTheTruthsAndABatchSolutionAgree) {
 
   std::vector<std::vector<PairedWithReference>> paired(2);
   double worst_center_gap = 0.0;
+  double worst_track_gap = 0.0;
+  std::size_t considering = 0;  // track-rounds with cross-covariances kept
   for (int k = 0; k < kRounds; ++k) {
     if (k == kRounds / 2) {
       // Station 3's peer restarts: a fresh one takes the picture and the registration's sums
@@ -176,6 +178,25 @@ TEST(RegisteredPicture, PeersLearnOneEstimateTheTruthsAndABatchSolutionAgree) {
             << "round " << k << ", peer " << p << ", station " << station.id;
       }
     }
+    // The center's tracks and their cross-covariances with the bias errors (registration/
+    // considered_biases.hpp), against the peers'.
+    ASSERT_EQ(center.tracks().size(), peers[0].tracks().size()) << "round " << k;
+    for (std::size_t t = 0; t < center.tracks().size(); ++t) {
+      const auto& mine = peers[0].tracks()[t];
+      const auto& theirs = center.tracks()[t];
+      ASSERT_EQ(mine.id, theirs.id);
+      worst_track_gap = std::max(worst_track_gap, (mine.filter.mean - theirs.filter.mean).norm() /
+                                                      (1.0 + mine.filter.mean.norm()));
+      ASSERT_EQ(mine.considered.size(), theirs.considered.size()) << "round " << k;
+      for (std::size_t c = 0; c < mine.considered.size(); ++c) {
+        ASSERT_EQ(mine.considered[c].station_id, theirs.considered[c].station_id);
+        const double scale = 1.0 + mine.considered[c].cross.norm();
+        worst_track_gap =
+            std::max(worst_track_gap,
+                     (mine.considered[c].cross - theirs.considered[c].cross).norm() / scale);
+      }
+      if (!mine.considered.empty()) ++considering;
+    }
     for (const Station& station : known) {
       const Vector<4> mine = Estimate::from_sensor_bias(peers[0].bias_of(station.id).bias());
       const Vector<4> theirs = Estimate::from_sensor_bias(center.bias_of(station.id).bias());
@@ -196,6 +217,8 @@ TEST(RegisteredPicture, PeersLearnOneEstimateTheTruthsAndABatchSolutionAgree) {
     }
   }
   EXPECT_LT(worst_center_gap, 1e-9);
+  EXPECT_LT(worst_track_gap, 1e-9);
+  EXPECT_GT(considering, 0U) << "the EKF's tracks keep their registered stations' bias errors";
 
   const Vector<4> prior_std(config.registration.range_std_m, config.registration.azimuth_std_rad,
                             config.registration.elevation_std_rad, config.registration.time_std_s);

@@ -63,6 +63,9 @@ class CentralPicture : public TrackTable<Tracks> {
   std::vector<Association> associations_;
   std::vector<std::vector<Observation>> observations_;
   std::vector<std::vector<double>> weights_;
+  // Per track: its registered stations' observations, for a part whose tracks keep their
+  // cross-covariances with the bias errors (ConsidersBiases).
+  std::vector<std::vector<ConsideredObservation>> considered_;
   std::vector<std::vector<UnassociatedDetection>> unassociated_;
   std::vector<char> hit_;
   std::vector<Address> offered_;  // per track: the address its pairs offer this round

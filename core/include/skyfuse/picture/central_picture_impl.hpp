@@ -18,6 +18,7 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
   associations_.clear();
   clear_each(observations_, count);
   clear_each(weights_, count);
+  clear_each(considered_, count);
   clear_each(unassociated_, scans.size());
   offered_.assign(count, kNoAddress);
   refused_addresses_ = 0;
@@ -47,7 +48,13 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
               const auto correction =
                   registration.of(s).correction(sensor, this->estimates()[t].mean);
               z = correction.applied(z);
-              noise = noise + correction.noise;
+              // As the peers' part takes it: the bias errors in the track's joint update, or
+              // as white noise.
+              if constexpr (ConsidersBiases<Tracks>) {
+                considered_[t].push_back({observations_[t].size(), correction.g_scaled});
+              } else {
+                noise = noise + correction.noise;
+              }
             }
             observations_[t].push_back(StationObservation<Sensor>{
                 station.id, sensor, z,
@@ -67,8 +74,20 @@ RoundOutcome CentralPicture<Tracks>::update(std::uint64_t step, std::span<const 
     auto& track = this->track(t);
     track.updated_by.clear();
     if (observations_[t].empty()) continue;
-    if (!this->filters().update(track.filter, std::span<const Observation>(observations_[t]),
-                                weights_[t])) {
+    bool updated = false;
+    if constexpr (ConsidersBiases<Tracks>) {
+      updated =
+          track.considered.empty() && considered_[t].empty()
+              ? this->filters().update(track.filter, std::span<const Observation>(observations_[t]),
+                                       weights_[t])
+              : this->filters().update_considered(track.filter, track.considered,
+                                                  std::span<const Observation>(observations_[t]),
+                                                  considered_[t], weights_[t]);
+    } else {
+      updated = this->filters().update(track.filter, std::span<const Observation>(observations_[t]),
+                                       weights_[t]);
+    }
+    if (!updated) {
       offered_[t] = kNoAddress;  // a miss offers nothing
       continue;
     }

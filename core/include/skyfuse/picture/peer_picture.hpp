@@ -58,6 +58,14 @@ struct StationReport {
   /// the station's noise), for its registration (both empty where nothing registers).
   std::vector<Detection> paired_detections;
   std::vector<Detection> paired_reported_std;
+  /// A registered station's terms for each track it updated, for a filter part whose tracks
+  /// keep their cross-covariances with the bias errors (registration/considered_biases.hpp);
+  /// ascending track id, empty otherwise.
+  struct Considered {
+    TrackId track = 0;
+    ConsideredTerms terms;
+  };
+  std::vector<Considered> considered;
   std::vector<UnassociatedDetection> unassociated;  ///< ascending detection index
   std::size_t dropped = 0;            ///< detections beyond the assignment's bound, left out
   std::size_t refused_addresses = 0;  ///< addressed detections refused as possible spoofs
@@ -122,6 +130,9 @@ class PeerPicture : public TrackTable<Tracks> {
   std::vector<double> report_weights_;  // reports[r]'s station's weight
   std::vector<const Contribution*> contributions_;
   std::vector<double> weights_;
+  std::vector<std::size_t> considered_cursor_;  // per report: its next Considered
+  std::vector<ConsideredTerms> terms_;
+  std::vector<double> term_weights_;
   std::vector<Address> offered_;  // per track: the address its hit offers (close_round)
 };
 

@@ -99,10 +99,13 @@ RoundOutcome PeerPicture<Tracks>::fuse(std::uint64_t step, std::span<const Repor
     }
     this->learn_biases(learned);
   }
+  considered_cursor_.assign(reports.size(), 0);
   for (std::size_t t = 0; t < count; ++t) {
     auto& track = this->track(t);
     contributions_.clear();
     weights_.clear();
+    terms_.clear();
+    term_weights_.clear();
     track.updated_by.clear();
     for (std::size_t r = 0; r < reports.size(); ++r) {
       const auto& updates = reports[r].updates;
@@ -114,9 +117,27 @@ RoundOutcome PeerPicture<Tracks>::fuse(std::uint64_t step, std::span<const Repor
         if (offered_[t] == kNoAddress) offered_[t] = updates[at].address;
         track.updated_by.push_back(reports[r].station_id);
       }
+      const auto& considered = reports[r].considered;
+      std::size_t& next = considered_cursor_[r];
+      while (next < considered.size() && considered[next].track < track.id) ++next;
+      if (next < considered.size() && considered[next].track == track.id) {
+        terms_.push_back(considered[next].terms);
+        term_weights_.push_back(report_weights_[r]);
+      }
     }
     if (contributions_.empty()) continue;
-    if (Tracks::fuse(track.filter, contributions_, weights_) == NumericalStatus::kOk) {
+    NumericalStatus fused = NumericalStatus::kOk;
+    if constexpr (ConsidersBiases<Tracks>) {
+      if (!track.considered.empty() || !terms_.empty()) {
+        fused = Tracks::fuse_considered(track.filter, track.considered, contributions_, weights_,
+                                        terms_, term_weights_);
+      } else {
+        fused = Tracks::fuse(track.filter, contributions_, weights_);
+      }
+    } else {
+      fused = Tracks::fuse(track.filter, contributions_, weights_);
+    }
+    if (fused == NumericalStatus::kOk) {
       hit_[t] = 1;
     } else {
       track.updated_by.clear();
@@ -181,22 +202,40 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
     report.paired_detections.push_back(detections.values[pair.detection]);
     report.paired_reported_std.push_back(reported_std_at(detections.reported_std, pair.detection));
   };
+  // A part whose tracks keep their cross-covariances with the bias errors takes the detection
+  // with its own R, and the terms of the joint update beside its increment; any other, the bias
+  // errors as white noise in R.
+  constexpr bool kKeepsCross = ConsidersBiases<Tracks>;
+  typename Report::Considered considered{track.id, {}};
+  ConsideredTerms terms;
   const auto contribute = [&](const Pair& pair, Contribution& out) {
     const Detection& raw = detections.values[pair.detection];
     const Vector<M> z = fixed_detection<M>(raw);
     // The detection's own R where its report states its σ (Scan::reported_std).
     const Covariance<M> own =
         reported_noise<M>(noise, reported_std_at(detections.reported_std, pair.detection));
-    const Covariance<M> r = correction ? Covariance<M>(own + correction->noise) : own;
+    const Covariance<M> r =
+        correction && !kKeepsCross ? Covariance<M>(own + correction->noise) : own;
     const StationObservation<Sensor> observation{station_id, sensor,
                                                  correction ? correction->applied(z) : z, r};
-    return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;
+    if (Tracks::contribute(track.filter, observation, out) != NumericalStatus::kOk) return false;
+    if constexpr (kKeepsCross) {
+      if (correction) {
+        return considered_terms(station_id, Tracks::estimate(track.filter), sensor, observation.z,
+                                own, Matrix<M, Eigen::Dynamic>(correction->g_scaled), terms);
+      }
+    }
+    return true;
   };
   if (pairs.size() == 1 && pairs.front().weight == 1.0) {
     if (!contribute(pairs.front(), update.contribution)) return;
     report.updates.push_back(std::move(update));
     report.pairs.push_back({track.id, pairs.front().detection, pairs.front().weight});
     paired(pairs.front());
+    if (kKeepsCross && correction) {
+      considered.terms = std::move(terms);
+      report.considered.push_back(std::move(considered));
+    }
     return;
   }
   if constexpr (requires(Contribution & c) { Tracks::add_weighted(c, c, 1.0); }) {
@@ -204,13 +243,23 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
     Contribution one;
     for (const Pair& pair : pairs) {
       if (!contribute(pair, one)) continue;
-      if (!any) Tracks::start_sum(update.contribution, station_id);
+      if (!any) {
+        Tracks::start_sum(update.contribution, station_id);
+        if (kKeepsCross && correction) {
+          considered.terms.set_zero(station_id, static_cast<int>(terms.cross.rows()),
+                                    static_cast<int>(terms.cross.cols()));
+        }
+      }
       Tracks::add_weighted(update.contribution, one, pair.weight);
+      if (kKeepsCross && correction) considered.terms.add_weighted(terms, pair.weight);
       report.pairs.push_back({track.id, pair.detection, pair.weight});
       paired(pair);
       any = true;
     }
-    if (any) report.updates.push_back(std::move(update));
+    if (any) {
+      report.updates.push_back(std::move(update));
+      if (kKeepsCross && correction) report.considered.push_back(std::move(considered));
+    }
   } else {
     throw std::logic_error("a weighed association reached a filter part that cannot sum it");
   }

@@ -11,6 +11,7 @@
 
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/picture/address.hpp"
+#include "skyfuse/registration/considered_biases.hpp"
 
 namespace skyfuse {
 
@@ -83,6 +84,9 @@ struct Track {
   /// The aircraft's address, once an addressed detection was assigned to the track
   /// (picture/identity.hpp); kNoAddress until then.
   Address address = kNoAddress;
+  /// Its error's cross-covariance with each registered station's bias error, for a filter part
+  /// that keeps them (registration/considered_biases.hpp); empty otherwise.
+  ConsideredBiases considered{};
 };
 
 }  // namespace skyfuse

@@ -17,6 +17,7 @@
 
 #include <span>
 #include <stdexcept>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -27,6 +28,7 @@
 #include "skyfuse/fusion/station_observation.hpp"
 #include "skyfuse/picture/imm_picture_steps.hpp"
 #include "skyfuse/picture/picture_sensor.hpp"
+#include "skyfuse/registration/considered_biases.hpp"
 #include "skyfuse/registry/make_parts.hpp"
 #include "skyfuse/scenario/truth.hpp"
 #include "skyfuse/tracking/increment_rules_impl.hpp"
@@ -49,6 +51,11 @@ class ModelTracks {
       : motion_(motion), initial_variance_(initial_variance) {}
 
   void predict(State& state) const { skyfuse::predict(state, motion_); }
+  /// A track's cross-covariances with its stations' bias errors through the time update of
+  /// `prior` (call before predict(prior)).
+  void predict_considered(const State& prior, ConsideredBiases& considered) const {
+    if (!considered.empty()) skyfuse::predict_considered(motion_.jacobian(prior.mean), considered);
+  }
   static const GaussianState<kDim>& estimate(const State& state) { return state; }
   static State start(const GaussianState<kDim>& initial) { return initial; }
   static Vector<kDim> from_kinematics(const Vector<kKinematicsDim>& x) {
@@ -70,6 +77,10 @@ class PeerModelTracks : public ModelTracks<Model> {
   static constexpr int kDim = Model::kDim;
   using State = GaussianState<kDim>;
   using Contribution = InformationIncrement<kDim>;
+  /// The EKF's tracks keep their cross-covariances with registered stations' bias errors
+  /// (registration/considered_biases.hpp): its increment is the joint update's x-part as it
+  /// is linearised. Other parts take those errors as white noise in R.
+  static constexpr bool kConsidersBiases = std::is_same_v<Rule, EkfIncrementRule>;
 
   template <typename Sensor>
   static NumericalStatus contribute(const State& state, const StationObservation<Sensor>& o,
@@ -81,6 +92,16 @@ class PeerModelTracks : public ModelTracks<Model> {
   static NumericalStatus fuse(State& state, std::span<const Contribution* const> contributions,
                               std::span<const double> weights) {
     return fuse_increments(state, IndirectView<Contribution>(contributions), weights, state);
+  }
+  /// fuse() for a track that keeps its cross-covariances `considered`, with the registered
+  /// stations' `terms` (ascending station id, terms[i] weighed by term_weights[i]).
+  static NumericalStatus fuse_considered(State& state, ConsideredBiases& considered,
+                                         std::span<const Contribution* const> contributions,
+                                         std::span<const double> weights,
+                                         std::span<const ConsideredTerms> terms,
+                                         std::span<const double> term_weights) {
+    return skyfuse::fuse_considered(state, considered, IndirectView<Contribution>(contributions),
+                                    weights, terms, term_weights);
   }
   /// A station's contribution of several detections (JPDA's): a zero sum, then each
   /// detection's increment weighed by its pair's weight.
@@ -107,6 +128,16 @@ class CenterStackedTracks : public ModelTracks<Model> {
   /// the build's largest files (docs/testing.md).
   bool update(State& state, std::span<const PictureObservation<kDim>> observations,
               std::span<const double> weights);
+
+  /// As the peers' (PeerModelTracks::kConsidersBiases).
+  static constexpr bool kConsidersBiases = true;
+  /// update() for a track that keeps its cross-covariances `considered`: the peers' joint
+  /// update (registration/considered_biases.hpp) of every observation's increment (station
+  /// weights[i]), with `registered`'s terms for the observations of registered stations.
+  bool update_considered(State& state, ConsideredBiases& considered,
+                         std::span<const PictureObservation<kDim>> observations,
+                         std::span<const ConsideredObservation> registered,
+                         std::span<const double> weights);
 
  private:
   template <typename Sensor>

@@ -60,7 +60,12 @@ void TrackTable<Tracks>::add_known_track(TrackId id, const GaussianState<kDim>& 
 
 template <typename Tracks>
 void TrackTable<Tracks>::predict() {
-  for (TrackType& track : tracks_) filters_.predict(track.filter);
+  for (TrackType& track : tracks_) {
+    if constexpr (ConsidersBiases<Tracks>) {
+      filters_.predict_considered(track.filter, track.considered);
+    }
+    filters_.predict(track.filter);
+  }
   refresh_estimates();
 }
 
@@ -87,6 +92,16 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
                                              UnassociatedOf unassociated_of) {
   // What this round taught each station's registration corrects the next round's detections.
   registration_.settle();
+  if constexpr (ConsidersBiases<Tracks>) {
+    // A track whose error is correlated with a station's bias error expects that error to have
+    // moved as the estimate did: E[x − x̂ | u] = C̃ u.
+    for (TrackType& track : tracks_) {
+      for (const ConsideredBias& c : track.considered) {
+        const auto& moved = registration_.of(station_index(c.station_id)).last_move();
+        if (moved.size() == c.cross.cols()) track.filter.mean.noalias() += c.cross * moved;
+      }
+    }
+  }
   learn_addresses(offered);
   // A track's height no less known than the band the 2-D radars assume (height_bound.hpp).
   if (height_band_) {

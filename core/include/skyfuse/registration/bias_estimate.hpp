@@ -57,12 +57,15 @@ class BiasEstimate {
 
   /// Adds detection `z` (noise `noise`) of the aircraft whose track has prior `prior`. False,
   /// and nothing added, where S does not factor.
+  /// `absorbed`: what of the biases the track's error itself holds, E[H (x − x̂) | b] per unit
+  /// of b (a track correlated with them, registration/considered_biases.hpp), added to ∂r/∂b.
   template <int N>
   bool add(const Sensor& sensor, const GaussianState<N>& prior, const Vector<kMeasDim>& z,
-           const Covariance<kMeasDim>& noise) {
+           const Covariance<kMeasDim>& noise,
+           const Matrix<kMeasDim, kDim>& absorbed = Matrix<kMeasDim, kDim>::Zero()) {
     const Jacobian<kMeasDim, N> h = sensor.jacobian(prior.mean);
     const Vector<kMeasDim> r = sensor.residual(z, sensor.predict(prior.mean));
-    const Matrix<kMeasDim, kDim> g = bias_jacobian(h, prior.mean);
+    const Matrix<kMeasDim, kDim> g = bias_jacobian(h, prior.mean) + absorbed;
     Covariance<kMeasDim> s = h * prior.covariance * h.transpose() + noise;
     symmetrize(s);
     SmallCholesky<kMeasDim> factor;

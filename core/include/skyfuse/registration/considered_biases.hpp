@@ -74,6 +74,20 @@ struct ConsideredTerms {
   }
 };
 
+/// Whether a filter part's tracks (picture/track_filters.hpp) keep their cross-covariances
+/// with registered stations' bias errors.
+template <typename Tracks>
+concept ConsidersBiases = requires {
+  requires Tracks::kConsidersBiases;
+};
+
+/// A center's observation of a registered station, by its index among a track's observations:
+/// its standardised bias Jacobian G L (BiasCorrection::g_scaled).
+struct ConsideredObservation {
+  std::size_t observation = 0;
+  Eigen::MatrixXd g_scaled;
+};
+
 /// Detection `z` (already corrected by the settled biases, noise `noise`: the station's own,
 /// without G Σ Gᵀ) of the track of prior `prior`, from a station whose standardised bias
 /// Jacobian at the prior mean is `g_scaled` (G L): its terms, linearised as its increment is

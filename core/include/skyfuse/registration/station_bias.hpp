@@ -6,6 +6,7 @@
 /// when settle() is called (once a round), so that every detection of a round is corrected
 /// alike whatever the order it is met in.
 
+#include <Eigen/Cholesky>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -15,6 +16,7 @@
 #include "skyfuse/picture/picture_sensor.hpp"
 #include "skyfuse/picture/scan.hpp"
 #include "skyfuse/registration/bias_estimate.hpp"
+#include "skyfuse/registration/considered_biases.hpp"
 
 namespace skyfuse {
 
@@ -53,6 +55,10 @@ struct BiasCorrection {
   Matrix<M, D> g;
   Vector<D> b;
   Covariance<M> noise;
+  /// G L, Σ = L Lᵀ: the Jacobian in the biases' standardised errors, which a track that keeps
+  /// its cross-covariance with them takes instead of the noise (registration/
+  /// considered_biases.hpp).
+  Matrix<M, D> g_scaled;
 
   /// z − G b̂, as the sensor reports it (angles wrapped).
   Vector<M> applied(const Vector<M>& z) const { return S::to_reported(z - g * b); }
@@ -81,7 +87,7 @@ class StationBias {
     // Until the first settle the corrections are zero and as uncertain as the prior.
     std::visit(
         [&]<typename S>(const BiasEstimate<S>&) {
-          covariance_ = BiasEstimate<S>::from_sensor_bias(prior_std).cwiseAbs2().asDiagonal();
+          set_covariance(BiasEstimate<S>::from_sensor_bias(prior_std).cwiseAbs2().asDiagonal());
         },
         estimate_);
   }
@@ -89,13 +95,35 @@ class StationBias {
   /// Adds detection `z` (noise `noise`) of the aircraft whose track has prior `prior`: z as
   /// the station measured it, biases and all. False, and nothing added, where S does not
   /// factor.
+  ///
+  /// `absorbed`, where the track keeps its cross-covariance C̃ with this station's bias error
+  /// (registration/considered_biases.hpp): its error is then partly this station's bias, which
+  /// the detection's residual does not show — E[x − x̂ | b] = C̃ L⁻¹ (b − b̂) — so the detection
+  /// teaches the biases through H (C̃ L⁻¹) beside G, against the track's error without that
+  /// part, P − C̃ C̃ᵀ.
   bool learn(const Sensor& sensor, const GaussianState<N>& prior, const Detection& z,
-             const DetectionNoise& noise) {
+             const DetectionNoise& noise, const ConsideredCross* absorbed = nullptr) {
     return std::visit(
         [&]<typename S>(const S& typed) {
           constexpr int M = S::kMeasDim;
-          return std::get<BiasEstimate<S>>(estimate_).add(typed, prior, fixed_detection<M>(z),
-                                                          fixed_noise<M>(noise));
+          constexpr int D = BiasEstimate<S>::kDim;
+          auto& estimate = std::get<BiasEstimate<S>>(estimate_);
+          if (absorbed == nullptr || absorbed->rows() != N || absorbed->cols() != D) {
+            return estimate.add(typed, prior, fixed_detection<M>(z), fixed_noise<M>(noise));
+          }
+          const Matrix<N, D> cross = *absorbed;
+          const Covariance<D> l = factor_.template topLeftCorner<D, D>();
+          // A = H C̃ L⁻¹, from Lᵀ Aᵀ = (H C̃)ᵀ.
+          const Matrix<M, D> a = l.transpose()
+                                     .template triangularView<Eigen::Upper>()
+                                     .solve((typed.jacobian(prior.mean) * cross).transpose())
+                                     .transpose();
+          GaussianState<N> rest{prior.mean, prior.covariance - cross * cross.transpose()};
+          symmetrize(rest.covariance);
+          // r = z − h(x̂) ≈ (G + A) b − A b̂ + …: the known part moved to z.
+          const Vector<M> shifted =
+              fixed_detection<M>(z) + a * BiasEstimate<S>::from_sensor_bias(bias_);
+          return estimate.add(typed, rest, shifted, fixed_noise<M>(noise), a);
         },
         sensor);
   }
@@ -105,10 +133,18 @@ class StationBias {
   bool settle() {
     return std::visit(
         [&]<typename S>(const BiasEstimate<S>& estimate) {
+          constexpr int D = BiasEstimate<S>::kDim;
           const auto settled = estimate.estimate();
           if (!settled) return false;
+          // How far the estimate moved, in the standardised errors of the one it replaces.
+          // (Entry by entry, and solved in the dynamic vector: GCC 12 warns falsely of
+          // -Warray-bounds on the packet arithmetic of a one-entry estimate's.)
+          const Vector<D> before = BiasEstimate<S>::from_sensor_bias(bias_);
+          shift_.resize(D);
+          for (int i = 0; i < D; ++i) shift_(i) = settled->mean(i) - before(i);
+          factor_.topLeftCorner(D, D).template triangularView<Eigen::Lower>().solveInPlace(shift_);
           bias_ = BiasEstimate<S>::as_sensor_bias(settled->mean);
-          covariance_ = settled->covariance;
+          set_covariance(settled->covariance);
           return true;
         },
         estimate_);
@@ -116,6 +152,13 @@ class StationBias {
 
   /// The biases the corrections use (none learnt: zero).
   const SensorBias& bias() const { return bias_; }
+
+  /// How far the last settle() moved them, in the standardised errors u of the estimate it
+  /// replaced (L⁻¹ (b̂_new − b̂_old)): what a track that keeps its cross-covariance C̃ with them
+  /// expects its own error to have been, C̃ u (registration/considered_biases.hpp).
+  const Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1>& last_move() const {
+    return shift_;
+  }
 
   /// Their standard deviations, as settled (before the first settle: the prior's); 0 for an
   /// entry the sensor's estimate does not hold (estimated()).
@@ -151,6 +194,7 @@ class StationBias {
     c.g = BiasEstimate<S>::bias_jacobian(sensor.jacobian(mean), mean);
     c.b = BiasEstimate<S>::from_sensor_bias(bias_);
     c.noise = c.g * fixed_covariance<D>() * c.g.transpose();
+    c.g_scaled = c.g * factor_.template topLeftCorner<D, D>();
     return c;
   }
 
@@ -243,10 +287,20 @@ class StationBias {
     return covariance_.template topLeftCorner<D, D>();
   }
 
+  // Σ, and its lower Cholesky factor L for BiasCorrection::g_scaled (Σ is positive definite: a
+  // prior of positive entries, or a settled estimate, which factored).
+  template <typename Cov>
+  void set_covariance(const Cov& covariance) {
+    covariance_ = covariance;
+    factor_ = covariance_.llt().matrixL();
+  }
+
   Estimate estimate_;
   SensorBias bias_;
   /// Σ of the settled estimate, of its size (at most the three offsets and the clock).
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4> covariance_;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4> factor_;
+  Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1> shift_;
 };
 
 }  // namespace skyfuse

@@ -357,6 +357,31 @@ std::optional<typename Tracks::State> imm_state_from_wire(const wire::PictureSta
   return state;
 }
 
+// A track's cross-covariances with its stations' bias errors (state_dim rows each), or nothing
+// if any is wrong: station ids not strictly ascending, a size that is not state_dim times one
+// to four biases, a value that is not finite.
+inline std::optional<ConsideredBiases> considered_from_wire(const wire::PictureStateTrack& t,
+                                                            int state_dim) {
+  ConsideredBiases considered;
+  for (const wire::PictureConsideredBias& b : t.considered()) {
+    if (!considered.empty() && b.station_id() <= considered.back().station_id) return std::nullopt;
+    const auto size = static_cast<int>(b.cross().size());
+    const int biases = size / state_dim;
+    if (biases < 1 || biases > kMaxConsideredBias || size != biases * state_dim ||
+        state_dim > kMaxConsideredState) {
+      return std::nullopt;
+    }
+    ConsideredCross cross(state_dim, biases);
+    for (int r = 0; r < state_dim; ++r) {
+      for (int c = 0; c < biases; ++c)
+        cross(r, c) = b.cross()[static_cast<std::size_t>(r * biases + c)];
+    }
+    if (!cross.allFinite()) return std::nullopt;
+    considered.push_back({b.station_id(), std::move(cross)});
+  }
+  return considered;
+}
+
 }  // namespace detail
 
 /// Station `station_id`'s whole picture after round `step`, for a peer that must take it: every
@@ -401,6 +426,14 @@ wire::PictureState picture_state_to_wire(const Table& table, std::uint64_t run_i
     }
     t.updated_by(track.updated_by);
     t.address(track.address);
+    for (const ConsideredBias& c : track.considered) {
+      wire::PictureConsideredBias b;
+      b.station_id(c.station_id);
+      for (Eigen::Index r = 0; r < c.cross.rows(); ++r) {
+        for (Eigen::Index k = 0; k < c.cross.cols(); ++k) b.cross().push_back(c.cross(r, k));
+      }
+      t.considered().push_back(std::move(b));
+    }
     out.push_back(std::move(t));
   }
   for (const BiasSums& sums : table.bias_sums()) {
@@ -472,6 +505,9 @@ std::optional<std::vector<Track<typename Tracks::State>>> picture_state_from_wir
                        std::move(*filter),
                        {t.updated_by().begin(), t.updated_by().end()}};
     track.address = t.address();
+    const auto considered = detail::considered_from_wire(t, N);
+    if (!considered) return std::nullopt;
+    track.considered = std::move(*considered);
     tracks.push_back(std::move(track));
   }
   std::vector<Address> held;

@@ -110,7 +110,16 @@ class LeastSquaresRegistration {
         if (std::ranges::all_of(track.updated_by, [&](int id) { return id == station.id; })) {
           continue;
         }
-        biases_[pair.station].learn(station.sensor, estimates[pair.track], *pair.z, station.noise);
+        // A track that keeps its cross-covariance with this station's bias error holds part of
+        // that error itself (StationBias::learn).
+        const ConsideredCross* absorbed = nullptr;
+        if constexpr (requires { track.considered; }) {
+          for (const ConsideredBias& c : track.considered) {
+            if (c.station_id == station.id) absorbed = &c.cross;
+          }
+        }
+        biases_[pair.station].learn(station.sensor, estimates[pair.track], *pair.z, station.noise,
+                                    absorbed);
         continue;
       }
       const PairedDetection* reference = reference_of_[pair.track];
