@@ -123,6 +123,14 @@ class PeerPicture : public TrackTable<Tracks> {
                      const Covariance<Sensor::kMeasDim>& noise,
                      const typename Table::TrackType& track, std::span<const Pair> pairs,
                      const PublishedDetections& detections) const;
+  // For a part whose tracks keep their cross-covariances with the bias errors: the terms of
+  // `track`'s update by a registered station from its `pairs` (ConsideredTerms).
+  template <typename Sensor>
+  void add_considered(Report& report, int station_id, const Sensor& sensor,
+                      const Covariance<Sensor::kMeasDim>& noise,
+                      const typename Table::TrackType& track,
+                      const BiasCorrection<Sensor>& correction, std::span<const ReportedPair> pairs,
+                      const PublishedDetections& detections) const;
   double weight_of(int station_id) const;
 
   std::vector<char> hit_;

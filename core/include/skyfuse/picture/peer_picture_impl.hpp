@@ -100,6 +100,9 @@ RoundOutcome PeerPicture<Tracks>::fuse(std::uint64_t step, std::span<const Repor
     this->learn_biases(learned);
   }
   considered_cursor_.assign(reports.size(), 0);
+  // Only a registered station's report carries terms (ConsidersBiases).
+  const bool any_terms =
+      std::ranges::any_of(reports, [](const Report& report) { return !report.considered.empty(); });
   for (std::size_t t = 0; t < count; ++t) {
     auto& track = this->track(t);
     contributions_.clear();
@@ -117,6 +120,7 @@ RoundOutcome PeerPicture<Tracks>::fuse(std::uint64_t step, std::span<const Repor
         if (offered_[t] == kNoAddress) offered_[t] = updates[at].address;
         track.updated_by.push_back(reports[r].station_id);
       }
+      if (!any_terms) continue;
       const auto& considered = reports[r].considered;
       std::size_t& next = considered_cursor_[r];
       while (next < considered.size() && considered[next].track < track.id) ++next;
@@ -203,11 +207,9 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
     report.paired_reported_std.push_back(reported_std_at(detections.reported_std, pair.detection));
   };
   // A part whose tracks keep their cross-covariances with the bias errors takes the detection
-  // with its own R, and the terms of the joint update beside its increment; any other, the bias
-  // errors as white noise in R.
+  // with its own R, and the terms of the joint update beside its increment (add_considered);
+  // any other, the bias errors as white noise in R.
   constexpr bool kKeepsCross = ConsidersBiases<Tracks>;
-  typename Report::Considered considered{track.id, {}};
-  ConsideredTerms terms;
   const auto contribute = [&](const Pair& pair, Contribution& out) {
     const Detection& raw = detections.values[pair.detection];
     const Vector<M> z = fixed_detection<M>(raw);
@@ -218,51 +220,66 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
         correction && !kKeepsCross ? Covariance<M>(own + correction->noise) : own;
     const StationObservation<Sensor> observation{station_id, sensor,
                                                  correction ? correction->applied(z) : z, r};
-    if (Tracks::contribute(track.filter, observation, out) != NumericalStatus::kOk) return false;
-    if constexpr (kKeepsCross) {
-      if (correction) {
-        return considered_terms(station_id, Tracks::estimate(track.filter), sensor, observation.z,
-                                own, Matrix<M, Eigen::Dynamic>(correction->g_scaled), terms);
-      }
-    }
-    return true;
+    return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;
   };
+  const std::size_t first_pair = report.pairs.size();
   if (pairs.size() == 1 && pairs.front().weight == 1.0) {
     if (!contribute(pairs.front(), update.contribution)) return;
     report.updates.push_back(std::move(update));
     report.pairs.push_back({track.id, pairs.front().detection, pairs.front().weight});
     paired(pairs.front());
-    if (kKeepsCross && correction) {
-      considered.terms = std::move(terms);
-      report.considered.push_back(std::move(considered));
-    }
-    return;
-  }
-  if constexpr (requires(Contribution & c) { Tracks::add_weighted(c, c, 1.0); }) {
+  } else if constexpr (requires(Contribution & c) { Tracks::add_weighted(c, c, 1.0); }) {
     bool any = false;
     Contribution one;
     for (const Pair& pair : pairs) {
       if (!contribute(pair, one)) continue;
-      if (!any) {
-        Tracks::start_sum(update.contribution, station_id);
-        if (kKeepsCross && correction) {
-          considered.terms.set_zero(station_id, static_cast<int>(terms.cross.rows()),
-                                    static_cast<int>(terms.cross.cols()));
-        }
-      }
+      if (!any) Tracks::start_sum(update.contribution, station_id);
       Tracks::add_weighted(update.contribution, one, pair.weight);
-      if (kKeepsCross && correction) considered.terms.add_weighted(terms, pair.weight);
       report.pairs.push_back({track.id, pair.detection, pair.weight});
       paired(pair);
       any = true;
     }
-    if (any) {
-      report.updates.push_back(std::move(update));
-      if (kKeepsCross && correction) report.considered.push_back(std::move(considered));
-    }
+    if (any) report.updates.push_back(std::move(update));
   } else {
     throw std::logic_error("a weighed association reached a filter part that cannot sum it");
   }
+  if constexpr (kKeepsCross) {
+    if (correction && report.pairs.size() > first_pair) {
+      add_considered(report, station_id, sensor, noise, track, *correction,
+                     std::span<const ReportedPair>(report.pairs).subspan(first_pair), detections);
+    }
+  }
+}
+
+// The terms of the pairs that made the station's update (the report's last pairs), weighed by
+// their weights as the increments are.
+template <typename Tracks>
+template <typename Sensor>
+void PeerPicture<Tracks>::add_considered(Report& report, int station_id, const Sensor& sensor,
+                                         const Covariance<Sensor::kMeasDim>& noise,
+                                         const typename Table::TrackType& track,
+                                         const BiasCorrection<Sensor>& correction,
+                                         std::span<const ReportedPair> pairs,
+                                         const PublishedDetections& detections) const {
+  constexpr int M = Sensor::kMeasDim;
+  const Matrix<M, Eigen::Dynamic> g_scaled = correction.g_scaled;
+  typename Report::Considered considered{track.id, {}};
+  ConsideredTerms one;
+  for (const ReportedPair& pair : pairs) {
+    const Vector<M> z = correction.applied(fixed_detection<M>(detections.values[pair.detection]));
+    const Covariance<M> own =
+        reported_noise<M>(noise, reported_std_at(detections.reported_std, pair.detection));
+    if (!considered_terms(station_id, Tracks::estimate(track.filter), sensor, z, own, g_scaled,
+                          one)) {
+      return;  // R factored for the increment: not reached
+    }
+    if (&pair == pairs.data()) {
+      considered.terms.set_zero(station_id, static_cast<int>(one.cross.rows()),
+                                static_cast<int>(one.cross.cols()));
+    }
+    considered.terms.add_weighted(one, pair.weight);
+  }
+  report.considered.push_back(std::move(considered));
 }
 
 template <typename Tracks>

@@ -86,6 +86,18 @@ std::uint64_t TrackTable<Tracks>::digest() const {
 }
 
 template <typename Tracks>
+void TrackTable<Tracks>::move_with_settled_biases() {
+  // A track whose error is correlated with a station's bias error expects that error to have
+  // moved as the estimate did: E[x − x̂ | u] = C̃ u (registration/considered_biases.hpp).
+  for (TrackType& track : tracks_) {
+    for (const ConsideredBias& c : track.considered) {
+      const auto& moved = registration_.of(station_index(c.station_id)).last_move();
+      if (moved.size() == c.cross.cols()) track.filter.mean.noalias() += c.cross * moved;
+    }
+  }
+}
+
+template <typename Tracks>
 template <typename UnassociatedOf>
 RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vector<char>& hit,
                                              std::span<const Address> offered,
@@ -93,14 +105,7 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
   // What this round taught each station's registration corrects the next round's detections.
   registration_.settle();
   if constexpr (ConsidersBiases<Tracks>) {
-    // A track whose error is correlated with a station's bias error expects that error to have
-    // moved as the estimate did: E[x − x̂ | u] = C̃ u.
-    for (TrackType& track : tracks_) {
-      for (const ConsideredBias& c : track.considered) {
-        const auto& moved = registration_.of(station_index(c.station_id)).last_move();
-        if (moved.size() == c.cross.cols()) track.filter.mean.noalias() += c.cross * moved;
-      }
-    }
+    if (registers()) move_with_settled_biases();
   }
   learn_addresses(offered);
   // A track's height no less known than the band the 2-D radars assume (height_bound.hpp).

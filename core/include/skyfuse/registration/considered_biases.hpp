@@ -107,10 +107,10 @@ bool considered_terms(int station_id, const GaussianState<N>& prior, const Senso
   Matrix<M, Eigen::Dynamic> r_inv_g(M, d);
   for (Eigen::Index c = 0; c < d; ++c) r_inv_g.col(c) = r_factor.solve(g_scaled.col(c));
   out.station_id = station_id;
-  out.cross = h.transpose() * r_inv_g;
-  out.bias = g_scaled.transpose() * r_inv_g;
+  out.cross = h.transpose().lazyProduct(r_inv_g);
+  out.bias = g_scaled.transpose().lazyProduct(r_inv_g);
   out.bias = 0.5 * (out.bias + out.bias.transpose()).eval();
-  out.vector = r_inv_g.transpose() * (innovation + h * prior.mean);
+  out.vector = r_inv_g.transpose().lazyProduct(innovation + h * prior.mean);
   return true;
 }
 
@@ -156,7 +156,7 @@ NumericalStatus fuse_considered(GaussianState<N>& state, ConsideredBiases& consi
 /// (u does not move).
 inline void predict_considered(const Eigen::Ref<const Eigen::MatrixXd>& transition,
                                ConsideredBiases& considered) {
-  for (ConsideredBias& c : considered) c.cross = (transition * c.cross).eval();
+  for (ConsideredBias& c : considered) c.cross = transition.lazyProduct(c.cross).eval();
 }
 
 }  // namespace skyfuse
