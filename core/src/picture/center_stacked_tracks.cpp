@@ -32,7 +32,7 @@ bool CenterStackedTracks<Model>::update_considered(
     std::span<const PictureObservation<kDim>> observations,
     std::span<const ConsideredObservation> registered, std::span<const double> weights) {
   // Each observation's increment and, for a registered station's, its terms, as a peer's
-  // report computes them (PeerPicture::add_update_of), against this track's prior.
+  // report computes them (PeerPicture::add_considered), against this track's prior.
   std::vector<InformationIncrement<kDim>> increments(observations.size());
   std::vector<ConsideredTerms> terms;
   std::vector<double> term_weights;
