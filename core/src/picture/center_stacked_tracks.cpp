@@ -33,9 +33,12 @@ bool CenterStackedTracks<Model>::update_considered(
     std::span<const ConsideredObservation> registered, std::span<const double> weights) {
   // Each observation's increment and, for a registered station's, its terms, as a peer's
   // report computes them (PeerPicture::add_considered), against this track's prior.
-  std::vector<InformationIncrement<kDim>> increments(observations.size());
-  std::vector<ConsideredTerms> terms;
-  std::vector<double> term_weights;
+  auto& increments = considered_work_.increments;
+  auto& terms = considered_work_.terms;
+  auto& term_weights = considered_work_.term_weights;
+  increments.resize(observations.size());
+  terms.clear();
+  term_weights.clear();
   auto next = registered.begin();
   for (std::size_t i = 0; i < observations.size(); ++i) {
     const bool ok = std::visit(
@@ -46,10 +49,7 @@ bool CenterStackedTracks<Model>::update_considered(
           }
           if (next == registered.end() || next->observation != i) return true;
           ConsideredTerms one;
-          if (!considered_terms(o.station_id, state, o.sensor, o.z, o.noise,
-                                Matrix<std::decay_t<decltype(o.sensor)>::kMeasDim, Eigen::Dynamic>(
-                                    next->g_scaled),
-                                one)) {
+          if (!considered_terms(o.station_id, state, o.sensor, o.z, o.noise, next->g_scaled, one)) {
             return false;
           }
           ++next;

@@ -262,15 +262,14 @@ void PeerPicture<Tracks>::add_considered(Report& report, int station_id, const S
                                          std::span<const ReportedPair> pairs,
                                          const PublishedDetections& detections) const {
   constexpr int M = Sensor::kMeasDim;
-  const Matrix<M, Eigen::Dynamic> g_scaled = correction.g_scaled;
   typename Report::Considered considered{track.id, {}};
   ConsideredTerms one;
   for (const ReportedPair& pair : pairs) {
     const Vector<M> z = correction.applied(fixed_detection<M>(detections.values[pair.detection]));
     const Covariance<M> own =
         reported_noise<M>(noise, reported_std_at(detections.reported_std, pair.detection));
-    if (!considered_terms(station_id, Tracks::estimate(track.filter), sensor, z, own, g_scaled,
-                          one)) {
+    if (!considered_terms(station_id, Tracks::estimate(track.filter), sensor, z, own,
+                          correction.g_scaled, one)) {
       return;  // R factored for the increment: not reached
     }
     if (&pair == pairs.data()) {

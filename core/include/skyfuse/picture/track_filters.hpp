@@ -143,6 +143,13 @@ class CenterStackedTracks : public ModelTracks<Model> {
   template <typename Sensor>
   using StackedOf = StackedEkf<kDim, Sensor>;
   PictureObservationBuffers<kDim> buffers_;
+  // update_considered's, kept from track to track.
+  struct ConsideredWork {
+    std::vector<InformationIncrement<kDim>> increments;
+    std::vector<ConsideredTerms> terms;
+    std::vector<double> term_weights;
+  };
+  ConsideredWork considered_work_;
   ForEachPictureSensor<kDim, StackedOf> stacked_;
   MixedStackedEkf<kDim, PictureSensorPack<kDim>> mixed_;
 };

@@ -96,8 +96,7 @@ struct ConsideredObservation {
 template <int N, typename Sensor>
 bool considered_terms(int station_id, const GaussianState<N>& prior, const Sensor& sensor,
                       const Vector<Sensor::kMeasDim>& z, const Covariance<Sensor::kMeasDim>& noise,
-                      const Matrix<Sensor::kMeasDim, Eigen::Dynamic>& g_scaled,
-                      ConsideredTerms& out) {
+                      const Eigen::Ref<const Eigen::MatrixXd>& g_scaled, ConsideredTerms& out) {
   constexpr int M = Sensor::kMeasDim;
   SmallCholesky<M> r_factor;
   if (!r_factor.compute(noise)) return false;
@@ -142,14 +141,9 @@ NumericalStatus fuse_considered(GaussianState<N>& state, ConsideredBiases& consi
     information.noalias() += increment_weights[i] * increments[i].delta_information;
     vector.noalias() += increment_weights[i] * increments[i].delta_vector;
   }
-  Eigen::VectorXd mean = state.mean;
-  Eigen::MatrixXd covariance = state.covariance;
-  const NumericalStatus status =
-      fuse_considered(mean, covariance, considered, information, vector, terms, term_weights);
-  if (status != NumericalStatus::kOk) return status;
-  state.mean = mean;
-  state.covariance = covariance;
-  return status;
+  // In place: the update writes nothing where it fails.
+  return fuse_considered(state.mean, state.covariance, considered, information, vector, terms,
+                         term_weights);
 }
 
 /// A track's C̃ carried through its time update: F C̃, F the motion's Jacobian at the prior mean
