@@ -13,7 +13,13 @@ namespace skyfuse {
 template <typename Model>
 bool CenterStackedTracks<Model>::update(State& state,
                                         std::span<const PictureObservation<kDim>> observations,
-                                        std::span<const double> /*weights*/) {
+                                        std::span<const double> weights) {
+  if (relinearisations_ > 0) {
+    return relinearised_.update(state, observations, weights, [&](const auto& o, auto& out) {
+      return compute_increment(o.station_id, relinearised_prior(state, o, relinearisations_),
+                               o.sensor, o.z, o.noise, out);
+    });
+  }
   State updated = state;
   const UpdateReport report = by_sensor_kind<kDim>(
       observations, buffers_,
@@ -32,7 +38,8 @@ bool CenterStackedTracks<Model>::update_considered(
     std::span<const PictureObservation<kDim>> observations,
     std::span<const ConsideredObservation> registered, std::span<const double> weights) {
   // Each observation's increment and, for a registered station's, its terms, as a peer's
-  // report computes them (PeerPicture::add_considered), against this track's prior.
+  // report computes them (PeerPicture::add_considered), against this track's prior linearised
+  // where the tracker says (the prior itself unless it relinearises).
   auto& increments = considered_work_.increments;
   auto& terms = considered_work_.terms;
   auto& term_weights = considered_work_.term_weights;
@@ -43,13 +50,14 @@ bool CenterStackedTracks<Model>::update_considered(
   for (std::size_t i = 0; i < observations.size(); ++i) {
     const bool ok = std::visit(
         [&](const auto& o) {
-          if (compute_increment(o.station_id, state, o.sensor, o.z, o.noise, increments[i]) !=
+          const State at = relinearised_prior(state, o, relinearisations_);
+          if (compute_increment(o.station_id, at, o.sensor, o.z, o.noise, increments[i]) !=
               NumericalStatus::kOk) {
             return false;
           }
           if (next == registered.end() || next->observation != i) return true;
           ConsideredTerms one;
-          if (!considered_terms(o.station_id, state, o.sensor, o.z, o.noise, next->g_scaled, one)) {
+          if (!considered_terms(o.station_id, at, o.sensor, o.z, o.noise, next->g_scaled, one)) {
             return false;
           }
           ++next;

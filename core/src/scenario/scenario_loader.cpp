@@ -598,6 +598,15 @@ Scenario read_scenario(const YamlField& root) {
   }
   const YamlField filter = root.required("filter");
   s.filter = read_filter(filter);
+  // Only the EKF's increment is H, h and R taken at a point that can move
+  // (fusion/relinearised_increment.hpp).
+  if (s.tracker.updater.relinearisations > 0 && s.filter.kind != "ekf") {
+    root.required("tracker")
+        .required("updater")
+        .required("relinearisations")
+        .fail(fmt::format("relinearises the EKF's increments; filter '{}' takes its own",
+                          s.filter.kind));
+  }
   if (const auto network = root.optional("network")) s.exchange = read_network(*network);
   if (const auto anchor = root.optional("anchor")) s.anchor = read_anchor(*anchor);
   if (const auto asterix = root.optional("asterix")) s.asterix = read_asterix_source(*asterix);

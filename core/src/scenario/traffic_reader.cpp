@@ -85,7 +85,7 @@ double read_probability(const YamlField& field) {
 TrackerConfig read_tracker(const YamlField& field) {
   field.allow_only({"associator", "gate_probability", "max_detections_per_scan", "clutter_density",
                     "jpda_max_events", "confirm", "delete_after_misses", "max_position_std_m",
-                    "initiation", "identity", "registration"});
+                    "initiation", "identity", "registration", "updater"});
   TrackerConfig t;
   if (const auto f = field.optional("associator")) {
     const std::string name = f->string();
@@ -153,6 +153,17 @@ TrackerConfig read_tracker(const YamlField& field) {
       }
       if (const auto f = prior->optional("time_s"))
         t.registration.time_std_s = f->positive_number();
+    }
+  }
+  if (const auto updater = field.optional("updater")) {
+    updater->allow_only({"relinearisations"});
+    if (const auto f = updater->optional("relinearisations")) {
+      const std::int64_t n = f->integer();
+      if (n < 0 || n > UpdaterConfig::kMaxRelinearisations) {
+        f->fail(fmt::format("must be in [0, {}], got {}", UpdaterConfig::kMaxRelinearisations,
+                            f->text()));
+      }
+      t.updater.relinearisations = static_cast<int>(n);
     }
   }
   if (const auto identity = field.optional("identity")) {

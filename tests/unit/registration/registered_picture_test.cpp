@@ -134,15 +134,19 @@ GaussianState<4> batch_estimate(const Radar& radar, const std::vector<PairedWith
   return {qr.solve(b), r_inverse * r_inverse.transpose()};
 }
 
-TEST(RegisteredPicture, PeersLearnOneEstimateTheTruthsAndABatchSolutionAgree) {
+// The test's body, for a tracker whose updater relinearises `relinearisations` times.
+void expect_one_estimate_near_the_truths_and_the_batch(int relinearisations) {
   const std::vector<TargetTruth> truths = aircraft();
   const std::vector<Station> known = stations();
   const Model motion(kTimeStepS, {5.0, 5.0});
   const Vector<N> initial_variance = Vector<N>::Constant(100.0);
   TrackerConfig config;
   config.registration.kind = "least_squares";
-  std::vector<Peer> peers(known.size(), Peer(PeerTracks(motion, initial_variance), known, config));
-  Center center(CenterStackedTracks<Model>(motion, initial_variance), known, config);
+  config.updater.relinearisations = relinearisations;
+  const PeerTracks peer_tracks(motion, initial_variance, relinearisations);
+  std::vector<Peer> peers(known.size(), Peer(peer_tracks, known, config));
+  Center center(CenterStackedTracks<Model>(motion, initial_variance, relinearisations), known,
+                config);
   const std::vector<DetectionConfig> sees = {radar_sees(kRadar1Bias), radar_sees(kRadar2Bias),
                                              adsb_hears()};
 
@@ -154,7 +158,7 @@ TEST(RegisteredPicture, PeersLearnOneEstimateTheTruthsAndABatchSolutionAgree) {
     if (k == kRounds / 2) {
       // Station 3's peer restarts: a fresh one takes the picture and the registration's sums
       // from peer 1, and from then on holds the same bits as every other.
-      Peer fresh(PeerTracks(motion, initial_variance), known, config);
+      Peer fresh(peer_tracks, known, config);
       fresh.restore({peers[0].tracks().begin(), peers[0].tracks().end()});
       ASSERT_TRUE(fresh.restore_biases(peers[0].bias_sums()));
       peers[2] = std::move(fresh);
@@ -245,6 +249,16 @@ TEST(RegisteredPicture, PeersLearnOneEstimateTheTruthsAndABatchSolutionAgree) {
       EXPECT_LT(std::abs(estimate(e) - batch.mean(e)), std::hypot(sigma(e), batch_sigma(e)));
     }
   }
+}
+
+TEST(RegisteredPicture, PeersLearnOneEstimateTheTruthsAndABatchSolutionAgree) {
+  expect_one_estimate_near_the_truths_and_the_batch(0);
+}
+
+// With each detection's increment and terms linearised at its own point (fusion/
+// relinearised_increment.hpp), peers and center alike.
+TEST(RegisteredPicture, ARelinearisingTrackerLearnsAlikeAtEveryNode) {
+  expect_one_estimate_near_the_truths_and_the_batch(1);
 }
 
 }  // namespace

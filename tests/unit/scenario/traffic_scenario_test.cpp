@@ -328,6 +328,29 @@ TEST(TrafficScenario, ReadsTheTrackersRegistration) {
             std::string::npos);
 }
 
+// The tracker's updater: linearises at the prior unless told, relinearises the EKF's increments
+// up to its bound, and is refused for a part that takes its own increments.
+TEST(TrafficScenario, ReadsTheTrackersUpdater) {
+  const std::string text =
+      read_text(std::string(SKYFUSE_SOURCE_DIR) + "/scenarios/registration.yaml");
+  EXPECT_EQ(parse_scenario(text, "test.yaml").tracker.updater.relinearisations, 0);
+  const auto with = [&](const std::string& updater) {
+    return replaced(text, "tracker:\n", "tracker:\n  updater: " + updater + "\n");
+  };
+  EXPECT_EQ(
+      parse_scenario(with("{relinearisations: 2}"), "test.yaml").tracker.updater.relinearisations,
+      2);
+  EXPECT_NE(rejection(with("{relinearisations: 6}")).find("must be in [0, 5], got 6"),
+            std::string::npos);
+  EXPECT_NE(rejection(with("{relinearisations: -1}")).find("must be in [0, 5]"), std::string::npos);
+  EXPECT_NE(rejection(with("{iterations: 1}")).find("iterations"), std::string::npos);
+  const std::string ukf =
+      rejection(replaced(with("{relinearisations: 1}"), "  kind: ekf\n", "  kind: ukf\n"));
+  EXPECT_NE(ukf.find("relinearises the EKF's increments; filter 'ukf' takes its own"),
+            std::string::npos)
+      << ukf;
+}
+
 TEST(TrafficScenario, RefusesWhatAPictureCannotTake) {
   EXPECT_NE(rejection(uam_city_with("traffic:",
                                     "target: {initial_position_m: [0, 0, 100], "

@@ -220,7 +220,7 @@ void PeerPicture<Tracks>::add_update_of(Report& report, int station_id, const Se
         correction && !kKeepsCross ? Covariance<M>(own + correction->noise) : own;
     const StationObservation<Sensor> observation{station_id, sensor,
                                                  correction ? correction->applied(z) : z, r};
-    return Tracks::contribute(track.filter, observation, out) == NumericalStatus::kOk;
+    return this->filters().contribute(track.filter, observation, out) == NumericalStatus::kOk;
   };
   const std::size_t first_pair = report.pairs.size();
   if (pairs.size() == 1 && pairs.front().weight == 1.0) {
@@ -268,8 +268,10 @@ void PeerPicture<Tracks>::add_considered(Report& report, int station_id, const S
     const Vector<M> z = correction.applied(fixed_detection<M>(detections.values[pair.detection]));
     const Covariance<M> own =
         reported_noise<M>(noise, reported_std_at(detections.reported_std, pair.detection));
-    if (!considered_terms(station_id, Tracks::estimate(track.filter), sensor, z, own,
-                          correction.g_scaled, one)) {
+    // Linearised where its increment was (PeerModelTracks::linearised).
+    const StationObservation<Sensor> observation{station_id, sensor, z, own};
+    if (!considered_terms(station_id, this->filters().linearised(track.filter, observation), sensor,
+                          z, own, correction.g_scaled, one)) {
       return;  // R factored for the increment: not reached
     }
     if (&pair == pairs.data()) {

@@ -30,10 +30,12 @@ struct PictureParts {
   using Center = std::conditional_t<std::is_same_v<Filter, EkfFilterPart>,
                                     CenterStackedTracks<Model>, CenterIncrementTracks<Model, Rule>>;
   static Peer peer(const Scenario& s) {
-    return Peer(make_motion_model<Model>(s), s.filter.initial_covariance_diag);
+    return Peer(make_motion_model<Model>(s), s.filter.initial_covariance_diag,
+                s.tracker.updater.relinearisations);
   }
   static Center center(const Scenario& s) {
-    return Center(make_motion_model<Model>(s), s.filter.initial_covariance_diag);
+    return Center(make_motion_model<Model>(s), s.filter.initial_covariance_diag,
+                  s.tracker.updater.relinearisations);
   }
 };
 template <typename Set, typename Model>

@@ -24,6 +24,7 @@
 #include "skyfuse/core/indirect_view.hpp"
 #include "skyfuse/fusion/increment_fusion.hpp"
 #include "skyfuse/fusion/mixed_stacked_ekf.hpp"
+#include "skyfuse/fusion/relinearised_increment.hpp"
 #include "skyfuse/fusion/stacked_ekf.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
 #include "skyfuse/picture/imm_picture_steps.hpp"
@@ -73,7 +74,6 @@ class ModelTracks {
 template <typename Model, typename Rule>
 class PeerModelTracks : public ModelTracks<Model> {
  public:
-  using ModelTracks<Model>::ModelTracks;
   static constexpr int kDim = Model::kDim;
   using State = GaussianState<kDim>;
   using Contribution = InformationIncrement<kDim>;
@@ -81,14 +81,39 @@ class PeerModelTracks : public ModelTracks<Model> {
   /// (registration/considered_biases.hpp): its increment is the joint update's x-part as it
   /// is linearised. Other parts take those errors as white noise in R.
   static constexpr bool kConsidersBiases = std::is_same_v<Rule, EkfIncrementRule>;
+  /// Whether the part's increment is H, h and R at a point, so that it can be relinearised
+  /// (fusion/relinearised_increment.hpp): the EKF's.
+  static constexpr bool kRelinearises = std::is_same_v<Rule, EkfIncrementRule>;
 
+  /// `relinearisations`: the iterated steps to each detection's linearisation point
+  /// (tracker.updater; 0 for a part that does not relinearise).
+  PeerModelTracks(const Model& motion, const Vector<kDim>& initial_variance,
+                  int relinearisations = 0)
+      : ModelTracks<Model>(motion, initial_variance), relinearisations_(relinearisations) {}
+
+  /// Observation `o`'s contribution against the track's prior `state`, linearised at the
+  /// point the tracker's relinearisations give (linearised()).
   template <typename Sensor>
-  static NumericalStatus contribute(const State& state, const StationObservation<Sensor>& o,
-                                    Contribution& out) {
+  NumericalStatus contribute(const State& state, const StationObservation<Sensor>& o,
+                             Contribution& out) const {
+    return contribute_at(linearised(state, o), o, out);
+  }
+  /// `state` with its mean at observation `o`'s linearisation point: the state itself unless
+  /// the tracker relinearises.
+  template <typename Sensor>
+  State linearised(const State& state, const StationObservation<Sensor>& o) const {
+    if constexpr (kRelinearises) return relinearised_prior(state, o, relinearisations_);
+    return state;
+  }
+  /// The contribution linearised at `point`'s mean (the prior's, or linearised()'s).
+  template <typename Sensor>
+  static NumericalStatus contribute_at(const State& point, const StationObservation<Sensor>& o,
+                                       Contribution& out) {
     const NisGate no_gate;  // the assignment's gate screened the pair
-    const OwnContribution own = Rule::contribute(state, o, no_gate, out);
+    const OwnContribution own = Rule::contribute(point, o, no_gate, out);
     return own.refused ? NumericalStatus::kNotPositiveDefinite : own.status;
   }
+  int relinearisations() const { return relinearisations_; }
   static NumericalStatus fuse(State& state, std::span<const Contribution* const> contributions,
                               std::span<const double> weights) {
     return fuse_increments(state, IndirectView<Contribution>(contributions), weights, state);
@@ -110,6 +135,49 @@ class PeerModelTracks : public ModelTracks<Model> {
     sum.delta_information.noalias() += weight * one.delta_information;
     sum.delta_vector.noalias() += weight * one.delta_vector;
   }
+
+ private:
+  int relinearisations_ = 0;
+};
+
+/// The center's update of a track from its increments: one per station (ascending, as the
+/// observations come; a station with several detections of the track, JPDA's, each with its
+/// noise already weighed, adds theirs up), fused onto the prior with the stations' weights.
+/// Holds its buffers from track to track.
+template <int N>
+class CenterIncrementFusion {
+ public:
+  /// `contribute(o, out)` writes observation o's increment against `state`.
+  template <typename Contribute>
+  bool update(GaussianState<N>& state, std::span<const PictureObservation<N>> observations,
+              std::span<const double> weights, Contribute&& contribute) {
+    increments_.clear();
+    station_weights_.clear();
+    InformationIncrement<N> one;
+    for (std::size_t i = 0; i < observations.size(); ++i) {
+      int station_id = 0;
+      const NumericalStatus contributed = std::visit(
+          [&](const auto& o) {
+            station_id = o.station_id;
+            return contribute(o, one);
+          },
+          observations[i]);
+      if (contributed != NumericalStatus::kOk) return false;
+      if (!increments_.empty() && increments_.back().station_id == station_id) {
+        increments_.back().delta_information += one.delta_information;
+        increments_.back().delta_vector += one.delta_vector;
+      } else {
+        increments_.push_back(one);
+        station_weights_.push_back(weights[i]);
+      }
+    }
+    return fuse_increments(state, std::span<const InformationIncrement<N>>(increments_),
+                           station_weights_, state) == NumericalStatus::kOk;
+  }
+
+ private:
+  std::vector<InformationIncrement<N>> increments_;
+  std::vector<double> station_weights_;
 };
 
 /// The center's side for the EKF: one stacked update of a track's detections, the peers' sum
@@ -118,13 +186,18 @@ template <typename Model>
 class CenterStackedTracks : public ModelTracks<Model> {
  public:
   static constexpr int kDim = Model::kDim;
-  using ModelTracks<Model>::ModelTracks;
   using State = GaussianState<kDim>;
+  /// `relinearisations`: as the peers' (PeerModelTracks).
+  CenterStackedTracks(const Model& motion, const Vector<kDim>& initial_variance,
+                      int relinearisations = 0)
+      : ModelTracks<Model>(motion, initial_variance), relinearisations_(relinearisations) {}
 
   /// Stations of one sensor kind take the stacked update of that sensor's fixed-size blocks;
-  /// of several, the one assembled at run time. Compiled once per motion model in core
-  /// (src/picture/center_stacked_tracks.cpp), not in every file of the picture that runs
-  /// the EKF: inline, each sensor's stacked update made the center's and the sweep's shards
+  /// of several, the one assembled at run time. A tracker that relinearises takes each
+  /// detection's increment at its own point instead, as the peers do (fusion/
+  /// relinearised_increment.hpp): a stacked update has one point for all. Compiled once per motion
+  /// model in core (src/picture/center_stacked_tracks.cpp), not in every file of the picture that
+  /// runs the EKF: inline, each sensor's stacked update made the center's and the sweep's shards
   /// the build's largest files (docs/testing.md).
   bool update(State& state, std::span<const PictureObservation<kDim>> observations,
               std::span<const double> weights);
@@ -142,6 +215,8 @@ class CenterStackedTracks : public ModelTracks<Model> {
  private:
   template <typename Sensor>
   using StackedOf = StackedEkf<kDim, Sensor>;
+  int relinearisations_ = 0;
+  CenterIncrementFusion<kDim> relinearised_;
   PictureObservationBuffers<kDim> buffers_;
   // update_considered's, kept from track to track.
   struct ConsideredWork {
@@ -160,40 +235,27 @@ class CenterStackedTracks : public ModelTracks<Model> {
 template <typename Model, typename Rule>
 class CenterIncrementTracks : public ModelTracks<Model> {
  public:
-  using ModelTracks<Model>::ModelTracks;
   static constexpr int kDim = Model::kDim;
   using State = GaussianState<kDim>;
+  /// `relinearisations` is refused for a part that does not relinearise (the scenario's
+  /// loader refuses it first).
+  CenterIncrementTracks(const Model& motion, const Vector<kDim>& initial_variance,
+                        int relinearisations = 0)
+      : ModelTracks<Model>(motion, initial_variance) {
+    if (relinearisations != 0) {
+      throw std::invalid_argument("tracker.updater.relinearisations: the EKF's alone");
+    }
+  }
 
   bool update(State& state, std::span<const PictureObservation<kDim>> observations,
               std::span<const double> weights) {
-    // One increment per station (ascending, as the observations come): a station with several
-    // detections of the track (JPDA's, each with its noise already weighed) adds theirs up.
-    increments_.clear();
-    station_weights_.clear();
-    InformationIncrement<kDim> one;
-    for (std::size_t i = 0; i < observations.size(); ++i) {
-      int station_id = 0;
-      const NumericalStatus contributed = std::visit(
-          [&](const auto& o) {
-            station_id = o.station_id;
-            return PeerModelTracks<Model, Rule>::contribute(state, o, one);
-          },
-          observations[i]);
-      if (contributed != NumericalStatus::kOk) return false;
-      if (!increments_.empty() && increments_.back().station_id == station_id) {
-        PeerModelTracks<Model, Rule>::add_weighted(increments_.back(), one, 1.0);
-      } else {
-        increments_.push_back(one);
-        station_weights_.push_back(weights[i]);
-      }
-    }
-    return fuse_increments(state, std::span<const InformationIncrement<kDim>>(increments_),
-                           station_weights_, state) == NumericalStatus::kOk;
+    return fusion_.update(state, observations, weights, [&](const auto& o, auto& out) {
+      return PeerModelTracks<Model, Rule>::contribute_at(state, o, out);
+    });
   }
 
  private:
-  std::vector<InformationIncrement<kDim>> increments_;
-  std::vector<double> station_weights_;
+  CenterIncrementFusion<kDim> fusion_;
 };
 
 /// A track of the network IMM of mode set `Set` (tracking/network_imm.hpp), in its common

@@ -54,6 +54,16 @@ struct ManagementConfig {
   double max_position_std_m = 1000.0;
 };
 
+/// The updater: how a station's detection updates a track (fusion/relinearised_increment.hpp).
+struct UpdaterConfig {
+  /// The most relinearisations a scenario may ask for: each is one more small solve per pair,
+  /// and a second already gave the figures of one (docs/picture.md, "Relinearised increments").
+  static constexpr int kMaxRelinearisations = 5;
+  /// The EKF's: how many iterated steps take each detection's linearisation point from the
+  /// track's prior towards where the detection puts it; 0, the default, linearises at the prior.
+  int relinearisations = 0;
+};
+
 /// Registration (picture/registration.hpp): each station's biases estimated online from its
 /// detections of confirmed tracks, and its detections corrected by them; none by default.
 struct RegistrationConfig {
@@ -72,6 +82,7 @@ struct TrackerConfig {
   IdentityConfig identity;
   InitiationConfig initiation;
   ManagementConfig management;
+  UpdaterConfig updater;
 };
 
 }  // namespace skyfuse
