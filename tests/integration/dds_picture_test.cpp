@@ -352,6 +352,11 @@ INSTANTIATE_TEST_SUITE_P(
         // wire's weights and the center applies as noise R / w (docs/picture.md, "JPDA").
         FilterVariant{"EkfWithJpda", "  gate_probability: 0.9999",
                       "  associator: jpda\n  gate_probability: 0.9999", 224},
+        // The updater relinearising each detection's increment at its own point: the center
+        // then fuses per-detection increments as the peers do, not one stacked update
+        // (docs/picture.md, "Relinearised increments").
+        FilterVariant{"EkfRelinearised", "  gate_probability: 0.9999",
+                      "  updater: {relinearisations: 1}\n  gate_probability: 0.9999", 228},
         // Sensors of two kinds in one picture: station 2 receives the aircraft's own
         // position-velocity reports (what ADS-B gives a ground station: no false alarms) among
         // the radars; each station's scan is checked against its own sensor on the wire, and

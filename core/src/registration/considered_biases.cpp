@@ -123,4 +123,24 @@ NumericalStatus fuse_considered(Eigen::Ref<Eigen::VectorXd> mean,
   return NumericalStatus::kOk;
 }
 
+void settle_considered(Eigen::Ref<Eigen::VectorXd> mean, Eigen::Ref<Eigen::MatrixXd> covariance,
+                       ConsideredBias& c, const Eigen::Ref<const Eigen::VectorXd>& move,
+                       const Eigen::Ref<const Eigen::MatrixXd>& narrowing) {
+  const auto d = c.cross.cols();
+  if (move.size() != d || narrowing.rows() != d || narrowing.cols() != d) return;
+  mean.noalias() += c.cross * move;
+  // C̃ (I − A Aᵀ) C̃ᵀ as C̃ C̃ᵀ − (C̃ A)(C̃ A)ᵀ: no D × D temporary, and C̃ A is the new C̃.
+  const ConsideredCross narrowed = c.cross * narrowing;
+  covariance.noalias() -= c.cross * c.cross.transpose();
+  covariance.noalias() += narrowed * narrowed.transpose();
+  for (Eigen::Index i = 0; i < covariance.rows(); ++i) {
+    for (Eigen::Index j = 0; j < i; ++j) {
+      const double mean_ij = 0.5 * (covariance(i, j) + covariance(j, i));
+      covariance(i, j) = mean_ij;
+      covariance(j, i) = mean_ij;
+    }
+  }
+  c.cross = narrowed;
+}
+
 }  // namespace skyfuse

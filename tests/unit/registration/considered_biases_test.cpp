@@ -4,10 +4,12 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <cstdio>
 #include <random>
 #include <string>
 
 #include "skyfuse/fusion/increment_fusion.hpp"
+#include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/models/position_sensor.hpp"
 
 namespace skyfuse {
@@ -151,55 +153,81 @@ TEST(ConsideredBiases, AStationNewToTheTrackStartsUncorrelated) {
   EXPECT_LT((considered[0].cross - expected).cwiseAbs().maxCoeff(), 1e-9);
 }
 
-// One Monte Carlo run of a track that a biased station (its bias unknown, ~N(0, Σ), the same in
-// every detection) and an aligned one update for `steps` rounds: the track's NEES at the end.
-// `schmidt` false: the bias taken as white noise, R + Σ in every detection.
-double final_nees(bool schmidt, std::mt19937_64& rng, int steps) {
-  std::normal_distribution<double> normal;
-  const auto draw = [&](double std) {
-    return Vector<3>(std * normal(rng), std * normal(rng), std * normal(rng));
-  };
-  const double bias_std = 30.0;
-  const Covariance<3> r1 = isotropic(10.0);
-  const Covariance<3> r2 = isotropic(60.0);
-  const Covariance<N> f = constant_velocity(1.0);
-  const Sensor sensor;
+// One Monte Carlo run of a track that a biased station (its bias unknown, ~N(0, 30² m²), the
+// same in every detection) and an aligned one update round by round.
+class BiasedRun {
+ public:
+  static constexpr double kBiasStd = 30.0;
 
-  GaussianState<N> track;
-  track.mean.setZero();
-  track.covariance = Covariance<N>::Identity() * 100.0;
-  Vector<N> truth;
-  truth << draw(10.0), draw(10.0);
-  const Vector<3> bias = draw(bias_std);
-  const Matrix<3, Eigen::Dynamic> g_scaled = Matrix3::Identity() * bias_std;
-  ConsideredBiases considered;
+  explicit BiasedRun(std::mt19937_64& rng) : rng_(rng) {
+    track_.mean.setZero();
+    track_.covariance = Covariance<N>::Identity() * 100.0;
+    truth_ << draw(10.0), draw(10.0);
+    bias_ = draw(kBiasStd);
+  }
 
-  for (int k = 0; k < steps; ++k) {
-    truth = (f * truth).eval();
-    predict_considered(f, considered);
-    track.mean = (f * track.mean).eval();
-    track.covariance = (f * track.covariance * f.transpose()).eval();
-    const Vector<3> z1 = truth.head<3>() + bias + draw(10.0);
-    const Vector<3> z2 = truth.head<3>() + draw(60.0);
+  Vector<3> draw(double std) {
+    return Vector<3>(std * normal_(rng_), std * normal_(rng_), std * normal_(rng_));
+  }
+  const Vector<3>& bias() const { return bias_; }
+  GaussianState<N>& track() { return track_; }
+  ConsideredBiases& considered() { return considered_; }
+
+  // The next round: truth, track and C̃ predicted; the biased station's detection, less
+  // `correction` (its registration's settled estimate), and the aligned one's, fused — with the
+  // biased one's terms for G̃ = `g_scaled`, or (`g_scaled` empty) with R + 30² I for its bias.
+  void round(const Vector<3>& correction, const Eigen::MatrixXd& g_scaled) {
+    truth_ = (f_ * truth_).eval();
+    predict_considered(f_, considered_);
+    track_.mean = (f_ * track_.mean).eval();
+    track_.covariance = (f_ * track_.covariance * f_.transpose()).eval();
+    const Vector<3> z1 = truth_.head<3>() + bias_ + draw(10.0) - correction;
+    const Vector<3> z2 = truth_.head<3>() + draw(60.0);
+    const bool schmidt = g_scaled.size() > 0;
     std::vector<InformationIncrement<N>> increments(2);
-    const Covariance<3> r1_used = schmidt ? r1 : Covariance<3>(r1 + isotropic(bias_std));
-    EXPECT_EQ(compute_increment(1, track, sensor, z1, r1_used, increments[0]),
+    const Covariance<3> r1_used = schmidt ? r1_ : Covariance<3>(r1_ + isotropic(kBiasStd));
+    EXPECT_EQ(compute_increment(1, track_, sensor_, z1, r1_used, increments[0]),
               NumericalStatus::kOk);
-    EXPECT_EQ(compute_increment(2, track, sensor, z2, r2, increments[1]), NumericalStatus::kOk);
+    EXPECT_EQ(compute_increment(2, track_, sensor_, z2, r2_, increments[1]), NumericalStatus::kOk);
     const std::vector<double> ones{1.0, 1.0};
     if (schmidt) {
       ConsideredTerms terms;
-      EXPECT_TRUE(considered_terms(1, track, sensor, z1, r1, g_scaled, terms));
+      EXPECT_TRUE(considered_terms(1, track_, sensor_, z1, r1_, g_scaled, terms));
       EXPECT_EQ(
-          fuse_considered(track, considered, std::span(increments), ones,
+          fuse_considered(track_, considered_, std::span(increments), ones,
                           std::span<const ConsideredTerms>(&terms, 1), std::span(ones).first(1)),
           NumericalStatus::kOk);
     } else {
-      EXPECT_EQ(fuse_increments(track, std::span(increments), ones, track), NumericalStatus::kOk);
+      EXPECT_EQ(fuse_increments(track_, std::span(increments), ones, track_), NumericalStatus::kOk);
     }
   }
-  const Vector<N> error = truth - track.mean;
-  return error.dot(track.covariance.ldlt().solve(error));
+
+  double nees() const {
+    const Vector<N> error = truth_ - track_.mean;
+    return error.dot(track_.covariance.ldlt().solve(error));
+  }
+
+ private:
+  std::mt19937_64& rng_;
+  std::normal_distribution<double> normal_;
+  const Covariance<3> r1_ = isotropic(10.0);
+  const Covariance<3> r2_ = isotropic(60.0);
+  const Covariance<N> f_ = constant_velocity(1.0);
+  const Sensor sensor_{};
+  GaussianState<N> track_;
+  Vector<N> truth_;
+  Vector<3> bias_;
+  ConsideredBiases considered_;
+};
+
+// A BiasedRun of `steps` rounds, its track's NEES at the end. `schmidt` false: the bias taken
+// as white noise, R + Σ in every detection.
+double final_nees(bool schmidt, std::mt19937_64& rng, int steps) {
+  BiasedRun run(rng);
+  const Eigen::MatrixXd g_scaled =
+      schmidt ? Eigen::MatrixXd(Matrix3::Identity() * BiasedRun::kBiasStd) : Eigen::MatrixXd();
+  for (int k = 0; k < steps; ++k) run.round(Vector<3>::Zero(), g_scaled);
+  return run.nees();
 }
 
 TEST(ConsideredBiases, KeepTheTrackConsistentWhereWhiteNoiseDoesNot) {
@@ -221,6 +249,106 @@ TEST(ConsideredBiases, KeepTheTrackConsistentWhereWhiteNoiseDoesNot) {
   EXPECT_GT(schmidt, 0.908);
   EXPECT_LT(schmidt, 1.098);
   EXPECT_GT(white, 2.0) << "the test cannot tell the two treatments apart";
+}
+
+// What a track does when its station's registration settles.
+enum class AtSettle {
+  kCondition,  // settle_considered: x̂ += C̃ m, P −= C̃ (I − A Aᵀ) C̃ᵀ, C̃ ← C̃ A
+  kMoveOnly,   // x̂ += C̃ m, P and C̃ kept (the picture's rule before settle_considered)
+};
+
+// A BiasedRun whose biased station is registered: its biases learnt each round from a reference
+// of their own (y = b + w, w ~ N(0, 5² I), independent of the track), its detections corrected
+// by the settled b̂, its G̃ the settled L, and the track told of each settle by `at_settle`. The
+// track's NEES at the end.
+double final_nees_registered(AtSettle at_settle, std::mt19937_64& rng, int steps) {
+  const double reference_std = 5.0;
+  BiasedRun run(rng);
+  // The registration: information and vector of b, its settled estimate and factor.
+  Matrix3 information = Matrix3::Identity() / (BiasedRun::kBiasStd * BiasedRun::kBiasStd);
+  Vector3 vector = Vector3::Zero();
+  Vector3 settled = Vector3::Zero();
+  Matrix3 factor = Matrix3::Identity() * BiasedRun::kBiasStd;
+  for (int k = 0; k < steps; ++k) {
+    run.round(settled, Eigen::MatrixXd(factor));
+    // The registration learns from its reference and settles.
+    information += Matrix3::Identity() / (reference_std * reference_std);
+    vector += (run.bias() + run.draw(reference_std)) / (reference_std * reference_std);
+    const Eigen::LLT<Matrix3> solved(information);
+    const Vector3 next = solved.solve(vector);
+    const Matrix3 next_factor = Matrix3(solved.solve(Matrix3::Identity())).llt().matrixL();
+    const Eigen::VectorXd move = factor.triangularView<Eigen::Lower>().solve(next - settled);
+    const Eigen::MatrixXd narrowing = factor.triangularView<Eigen::Lower>().solve(next_factor);
+    for (ConsideredBias& c : run.considered()) {
+      if (at_settle == AtSettle::kCondition) {
+        settle_considered(run.track(), c, move, narrowing);
+      } else {
+        run.track().mean.noalias() += c.cross * move;
+      }
+    }
+    settled = next;
+    factor = next_factor;
+  }
+  return run.nees();
+}
+
+TEST(ConsideredBiases, ATrackConditionedOnEachSettleStaysConsistent) {
+  // 2 000 runs of 40 rounds: the average NEES per degree of freedom against χ²(12000)/12000's
+  // 0.999 band. Moving the mean alone leaves the track holding a C̃ against errors the
+  // registration has since narrowed, and an uncertainty it has resolved: not the joint's.
+  constexpr int kRuns = 2000;
+  std::mt19937_64 rng(20261202);
+  double conditioned = 0.0;
+  double moved_only = 0.0;
+  for (int run = 0; run < kRuns; ++run) {
+    conditioned += final_nees_registered(AtSettle::kCondition, rng, 40);
+    moved_only += final_nees_registered(AtSettle::kMoveOnly, rng, 40);
+  }
+  const double samples = kRuns * N;
+  conditioned /= samples;
+  moved_only /= samples;
+  const double low = chi_square_quantile(0.0005, samples) / samples;
+  const double high = chi_square_quantile(0.9995, samples) / samples;
+  std::printf("ANEES per dof: conditioned %.3f, mean moved only %.3f; band [%.3f, %.3f]\n",
+              conditioned, moved_only, low, high);
+  EXPECT_GT(conditioned, low);
+  EXPECT_LT(conditioned, high);
+  EXPECT_TRUE(moved_only < low || moved_only > high)
+      << moved_only << ": the test cannot tell the two rules apart";
+}
+
+// The conditioning itself: the joint Gaussian's, computed the long way.
+TEST(ConsideredBiases, SettlingIsTheJointGaussiansConditioning) {
+  GaussianState<N> track = some_prior();
+  ConsideredBias c{4, ConsideredCross(N, 3)};
+  c.cross << 1.0, 0.2, -0.3, 0.5, -1.1, 0.4, 0.0, 0.7, 0.9, 0.3, 0.1, -0.2, -0.4, 0.2, 0.1, 0.6,
+      0.0, 0.3;
+  c.cross *= 0.8;
+  Eigen::MatrixXd narrowing(3, 3);
+  narrowing << 0.6, 0.0, 0.0, 0.1, 0.5, 0.0, -0.2, 0.05, 0.7;
+  const Eigen::VectorXd move = Eigen::Vector3d(0.3, -1.2, 0.5);
+  // u's posterior N(m, A Aᵀ) as a measurement y = u + v, v ~ N(0, V): V = (S⁻¹ − I)⁻¹,
+  // y = (I + V) m, with S = A Aᵀ.
+  const Eigen::MatrixXd s = narrowing * narrowing.transpose();
+  const Eigen::MatrixXd v = (s.inverse() - Eigen::MatrixXd::Identity(3, 3)).inverse();
+  const Eigen::VectorXd y = (Eigen::MatrixXd::Identity(3, 3) + v) * move;
+  const Eigen::MatrixXd joint = joint_prior(track, c.cross);
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(3, N + 3);
+  h.rightCols(3).setIdentity();
+  const Eigen::MatrixXd gain = joint * h.transpose() * (h * joint * h.transpose() + v).inverse();
+  Eigen::VectorXd joint_mean = Eigen::VectorXd::Zero(N + 3);
+  joint_mean.head(N) = track.mean;
+  joint_mean += gain * (y - h * joint_mean);
+  const Eigen::MatrixXd posterior = joint - gain * h * joint;
+
+  settle_considered(track, c, move, narrowing);
+  EXPECT_LT((track.mean - joint_mean.head(N)).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((track.covariance - posterior.topLeftCorner(N, N)).cwiseAbs().maxCoeff(), 1e-9);
+  // Against u's new standardised coordinates u' = A⁻¹ (u − m): Cov(x, u) A⁻ᵀ.
+  const Eigen::MatrixXd cross_new =
+      posterior.topRightCorner(N, 3) * narrowing.transpose().inverse();
+  EXPECT_LT((c.cross - cross_new).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT((joint_mean.tail(3) - move).cwiseAbs().maxCoeff(), 1e-9);
 }
 
 }  // namespace

@@ -177,9 +177,9 @@ class TrackTable {
 
  private:
   void refresh_estimates();
-  // Each track by its cross-covariances with the bias errors times how far the estimates
-  // settled this round moved (track_table_impl.hpp).
-  void move_with_settled_biases();
+  // Each track that keeps cross-covariances with the bias errors, conditioned on what this
+  // round's settle learnt of them (track_table_impl.hpp).
+  void condition_on_settled_biases();
   void refresh_addresses();
   // Removes the tracks for which drop(i) holds (it may change track i first, as management
   // does), the others kept in order with their estimates; how many it removed.

@@ -86,13 +86,14 @@ std::uint64_t TrackTable<Tracks>::digest() const {
 }
 
 template <typename Tracks>
-void TrackTable<Tracks>::move_with_settled_biases() {
-  // A track whose error is correlated with a station's bias error expects that error to have
-  // moved as the estimate did: E[x − x̂ | u] = C̃ u (registration/considered_biases.hpp).
+void TrackTable<Tracks>::condition_on_settled_biases() {
+  // A track whose error is correlated with a station's bias error learns what the settle
+  // learnt of it (registration/considered_biases.hpp, settle_considered). The stations' biases
+  // are independent, so each station's is taken on its own.
   for (TrackType& track : tracks_) {
-    for (const ConsideredBias& c : track.considered) {
-      const auto& moved = registration_.of(station_index(c.station_id)).last_move();
-      if (moved.size() == c.cross.cols()) track.filter.mean.noalias() += c.cross * moved;
+    for (ConsideredBias& c : track.considered) {
+      const StationBias<kDim>& bias = registration_.of(station_index(c.station_id));
+      settle_considered(track.filter, c, bias.last_move(), bias.last_narrowing());
     }
   }
 }
@@ -105,7 +106,7 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
   // What this round taught each station's registration corrects the next round's detections.
   registration_.settle();
   if constexpr (ConsidersBiases<Tracks>) {
-    if (registers()) move_with_settled_biases();
+    if (registers()) condition_on_settled_biases();
   }
   learn_addresses(offered);
   // A track's height no less known than the band the 2-D radars assume (height_bound.hpp).

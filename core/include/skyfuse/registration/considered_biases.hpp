@@ -15,9 +15,13 @@
 /// adds [H G̃]ᵀ R⁻¹ [H G̃] (G̃ = G L), which still add up across stations, so that every peer and
 /// the center sum the same increments — of which the track keeps its own mean and covariance and
 /// the new C̃, but not what it learnt of u: the registration, not the track, estimates the biases
-/// (the Schmidt–Kalman filter's rule; its x-part is the joint update's exactly). The prior of u
-/// is N(0, I) at every update, whatever the registration settled since, so C̃ keeps the
-/// correlation as the bias's uncertainty shrinks and the joint prior stays positive definite.
+/// (the Schmidt–Kalman filter's rule; its x-part is the joint update's exactly).
+///
+/// When the registration settles, it has learnt of u: u now lies at m with spread A Aᵀ (m its
+/// move, A = L_old⁻¹ L_new). The track takes that as a measurement of u independent of its own
+/// error (the registration learnt from every track's detections, not this one's alone):
+/// conditioned on it, x̂ += C̃ m, P −= C̃ (I − A Aᵀ) C̃ᵀ, and its C̃ against the new standardised
+/// errors is C̃ A (settle_considered). The prior of u is N(0, I) again at the next update.
 
 #include <Eigen/Core>
 #include <span>
@@ -144,6 +148,22 @@ NumericalStatus fuse_considered(GaussianState<N>& state, ConsideredBiases& consi
   // In place: the update writes nothing where it fails.
   return fuse_considered(state.mean, state.covariance, considered, information, vector, terms,
                          term_weights);
+}
+
+/// A track of mean `mean` and covariance `covariance` (N entries) holding `c` against a station
+/// whose registration settled: moved by `move` (m) and narrowed by `narrowing` (A), as the
+/// file's comment says. Nothing happens where their sizes are not C̃'s (the station settled
+/// nothing).
+void settle_considered(Eigen::Ref<Eigen::VectorXd> mean, Eigen::Ref<Eigen::MatrixXd> covariance,
+                       ConsideredBias& c, const Eigen::Ref<const Eigen::VectorXd>& move,
+                       const Eigen::Ref<const Eigen::MatrixXd>& narrowing);
+
+/// The same for a Gaussian of fixed size.
+template <int N>
+void settle_considered(GaussianState<N>& state, ConsideredBias& c,
+                       const Eigen::Ref<const Eigen::VectorXd>& move,
+                       const Eigen::Ref<const Eigen::MatrixXd>& narrowing) {
+  settle_considered(state.mean, state.covariance, c, move, narrowing);
 }
 
 /// A track's C̃ carried through its time update: F C̃, F the motion's Jacobian at the prior mean

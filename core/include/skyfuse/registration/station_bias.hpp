@@ -134,17 +134,26 @@ class StationBias {
     return std::visit(
         [&]<typename S>(const BiasEstimate<S>& estimate) {
           constexpr int D = BiasEstimate<S>::kDim;
+          // Until it settles, nothing moved and nothing narrowed.
+          move_.setZero(D);
+          narrowing_.setIdentity(D, D);
           const auto settled = estimate.estimate();
           if (!settled) return false;
           // How far the estimate moved, in the standardised errors of the one it replaces.
           // (Entry by entry, and solved in the dynamic vector: GCC 12 warns falsely of
           // -Warray-bounds on the packet arithmetic of a one-entry estimate's.)
           const Vector<D> before = BiasEstimate<S>::from_sensor_bias(bias_);
-          shift_.resize(D);
-          for (int i = 0; i < D; ++i) shift_(i) = settled->mean(i) - before(i);
-          factor_.topLeftCorner(D, D).template triangularView<Eigen::Lower>().solveInPlace(shift_);
+          for (int i = 0; i < D; ++i) move_(i) = settled->mean(i) - before(i);
+          const auto old_factor =
+              factor_.topLeftCorner(D, D).template triangularView<Eigen::Lower>();
+          old_factor.solveInPlace(move_);
           bias_ = BiasEstimate<S>::as_sensor_bias(settled->mean);
+          const decltype(factor_) replaced = factor_;
           set_covariance(settled->covariance);
+          // L_old⁻¹ L_new: the new standardised errors in the old ones' units.
+          narrowing_ = factor_;
+          replaced.topLeftCorner(D, D).template triangularView<Eigen::Lower>().solveInPlace(
+              narrowing_);
           return true;
         },
         estimate_);
@@ -157,7 +166,13 @@ class StationBias {
   /// replaced (L⁻¹ (b̂_new − b̂_old)): what a track that keeps its cross-covariance C̃ with them
   /// expects its own error to have been, C̃ u (registration/considered_biases.hpp).
   const Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1>& last_move() const {
-    return shift_;
+    return move_;
+  }
+  /// How the last settle() narrowed them: A = L_old⁻¹ L_new, so that u_old = last_move() +
+  /// A u_new, and what is still unknown of u_old is A Aᵀ (the identity where nothing settled).
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4>&
+  last_narrowing() const {
+    return narrowing_;
   }
 
   /// Their standard deviations, as settled (before the first settle: the prior's); 0 for an
@@ -300,7 +315,8 @@ class StationBias {
   /// Σ of the settled estimate, of its size (at most the three offsets and the clock).
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4> covariance_;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4> factor_;
-  Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1> shift_;
+  Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1> move_;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4> narrowing_;
 };
 
 }  // namespace skyfuse
