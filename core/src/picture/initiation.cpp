@@ -111,7 +111,7 @@ std::vector<NewTrack> initiate_tracks(std::span<const PositionFix> fixes, std::u
     }
     for (const std::size_t m : members) used[m] = 1;
     NewTrack track{make_track_id(step, fixes[first].station_id, fixes[first].detection),
-                   group.position, group.covariance, group.stations};
+                   group.position, group.covariance, group.stations, members};
     track.address = group.address;
     if (group.address != kNoAddress && group.velocity_from != nullptr) {
       track.velocity = group.velocity_from->velocity;

@@ -11,6 +11,8 @@
 #include "skyfuse/fusion/increment_fusion.hpp"
 #include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/models/position_sensor.hpp"
+#include "skyfuse/models/range_azimuth_elevation.hpp"
+#include "skyfuse/picture/track_table.hpp"
 
 namespace skyfuse {
 namespace {
@@ -349,6 +351,55 @@ TEST(ConsideredBiases, SettlingIsTheJointGaussiansConditioning) {
       posterior.topRightCorner(N, 3) * narrowing.transpose().inverse();
   EXPECT_LT((c.cross - cross_new).cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_LT((joint_mean.tail(3) - move).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+// A track started at a registered radar's fix (its offsets removed by b̂, what b̂ does not know,
+// E Σ Eᵀ, in its noise): the error of its position against the bias error's standardised
+// coordinates, drawn 4 000 times, is −P₀ Hᵀ R⁻¹ E L (fix_bias_cross), the C̃ it starts with.
+TEST(ConsideredBiases, ATrackStartedAtARegisteredFixHoldsItsOffsetsError) {
+  using Radar = RangeAzimuthElevation<N>;
+  const Radar radar(Vector3(-2000.0, 1000.0, 40.0));
+  const Vector3 aircraft(9000.0, 14000.0, 3000.0);
+  Covariance<3> r = Covariance<3>::Zero();
+  r.diagonal() << 30.0 * 30.0, 0.00087 * 0.00087, 0.0017 * 0.0017;
+  // Σ of [range, azimuth, elevation, clock]; E takes the offsets, not the clock.
+  Covariance<4> sigma = Covariance<4>::Zero();
+  sigma.diagonal() << 40.0 * 40.0, 0.002 * 0.002, 0.001 * 0.001, 0.5 * 0.5;
+  const Matrix<4, 4> l = sigma.llt().matrixL();
+  const Matrix<3, 4> e_l = (Matrix<3, 4>() << Matrix3::Identity(), Vector3::Zero()).finished() * l;
+  const Covariance<3> noise = r + e_l * e_l.transpose();
+  const auto expected_fix = fix_position(1, 0, radar, radar.measure_position(aircraft), noise);
+  ASSERT_TRUE(expected_fix.has_value());
+  const Matrix<3, 4> expected =
+      -expected_fix->covariance * fix_bias_cross(radar, *expected_fix, noise, ConsideredCross(e_l));
+
+  constexpr int kDraws = 4000;
+  std::mt19937_64 rng(20261203);
+  std::normal_distribution<double> normal;
+  Matrix<3, 4> cross = Matrix<3, 4>::Zero();
+  Vector3 error_variance = Vector3::Zero();
+  for (int draw = 0; draw < kDraws; ++draw) {
+    Vector<4> u;
+    for (int i = 0; i < 4; ++i) u(i) = normal(rng);
+    Vector3 z = radar.measure_position(aircraft) + e_l * u;
+    for (int i = 0; i < 3; ++i) z(i) += std::sqrt(r(i, i)) * normal(rng);
+    const auto fix = fix_position(1, 0, radar, z, noise);
+    ASSERT_TRUE(fix.has_value());
+    const Vector3 error = aircraft - fix->position;  // x − x̂
+    cross += error * u.transpose();
+    error_variance += error.cwiseAbs2();
+  }
+  cross /= kDraws;
+  error_variance /= kDraws;
+  for (int i = 0; i < 3; ++i) {
+    // Four standard errors of a sample cross-covariance against a unit-variance u.
+    const double tolerance = 4.0 * std::sqrt(error_variance(i) / kDraws);
+    for (int j = 0; j < 4; ++j) {
+      EXPECT_NEAR(cross(i, j), expected(i, j), tolerance) << "entry " << i << ", " << j;
+    }
+  }
+  EXPECT_GT(expected.col(0).norm(), 10.0) << "the range offset's error moves the fix";
+  EXPECT_EQ(expected.col(3).norm(), 0.0) << "a fix holds no clock's error";
 }
 
 }  // namespace

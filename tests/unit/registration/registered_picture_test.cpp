@@ -153,7 +153,8 @@ void expect_one_estimate_near_the_truths_and_the_batch(int relinearisations) {
   std::vector<std::vector<PairedWithReference>> paired(2);
   double worst_center_gap = 0.0;
   double worst_track_gap = 0.0;
-  std::size_t considering = 0;  // track-rounds with cross-covariances kept
+  std::size_t considering = 0;       // track-rounds with cross-covariances kept
+  std::size_t started_by_radar = 0;  // (new track, radar that started it) pairs
   for (int k = 0; k < kRounds; ++k) {
     if (k == kRounds / 2) {
       // Station 3's peer restarts: a fresh one takes the picture and the registration's sums
@@ -200,6 +201,17 @@ void expect_one_estimate_near_the_truths_and_the_batch(int relinearisations) {
                      (mine.considered[c].cross - theirs.considered[c].cross).norm() / scale);
       }
       if (!mine.considered.empty()) ++considering;
+      // A track started this round (history of one round; updated_by: the stations that
+      // started it) holds a C̃ for each registered radar among them, from its first fix.
+      if (mine.history.rounds() == 1 && k > 0) {
+        for (const int station : mine.updated_by) {
+          if (station == kAdsb) continue;
+          ++started_by_radar;
+          const bool held = std::any_of(mine.considered.begin(), mine.considered.end(),
+                                        [&](const auto& c) { return c.station_id == station; });
+          EXPECT_TRUE(held) << "round " << k << ", track " << mine.id << ", radar " << station;
+        }
+      }
     }
     for (const Station& station : known) {
       const Vector<4> mine = Estimate::from_sensor_bias(peers[0].bias_of(station.id).bias());
@@ -223,6 +235,7 @@ void expect_one_estimate_near_the_truths_and_the_batch(int relinearisations) {
   EXPECT_LT(worst_center_gap, 1e-9);
   EXPECT_LT(worst_track_gap, 1e-9);
   EXPECT_GT(considering, 0U) << "the EKF's tracks keep their registered stations' bias errors";
+  EXPECT_GT(started_by_radar, 0U);
 
   const Vector<4> prior_std(config.registration.range_std_m, config.registration.azimuth_std_rad,
                             config.registration.elevation_std_rad, config.registration.time_std_s);

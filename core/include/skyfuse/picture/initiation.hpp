@@ -89,7 +89,8 @@ struct NewTrack {
   TrackId id = 0;
   Vector3 position = Vector3::Zero();
   Covariance<3> covariance = Covariance<3>::Identity();
-  std::vector<int> stations;  ///< whose detections started it, ascending
+  std::vector<int> stations;       ///< whose detections started it, ascending
+  std::vector<std::size_t> fixes;  ///< their fixes, as indices into initiate_tracks's, ascending
   Address address = kNoAddress;
   /// For a track started by an addressed detection of a sensor that reports a velocity: that
   /// velocity and its covariance; none otherwise (the initiation's velocity spread).

@@ -67,6 +67,29 @@ struct UnassociatedDetection {
   Detection reported_std{};
 };
 
+/// Hᵀ R⁻¹ W (3 × D) for `fix`, a detection of `sensor` with noise R (the offsets' noise in it)
+/// whose error holds W u besides its noise (W = E L, StationBias::offsets_factor): the fix's
+/// information times how far u moves it, so that a track started at the information-weighted
+/// mean of its fixes, of covariance P₀, holds −P₀ Hᵀ R⁻¹ W as its error's cross-covariance with
+/// u (the fix moves with u; the error x − x̂ against it).
+template <typename Sensor>
+ConsideredCross fix_bias_cross(const Sensor& sensor, const PositionFix& fix,
+                               const Covariance<Sensor::kMeasDim>& noise,
+                               const ConsideredCross& weighed_offsets) {
+  constexpr int M = Sensor::kMeasDim;
+  Vector<Sensor::kStateDim> x = Vector<Sensor::kStateDim>::Zero();
+  x.template head<3>() = fix.position;
+  const Matrix<M, 3> h = sensor.jacobian(x).template leftCols<3>();
+  SmallCholesky<M> r_factor;
+  if (!r_factor.compute(noise)) return ConsideredCross();  // the fix factored it: not reached
+  ConsideredCross cross(3, weighed_offsets.cols());
+  for (Eigen::Index c = 0; c < weighed_offsets.cols(); ++c) {
+    const Vector<M> r_inv_w = r_factor.solve(Vector<M>(weighed_offsets.col(c)));
+    cross.col(c) = h.transpose() * r_inv_w;
+  }
+  return cross;
+}
+
 template <typename Tracks>
 class TrackTable {
  public:
@@ -202,6 +225,10 @@ class TrackTable {
   std::vector<TrackType> tracks_;
   std::vector<GaussianState<kDim>> estimates_;
   std::vector<PositionFix> fixes_;
+  // Beside each fix, a registered station's Hᵀ R⁻¹ E L (3 × D; empty for another's): the
+  // offsets' error it carries, u = L⁻¹ (b − b̂) standardised, weighed as the fix is. A track
+  // started from it holds −P₀ Hᵀ R⁻¹ E L as its C̃ (registration/considered_biases.hpp).
+  std::vector<ConsideredCross> fix_bias_cross_;
   std::vector<Address> addresses_;  // tracks_[i].address, for the gate search's mask
   AddressBook book_;                // the tracks that hold an address, by address
   LeastSquaresRegistration<kDim> registration_;

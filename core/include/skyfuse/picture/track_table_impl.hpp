@@ -134,6 +134,7 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
   refresh_addresses();
 
   fixes_.clear();
+  fix_bias_cross_.clear();
   for (std::size_t s = 0; s < stations_.size(); ++s) {
     const Station& station = stations_[s];
     std::visit(
@@ -152,6 +153,12 @@ RoundOutcome TrackTable<Tracks>::close_round(std::uint64_t step, const std::vect
                     fix_position(station.id, d.detection, sensor, fixed_detection<M>(z), noise)) {
               fix->address = d.address;
               fixes_.push_back(*fix);
+              if constexpr (ConsidersBiases<Tracks>) {
+                fix_bias_cross_.push_back(
+                    registered ? fix_bias_cross(sensor, *fix, noise,
+                                                registration_.offsets_factor(s, station))
+                               : ConsideredCross());
+              }
             }
           }
         },
@@ -232,6 +239,18 @@ void TrackTable<Tracks>::start_track(NewTrack&& started) {
                   std::move(started.stations)};
   track.history.record(true);
   track.address = started.address;
+  if constexpr (ConsidersBiases<Tracks>) {
+    // Its position is the information-weighted mean of its fixes, so a registered station's
+    // offsets error moves it by P₀ Hᵀ R⁻¹ E L u, and its error x − x̂ by the opposite: its C̃
+    // from the start is −P₀ Hᵀ R⁻¹ E L (track_table.hpp).
+    for (const std::size_t f : started.fixes) {
+      const ConsideredCross& weighed = fix_bias_cross_[f];
+      if (weighed.size() == 0) continue;
+      ConsideredCross cross = ConsideredCross::Zero(kDim, weighed.cols());
+      cross.topRows(3).noalias() = -started.covariance * weighed;
+      track.considered.push_back({fixes_[f].station_id, std::move(cross)});
+    }
+  }
   tracks_.push_back(std::move(track));
   estimates_.push_back(filters_.estimate(tracks_.back().filter));
 }

@@ -238,6 +238,23 @@ class StationBias {
         sensor);
   }
 
+  /// The offsets' part of the standardised errors: E L (M × D, the clock's column zero), so that
+  /// a detection no track has met, its offsets removed, still carries E L u (u = L⁻¹ (b − b̂)).
+  ConsideredCross offsets_factor(const Sensor& sensor) const {
+    return std::visit(
+        [&]<typename S>(const S&) -> ConsideredCross {
+          constexpr int M = S::kMeasDim;
+          constexpr int D = BiasEstimate<S>::kDim;
+          ConsideredCross e = ConsideredCross::Zero(M, D);
+          int column = 0;
+          for (int i = 0; i < M; ++i) {
+            if (BiasEstimate<S>::kOffsetOf[static_cast<std::size_t>(i)] >= 0) e(i, column++) = 1.0;
+          }
+          return ConsideredCross(e * factor_.topLeftCorner(D, D));
+        },
+        sensor);
+  }
+
   /// The settled variance of the clock offset (s²).
   double clock_variance() const {
     return covariance_(covariance_.rows() - 1, covariance_.cols() - 1);

@@ -83,6 +83,9 @@ class LeastSquaresRegistration {
   Detection offsets_removed(std::size_t s, const Station& station, const Detection& z) const {
     return biases_[s].offsets_removed(station.sensor, z);
   }
+  ConsideredCross offsets_factor(std::size_t s, const Station& station) const {
+    return biases_[s].offsets_factor(station.sensor);
+  }
   DetectionNoise offsets_noise(std::size_t s, const Station& station) const {
     return biases_[s].offsets_noise(station.sensor);
   }
