@@ -26,6 +26,16 @@ void check_associator(const Scenario& scenario) {
         "add up); use a filter with an increment rule (ekf, ukf) or associator 'gnn'",
         filter.kind, associator->name));
   }
+  // A weighing associator's center weighs a detection by its noise (R / w), which would move
+  // the detection's linearisation point away from the peers' (docs/picture.md, "Relinearised
+  // increments").
+  if (associator->weighs_pairs && scenario.tracker.updater.relinearisations > 0) {
+    throw std::invalid_argument(fmt::format(
+        "associator '{}' does not yet take an updater that relinearises (its center weighs a "
+        "detection by its noise, which moves the point it is linearised at away from the "
+        "peers'); use associator 'gnn' or updater.relinearisations 0",
+        associator->name));
+  }
   for (const StationConfig& station : scenario.stations) {
     try {
       (void)detection_prior(station.detection.value(), station.sensor.kind, association);

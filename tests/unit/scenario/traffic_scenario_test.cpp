@@ -349,6 +349,10 @@ TEST(TrafficScenario, ReadsTheTrackersUpdater) {
   EXPECT_NE(ukf.find("relinearises the EKF's increments; filter 'ukf' takes its own"),
             std::string::npos)
       << ukf;
+  const std::string jpda = rejection(with("{relinearisations: 1}\n  associator: jpda"));
+  EXPECT_NE(jpda.find("associator 'jpda' does not yet take an updater that relinearises"),
+            std::string::npos)
+      << jpda;
 }
 
 TEST(TrafficScenario, RefusesWhatAPictureCannotTake) {
