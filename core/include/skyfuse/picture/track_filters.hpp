@@ -96,7 +96,11 @@ class PeerModelTracks : public ModelTracks<Model> {
   template <typename Sensor>
   NumericalStatus contribute(const State& state, const StationObservation<Sensor>& o,
                              Contribution& out) const {
-    return contribute_at(linearised(state, o), o, out);
+    if constexpr (kRelinearises) {
+      // Only then a copy of the prior: the default path takes it as it is.
+      if (relinearisations_ > 0) return contribute_at(linearised(state, o), o, out);
+    }
+    return contribute_at(state, o, out);
   }
   /// `state` with its mean at observation `o`'s linearisation point: the state itself unless
   /// the tracker relinearises.
@@ -113,7 +117,6 @@ class PeerModelTracks : public ModelTracks<Model> {
     const OwnContribution own = Rule::contribute(point, o, no_gate, out);
     return own.refused ? NumericalStatus::kNotPositiveDefinite : own.status;
   }
-  int relinearisations() const { return relinearisations_; }
   static NumericalStatus fuse(State& state, std::span<const Contribution* const> contributions,
                               std::span<const double> weights) {
     return fuse_increments(state, IndirectView<Contribution>(contributions), weights, state);
