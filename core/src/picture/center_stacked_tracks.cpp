@@ -1,5 +1,6 @@
 // The EKF center's stacked update of a track's detections (picture/track_filters.hpp),
 // once for each motion model of the registry.
+#include <optional>
 #include <span>
 #include <type_traits>
 #include <variant>
@@ -50,7 +51,10 @@ bool CenterStackedTracks<Model>::update_considered(
   for (std::size_t i = 0; i < observations.size(); ++i) {
     const bool ok = std::visit(
         [&](const auto& o) {
-          const State at = relinearised_prior(state, o, relinearisations_);
+          // The prior itself unless the tracker relinearises: no copy on the default path.
+          std::optional<State> moved;
+          if (relinearisations_ > 0) moved = relinearised_prior(state, o, relinearisations_);
+          const State& at = moved ? *moved : state;
           if (compute_increment(o.station_id, at, o.sensor, o.z, o.noise, increments[i]) !=
               NumericalStatus::kOk) {
             return false;

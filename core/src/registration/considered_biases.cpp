@@ -133,13 +133,7 @@ void settle_considered(Eigen::Ref<Eigen::VectorXd> mean, Eigen::Ref<Eigen::Matri
   const ConsideredCross narrowed = c.cross * narrowing;
   covariance.noalias() -= c.cross * c.cross.transpose();
   covariance.noalias() += narrowed * narrowed.transpose();
-  for (Eigen::Index i = 0; i < covariance.rows(); ++i) {
-    for (Eigen::Index j = 0; j < i; ++j) {
-      const double mean_ij = 0.5 * (covariance(i, j) + covariance(j, i));
-      covariance(i, j) = mean_ij;
-      covariance(j, i) = mean_ij;
-    }
-  }
+  symmetrize(covariance);
   c.cross = narrowed;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "skyfuse/fusion/increment_fusion.hpp"
 #include "skyfuse/metrics/chi_square.hpp"
@@ -232,20 +233,27 @@ double final_nees(bool schmidt, std::mt19937_64& rng, int steps) {
   return run.nees();
 }
 
+// The ANEES per dof of two rules' final NEES, `first(rng)` and `second(rng)`, over `runs` runs of
+// each, alternating on one generator seeded `seed`.
+template <typename First, typename Second>
+std::pair<double, double> paired_anees(int runs, std::uint64_t seed, First first, Second second) {
+  std::mt19937_64 rng(seed);
+  double a = 0.0;
+  double b = 0.0;
+  for (int run = 0; run < runs; ++run) {
+    a += first(rng);
+    b += second(rng);
+  }
+  return {a / (runs * N), b / (runs * N)};
+}
+
 TEST(ConsideredBiases, KeepTheTrackConsistentWhereWhiteNoiseDoesNot) {
   // 400 runs of 40 rounds: the average NEES per degree of freedom against χ²(2400)/2400's
   // 0.999 band (Wilson–Hilferty), [0.908, 1.098]. Taken as white noise, the bias makes the track
   // believe it averaged away what every detection shares.
-  constexpr int kRuns = 400;
-  std::mt19937_64 rng(20261201);
-  double schmidt = 0.0;
-  double white = 0.0;
-  for (int run = 0; run < kRuns; ++run) {
-    schmidt += final_nees(true, rng, 40);
-    white += final_nees(false, rng, 40);
-  }
-  schmidt /= kRuns * N;
-  white /= kRuns * N;
+  const auto [schmidt, white] = paired_anees(
+      400, 20261201, [](std::mt19937_64& rng) { return final_nees(true, rng, 40); },
+      [](std::mt19937_64& rng) { return final_nees(false, rng, 40); });
   RecordProperty("schmidt_anees", std::to_string(schmidt));
   RecordProperty("white_anees", std::to_string(white));
   EXPECT_GT(schmidt, 0.908);
@@ -299,16 +307,11 @@ TEST(ConsideredBiases, ATrackConditionedOnEachSettleStaysConsistent) {
   // 0.999 band. Moving the mean alone leaves the track holding a C̃ against errors the
   // registration has since narrowed, and an uncertainty it has resolved: not the joint's.
   constexpr int kRuns = 2000;
-  std::mt19937_64 rng(20261202);
-  double conditioned = 0.0;
-  double moved_only = 0.0;
-  for (int run = 0; run < kRuns; ++run) {
-    conditioned += final_nees_registered(AtSettle::kCondition, rng, 40);
-    moved_only += final_nees_registered(AtSettle::kMoveOnly, rng, 40);
-  }
+  const auto [conditioned, moved_only] = paired_anees(
+      kRuns, 20261202,
+      [](std::mt19937_64& rng) { return final_nees_registered(AtSettle::kCondition, rng, 40); },
+      [](std::mt19937_64& rng) { return final_nees_registered(AtSettle::kMoveOnly, rng, 40); });
   const double samples = kRuns * N;
-  conditioned /= samples;
-  moved_only /= samples;
   const double low = chi_square_quantile(0.0005, samples) / samples;
   const double high = chi_square_quantile(0.9995, samples) / samples;
   std::printf("ANEES per dof: conditioned %.3f, mean moved only %.3f; band [%.3f, %.3f]\n",
