@@ -6,21 +6,25 @@
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "report/registration_report.hpp"
-#include "skyfuse/metrics/chi_square.hpp"
+#include "skyfuse/metrics/nees_over_runs.hpp"
 #include "skyfuse/scenario/traffic_config.hpp"
 
 namespace skyfuse::harness {
 namespace {
 
-// The mean of `field` over the runs.
-template <typename Field>
-double mean_over(const std::vector<PictureRunResult>& runs, Field field) {
-  double sum = 0.0;
-  for (const auto& run : runs) sum += field(run);
-  return runs.empty() ? 0.0 : sum / static_cast<double>(runs.size());
+// The runs' ANEES, both tests of whether it is 1 (metrics/nees_over_runs.hpp).
+std::optional<NeesOverRuns> anees_of_runs(const PictureReport& report) {
+  std::vector<RunNees> runs;
+  runs.reserve(report.runs.size());
+  for (const PictureRunResult& run : report.runs) {
+    runs.push_back({run.anees, run.nees_dof, run.nees_samples});
+  }
+  return nees_over_runs(runs);
 }
 
 }  // namespace
@@ -63,16 +67,15 @@ void print_picture_table(const PictureReport& report, std::FILE* out) {
         s.mean_time_to_confirm_s, run.anees / run.nees_dof, run.peers_identical ? "same" : "DIFF",
         run.association_flips, run.max_state_gap);
   }
-  std::size_t samples = 0;
-  for (const auto& run : report.runs) samples += run.nees_samples;
-  if (!report.runs.empty() && samples > 0) {
-    const int dof = report.runs.front().nees_dof;
-    const ChiSquareBand band = average_chi_square_band(dof, static_cast<int>(samples));
+  if (const auto anees = anees_of_runs(report)) {
     fmt::print(out,
-               "ANEES per dof over {} samples: {:.3f} (95 % band of a consistent filter: "
-               "[{:.3f}, {:.3f}])\n",
-               samples, mean_over(report.runs, [](const auto& r) { return r.anees; }) / dof,
-               band.lower / dof, band.upper / dof);
+               "ANEES per dof over {} samples: {:.3f} (95 % band of a consistent filter, the "
+               "samples taken as independent: [{:.3f}, {:.3f}]; from the spread of the {} runs, "
+               "the mean lies in [{:.3f}, {:.3f}], the runs varying {:.1f}x as independent "
+               "samples would)\n",
+               anees->samples, anees->over_runs.mean, anees->pooled_band.lower,
+               anees->pooled_band.upper, report.runs.size(), anees->over_runs.lower,
+               anees->over_runs.upper, anees->variance_over_independent);
   }
   fmt::print(out,
              "GOSPA: cut-off {} m, p = {}, alpha = 2, mean per step, over the aircraft in some "
@@ -150,13 +153,21 @@ void write_picture_json(const PictureReport& report, const std::filesystem::path
     }
   }
   const TrafficConfig& traffic = *report.scenario.traffic;
-  const nlohmann::json summary = {
+  nlohmann::json summary = {
       {"scenario", report.scenario.name},
       {"aircraft", report.truth.targets.size()},
       {"steps", report.scenario.steps},
       {"gospa", {{"cutoff_m", traffic.gospa.cutoff_m}, {"order", traffic.gospa.order}}},
       {"guarantees_held", picture_guarantees_held(report)},
       {"runs", runs}};
+  if (const auto anees = anees_of_runs(report)) {
+    summary["anees_per_dof"] = {
+        {"mean", anees->over_runs.mean},
+        {"samples", anees->samples},
+        {"band_of_independent_samples", {anees->pooled_band.lower, anees->pooled_band.upper}},
+        {"interval_from_runs", {anees->over_runs.lower, anees->over_runs.upper}},
+        {"variance_over_independent", anees->variance_over_independent}};
+  }
   std::ofstream out(path);
   if (!out) throw std::runtime_error(fmt::format("{}: cannot write", path.string()));
   out << summary.dump(2) << '\n';
