@@ -1,14 +1,8 @@
 #pragma once
 /// \file
 /// How far a mean over independent Monte-Carlo runs can be trusted: Student's t distribution and
-/// the confidence interval of the runs' mean.
-///
-/// Why beside chi_square.hpp: a χ² band of an average NEES (average_chi_square_band) holds for
-/// independent samples, but a track's successive errors are correlated — a filter with little
-/// process noise carries one error for hundreds of rounds — so over a long run that band is far
-/// narrower than the average's real spread. The runs themselves are independent: the interval
-/// of their mean, from the runs' own spread, is the test that assumes nothing about the
-/// samples within a run.
+/// the confidence interval of the runs' mean, which needs nothing of the samples within a run
+/// (why that matters for an ANEES: nees_over_runs.hpp).
 
 #include <vector>
 
