@@ -74,7 +74,7 @@ void print_picture_table(const PictureReport& report, std::FILE* out) {
                "the mean lies in [{:.3f}, {:.3f}], the runs varying {:.1f}x as independent "
                "samples would)\n",
                anees->samples, anees->over_runs.mean, anees->pooled_band.lower,
-               anees->pooled_band.upper, report.runs.size(), anees->over_runs.lower,
+               anees->pooled_band.upper, anees->runs, anees->over_runs.lower,
                anees->over_runs.upper, anees->variance_over_independent);
   }
   fmt::print(out,

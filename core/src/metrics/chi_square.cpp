@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "metrics/monotone_inverse.hpp"
+
 namespace skyfuse {
 namespace {
 
@@ -62,14 +64,10 @@ double chi_square_quantile(double probability, double dof) {
     throw std::invalid_argument("chi_square_quantile: probability must be in (0,1), dof > 0");
   }
   // The CDF is monotone: bisection to full double precision is simple and robust.
-  double low = 0.0;
   double high = dof + 20.0 * std::sqrt(2.0 * dof) + 100.0;
   while (chi_square_cdf(high, dof) < probability) high *= 2.0;
-  for (int i = 0; i < 200 && high - low > 1e-12 * high; ++i) {
-    const double mid = 0.5 * (low + high);
-    (chi_square_cdf(mid, dof) < probability ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
+  return detail::bisect_monotone([dof](double x) { return chi_square_cdf(x, dof); }, probability,
+                                 0.0, high, 1e-12, 0.0);
 }
 
 ChiSquareBand average_chi_square_band(int dof, int samples, double confidence) {

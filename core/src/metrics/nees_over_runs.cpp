@@ -21,6 +21,7 @@ std::optional<NeesOverRuns> nees_over_runs(std::span<const RunNees> runs) {
     independent_variance += 2.0 * per_dof * per_dof / (run.dof * static_cast<double>(run.samples));
   }
   if (per_run.empty()) return std::nullopt;
+  summary.runs = per_run.size();
   const ChiSquareBand band =
       average_chi_square_band(summary.dof, static_cast<int>(summary.samples));
   summary.pooled_band = {band.lower / summary.dof, band.upper / summary.dof};

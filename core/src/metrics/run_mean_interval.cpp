@@ -1,9 +1,10 @@
 #include "skyfuse/metrics/run_mean_interval.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "metrics/monotone_inverse.hpp"
 
 namespace skyfuse {
 namespace {
@@ -72,11 +73,8 @@ double student_t_quantile(double probability, double dof) {
   double high = 1.0;
   while (student_t_cdf(low, dof) > probability) low *= 2.0;
   while (student_t_cdf(high, dof) < probability) high *= 2.0;
-  for (int i = 0; i < 200 && high - low > 1e-13 * std::max(1.0, std::fabs(high)); ++i) {
-    const double mid = 0.5 * (low + high);
-    (student_t_cdf(mid, dof) < probability ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
+  return detail::bisect_monotone([dof](double t) { return student_t_cdf(t, dof); }, probability,
+                                 low, high, 1e-13, 1.0);
 }
 
 RunMeanInterval run_mean_interval(const std::vector<double>& values, double confidence) {

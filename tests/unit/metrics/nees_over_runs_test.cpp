@@ -74,6 +74,7 @@ TEST(NeesOverRuns, RunsWithoutSamplesAreLeftOutAndDifferentDofsRefused) {
   const auto one = nees_over_runs(std::vector<RunNees>{{0.0, 6, 0}, {6.6, 6, 100}});
   ASSERT_TRUE(one.has_value());
   EXPECT_EQ(one->samples, 100u);
+  EXPECT_EQ(one->runs, 1u) << "a run of no samples is not counted among those judged";
   EXPECT_DOUBLE_EQ(one->over_runs.mean, 1.1);
   const std::vector<RunNees> mixed{{6.0, 6, 100}, {3.0, 3, 100}};
   EXPECT_THROW(nees_over_runs(mixed), std::invalid_argument);

@@ -28,6 +28,7 @@ struct RunNees {
 
 struct NeesOverRuns {
   int dof = 0;
+  std::size_t runs = 0;       ///< those with samples, the ones judged
   std::size_t samples = 0;    ///< over every run
   ChiSquareBand pooled_band;  ///< per dof, at 95 %, the pooled samples taken as independent
   RunMeanInterval over_runs;  ///< of the runs' ANEES per dof, at 95 %
