@@ -1,8 +1,11 @@
-// Every way a run of 64 stations ends — the last round, falling behind real time, a station gone
-// silent past --round-timeout, Ctrl-C, a station killed — ends with the documented exit status,
-// summary.json and the CSV files of the rounds recorded, and no node killed by a signal it was
-// not sent: in particular none by Fast DDS's teardown assertion (signal 6), which participants
-// that said goodbye to each other at once used to reach.
+// Every way a run of many stations ends — the last round, falling behind real time, a station
+// gone silent past --round-timeout, Ctrl-C, a station killed — ends with the documented exit
+// status, summary.json and the CSV files of the rounds recorded, and no node killed by a signal
+// it was not sent: in particular none by Fast DDS's teardown assertion (signal 6), which
+// participants that said goodbye to each other at once used to reach. The last round and falling
+// behind are run with 64 stations, each its own process; the three a signal ends with 16 in
+// clusters of 4 (the same tree, its discovery a quarter of the participants: each of those
+// tests took 110-140 s at 64 on a 2-core machine, most of it discovery).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -26,6 +29,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 
 constexpr int kStations = 64;
+constexpr int kSignalledStations = 16;
 
 // The options that make a run ring64's (or `scenario`'s) stations in clusters of 8, each station
 // its own process (what these tests stop, kill and count), then `extra`; the number of stations
@@ -48,11 +52,12 @@ Completed run_until_done(const std::filesystem::path& dir, int domain,
   return run_to_completion(args, dir / "run.log", 240s);
 }
 
-// A long run of the 64 stations (the fixture's start_long_run), once its rounds have begun;
-// discovery at M = 64 may take far longer than the fixture's default wait.
-std::unique_ptr<Process> start_long_run_of_64(int domain, const std::filesystem::path& dir,
-                                              const std::vector<std::string>& extra = {}) {
-  return start_long_run(domain, kStations, dir, ring64_tree(extra), 150s);
+// A long run of ring64's first kSignalledStations stations (the fixture's start_long_run), once
+// its rounds have begun; discovery of many processes may take far longer than the fixture's
+// default wait.
+std::unique_ptr<Process> start_long_run_to_signal(int domain, const std::filesystem::path& dir,
+                                                  const std::vector<std::string>& extra = {}) {
+  return start_long_run(domain, kSignalledStations, dir, ring64_tree(extra), 150s);
 }
 
 // The process of station `id` on `domain`; a failure unless there is exactly one.
@@ -64,10 +69,11 @@ pid_t station_pid(int id, int domain) {
 }
 
 // What every run leaves, however it ended: summary.json saying how, steps.csv with a row per
-// step recorded, and every one of the 65 nodes accounted for, none killed by a signal except
-// `killed` (node name -> the signal the test or the harness sent it).
+// step recorded, and every one of the `stations` + 1 nodes accounted for, none killed by a
+// signal except `killed` (node name -> the signal the test or the harness sent it).
 nlohmann::json expect_files_and_clean_exits(const std::filesystem::path& out,
                                             const std::string& output, const std::string& ended,
+                                            int stations,
                                             const std::map<std::string, int>& killed = {}) {
   EXPECT_THAT(output, Not(HasSubstr("Assertion"))) << output;
   if (!std::filesystem::exists(out / "summary.json")) {
@@ -83,7 +89,7 @@ nlohmann::json expect_files_and_clean_exits(const std::filesystem::path& out,
             summary.at("steps").get<int>() + 1);
   EXPECT_TRUE(std::filesystem::exists(out / "tracks.csv"));
   const auto& exits = summary.at("node_exits");
-  EXPECT_EQ(exits.size(), static_cast<std::size_t>(kStations + 1)) << exits.dump();
+  EXPECT_EQ(exits.size(), static_cast<std::size_t>(stations + 1)) << exits.dump();
   for (const auto& [node, how] : exits.items()) {
     const auto sent = killed.find(node);
     if (sent != killed.end()) {
@@ -100,7 +106,8 @@ TEST(DdsRunEnd, SixtyFourStationsLeaveCleanlyAfterTheLastRound) {
   const auto dir = test_dir();
   const Completed run = run_until_done(dir, 135, ring64_tree({"--steps", "40"}));
   EXPECT_TRUE(run.status.exited && run.status.code == 0) << run.output;
-  const auto summary = expect_files_and_clean_exits(dir / "out", run.output, "complete");
+  const auto summary =
+      expect_files_and_clean_exits(dir / "out", run.output, "complete", kStations);
   EXPECT_EQ(summary.value("steps", 0), 40);
 }
 
@@ -122,7 +129,8 @@ TEST(DdsRunEnd, ARealTimeRunThatFallsBehindStopsWithItsFiles) {
   EXPECT_EQ(run.status.code, 3) << run.output;
   EXPECT_THAT(run.output, HasSubstr("run stopped early (fell_behind): real-time run fell behind"));
   EXPECT_THAT(run.output, HasSubstr("could not carry 64 stations at 2000 Hz"));
-  const auto summary = expect_files_and_clean_exits(dir / "out", run.output, "fell_behind");
+  const auto summary =
+      expect_files_and_clean_exits(dir / "out", run.output, "fell_behind", kStations);
   ASSERT_TRUE(summary.contains("realtime")) << summary.dump();
   const auto& realtime = summary.at("realtime");
   EXPECT_LT(summary.at("steps").get<int>(), 2000);
@@ -140,7 +148,7 @@ TEST(DdsRunEnd, ARealTimeRunThatFallsBehindStopsWithItsFiles) {
 // stopped) and every other node leaves by itself.
 TEST(DdsRunEnd, ASilentStationStopsALockStepRunAtTheRoundTimeout) {
   const auto dir = test_dir();
-  const auto run = start_long_run_of_64(137, dir, {"--round-timeout", "3"});
+  const auto run = start_long_run_to_signal(137, dir, {"--round-timeout", "3"});
   ASSERT_FALSE(HasFailure());
   const pid_t victim = station_pid(9, 137);
   ASSERT_FALSE(HasFailure());
@@ -152,13 +160,13 @@ TEST(DdsRunEnd, ASilentStationStopsALockStepRunAtTheRoundTimeout) {
   EXPECT_THAT(run->output(), HasSubstr("run stopped early (round_timeout): station 9 is running "
                                        "but sent no track for 3.0 s"));
   const auto summary = expect_files_and_clean_exits(dir / "out", run->output(), "round_timeout",
-                                                    {{"station 9", SIGKILL}});
+                                                    kSignalledStations, {{"station 9", SIGKILL}});
   EXPECT_GT(summary.value("steps", 0), 0);
 }
 
 TEST(DdsRunEnd, CtrlCStopsTheRunWithItsFiles) {
   const auto dir = test_dir();
-  const auto run = start_long_run_of_64(138, dir);
+  const auto run = start_long_run_to_signal(138, dir);
   ASSERT_FALSE(HasFailure());
   run->signal(SIGINT);
   const auto status = run->wait(60s);
@@ -166,26 +174,27 @@ TEST(DdsRunEnd, CtrlCStopsTheRunWithItsFiles) {
   EXPECT_TRUE(status->exited);
   EXPECT_EQ(status->code, 130) << run->output();
   EXPECT_THAT(run->output(), HasSubstr("run stopped early (interrupted): interrupted by signal 2"));
-  const auto summary = expect_files_and_clean_exits(dir / "out", run->output(), "interrupted");
+  const auto summary = expect_files_and_clean_exits(dir / "out", run->output(), "interrupted",
+                                                    kSignalledStations);
   EXPECT_GT(summary.value("steps", 0), 0);
 }
 
 TEST(DdsRunEnd, AKilledStationStopsTheRunWithItsFiles) {
   const auto dir = test_dir();
   const auto shared_memory_before = fastdds_shm_entries();  // UDP only: none may appear
-  const auto run = start_long_run_of_64(139, dir);
+  const auto run = start_long_run_to_signal(139, dir);
   ASSERT_FALSE(HasFailure());
-  const pid_t victim = station_pid(17, 139);
+  const pid_t victim = station_pid(13, 139);
   ASSERT_FALSE(HasFailure());
   ::kill(victim, SIGKILL);
   const auto status = run->wait(60s);
   ASSERT_TRUE(status.has_value()) << run->output();
   EXPECT_TRUE(status->exited);
   EXPECT_EQ(status->code, 1) << run->output();
-  EXPECT_THAT(run->output(), HasSubstr("run stopped early (node_failed): station 17 (pid " +
+  EXPECT_THAT(run->output(), HasSubstr("run stopped early (node_failed): station 13 (pid " +
                                        std::to_string(victim) + ") was killed by signal 9"));
   const auto summary = expect_files_and_clean_exits(dir / "out", run->output(), "node_failed",
-                                                    {{"station 17", SIGKILL}});
+                                                    kSignalledStations, {{"station 13", SIGKILL}});
   EXPECT_GT(summary.value("steps", 0), 0);
   EXPECT_EQ(fastdds_shm_entries(), shared_memory_before);
 }
