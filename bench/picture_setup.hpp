@@ -40,7 +40,10 @@ inline std::vector<TargetTruth> traffic(int aircraft, int steps) {
   std::uniform_real_distribution<double> heading(-std::numbers::pi, std::numbers::pi);
   std::vector<TargetTruth> truths;
   for (int a = 0; a < aircraft; ++a) {
-    const Vector3 start(across(rng), across(rng), height(rng));
+    // One draw at a time, the height first (a call's arguments have no fixed order in C++).
+    const double up = height(rng);
+    const double north = across(rng);
+    const Vector3 start(across(rng), north, up);
     const double h = heading(rng);
     const Vector3 velocity = speed(rng) * Vector3(std::cos(h), std::sin(h), 0.0);
     TargetTruth truth{fmt::format("T{}", a), 0, {}};

@@ -5,12 +5,13 @@
 #include <random>
 
 #include "skyfuse/core/types.hpp"
+#include "support/draw_last_first.hpp"
 
 namespace skyfuse::test {
 
 inline Vector3 random_vector3(std::mt19937& rng, double lo, double hi) {
   std::uniform_real_distribution<double> u(lo, hi);
-  return Vector3(u(rng), u(rng), u(rng));
+  return draw_last_first<3>([&] { return u(rng); });
 }
 
 /// SPD matrix with eigenvalues in [lo, hi]: a random rotation of a random positive diagonal.

@@ -37,8 +37,12 @@ TargetTruth generated_aircraft(const TrafficGeneratorConfig& g, std::uint64_t se
                                double time_step_s, int steps) {
   CounterRng rng({seed, 0, 0, static_cast<std::uint64_t>(index), NoiseStream::kTraffic});
   TargetConfig path;
-  path.initial_position_m =
-      Vector3(uniform_in(g.east_m, rng), uniform_in(g.north_m, rng), uniform_in(g.height_m, rng));
+  // Drawn one by one, height first, as every figure's traffic was: a call's arguments are
+  // evaluated in an order C++ leaves open (GCC the last first, clang the first first).
+  const double height_m = uniform_in(g.height_m, rng);
+  const double north_m = uniform_in(g.north_m, rng);
+  const double east_m = uniform_in(g.east_m, rng);
+  path.initial_position_m = Vector3(east_m, north_m, height_m);
   const double heading = 2.0 * std::numbers::pi * rng.uniform();
   path.direction = Vector3(std::cos(heading), std::sin(heading), 0.0);
   path.speeds_mps = {uniform_in(g.speed_mps, rng)};

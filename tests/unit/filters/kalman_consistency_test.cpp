@@ -11,6 +11,7 @@
 #include "skyfuse/models/constant_acceleration.hpp"
 #include "skyfuse/models/position_sensor.hpp"
 #include "skyfuse/random/counter_rng.hpp"
+#include "support/draw_last_first.hpp"
 
 namespace skyfuse {
 namespace {
@@ -49,7 +50,7 @@ ConsistencyResult run_linear_gaussian(const ConstantAcceleration3D::NoiseStd& q_
     for (int k = 0; k < kSteps; ++k) {
       CounterRng rng({42, run, 1, static_cast<std::uint64_t>(k), NoiseStream::kMeasurement});
       const Vector3 z =
-          x.head<3>() + Vector3(2.0 * rng.normal(), 2.0 * rng.normal(), 2.0 * rng.normal());
+          x.head<3>() + 2.0 * test::draw_last_first<3>([&] { return rng.normal(); });
       EXPECT_EQ(update(estimate, sensor, z, noise).status, NumericalStatus::kOk);
       nees_sum[static_cast<std::size_t>(k)] += nees(x, estimate);
 

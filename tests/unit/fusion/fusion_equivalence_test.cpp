@@ -31,7 +31,8 @@ Problem random_problem(std::mt19937& rng, int stations) {
     obs.sensor = Sensor(test::random_vector3(rng, -2000.0, 2000.0));
     obs.noise = test::random_spd<3>(rng, 1e-4, 1e-2);
     obs.z = Sensor::residual(
-        obs.sensor.measure_position(target) + Vector3(0.1 * n(rng), 0.01 * n(rng), 0.01 * n(rng)),
+        obs.sensor.measure_position(target) +
+            Vector3(0.1, 0.01, 0.01).cwiseProduct(test::draw_last_first<3>([&] { return n(rng); })),
         Vector3::Zero());
     p.observations.push_back(obs);
   }

@@ -26,7 +26,12 @@ Receivers random_ground_receivers(std::mt19937& rng) {
   Receivers sites;
   std::uniform_real_distribution<double> across(-10000.0, 10000.0);
   std::uniform_real_distribution<double> height(0.0, 150.0);
-  for (Vector3& s : sites) s = Vector3(across(rng), across(rng), height(rng));
+  for (Vector3& s : sites) {
+    const double up = height(rng);  // one draw at a time, the height first (tests/support/draw_last_first.hpp)
+    s = Vector3(0.0, 0.0, up);
+    s(1) = across(rng);
+    s(0) = across(rng);
+  }
   return sites;
 }
 
@@ -38,7 +43,9 @@ Sensor sensor_at(const Receivers& sites, double sigma_m = 1.0) {
 Vector3 random_aircraft(std::mt19937& rng) {
   std::uniform_real_distribution<double> across(-8000.0, 8000.0);
   std::uniform_real_distribution<double> height(300.0, 3000.0);
-  return Vector3(across(rng), across(rng), height(rng));
+  const double up = height(rng);  // one draw at a time, the height first (tests/support/draw_last_first.hpp)
+  const double north = across(rng);
+  return Vector3(across(rng), north, up);
 }
 
 double cost_at(const Sensor& sensor, const Vector<5>& z, const Vector3& p, double variance) {

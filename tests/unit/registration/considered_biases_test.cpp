@@ -15,6 +15,7 @@
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/picture/track_table.hpp"
 #include "skyfuse/registration/station_bias.hpp"
+#include "support/draw_last_first.hpp"
 
 namespace skyfuse {
 namespace {
@@ -171,7 +172,7 @@ class BiasedRun {
   }
 
   Vector<3> draw(double std) {
-    return Vector<3>(std * normal_(rng_), std * normal_(rng_), std * normal_(rng_));
+    return std * test::draw_last_first<3>([&] { return normal_(rng_); });
   }
   const Vector<3>& bias() const { return bias_; }
   GaussianState<N>& track() { return track_; }

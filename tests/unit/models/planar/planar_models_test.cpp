@@ -14,6 +14,7 @@
 #include "skyfuse/models/planar/position_2d.hpp"
 #include "skyfuse/models/planar/turn_rate_velocity_2d.hpp"
 #include "skyfuse/random/counter_rng.hpp"
+#include "support/draw_last_first.hpp"
 
 namespace skyfuse {
 namespace {
@@ -158,7 +159,7 @@ TEST(TurnRateVelocity2D, FilterCovarianceStaysSymmetricPositiveDefinite) {
   for (int k = 0; k < 300; ++k) {
     truth = model.propagate(truth);
     predict(state, model);
-    const Vector<2> z(truth(0) + 3.0 * rng.normal(), truth(1) + 3.0 * rng.normal());
+    const Vector<2> z = truth.head<2>() + 3.0 * test::draw_last_first<2>([&] { return rng.normal(); });
     ASSERT_EQ(update(state, Position2D<TurnRateVelocity2D>{}, z, r).status, NumericalStatus::kOk);
     ASSERT_EQ(state.covariance, state.covariance.transpose());
     ASSERT_GT(smallest_eigenvalue(state.covariance), 0.0) << "step " << k;

@@ -8,6 +8,7 @@
 
 #include "skyfuse/models/tdoa/range_difference_sensor.hpp"
 #include "support/numerical_jacobian.hpp"
+#include "support/draw_last_first.hpp"
 
 namespace skyfuse {
 namespace {
@@ -23,8 +24,8 @@ TEST(PseudoLinearTdoa, TheSquaredRangeDifferenceIsLinearInTheStateOnRandomGeomet
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> coordinate(-5000.0, 5000.0);
   for (int trial = 0; trial < 1000; ++trial) {
-    const Vector<2> target(coordinate(rng), coordinate(rng));
-    const Vector<2> offset(coordinate(rng) / 10.0, coordinate(rng) / 10.0);
+    const Vector<2> target = test::draw_last_first<2>([&] { return coordinate(rng); });
+    const Vector<2> offset = test::draw_last_first<2>([&] { return coordinate(rng) / 10.0; });
     const double r = range_difference(target, offset);
     // Without noise (sigma 0) y_j = r_j^2 - d_j1^2 and H_j x = -2 [P_j, r_j] [dp, d_t1] (Eq 3).
     const PseudoLinearTdoaRow row = pseudo_linear_tdoa_row(offset, r, r, 0.0);
