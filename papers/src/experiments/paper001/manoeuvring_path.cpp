@@ -57,13 +57,19 @@ ManoeuvringPath generate_path(const PathSetup& setup, std::uint64_t seed, std::u
     segment.straight = straight_next;
     straight_next = !straight_next;
     if (!segment.straight) {
-      segment.turn_rate_change = random_sign(motion) * uniform(motion, 0.035, 0.175);
+      // Every draw its own statement, the sign first: the order of a binary operator's operands
+      // and of a call's arguments is the compiler's (random_sign(m) * uniform(m, ...) happens to
+      // be drawn left first by GCC and clang alike; a call's arguments are not).
+      const double turn_sign = random_sign(motion);
+      segment.turn_rate_change = turn_sign * uniform(motion, 0.035, 0.175);
       if (brake_before_manoeuvre) {
         brake_before_manoeuvre = false;
         braking_steps = segment_steps(motion, setup, 0.5, 1.0);
-        segment.acceleration = random_sign(motion) * uniform(motion, 2.0, 3.5);
+        const double sign = random_sign(motion);
+        segment.acceleration = sign * uniform(motion, 2.0, 3.5);
       } else {
-        segment.acceleration = random_sign(motion) * uniform(motion, 1.0, 5.0);
+        const double sign = random_sign(motion);
+        segment.acceleration = sign * uniform(motion, 1.0, 5.0);
       }
     }
     segment.steps =
@@ -75,8 +81,12 @@ ManoeuvringPath generate_path(const PathSetup& setup, std::uint64_t seed, std::u
 
   for (int k = 0; k < setup.steps; ++k) {
     path.truth.push_back(x);
-    path.measurements.emplace_back(x(0) + setup.measurement_std_m * sensor.normal(),
-                                   x(1) + setup.measurement_std_m * sensor.normal());
+    // y's noise first, the order every shipped network and figure was made with (GCC evaluates
+    // a call's arguments last first; clang would draw x's first).
+    const double noise_y = sensor.normal();
+    const double noise_x = sensor.normal();
+    path.measurements.emplace_back(x(0) + setup.measurement_std_m * noise_x,
+                                   x(1) + setup.measurement_std_m * noise_y);
     if (segment.steps == 0 && braking_steps == 0) start_segment();
     double acceleration = segment.acceleration;
     double turn_rate_change = segment.turn_rate_change;
