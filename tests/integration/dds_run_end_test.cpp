@@ -106,8 +106,7 @@ TEST(DdsRunEnd, SixtyFourStationsLeaveCleanlyAfterTheLastRound) {
   const auto dir = test_dir();
   const Completed run = run_until_done(dir, 135, ring64_tree({"--steps", "40"}));
   EXPECT_TRUE(run.status.exited && run.status.code == 0) << run.output;
-  const auto summary =
-      expect_files_and_clean_exits(dir / "out", run.output, "complete", kStations);
+  const auto summary = expect_files_and_clean_exits(dir / "out", run.output, "complete", kStations);
   EXPECT_EQ(summary.value("steps", 0), 40);
 }
 
@@ -174,8 +173,8 @@ TEST(DdsRunEnd, CtrlCStopsTheRunWithItsFiles) {
   EXPECT_TRUE(status->exited);
   EXPECT_EQ(status->code, 130) << run->output();
   EXPECT_THAT(run->output(), HasSubstr("run stopped early (interrupted): interrupted by signal 2"));
-  const auto summary = expect_files_and_clean_exits(dir / "out", run->output(), "interrupted",
-                                                    kSignalledStations);
+  const auto summary =
+      expect_files_and_clean_exits(dir / "out", run->output(), "interrupted", kSignalledStations);
   EXPECT_GT(summary.value("steps", 0), 0);
 }
 

@@ -49,8 +49,7 @@ ConsistencyResult run_linear_gaussian(const ConstantAcceleration3D::NoiseStd& q_
     GaussianState<9> estimate{x + draw(init_rng, p0), p0};
     for (int k = 0; k < kSteps; ++k) {
       CounterRng rng({42, run, 1, static_cast<std::uint64_t>(k), NoiseStream::kMeasurement});
-      const Vector3 z =
-          x.head<3>() + 2.0 * test::draw_last_first<3>([&] { return rng.normal(); });
+      const Vector3 z = x.head<3>() + 2.0 * test::draw_last_first<3>([&] { return rng.normal(); });
       EXPECT_EQ(update(estimate, sensor, z, noise).status, NumericalStatus::kOk);
       nees_sum[static_cast<std::size_t>(k)] += nees(x, estimate);
 

@@ -159,7 +159,8 @@ TEST(TurnRateVelocity2D, FilterCovarianceStaysSymmetricPositiveDefinite) {
   for (int k = 0; k < 300; ++k) {
     truth = model.propagate(truth);
     predict(state, model);
-    const Vector<2> z = truth.head<2>() + 3.0 * test::draw_last_first<2>([&] { return rng.normal(); });
+    const Vector<2> z =
+        truth.head<2>() + 3.0 * test::draw_last_first<2>([&] { return rng.normal(); });
     ASSERT_EQ(update(state, Position2D<TurnRateVelocity2D>{}, z, r).status, NumericalStatus::kOk);
     ASSERT_EQ(state.covariance, state.covariance.transpose());
     ASSERT_GT(smallest_eigenvalue(state.covariance), 0.0) << "step " << k;

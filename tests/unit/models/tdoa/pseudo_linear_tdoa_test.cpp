@@ -7,8 +7,8 @@
 #include <random>
 
 #include "skyfuse/models/tdoa/range_difference_sensor.hpp"
-#include "support/numerical_jacobian.hpp"
 #include "support/draw_last_first.hpp"
+#include "support/numerical_jacobian.hpp"
 
 namespace skyfuse {
 namespace {
