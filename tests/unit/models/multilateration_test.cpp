@@ -21,17 +21,20 @@ namespace {
 using Sensor = Multilateration<9>;
 using Receivers = Sensor::Receivers;
 
+// A point within `across` of the origin east and north and `height` up, drawn height first
+// (one draw at a time: tests/support/draw_last_first.hpp says why).
+Vector3 random_point(std::mt19937& rng, double across_m, double low_m, double high_m) {
+  std::uniform_real_distribution<double> across(-across_m, across_m);
+  std::uniform_real_distribution<double> height(low_m, high_m);
+  const double up = height(rng);
+  const double north = across(rng);
+  return Vector3(across(rng), north, up);
+}
+
 // Six receivers over a city: within 10 km of the origin, on roofs and masts 0-150 m up.
 Receivers random_ground_receivers(std::mt19937& rng) {
   Receivers sites;
-  std::uniform_real_distribution<double> across(-10000.0, 10000.0);
-  std::uniform_real_distribution<double> height(0.0, 150.0);
-  for (Vector3& s : sites) {
-    const double up = height(rng);  // one draw at a time, the height first (tests/support/draw_last_first.hpp)
-    s = Vector3(0.0, 0.0, up);
-    s(1) = across(rng);
-    s(0) = across(rng);
-  }
+  for (Vector3& s : sites) s = random_point(rng, 10000.0, 0.0, 150.0);
   return sites;
 }
 
@@ -41,11 +44,7 @@ Sensor sensor_at(const Receivers& sites, double sigma_m = 1.0) {
 }
 
 Vector3 random_aircraft(std::mt19937& rng) {
-  std::uniform_real_distribution<double> across(-8000.0, 8000.0);
-  std::uniform_real_distribution<double> height(300.0, 3000.0);
-  const double up = height(rng);  // one draw at a time, the height first (tests/support/draw_last_first.hpp)
-  const double north = across(rng);
-  return Vector3(across(rng), north, up);
+  return random_point(rng, 8000.0, 300.0, 3000.0);
 }
 
 double cost_at(const Sensor& sensor, const Vector<5>& z, const Vector3& p, double variance) {

@@ -13,8 +13,11 @@ namespace {
 double uniform(CounterRng& rng, double low, double high) {
   return low + (high - low) * rng.uniform();
 }
-double random_sign(CounterRng& rng) {
-  return rng.uniform() < 0.5 ? -1.0 : 1.0;
+// ±U(low, high): the sign drawn first, then the size, each its own statement (C++ leaves the
+// order of a product's operands to the compiler).
+double signed_uniform(CounterRng& rng, double low, double high) {
+  const double sign = rng.uniform() < 0.5 ? -1.0 : 1.0;
+  return sign * uniform(rng, low, high);
 }
 
 // What drives the truth during one segment of the path.
@@ -57,19 +60,13 @@ ManoeuvringPath generate_path(const PathSetup& setup, std::uint64_t seed, std::u
     segment.straight = straight_next;
     straight_next = !straight_next;
     if (!segment.straight) {
-      // Every draw its own statement, the sign first: the order of a binary operator's operands
-      // and of a call's arguments is the compiler's (random_sign(m) * uniform(m, ...) happens to
-      // be drawn left first by GCC and clang alike; a call's arguments are not).
-      const double turn_sign = random_sign(motion);
-      segment.turn_rate_change = turn_sign * uniform(motion, 0.035, 0.175);
+      segment.turn_rate_change = signed_uniform(motion, 0.035, 0.175);
       if (brake_before_manoeuvre) {
         brake_before_manoeuvre = false;
         braking_steps = segment_steps(motion, setup, 0.5, 1.0);
-        const double sign = random_sign(motion);
-        segment.acceleration = sign * uniform(motion, 2.0, 3.5);
+        segment.acceleration = signed_uniform(motion, 2.0, 3.5);
       } else {
-        const double sign = random_sign(motion);
-        segment.acceleration = sign * uniform(motion, 1.0, 5.0);
+        segment.acceleration = signed_uniform(motion, 1.0, 5.0);
       }
     }
     segment.steps =
