@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "integration/run_fixture.hpp"
 #include "skyfuse/scenario/scenario_loader.hpp"
@@ -309,10 +310,18 @@ void expect_aggregator_replaced_and_restored(int domain, const std::vector<std::
       EXPECT_LT(apart[k], 1e-4) << "step " << k;
     }
   }
+  // Every other station misses at most the kill's round and the restart's. Station 1's
+  // cluster-mates (2-4: clusters of four by id) may miss any round of a change, the rounds
+  // where peers may disagree above: 100 and 101 while station 2 takes over, and 150 to two
+  // after the rejoin while some send to station 1 and some to station 2 (CI, a full -j2 suite:
+  // station 3 missed 3 rounds; on an idle machine they miss at most one).
+  const int change_rounds = 2 + (rejoin + 2 - 150 + 1);
   for (const auto& [station, rounds] : summary["rounds_missing_by_station"].items()) {
-    if (station != "1") {
-      EXPECT_LE(rounds.get<int>(), 2) << station;
-    }
+    const int id = std::stoi(station);
+    if (id == 1) continue;
+    const bool cluster_mate = id <= 4;
+    EXPECT_LE(rounds.get<int>(), cluster_mate ? change_rounds : 2)
+        << "station " << station << ", rejoin at " << rejoin;
   }
 }
 
