@@ -4,10 +4,12 @@
 /// center's rounds, the Monte Carlo's steppers, the in-process picture) makes the largest
 /// translation units of the build. It is split into shards by configuration group: a filter
 /// part on one motion model it runs on, numbered in the registry's order (FilterParts, and for
-/// each part MotionModels). Shard s of S holds the groups whose number modulo S is s. A shard
-/// compiles again only the headers the groups share (the DDS side of the processes is compiled
-/// once, apart), so S is the number of groups by default (cmake/FilterShards.cmake;
-/// docs/testing.md#the-largest-files).
+/// each part MotionModels). Which shard holds a group is cmake/FilterShards.cmake's choice
+/// (SKYFUSE_SHARD_GROUPS: groups on one motion model share a shard where that compiles in less
+/// and stays small, the others have one each); with another shard count S, or for a group beyond
+/// those it lists, shard s of S holds the groups whose number modulo S is s. A shard compiles
+/// again only the headers the groups share (the DDS side of the processes is compiled once,
+/// apart; docs/testing.md#the-largest-files).
 ///
 /// The code is written once, as a function template over the shard defined in a header:
 ///
@@ -21,6 +23,7 @@
 /// the declaration, goes through with_filter_shard(filter, ...).
 
 #include <cstddef>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -30,6 +33,7 @@
 #include "skyfuse/registry/compiled_parts.hpp"
 #include "skyfuse/registry/configuration_groups.hpp"
 #include "skyfuse/registry/dispatch.hpp"
+#include "skyfuse/registry/shard_of_group.hpp"  // generated: SKYFUSE_SHARD_OF_GROUP
 
 #if !defined(SKYFUSE_FILTER_SHARDS) || !defined(SKYFUSE_SENSOR_PARTS)
 #error "SKYFUSE_FILTER_SHARDS is unset: add the sharded source with skyfuse_filter_shards()"
@@ -40,13 +44,24 @@ namespace skyfuse {
 /// The number of shards; set by cmake/FilterShards.cmake.
 inline constexpr std::size_t kFilterShards = SKYFUSE_FILTER_SHARDS;
 
+namespace detail {
+// The shard of each group that cmake/FilterShards.cmake placed, then an end mark.
+inline constexpr std::size_t kShardOfGroup[] = {SKYFUSE_SHARD_OF_GROUP kFilterShards};
+}  // namespace detail
+
+/// The shard that compiles configuration group `group`.
+constexpr std::size_t shard_of_group(std::size_t group) {
+  constexpr std::size_t kPlaced = std::size(detail::kShardOfGroup) - 1;
+  return group < kPlaced ? detail::kShardOfGroup[group] : group % kFilterShards;
+}
+
 /// Whether shard `Shard` compiles the group of filter part `Filter` on `Model`: a registered
-/// group of a part in this build whose number modulo the shard count is `Shard`.
+/// group of a part in this build whose shard is `Shard`.
 template <typename Filter, typename Model, std::size_t Shard>
 constexpr bool in_shard() {
   constexpr auto group = kConfigurationGroup<Filter, Model>;
   if constexpr (group.has_value()) {
-    return *group % kFilterShards == Shard && filter_part_compiled(Filter::kKind);
+    return shard_of_group(*group) == Shard && filter_part_compiled(Filter::kKind);
   } else {
     return false;
   }
@@ -118,7 +133,7 @@ auto with_filter_shard(const FilterConfig& filter, F&& f) {
     throw std::invalid_argument("filter part '" + filter.kind +
                                 "' is not in this build: " + std::string(kHowToBuildEveryPart));
   }
-  return with_index_constant<kFilterShards>(*group % kFilterShards, std::forward<F>(f));
+  return with_index_constant<kFilterShards>(shard_of_group(*group), std::forward<F>(f));
 }
 
 }  // namespace skyfuse

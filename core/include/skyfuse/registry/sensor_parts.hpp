@@ -13,10 +13,10 @@
 ///     if constexpr (in_sensor_part<SensorOf, Part, kSensorPartsOf<Shard>>) { ... }
 ///
 /// cmake/FilterShards.cmake (`BY_SENSOR`) compiles that file once per shard and part, P being
-/// kSensorPartsOf<Shard>: 2 for the shards whose files were above 1.5 GB with 1, 1 for the
-/// others (each part compiles again what the sensors share), or more where SKYFUSE_SENSOR_PARTS
-/// asks; and the caller goes through with_sensor_part<kSensorPartsOf<Shard>>(scenario, stations,
-/// ...).
+/// kSensorPartsOf<Shard>: under GCC, 2 for the shards whose files were above 1.5 GB with 1;
+/// otherwise 1 (each part compiles again what the sensors share), or more where
+/// SKYFUSE_SENSOR_PARTS asks; and the caller goes through
+/// with_sensor_part<kSensorPartsOf<Shard>>(scenario, stations, ...).
 
 #include <cstddef>
 #include <string_view>
