@@ -28,7 +28,7 @@
 #
 # The shards' groups: the EKF and the unscented filter on constant velocity (groups 1 and 8)
 # in one, the three parts on paper 002's relative motion (2, 6, 9) in one, every other group
-# alone. Compiled together, clang took 26.1 s for the one-aircraft rounds and Monte Carlo of
+# alone. Compiled together, clang took 25.9 s for the one-aircraft rounds and Monte Carlo of
 # groups 1 and 8 against 22.5 + 12.9 s apart, and 33.9 s for their pictures against
 # 27.2 + 24.4 s (1.24 and 1.37 GB); the pictures of the EKF and the unscented filter on constant
 # acceleration (0 and 7) took 41.2 s against 33.7 + 29.3 s but 1.70 GB, so they stay apart
