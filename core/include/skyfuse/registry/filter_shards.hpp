@@ -33,7 +33,7 @@
 #include "skyfuse/registry/compiled_parts.hpp"
 #include "skyfuse/registry/configuration_groups.hpp"
 #include "skyfuse/registry/dispatch.hpp"
-#include "skyfuse/registry/shard_of_group.hpp"  // generated: SKYFUSE_SHARD_OF_GROUP
+#include "skyfuse/registry/shard_layout.hpp"  // generated: SKYFUSE_SHARD_OF_GROUP
 
 #if !defined(SKYFUSE_FILTER_SHARDS) || !defined(SKYFUSE_SENSOR_PARTS)
 #error "SKYFUSE_FILTER_SHARDS is unset: add the sharded source with skyfuse_filter_shards()"

@@ -25,7 +25,7 @@
 
 #include "skyfuse/core/index_constant.hpp"
 #include "skyfuse/registry/registry.hpp"
-#include "skyfuse/registry/sensor_parts_by_shard.hpp"  // generated: SKYFUSE_SENSOR_PARTS_BY_SHARD
+#include "skyfuse/registry/shard_layout.hpp"  // generated: SKYFUSE_SENSOR_PARTS_BY_SHARD
 #include "skyfuse/scenario/scenario.hpp"
 
 namespace skyfuse {
