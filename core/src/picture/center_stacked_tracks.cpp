@@ -1,11 +1,13 @@
 // The EKF center's stacked update of a track's detections (picture/track_filters.hpp),
-// once for each motion model of the registry.
+// once for each motion model an EKF's picture runs on.
 #include <optional>
 #include <span>
+#include <tuple>
 #include <type_traits>
 #include <variant>
 #include <vector>
 
+#include "skyfuse/picture/picture_parts.hpp"
 #include "skyfuse/picture/track_filters.hpp"
 #include "skyfuse/registry/registry.hpp"
 
@@ -81,13 +83,20 @@ bool CenterStackedTracks<Model>::update_considered(
                          weights, terms, term_weights) == NumericalStatus::kOk;
 }
 
-// A new motion model in the registry needs its line below.
-static_assert(
-    std::is_same_v<MotionModels,
-                   ModelList<ConstantAcceleration3D, ConstantVelocity3D, TdoaRelativeMotion>>,
-    "every motion model of the registry has its CenterStackedTracks below");
-template class CenterStackedTracks<ConstantAcceleration3D>;
-template class CenterStackedTracks<ConstantVelocity3D>;
-template class CenterStackedTracks<TdoaRelativeMotion>;
+// Compiled for every motion model an EKF's picture runs on (picture_parts.hpp, picture_runs),
+// where this build compiles the EKF: naming the rounds by their address makes the compiler
+// compile them here, and `used` keeps them for the linker.
+void keep_center_stacked_tracks() {
+  []<typename... Models>(ModelList<Models...>) {
+    const auto keep = []<typename Model>(std::type_identity<Model>) {
+      if constexpr (picture_runs<EkfFilterPart, Model>() &&
+                    filter_part_compiled(EkfFilterPart::kKind)) {
+        [[gnu::used]] static constexpr auto kRounds = std::tuple{
+            &CenterStackedTracks<Model>::update, &CenterStackedTracks<Model>::update_considered};
+      }
+    };
+    (keep(std::type_identity<Models>{}), ...);
+  }(MotionModels{});
+}
 
 }  // namespace skyfuse

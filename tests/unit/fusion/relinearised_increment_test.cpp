@@ -1,5 +1,3 @@
-#include "skyfuse/fusion/relinearised_increment.hpp"
-
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -9,6 +7,7 @@
 
 #include "skyfuse/fusion/increment_fusion.hpp"
 #include "skyfuse/fusion/information_increment.hpp"
+#include "skyfuse/fusion/relinearised_increment_impl.hpp"
 #include "skyfuse/metrics/chi_square.hpp"
 #include "skyfuse/models/position_sensor.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"

@@ -14,6 +14,7 @@
 #include "skyfuse/models/position_sensor.hpp"
 #include "skyfuse/models/range_azimuth_elevation.hpp"
 #include "skyfuse/picture/track_table.hpp"
+#include "skyfuse/registration/considered_terms_impl.hpp"
 #include "skyfuse/registration/station_bias.hpp"
 #include "support/draw_last_first.hpp"
 

@@ -19,8 +19,11 @@
 /// is still the information form's). Every input is the common prior and the station's own
 /// detection, so every peer and the center compute the same point. For a sensor linear in the
 /// state the point changes nothing but rounding.
+///
+/// Only the EKF's pictures relinearise, so both are defined in relinearised_increment_impl.hpp
+/// and compiled once per state size of such a picture (picture/state_size_code.hpp); this header
+/// declares them.
 
-#include "skyfuse/core/small_cholesky.hpp"
 #include "skyfuse/core/types.hpp"
 #include "skyfuse/fusion/station_observation.hpp"
 
@@ -31,31 +34,13 @@ namespace skyfuse {
 /// factor stops the iteration where it stands.
 template <int N, typename Sensor>
 Vector<N> relinearised_point(const GaussianState<N>& prior, const StationObservation<Sensor>& o,
-                             int times) {
-  static_assert(Sensor::kStateDim == N, "sensor and state dimensions differ");
-  constexpr int M = Sensor::kMeasDim;
-  Vector<N> point = prior.mean;
-  for (int i = 0; i < times; ++i) {
-    const Matrix<M, N> h = o.sensor.jacobian(point);
-    const Matrix<N, M> gain_numerator = prior.covariance * h.transpose();  // P Hᵀ
-    SmallCholesky<M> innovation_factor;
-    if (!innovation_factor.compute(Covariance<M>(h * gain_numerator + o.noise))) break;
-    const Vector<M> innovation =
-        o.sensor.residual(o.z, o.sensor.predict(point)) - h * (prior.mean - point);
-    point = prior.mean + gain_numerator * innovation_factor.solve(innovation);
-  }
-  return point;
-}
+                             int times);
 
 /// `prior` with its mean moved to observation `o`'s linearisation point after `times` steps:
 /// what an increment rule takes as the prior so that its H, h and dy are the relinearised ones
 /// (the covariance is not read by the increment; it stays the prior's).
 template <int N, typename Sensor>
 GaussianState<N> relinearised_prior(const GaussianState<N>& prior,
-                                    const StationObservation<Sensor>& o, int times) {
-  GaussianState<N> at = prior;
-  if (times > 0) at.mean = relinearised_point(prior, o, times);
-  return at;
-}
+                                    const StationObservation<Sensor>& o, int times);
 
 }  // namespace skyfuse

@@ -7,8 +7,10 @@
 /// the station and center processes pick them by the same rule, so that they run the same
 /// arithmetic.
 
+#include <array>
 #include <cstddef>
 #include <type_traits>
+#include <utility>
 
 #include "skyfuse/models/state_position.hpp"
 #include "skyfuse/picture/track_filters.hpp"
@@ -79,13 +81,57 @@ bool visit_picture_parts_in_shard(const Scenario& scenario, F&& f) {
 /// Calls f(std::type_identity<PictureParts<...>>{}) for every group of shard `Shard` that a
 /// picture runs: what the shard compiles the pictures for.
 template <std::size_t Shard, typename F>
-void for_each_picture_parts_in_shard(F&& f) {
+constexpr void for_each_picture_parts_in_shard(F&& f) {
   for_each_group_in_shard<Shard>(
       [&]<typename Filter, typename Model>(std::type_identity<Filter>, std::type_identity<Model>) {
         if constexpr (picture_runs<Filter, Model>()) {
           f(std::type_identity<PictureParts<Filter, Model>>{});
         }
       });
+}
+
+/// The state sizes of the tracks of every picture this build compiles (peers' and center's,
+/// every shard), ascending, each once: what the code a size alone decides is compiled for
+/// (state_size_code.hpp); and at each, whether a picture of it relinearises and keeps its tracks'
+/// cross-covariances with the bias errors (the EKF's: PeerModelTracks::kRelinearises).
+struct PictureStateSizes {
+  std::array<int, 2 * kConfigurationGroups> sizes{};
+  std::array<bool, 2 * kConfigurationGroups> linearises{};
+  std::size_t count = 0;
+};
+constexpr PictureStateSizes picture_state_sizes() {
+  PictureStateSizes out;
+  const auto add = [&](int size, bool linearises) {
+    std::size_t at = 0;
+    while (at < out.count && out.sizes[at] < size) ++at;
+    if (at == out.count || out.sizes[at] != size) {
+      for (std::size_t i = out.count; i > at; --i) {
+        out.sizes[i] = out.sizes[i - 1];
+        out.linearises[i] = out.linearises[i - 1];
+      }
+      out.sizes[at] = size;
+      out.linearises[at] = false;
+      ++out.count;
+    }
+    out.linearises[at] = out.linearises[at] || linearises;
+  };
+  [&]<std::size_t... Shard>(std::index_sequence<Shard...>) {
+    (for_each_picture_parts_in_shard<Shard>([&]<typename Parts>(std::type_identity<Parts>) {
+       using Peer = typename Parts::Peer;
+       constexpr bool kLinearises = [] {
+         if constexpr (requires { Peer::kRelinearises; }) {
+           return Peer::kRelinearises;
+         } else {
+           return false;
+         }
+       }();
+       add(Peer::kDim, kLinearises);
+       add(Parts::Center::kDim, kLinearises);
+     }),
+     ...);
+  }
+  (std::make_index_sequence<kFilterShards>{});
+  return out;
 }
 
 }  // namespace skyfuse

@@ -18,10 +18,8 @@
 /// tentative addressed track may be a spoof's beginning, and a tentative unaddressed one a
 /// nearby aircraft's first fixes; an unaddressed track is merged at the close that confirms it.
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <span>
 #include <vector>
 
@@ -34,18 +32,19 @@ namespace skyfuse {
 /// The entries the merge test compares: position and velocity.
 inline constexpr int kMergeDim = 6;
 
+/// d² = Δᵀ S⁻¹ Δ of a `difference` Δ over [p; v] under the summed `spread` S; +∞ where S is not
+/// positive definite (nothing to merge on). Compiled once (track_merge.cpp), whatever the state.
+double merge_distance(const Vector<kMergeDim>& difference, const Covariance<kMergeDim>& spread);
+
 /// d² of two estimates' position and velocity under their summed spreads; +∞ where the sum is
-/// not positive definite (nothing to merge on).
+/// not positive definite.
 template <int N>
 double merge_distance(const GaussianState<N>& a, const GaussianState<N>& b) {
   static_assert(N >= kMergeDim, "the merge compares position and velocity");
-  const Vector<kMergeDim> difference =
-      a.mean.template head<kMergeDim>() - b.mean.template head<kMergeDim>();
-  const Covariance<kMergeDim> spread = a.covariance.template topLeftCorner<kMergeDim, kMergeDim>() +
-                                       b.covariance.template topLeftCorner<kMergeDim, kMergeDim>();
-  const Eigen::LLT<Covariance<kMergeDim>> factor(spread);
-  if (factor.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-  return difference.dot(factor.solve(difference));
+  return merge_distance(
+      Vector<kMergeDim>(a.mean.template head<kMergeDim>() - b.mean.template head<kMergeDim>()),
+      Covariance<kMergeDim>(a.covariance.template topLeftCorner<kMergeDim, kMergeDim>() +
+                            b.covariance.template topLeftCorner<kMergeDim, kMergeDim>()));
 }
 
 /// What find_tracks_held_twice keeps from round to round, so that a round allocates nothing

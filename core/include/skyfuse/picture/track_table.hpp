@@ -39,6 +39,7 @@
 #include "skyfuse/picture/picture_digest.hpp"
 #include "skyfuse/picture/picture_sensor.hpp"
 #include "skyfuse/picture/registrations/least_squares.hpp"
+#include "skyfuse/picture/station_hypotheses.hpp"
 #include "skyfuse/picture/track.hpp"
 #include "skyfuse/picture/track_management.hpp"
 #include "skyfuse/picture/track_merge.hpp"
@@ -216,10 +217,10 @@ class TrackTable {
   Tracks filters_;
   std::vector<Station> stations_;
   TrackerConfig config_;
-  std::array<double, kMaxDetectionDim + 1> gates_{};         // by a sensor's values a detection
-  std::array<double, kMaxDetectionDim + 1> sanity_gates_{};  // identity's, likewise
-  double join_gate_ = 0.0;                                   // initiation's (initiation.hpp)
-  double merge_gate_ = 0.0;                                  // track_merge.hpp's; 0: no merge
+  GatesByDimension gates_{};         // by a sensor's values a detection
+  GatesByDimension sanity_gates_{};  // identity's, likewise
+  double join_gate_ = 0.0;           // initiation's (initiation.hpp)
+  double merge_gate_ = 0.0;          // track_merge.hpp's; 0: no merge
   MergeWork merge_work_;
   const Associator* associator_;
   std::vector<TrackType> tracks_;

@@ -11,8 +11,8 @@
 #include <utility>
 #include <variant>
 
-#include "skyfuse/picture/hypothesiser.hpp"
 #include "skyfuse/picture/picture_digest.hpp"
+#include "skyfuse/picture/station_hypotheses.hpp"
 #include "skyfuse/picture/track_management.hpp"
 #include "skyfuse/picture/track_table.hpp"
 
@@ -31,19 +31,11 @@ ScanAssociation TrackTable<Tracks>::associate(const Station& station, const Scan
   const Scan& scan = registered ? offset_free : raw;
   const std::span<const GaussianState<kDim>> priors =
       registered ? std::span<const GaussianState<kDim>>(gated) : estimates();
-  std::visit(
-      [&]<typename Sensor>(const Sensor& sensor) {
-        constexpr std::size_t M = Sensor::kMeasDim;
-        const std::size_t taken =
-            std::min(scan.detections.size(), config_.association.max_detections_per_scan);
-        route_addressed(priors, book_, sensor, scan, taken, sanity_gates_[M], work.routing);
-        const std::span<const Address> held =
-            book_.empty() ? std::span<const Address>() : std::span<const Address>(addresses_);
-        hypothesise(priors, sensor, scan, gates_[M], config_.association.max_detections_per_scan,
-                    associator_->reads_densities, work.routing.mask(held, scan.addresses),
-                    work.hypothesiser, work.hypotheses);
-      },
-      station.sensor);
+  const std::span<const Address> held =
+      book_.empty() ? std::span<const Address>() : std::span<const Address>(addresses_);
+  hypothesise_station_scan(priors, book_, held, station.sensor, scan, gates_, sanity_gates_,
+                           config_.association.max_detections_per_scan,
+                           associator_->reads_densities, work);
   ScanAssociation decided;
   associator_->associate(work.hypotheses, station.prior, config_.association, work, decided);
   merge_routing(work.routing, decided);

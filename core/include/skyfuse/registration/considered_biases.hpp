@@ -96,26 +96,12 @@ struct ConsideredObservation {
 /// without G Σ Gᵀ) of the track of prior `prior`, from a station whose standardised bias
 /// Jacobian at the prior mean is `g_scaled` (G L): its terms, linearised as its increment is
 /// (information_increment.hpp: the same H, innovation and factor of R). False where R does not
-/// factor.
+/// factor. Defined in considered_terms_impl.hpp, compiled once per state size of a picture whose
+/// tracks keep their cross-covariances (picture/state_size_code.hpp).
 template <int N, typename Sensor>
 bool considered_terms(int station_id, const GaussianState<N>& prior, const Sensor& sensor,
                       const Vector<Sensor::kMeasDim>& z, const Covariance<Sensor::kMeasDim>& noise,
-                      const Eigen::Ref<const Eigen::MatrixXd>& g_scaled, ConsideredTerms& out) {
-  constexpr int M = Sensor::kMeasDim;
-  SmallCholesky<M> r_factor;
-  if (!r_factor.compute(noise)) return false;
-  const Matrix<M, N> h = sensor.jacobian(prior.mean);
-  const Vector<M> innovation = sensor.residual(z, sensor.predict(prior.mean));
-  const auto d = g_scaled.cols();
-  Matrix<M, Eigen::Dynamic> r_inv_g(M, d);
-  for (Eigen::Index c = 0; c < d; ++c) r_inv_g.col(c) = r_factor.solve(g_scaled.col(c));
-  out.station_id = station_id;
-  out.cross = h.transpose().lazyProduct(r_inv_g);
-  out.bias = g_scaled.transpose().lazyProduct(r_inv_g);
-  out.bias = 0.5 * (out.bias + out.bias.transpose()).eval();
-  out.vector = r_inv_g.transpose().lazyProduct(innovation + h * prior.mean);
-  return true;
-}
+                      const Eigen::Ref<const Eigen::MatrixXd>& g_scaled, ConsideredTerms& out);
 
 /// The joint update (the file's comment) of a track of mean `mean` and covariance `covariance`
 /// (N entries) holding `considered`: `delta_information` and `delta_vector`, the sum of every

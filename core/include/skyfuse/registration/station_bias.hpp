@@ -5,12 +5,13 @@
 /// aircraft, and its detections corrected by the current estimate. The estimate moves only
 /// when settle() is called (once a round), so that every detection of a round is corrected
 /// alike whatever the order it is met in.
+///
+/// Its members are defined in station_bias_impl.hpp and compiled once per state size with the
+/// rest of what a picture's size alone decides (picture/state_size_code.hpp); this header
+/// declares them.
 
-#include <Eigen/Cholesky>
 #include <array>
 #include <cstdint>
-#include <optional>
-#include <stdexcept>
 #include <variant>
 
 #include "skyfuse/picture/picture_sensor.hpp"
@@ -65,31 +66,23 @@ struct BiasCorrection {
 };
 
 template <int N>
+struct StateSizeCode;
+
+template <int N>
 class StationBias {
  public:
   using Sensor = PictureSensor<N>;
   using Estimate = typename detail::BiasEstimateOf<Sensor>::type;
+  using Offsets = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1>;
+  using Square = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4>;
 
   /// A station of `sensor` whose biases are a priori N(0, prior_std²), each entry > 0
   /// (prior_std names them as a scenario's `bias:` does; entries the sensor does not measure
   /// are not read).
   StationBias(const Sensor& sensor, const SensorBias& prior_std)
-      : estimate_(std::visit(
-            [&]<typename S>(const S&) -> Estimate {
-              const auto prior = BiasEstimate<S>::from_sensor_bias(prior_std);
-              if (!(prior.minCoeff() > 0.0)) {
-                throw std::invalid_argument(
-                    "StationBias: every prior standard deviation must be > 0");
-              }
-              return BiasEstimate<S>(prior);
-            },
-            sensor)) {
+      : estimate_(prior_estimate(sensor, prior_std)) {
     // Until the first settle the corrections are zero and as uncertain as the prior.
-    std::visit(
-        [&]<typename S>(const BiasEstimate<S>&) {
-          set_covariance(BiasEstimate<S>::from_sensor_bias(prior_std).cwiseAbs2().asDiagonal());
-        },
-        estimate_);
+    set_prior_covariance(prior_std);
   }
 
   /// Adds detection `z` (noise `noise`) of the aircraft whose track has prior `prior`: z as
@@ -102,62 +95,11 @@ class StationBias {
   /// teaches the biases through H (C̃ L⁻¹) beside G, against the track's error without that
   /// part, P − C̃ C̃ᵀ.
   bool learn(const Sensor& sensor, const GaussianState<N>& prior, const Detection& z,
-             const DetectionNoise& noise, const ConsideredCross* absorbed = nullptr) {
-    return std::visit(
-        [&]<typename S>(const S& typed) {
-          constexpr int M = S::kMeasDim;
-          constexpr int D = BiasEstimate<S>::kDim;
-          auto& estimate = std::get<BiasEstimate<S>>(estimate_);
-          if (absorbed == nullptr || absorbed->rows() != N || absorbed->cols() != D) {
-            return estimate.add(typed, prior, fixed_detection<M>(z), fixed_noise<M>(noise));
-          }
-          const Matrix<N, D> cross = *absorbed;
-          const Covariance<D> l = factor_.template topLeftCorner<D, D>();
-          // A = H C̃ L⁻¹, from Lᵀ Aᵀ = (H C̃)ᵀ.
-          const Matrix<M, D> a = l.transpose()
-                                     .template triangularView<Eigen::Upper>()
-                                     .solve((typed.jacobian(prior.mean) * cross).transpose())
-                                     .transpose();
-          GaussianState<N> rest{prior.mean, prior.covariance - cross * cross.transpose()};
-          symmetrize(rest.covariance);
-          // r = z − h(x̂) ≈ (G + A) b − A b̂ + …: the known part moved to z.
-          const Vector<M> shifted =
-              fixed_detection<M>(z) + a * BiasEstimate<S>::from_sensor_bias(bias_);
-          return estimate.add(typed, rest, shifted, fixed_noise<M>(noise), a);
-        },
-        sensor);
-  }
+             const DetectionNoise& noise, const ConsideredCross* absorbed = nullptr);
 
   /// Takes what was learnt into the estimate the corrections use; false, and the estimate as
   /// it was, where the information does not factor.
-  bool settle() {
-    return std::visit(
-        [&]<typename S>(const BiasEstimate<S>& estimate) {
-          constexpr int D = BiasEstimate<S>::kDim;
-          // Until it settles, nothing moved and nothing narrowed.
-          move_.setZero(D);
-          narrowing_.setIdentity(D, D);
-          const auto settled = estimate.estimate();
-          if (!settled) return false;
-          // How far the estimate moved, in the standardised errors of the one it replaces.
-          // (Entry by entry, and solved in the dynamic vector: GCC 12 warns falsely of
-          // -Warray-bounds on the packet arithmetic of a one-entry estimate's.)
-          const Vector<D> before = BiasEstimate<S>::from_sensor_bias(bias_);
-          for (int i = 0; i < D; ++i) move_(i) = settled->mean(i) - before(i);
-          const auto old_factor =
-              factor_.topLeftCorner(D, D).template triangularView<Eigen::Lower>();
-          old_factor.solveInPlace(move_);
-          bias_ = BiasEstimate<S>::as_sensor_bias(settled->mean);
-          const decltype(factor_) replaced = factor_;
-          set_covariance(settled->covariance);
-          // L_old⁻¹ L_new: the new standardised errors in the old ones' units.
-          narrowing_ = factor_;
-          replaced.topLeftCorner(D, D).template triangularView<Eigen::Lower>().solveInPlace(
-              narrowing_);
-          return true;
-        },
-        estimate_);
-  }
+  bool settle();
 
   /// The biases the corrections use (none learnt: zero).
   const SensorBias& bias() const { return bias_; }
@@ -165,95 +107,36 @@ class StationBias {
   /// How far the last settle() moved them, in the standardised errors u of the estimate it
   /// replaced (L⁻¹ (b̂_new − b̂_old)): what a track that keeps its cross-covariance C̃ with them
   /// expects its own error to have been, C̃ u (registration/considered_biases.hpp).
-  const Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1>& last_move() const {
-    return move_;
-  }
+  const Offsets& last_move() const { return move_; }
   /// How the last settle() narrowed them: A = L_old⁻¹ L_new, so that u_old = last_move() +
   /// A u_new, and what is still unknown of u_old is A Aᵀ (the identity where nothing settled).
-  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4>&
-  last_narrowing() const {
-    return narrowing_;
-  }
+  const Square& last_narrowing() const { return narrowing_; }
 
   /// Their standard deviations, as settled (before the first settle: the prior's); 0 for an
   /// entry the sensor's estimate does not hold (estimated()).
-  SensorBias sigma() const {
-    return std::visit(
-        [&]<typename S>(const BiasEstimate<S>&) {
-          return BiasEstimate<S>::as_sensor_bias(
-              fixed_covariance<BiasEstimate<S>::kDim>().diagonal().cwiseSqrt());
-        },
-        estimate_);
-  }
+  SensorBias sigma() const;
 
   /// Which of SensorBias's entries (range, azimuth, elevation, clock) the estimate holds.
-  std::array<bool, 4> estimated() const {
-    return std::visit(
-        [&]<typename S>(const BiasEstimate<S>&) {
-          std::array<bool, 4> held{false, false, false, true};
-          for (const int c : BiasEstimate<S>::kOffsetOf) {
-            if (c >= 0) held[static_cast<std::size_t>(c)] = true;
-          }
-          return held;
-        },
-        estimate_);
-  }
+  std::array<bool, 4> estimated() const;
 
   /// Station sensor `sensor`'s correction for the track of prior mean `mean` (BiasCorrection),
   /// for a caller that knows the sensor's type: G computed once for every detection of the
-  /// track and for its noise.
+  /// track and for its noise. Compiled for every sensor of the picture with the rest
+  /// (station_bias_impl.hpp).
   template <typename S>
-  BiasCorrection<S> correction(const S& sensor, const Vector<N>& mean) const {
-    constexpr int D = BiasEstimate<S>::kDim;
-    BiasCorrection<S> c;
-    c.g = BiasEstimate<S>::bias_jacobian(sensor.jacobian(mean), mean);
-    c.b = BiasEstimate<S>::from_sensor_bias(bias_);
-    c.noise = c.g * fixed_covariance<D>() * c.g.transpose();
-    c.g_scaled = c.g * factor_.template topLeftCorner<D, D>();
-    return c;
-  }
+  BiasCorrection<S> correction(const S& sensor, const Vector<N>& mean) const;
 
   /// How uncertain a detection corrected for the track of prior mean `mean` still is: G Σ Gᵀ
   /// (BiasCorrection::noise).
-  DetectionNoise correction_noise(const Sensor& sensor, const Vector<N>& mean) const {
-    return std::visit(
-        [&]<typename S>(const S& typed) -> DetectionNoise { return correction(typed, mean).noise; },
-        sensor);
-  }
+  DetectionNoise correction_noise(const Sensor& sensor, const Vector<N>& mean) const;
 
   /// The same for the offsets alone, E Σ Eᵀ: what a detection no track has met still carries
   /// (its clock's part needs a velocity; clock_variance() gives it to whoever has one).
-  DetectionNoise offsets_noise(const Sensor& sensor) const {
-    return std::visit(
-        [&]<typename S>(const S&) -> DetectionNoise {
-          constexpr int M = S::kMeasDim;
-          constexpr int D = BiasEstimate<S>::kDim;
-          Matrix<M, D - 1> e = Matrix<M, D - 1>::Zero();
-          int column = 0;
-          for (int i = 0; i < M; ++i) {
-            if (BiasEstimate<S>::kOffsetOf[static_cast<std::size_t>(i)] >= 0) e(i, column++) = 1.0;
-          }
-          return e * fixed_covariance<D>().template topLeftCorner<D - 1, D - 1>() * e.transpose();
-        },
-        sensor);
-  }
+  DetectionNoise offsets_noise(const Sensor& sensor) const;
 
   /// The offsets' part of the standardised errors: E L (M × D, the clock's column zero), so that
   /// a detection no track has met, its offsets removed, still carries E L u (u = L⁻¹ (b − b̂)).
-  ConsideredCross offsets_factor(const Sensor& sensor) const {
-    return std::visit(
-        [&]<typename S>(const S&) -> ConsideredCross {
-          constexpr int M = S::kMeasDim;
-          constexpr int D = BiasEstimate<S>::kDim;
-          ConsideredCross e = ConsideredCross::Zero(M, D);
-          int column = 0;
-          for (int i = 0; i < M; ++i) {
-            if (BiasEstimate<S>::kOffsetOf[static_cast<std::size_t>(i)] >= 0) e(i, column++) = 1.0;
-          }
-          return ConsideredCross(e * factor_.topLeftCorner(D, D));
-        },
-        sensor);
-  }
+  ConsideredCross offsets_factor(const Sensor& sensor) const;
 
   /// The settled variance of the clock offset (s²).
   double clock_variance() const {
@@ -262,58 +145,29 @@ class StationBias {
 
   /// `z` corrected for the aircraft whose track's prior mean is `mean`: z − G(x̂) b̂, the
   /// clock's part included (BiasCorrection::applied).
-  Detection corrected(const Sensor& sensor, const Detection& z, const Vector<N>& mean) const {
-    return std::visit(
-        [&]<typename S>(const S& typed) -> Detection {
-          return correction(typed, mean).applied(fixed_detection<S::kMeasDim>(z));
-        },
-        sensor);
-  }
+  Detection corrected(const Sensor& sensor, const Detection& z, const Vector<N>& mean) const;
 
   /// `z` corrected by the offsets alone, for a detection no track has met (initiation): the
   /// clock's part needs the aircraft's velocity.
-  Detection offsets_removed(const Sensor& sensor, const Detection& z) const {
-    return std::visit(
-        [&]<typename S>(const S&) -> Detection {
-          constexpr int M = S::kMeasDim;
-          return S::to_reported(fixed_detection<M>(z) - offsets_of<S>(bias_));
-        },
-        sensor);
-  }
+  Detection offsets_removed(const Sensor& sensor, const Detection& z) const;
 
   const Estimate& estimate() const { return estimate_; }
 
   /// What it has summed, for station `station_id` (BiasSums).
-  BiasSums sums(int station_id) const {
-    return std::visit(
-        [&]<typename S>(const BiasEstimate<S>& estimate) {
-          return BiasSums{station_id, estimate.information(), estimate.information_vector(),
-                          estimate.detections()};
-        },
-        estimate_);
-  }
+  BiasSums sums(int station_id) const;
 
   /// Takes `sums` (another node's, of a station of this sensor) as its own and settles them;
   /// false, and nothing changed, where they are not of this sensor's size or do not factor.
-  bool restore(const BiasSums& sums) {
-    return std::visit(
-        [&]<typename S>(BiasEstimate<S>& estimate) {
-          constexpr int D = BiasEstimate<S>::kDim;
-          if (sums.information.rows() != D || sums.information.cols() != D ||
-              sums.information_vector.size() != D) {
-            return false;
-          }
-          const BiasEstimate<S> before = estimate;
-          estimate.restore(sums.information, sums.information_vector,
-                           static_cast<std::size_t>(sums.detections));
-          if (settle()) return true;
-          estimate = before;
-          return false;
-        },
-        estimate_);
-  }
+  bool restore(const BiasSums& sums);
 
  private:
+  friend struct StateSizeCode<N>;  // which compiles the members below for its size
+
+  // The constructor's work, out of line (a constructor cannot be kept by its address:
+  // picture/state_size_code.hpp): the estimate of `sensor`'s biases at `prior_std`, and Σ at it.
+  static Estimate prior_estimate(const Sensor& sensor, const SensorBias& prior_std);
+  void set_prior_covariance(const SensorBias& prior_std);
+
   template <int D>
   Covariance<D> fixed_covariance() const {
     return covariance_.template topLeftCorner<D, D>();
@@ -322,18 +176,15 @@ class StationBias {
   // Σ, and its lower Cholesky factor L for BiasCorrection::g_scaled (Σ is positive definite: a
   // prior of positive entries, or a settled estimate, which factored).
   template <typename Cov>
-  void set_covariance(const Cov& covariance) {
-    covariance_ = covariance;
-    factor_ = covariance_.llt().matrixL();
-  }
+  void set_covariance(const Cov& covariance);
 
   Estimate estimate_;
   SensorBias bias_;
   /// Σ of the settled estimate, of its size (at most the three offsets and the clock).
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4> covariance_;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4> factor_;
-  Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, 4, 1> move_;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, 4, 4> narrowing_;
+  Square covariance_;
+  Square factor_;
+  Offsets move_;
+  Square narrowing_;
 };
 
 }  // namespace skyfuse

@@ -69,7 +69,8 @@ constexpr bool in_shard() {
 
 namespace detail {
 template <std::size_t Shard, typename F, typename... Filters, typename... Models>
-void for_each_group_in(FilterList<Filters...> /*parts*/, ModelList<Models...> /*models*/, F& f) {
+constexpr void for_each_group_in(FilterList<Filters...> /*parts*/, ModelList<Models...> /*models*/,
+                                 F& f) {
   const auto each_part = [&]<typename Filter>(std::type_identity<Filter> part) {
     const auto each_model = [&]<typename Model>(std::type_identity<Model> model) {
       if constexpr (in_shard<Filter, Model, Shard>()) f(part, model);
@@ -84,7 +85,7 @@ void for_each_group_in(FilterList<Filters...> /*parts*/, ModelList<Models...> /*
 /// `Shard`, at compile time: what a shard compiles code for whatever the run (the tables and
 /// filter rounds that other files only link).
 template <std::size_t Shard, typename F>
-void for_each_group_in_shard(F&& f) {
+constexpr void for_each_group_in_shard(F&& f) {
   static_assert(Shard < kFilterShards);
   detail::for_each_group_in<Shard>(FilterParts{}, MotionModels{}, f);
 }
