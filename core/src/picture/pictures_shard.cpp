@@ -13,6 +13,9 @@
 #include "skyfuse/picture/peer_picture_impl.hpp"
 #include "skyfuse/picture/picture_parts.hpp"
 #include "skyfuse/registry/filter_shards.hpp"
+#if SKYFUSE_STATE_SIZE_SLOTS == 0
+#include "skyfuse/picture/state_size_code.hpp"
+#endif
 
 namespace skyfuse {
 namespace {
@@ -43,6 +46,11 @@ template <std::size_t Shard>
 void keep_pictures_in_shard() {
   for_each_picture_parts_in_shard<Shard>(
       []<typename Parts>(std::type_identity<Parts>) { keep_picture_rounds<Parts>(); });
+#if SKYFUSE_STATE_SIZE_SLOTS == 0
+  // No file of its own compiles the code of each state size (picture/state_size_code.hpp):
+  // the first shard does.
+  if constexpr (Shard == 0) keep_every_state_size();
+#endif
 }
 
 template void keep_pictures_in_shard<SKYFUSE_SHARD>();
