@@ -8,6 +8,7 @@
 // cmake/FilterShards.cmake compiles this file once per shard, with SKYFUSE_SHARD set.
 #include <tuple>
 #include <type_traits>
+#include <utility>
 
 #include "skyfuse/picture/central_picture_impl.hpp"
 #include "skyfuse/picture/peer_picture_impl.hpp"
@@ -49,7 +50,9 @@ void keep_pictures_in_shard() {
 #if SKYFUSE_STATE_SIZE_SLOTS == 0
   // No file of its own compiles the code of each state size (picture/state_size_code.hpp):
   // the first shard does.
-  if constexpr (Shard == 0) keep_every_state_size();
+  if constexpr (Shard == 0) {
+    keep_state_size_slots(std::make_index_sequence<picture_state_sizes().count>{});
+  }
 #endif
 }
 

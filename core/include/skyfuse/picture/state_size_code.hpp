@@ -77,15 +77,14 @@ void keep_state_size_slot() {
   }
 }
 
-/// Compiles the code of every state size of the build: the pictures' one shard does it where the
-/// build has a single shard (SKYFUSE_STATE_SIZE_SLOTS 0, the demo's), since no other file
-/// shares that code, and beside the pictures' own arithmetic it compiles in less (there, 45.5 s +
-/// 30.9 s + 57.5 s apart against 79.3 s in one file, docs/testing.md#the-largest-files).
-inline void keep_every_state_size() {
-  []<std::size_t... Slot>(std::index_sequence<Slot...>) {
-    (keep_state_size_slot<Slot>(), ...);
-  }
-  (std::make_index_sequence<picture_state_sizes().count>{});
+/// Compiles the code of the state sizes at places `Slot...`: with every place, what the pictures'
+/// one shard does where the build has a single shard (SKYFUSE_STATE_SIZE_SLOTS 0, the demo's),
+/// since no other file shares that code there, and beside the pictures' own arithmetic it
+/// compiles in less (docs/testing.md#the-largest-files). A template, so that only a file that
+/// calls it compiles the sizes.
+template <std::size_t... Slot>
+void keep_state_size_slots(std::index_sequence<Slot...> /*slots*/) {
+  (keep_state_size_slot<Slot>(), ...);
 }
 
 }  // namespace skyfuse
