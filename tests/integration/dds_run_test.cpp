@@ -229,7 +229,8 @@ TEST(DdsBench, MeasuresEachStationCountAgainstItsFloorIntoBenchJson) {
   const auto dir = test_dir();
   const Completed bench =
       run_to_completion({bin("skyfuse"), "bench", "--no-micro", "--stations", "1", "2", "--rounds",
-                         "30", "--domain", "190", "--out", (dir / "out").string()},
+                         "30", "--domain", "190",  // its floors: 191
+                         "--out", (dir / "out").string()},
                         dir / "bench.log", std::chrono::seconds(180));
   ASSERT_EQ(bench.status.code, 0) << bench.output;
   const auto doc = nlohmann::json::parse(read_file(dir / "out" / "bench.json"));
