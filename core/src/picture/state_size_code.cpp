@@ -7,8 +7,6 @@
 
 #include <cstddef>
 
-#include "skyfuse/picture/picture_parts.hpp"
-
 namespace skyfuse {
 
 static_assert(picture_state_sizes().count <= SKYFUSE_STATE_SIZE_SLOTS,

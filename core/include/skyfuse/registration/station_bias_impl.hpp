@@ -133,17 +133,25 @@ DetectionNoise StationBias<N>::correction_noise(const Sensor& sensor, const Vect
       sensor);
 }
 
+// E: which of sensor S's M measured values each of its D − 1 offsets (the biases but the
+// clock) moves.
+template <typename S>
+Matrix<S::kMeasDim, BiasEstimate<S>::kDim - 1> offsets_selection() {
+  constexpr int M = S::kMeasDim;
+  Matrix<M, BiasEstimate<S>::kDim - 1> e = Matrix<M, BiasEstimate<S>::kDim - 1>::Zero();
+  int column = 0;
+  for (int i = 0; i < M; ++i) {
+    if (BiasEstimate<S>::kOffsetOf[static_cast<std::size_t>(i)] >= 0) e(i, column++) = 1.0;
+  }
+  return e;
+}
+
 template <int N>
 DetectionNoise StationBias<N>::offsets_noise(const Sensor& sensor) const {
   return std::visit(
       [&]<typename S>(const S&) -> DetectionNoise {
-        constexpr int M = S::kMeasDim;
         constexpr int D = BiasEstimate<S>::kDim;
-        Matrix<M, D - 1> e = Matrix<M, D - 1>::Zero();
-        int column = 0;
-        for (int i = 0; i < M; ++i) {
-          if (BiasEstimate<S>::kOffsetOf[static_cast<std::size_t>(i)] >= 0) e(i, column++) = 1.0;
-        }
+        const auto e = offsets_selection<S>();
         return e * fixed_covariance<D>().template topLeftCorner<D - 1, D - 1>() * e.transpose();
       },
       sensor);
@@ -155,11 +163,8 @@ ConsideredCross StationBias<N>::offsets_factor(const Sensor& sensor) const {
       [&]<typename S>(const S&) -> ConsideredCross {
         constexpr int M = S::kMeasDim;
         constexpr int D = BiasEstimate<S>::kDim;
-        ConsideredCross e = ConsideredCross::Zero(M, D);
-        int column = 0;
-        for (int i = 0; i < M; ++i) {
-          if (BiasEstimate<S>::kOffsetOf[static_cast<std::size_t>(i)] >= 0) e(i, column++) = 1.0;
-        }
+        ConsideredCross e = ConsideredCross::Zero(M, D);  // the clock's column zero
+        e.leftCols(D - 1) = offsets_selection<S>();
         return ConsideredCross(e * factor_.topLeftCorner(D, D));
       },
       sensor);
