@@ -223,10 +223,14 @@ int main(int argc, char** argv) {
       return true;
     };
     // What all_matched() counts, for the log.
+    // The participants known tell a reader never discovered (its process unseen) from one whose
+    // process was seen but whose endpoint did not match.
     auto matched_readers = [&] {
-      if (scans) return fmt::format("{} of {} scan readers", scans->matched(), stations + 1);
-      return fmt::format("{} measurement readers, {} increment readers", measurements.matched(),
-                         increments.matched());
+      const std::string readers =
+          scans ? fmt::format("{} of {} scan readers", scans->matched(), stations + 1)
+                : fmt::format("{} measurement readers, {} increment readers",
+                              measurements.matched(), increments.matched());
+      return fmt::format("{}; {} participants known", readers, node.participants_known());
     };
     transport::ReaderWaitSet wait_set;
     wait_set.attach(ticks);
