@@ -61,3 +61,15 @@ function(skyfuse_precompile_headers target)
     target_compile_options(${target} PRIVATE "SHELL:-Xclang -fno-pch-timestamp")
   endif()
 endfunction()
+
+# skyfuse_reuse_precompiled_headers(TARGET OWNER): TARGET's files use OWNER's precompiled header,
+# made once; both must be compiled with the same options and definitions.
+function(skyfuse_reuse_precompiled_headers target owner)
+  if(NOT SKYFUSE_PRECOMPILED_HEADERS)
+    return()
+  endif()
+  target_precompile_headers(${target} REUSE_FROM ${owner})
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    target_compile_options(${target} PRIVATE "SHELL:-Xclang -fno-pch-timestamp")
+  endif()
+endfunction()
