@@ -57,9 +57,7 @@ function(skyfuse_precompile_headers target)
     return()
   endif()
   target_precompile_headers(${target} PRIVATE ${ARGN})
-  if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
-    target_compile_options(${target} PRIVATE "SHELL:-Xclang -fno-pch-timestamp")
-  endif()
+  skyfuse_pch_without_timestamp(${target})
 endfunction()
 
 # skyfuse_reuse_precompiled_headers(TARGET OWNER): TARGET's files use OWNER's precompiled header,
@@ -69,6 +67,11 @@ function(skyfuse_reuse_precompiled_headers target owner)
     return()
   endif()
   target_precompile_headers(${target} REUSE_FROM ${owner})
+  skyfuse_pch_without_timestamp(${target})
+endfunction()
+
+# clang writes the header's timestamp into it, which ccache cannot cache (above).
+function(skyfuse_pch_without_timestamp target)
   if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
     target_compile_options(${target} PRIVATE "SHELL:-Xclang -fno-pch-timestamp")
   endif()

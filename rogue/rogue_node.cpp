@@ -222,9 +222,8 @@ int main(int argc, char** argv) {
       }
       return true;
     };
-    // What all_matched() counts, for the log.
-    // The participants known tell a reader never discovered (its process unseen) from one whose
-    // process was seen but whose endpoint did not match.
+    // What all_matched() counts, for the log, and the participants known: they tell a reader
+    // never discovered (its process unseen) from one whose process was seen but did not match.
     auto matched_readers = [&] {
       const std::string readers =
           scans ? fmt::format("{} of {} scan readers", scans->matched(), stations + 1)
